@@ -1,0 +1,33 @@
+#pragma once
+/// \file
+/// Validity checks on a surface mesh and its orientation. Each failure throws a
+/// strata::Error whose one-line message names the source, the face/edge/node and where it is.
+
+#include <strata/geometry/surface_mesh.h>
+
+#include <string>
+
+namespace strata {
+
+/// Throws InputError for an empty mesh or NaN/infinite coordinates (naming the node),
+/// TopologyError for a face with a repeated node or (near) zero area (relative to the
+/// bounding box), for an out-of-range node id, and for an edge shared by more than two
+/// faces (naming the edge's nodes, coordinates and faces). \p source names the input.
+void check_surface(const SurfaceMesh& mesh, const std::string& source);
+
+/// What orient_surface did.
+struct OrientReport {
+    Index components = 0;          ///< connected components
+    Index flipped_faces = 0;       ///< faces whose order was reversed
+    Index closed_components = 0;   ///< of which closed (no boundary edge)
+};
+
+/// Make every connected component consistently oriented (breadth-first from its lowest face),
+/// then orient closed components so normals point into the flow domain: a closed body that
+/// lies in no other component points outward; a closed surface that holds other components,
+/// or carries a farfield patch, points inward. An open component keeps the majority
+/// orientation of its faces. Throws TopologyError (naming an edge) where a component is not
+/// orientable (e.g. a Möbius strip). Requires check_surface to have passed.
+SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report = nullptr);
+
+}  // namespace strata

@@ -1,0 +1,26 @@
+#pragma once
+/// \file
+/// Geometry of single faces: area vector, unit normal, centroid. Quads use the
+/// cross product of their diagonals (exact vector area of a non-planar quad).
+
+#include <strata/geometry/surface_mesh.h>
+
+namespace strata {
+
+/// Vector area of face \p f with node positions \p points (#nodes): |a| = area,
+/// direction = right-hand normal of the node order.
+Vec3 face_area_vector(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f);
+inline Vec3 face_area_vector(const SurfaceMesh& mesh, Index f) {
+    return face_area_vector(mesh, mesh.points, f);
+}
+/// Centroid (mean of the corners) of face \p f.
+Vec3 face_centroid(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f);
+
+/// Axis-aligned bounding box of \p points; diagonal() of an empty set is 0.
+struct BoundingBox {
+    Vec3 min = Vec3::Constant(0.0), max = Vec3::Constant(0.0);
+    double diagonal() const { return (max - min).norm(); }
+};
+BoundingBox bounding_box(const std::vector<Vec3>& points);
+
+}  // namespace strata

@@ -1,0 +1,58 @@
+#pragma once
+/// \file
+/// The one adapter between Strata and Gmsh's global state. Gmsh is a process-wide singleton
+/// and not thread-safe, so every use goes through a GmshSession (a lock, initialisation if
+/// nobody else did it, a scratch model removed at the end) and gmsh_call (Gmsh's failures
+/// re-thrown as BackendError with context and Gmsh's last logged error).
+
+#include <strata/error.h>
+
+#include <gmsh.h>
+
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+
+namespace strata {
+
+class GmshSession {
+public:
+    /// Lock Gmsh for this thread; initialise it (quiet) unless a GmshSession or the user
+    /// already did; start a fresh model named \p model_name and make it current.
+    explicit GmshSession(const std::string& model_name = "strata");
+    /// Remove the scratch model, restore the previously current model, finalise Gmsh if this
+    /// session initialised it.
+    ~GmshSession();
+    GmshSession(const GmshSession&) = delete;
+    GmshSession& operator=(const GmshSession&) = delete;
+
+    /// Gmsh's most recent error message ("" if none).
+    static std::string last_error();
+
+private:
+    std::unique_lock<std::recursive_mutex> lock_;
+    std::string model_;
+    std::string previous_model_;
+    bool initialised_here_ = false;
+};
+
+/// Run \p f (calls into gmsh::), turning any exception Gmsh throws into a BackendError
+/// "<context>: <Gmsh's message>". strata::Error passes through unchanged.
+template <class F>
+auto gmsh_call(const std::string& context, F&& f) -> decltype(f()) {
+    try {
+        return std::forward<F>(f)();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        std::string last = GmshSession::last_error();
+        throw BackendError(context + ": " + (last.empty() ? std::string(e.what()) : last));
+    } catch (...) {
+        std::string last = GmshSession::last_error();
+        throw BackendError(context + ": " + (last.empty() ? std::string("Gmsh failed") : last));
+    }
+}
+
+}  // namespace strata

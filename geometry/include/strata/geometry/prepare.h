@@ -1,0 +1,40 @@
+#pragma once
+/// \file
+/// The geometry stage as one call: read whatever the user has, assign patch kinds, merge,
+/// check, orient. The result is what module/ extrudes.
+
+#include <strata/geometry/cad.h>
+#include <strata/geometry/check.h>
+#include <strata/geometry/surface_mesh.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace strata {
+
+struct PrepareParams {
+    CadParams cad;                                          ///< used for CAD input only
+    std::vector<std::pair<std::string, PatchKind>> patch_kinds;  ///< --patch NAME=KIND
+    double merge_tolerance = 1e-9;                          ///< relative to the bounding-box diagonal
+};
+
+/// What prepare_surface did, for the CLI's summary.
+struct PrepareReport {
+    Index merged_nodes = 0;  ///< nodes removed by merging
+    OrientReport orient;
+};
+
+/// Read \p path (CAD: mesh_cad; .stl: read_stl; .msh: read_msh), then apply patch kinds:
+/// a patch whose name contains "symmetry" or "farfield" (any case) gets that kind, every
+/// other patch is a wall, and --patch mappings override (an unknown name is an InputError
+/// listing the patches). Then merge_coincident_nodes, check_surface, orient_surface.
+/// Throws InputError for a missing file or an unknown extension.
+SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params,
+                            PrepareReport* report = nullptr);
+
+/// Apply the naming rule and mappings above to \p mesh's patch table.
+void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::string, PatchKind>>& kinds,
+                        const std::string& source);
+
+}  // namespace strata

@@ -1,0 +1,54 @@
+#pragma once
+/// \file
+/// Derived connectivity of a surface mesh: pure functions, nothing stored by hand.
+
+#include <strata/geometry/surface_mesh.h>
+
+#include <array>
+
+namespace strata {
+
+/// Merge nodes closer than \p rel_tol × bounding-box diagonal; drop nodes no face uses.
+/// Faces that collapse (two equal corners) are kept so check_surface can report them.
+/// Deterministic: the surviving node of a cluster is the lowest old id, order kept.
+SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol = 1e-9);
+
+/// Node → incident faces, faces in increasing id order.
+Csr vertex_faces(const SurfaceMesh& mesh);
+
+/// Unique undirected edges and their incident faces.
+struct EdgeTable {
+    std::vector<std::array<Index, 2>> nodes;  ///< #edges, (low id, high id)
+    Csr faces;                                ///< edge → incident faces (1 = boundary, 2 = manifold)
+};
+/// Edges sorted by (low, high) node id.
+EdgeTable edge_table(const SurfaceMesh& mesh);
+
+/// Closed loops of boundary edges (edges with one face) of an open surface, each loop a
+/// node cycle in the direction of its face's orientation; empty for a closed surface.
+/// Throws TopologyError at a node where boundary loops touch non-manifoldly.
+Csr boundary_loops(const SurfaceMesh& mesh);
+
+/// Connected components through shared edges: component id per face, ids from 0 in
+/// order of their lowest face.
+std::vector<Index> face_components(const SurfaceMesh& mesh, Index* num_components = nullptr);
+
+/// Ordered ring of every node, as ALGORITHM.md section 3 needs it.
+///
+/// Row o of `neighbours` lists the M edge-neighbours of node o counter-clockwise seen from
+/// the side its faces' normals point to. `faces[k]` and `diagonals[k]` (same layout) describe
+/// the sector between neighbours[k] and neighbours[k+1] (cyclically): the face spanning it and,
+/// if that face is a quad, its corner opposite o (kNone for a triangle). For a node on the
+/// boundary of an open surface the ring is open: neighbours[0] and neighbours[M-1] are on the
+/// boundary, and the last sector's face and diagonal are kNone.
+struct NodeRings {
+    Csr neighbours;
+    std::vector<Index> faces;      ///< aligned with neighbours.values
+    std::vector<Index> diagonals;  ///< aligned with neighbours.values
+    std::vector<char> closed;      ///< #nodes; 1 if the ring goes all the way round
+};
+/// Requires a manifold, consistently oriented mesh (check_surface, orient_surface); throws
+/// TopologyError naming the node otherwise.
+NodeRings node_rings(const SurfaceMesh& mesh);
+
+}  // namespace strata

@@ -1,0 +1,35 @@
+#pragma once
+/// \file
+/// The one index type and sentinel used everywhere in Strata, and the point type.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace strata {
+
+#ifdef STRATA_INDEX64
+using Index = std::int64_t;
+#else
+/// Index of a node, face or cell. 32-bit by default (STRATA_INDEX64 switches to 64-bit).
+using Index = std::int32_t;
+#endif
+
+/// "No such entity" (a missing diagonal, an open side of a ring, ...).
+inline constexpr Index kNone = -1;
+
+/// A point or vector in model units.
+using Vec3 = Eigen::Vector3d;
+
+/// Compressed sparse rows: row i is values[offsets[i] .. offsets[i+1]).
+struct Csr {
+    std::vector<Index> offsets{0};  ///< #rows + 1
+    std::vector<Index> values;      ///< offsets.back() entries
+
+    Index rows() const { return static_cast<Index>(offsets.size()) - 1; }
+    Index row_size(Index i) const { return offsets[i + 1] - offsets[i]; }
+    const Index* row_begin(Index i) const { return values.data() + offsets[i]; }
+    const Index* row_end(Index i) const { return values.data() + offsets[i + 1]; }
+};
+
+}  // namespace strata

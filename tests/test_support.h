@@ -1,0 +1,51 @@
+#pragma once
+// Helpers shared by the test suites: data paths, scratch directories, tiny meshes.
+
+#include <strata/geometry/surface_mesh.h>
+
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+
+namespace strata::test {
+
+/// A file of examples/data (the geometries copied from ../shared/data).
+inline std::string example_data(const std::string& name) {
+    return std::string(STRATA_EXAMPLES_DATA) + "/" + name;
+}
+/// A file of tests/data (small inputs written for the tests).
+inline std::string test_data(const std::string& name) {
+    return std::string(STRATA_TEST_DATA) + "/" + name;
+}
+
+/// A fresh empty directory for one test, removed when the object goes.
+class ScratchDir {
+public:
+    explicit ScratchDir(const std::string& name) {
+        // The pid keeps parallel ctest runs (-j) of the same test name apart.
+        path_ = std::filesystem::temp_directory_path() /
+                ("strata_test_" + name + "_" + std::to_string(::getpid()));
+        std::filesystem::remove_all(path_);
+        std::filesystem::create_directories(path_);
+    }
+    ~ScratchDir() { std::filesystem::remove_all(path_); }
+    std::string file(const std::string& name) const { return (path_ / name).string(); }
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    std::filesystem::path path_;
+};
+
+/// Structured nx × ny grid of unit quads in the z = 0 plane, one "wall" patch, normals +z.
+inline SurfaceMesh quad_grid(int nx, int ny, double h = 1.0) {
+    SurfaceMesh m;
+    m.patches.push_back({"wall", PatchKind::Wall});
+    for (int j = 0; j <= ny; ++j)
+        for (int i = 0; i <= nx; ++i) m.points.emplace_back(i * h, j * h, 0.0);
+    auto id = [nx](int i, int j) { return static_cast<Index>(j * (nx + 1) + i); };
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) m.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}, 0);
+    return m;
+}
+
+}  // namespace strata::test
