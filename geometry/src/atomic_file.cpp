@@ -17,9 +17,12 @@ AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
         throw InputError("cannot write '" + target_ + "': directory '" + dir.string() +
                          "' does not exist; create it or choose another output path");
     // Same directory (so rename is atomic), same extension (writers pick the format from it).
-    temp_ = (dir / ("." + t.stem().string() + ".tmp" + std::to_string(::getpid()) +
-                    t.extension().string()))
-                .string();
+    std::string name = ".";
+    name += t.stem().string();
+    name += ".tmp";
+    name += std::to_string(::getpid());
+    name += t.extension().string();
+    temp_ = (dir / name).string();
 }
 
 AtomicFile::~AtomicFile() {

@@ -1,1 +1,552 @@
-// Being written.
+// CAD input and surface meshing through Gmsh. This file is the Gmsh adapter for CAD: Gmsh's
+// 1-based size_t node tags and int entity tags stay in here; the caller gets a SurfaceMesh.
+#include <strata/geometry/cad.h>
+
+#include <strata/error.h>
+#include <strata/geometry/gmsh_session.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace strata {
+namespace {
+
+enum class CadFormat { Step, Iges, Brep, Geo };
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+std::optional<CadFormat> format_of(const std::string& path) {
+    const std::string ext = lower_extension(path);
+    if (ext == ".step" || ext == ".stp") return CadFormat::Step;
+    if (ext == ".iges" || ext == ".igs") return CadFormat::Iges;
+    if (ext == ".brep" || ext == ".brp") return CadFormat::Brep;
+    if (ext == ".geo") return CadFormat::Geo;
+    return std::nullopt;
+}
+
+const char* format_name(CadFormat f) {
+    switch (f) {
+        case CadFormat::Step: return "STEP";
+        case CadFormat::Iges: return "IGES";
+        case CadFormat::Brep: return "BREP";
+        case CadFormat::Geo: return "Gmsh .geo";
+    }
+    return "CAD";
+}
+
+std::string fmt(double v) {
+    std::ostringstream s;
+    s.precision(6);
+    s << v;
+    return s.str();
+}
+
+// "1-11, 14, 20-22": the valid tags of a model with many surfaces stay one readable line.
+std::string format_tags(std::vector<int> tags) {
+    std::sort(tags.begin(), tags.end());
+    std::string out;
+    for (std::size_t i = 0; i < tags.size();) {
+        std::size_t j = i;
+        while (j + 1 < tags.size() && tags[j + 1] == tags[j] + 1) ++j;
+        if (!out.empty()) out += ", ";
+        out += std::to_string(tags[i]);
+        if (j > i) out += "-" + std::to_string(tags[j]);
+        i = j + 1;
+    }
+    return out;
+}
+
+void validate(const CadParams& p) {
+    if (!(p.size >= 0.0) || !std::isfinite(p.size))
+        throw InputError("CAD meshing: size must be a finite number >= 0 (0 = automatic), got " +
+                         fmt(p.size));
+    if (!(p.size_min >= 0.0) || !std::isfinite(p.size_min))
+        throw InputError(
+            "CAD meshing: size_min must be a finite number >= 0 (0 = automatic), got " +
+            fmt(p.size_min));
+    if (p.size > 0.0 && p.size_min > p.size)
+        throw InputError("CAD meshing: size_min (" + fmt(p.size_min) + ") is larger than size (" +
+                         fmt(p.size) + "); give a smaller size_min");
+    if (p.curvature_points < 0)
+        throw InputError("CAD meshing: curvature_points must be >= 0 (0 = off), got " +
+                         std::to_string(p.curvature_points));
+    // Gmsh 4.8's 2D algorithms. Left out: 3 ("initial mesh only") leaves an unrefined mesh;
+    // 7 (BAMG) aborts the whole process (an uncaught std::string, std::terminate) on curved
+    // surfaces, seen on a sphere; 8 (Frontal-Delaunay for quads) segfaults on every surface in
+    // Debian's Gmsh 4.8.4, a plane square included, through the API and the gmsh CLI alike.
+    // Unknown values would silently fall back to Gmsh's default.
+    static constexpr std::array<int, 5> kAlgorithms{1, 2, 5, 6, 9};
+    if (std::find(kAlgorithms.begin(), kAlgorithms.end(), p.algorithm) == kAlgorithms.end()) {
+        const std::string why =
+            p.algorithm == 7   ? " (BAMG aborts the process on curved surfaces in Gmsh 4.8)"
+            : p.algorithm == 8 ? " (Frontal-Delaunay for quads crashes Gmsh 4.8.4; for quads use "
+                                 "algorithm 6 with quad elements, which recombines)"
+                               : "";
+        throw InputError("CAD meshing: Gmsh 2D algorithm " + std::to_string(p.algorithm) +
+                         " is not supported" + why +
+                         "; use 1 (MeshAdapt), 2 (Automatic), 5 (Delaunay), 6 (Frontal-Delaunay) "
+                         "or 9 (packing of parallelograms)");
+    }
+}
+
+// Gmsh would happily "read" a missing file: gmsh::merge/open create an empty model,
+// and the user would be told the model has no surfaces instead of that the path is wrong.
+void check_readable(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);
+    if (!fs::exists(st)) throw InputError(path + ": no such file; check the path");
+    if (fs::is_directory(st))
+        throw InputError(path + ": is a directory, not a CAD file; give the file itself");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot be opened for reading; check its permissions");
+}
+
+// Gmsh's options are process-wide. One mesh_cad call must not leave its sizes (or whatever a
+// .geo script set) to the next call, nor to a user who initialised Gmsh for their own work:
+// the options this file sets, and those scripts commonly set, are saved and put back.
+class OptionSnapshot {
+public:
+    OptionSnapshot() {
+        static constexpr const char* kNumbers[] = {
+            "Mesh.MeshSizeMax",
+            "Mesh.MeshSizeMin",
+            "Mesh.MeshSizeFromCurvature",
+            "Mesh.MeshSizeExtendFromBoundary",
+            "Mesh.MeshSizeFromPoints",
+            "Mesh.MeshSizeFactor",
+            "Mesh.Algorithm",
+            "Mesh.Algorithm3D",
+            "Mesh.RecombineAll",
+            "Mesh.RecombinationAlgorithm",
+            "Mesh.ElementOrder",
+            "Mesh.SubdivisionAlgorithm",
+            "Mesh.Smoothing",
+            "Mesh.MinimumCirclePoints",
+            "Mesh.MinimumCurvePoints",
+            "Mesh.Optimize",
+            "Mesh.SaveAll",
+            "Geometry.Tolerance",
+            "Geometry.ToleranceBoolean",
+            "Geometry.OCCFixDegenerated",
+            "Geometry.OCCFixSmallEdges",
+            "Geometry.OCCFixSmallFaces",
+            "Geometry.OCCSewFaces",
+            "Geometry.OCCMakeSolids",
+            "Geometry.OCCScaling",
+            "General.Terminal",
+            "General.Verbosity",
+            "General.NumThreads",
+        };
+        for (const char* name : kNumbers) {
+            double v = 0.0;
+            try {
+                gmsh::option::getNumber(name, v);
+                numbers_.emplace_back(name, v);
+            } catch (...) {
+                // Not an option of this Gmsh version: nothing to save.
+            }
+        }
+        try {
+            std::string unit;
+            gmsh::option::getString("Geometry.OCCTargetUnit", unit);
+            strings_.emplace_back("Geometry.OCCTargetUnit", unit);
+        } catch (...) {
+        }
+    }
+    ~OptionSnapshot() {
+        for (const auto& [name, v] : numbers_) {
+            try {
+                gmsh::option::setNumber(name, v);
+            } catch (...) {
+            }
+        }
+        for (const auto& [name, v] : strings_) {
+            try {
+                gmsh::option::setString(name, v);
+            } catch (...) {
+            }
+        }
+    }
+    OptionSnapshot(const OptionSnapshot&) = delete;
+    OptionSnapshot& operator=(const OptionSnapshot&) = delete;
+
+    /// True if \p name now differs from its value when the snapshot was taken.
+    bool changed(const std::string& name) const {
+        for (const auto& [n, v] : numbers_) {
+            if (n != name) continue;
+            double now = v;
+            try {
+                gmsh::option::getNumber(name, now);
+            } catch (...) {
+            }
+            return now != v;
+        }
+        return false;
+    }
+
+private:
+    std::vector<std::pair<std::string, double>> numbers_;
+    std::vector<std::pair<std::string, std::string>> strings_;
+};
+
+double get_number(const std::string& name) {
+    double v = 0.0;
+    gmsh_call("reading Gmsh option " + name, [&] { gmsh::option::getNumber(name, v); });
+    return v;
+}
+
+void set_number(const std::string& name, double v) {
+    gmsh_call("setting Gmsh option " + name, [&] { gmsh::option::setNumber(name, v); });
+}
+
+void load(const std::string& path, CadFormat format) {
+    const std::string context =
+        path + ": Gmsh could not read this " + std::string(format_name(format)) + " file";
+    try {
+        gmsh_call(context, [&] {
+            if (format == CadFormat::Geo) {
+                // merge, not open: gmsh::open renames the current model after the file (or
+                // adds a new one), and the current model belongs to our GmshSession.
+                gmsh::merge(path);
+                // A script may have used either kernel; both must be visible to the model.
+                gmsh::model::geo::synchronize();
+                gmsh::model::occ::synchronize();
+            } else {
+                // The format is given explicitly: Gmsh guesses from the extension and knows
+                // neither ".brp" nor upper-case extensions.
+                const char* kind = format == CadFormat::Step   ? "step"
+                                   : format == CadFormat::Iges ? "iges"
+                                                               : "brep";
+                gmsh::vectorpair imported;
+                gmsh::model::occ::importShapes(path, imported, true, kind);
+                gmsh::model::occ::synchronize();
+            }
+        });
+    } catch (const BackendError& e) {
+        const std::string hint =
+            format == CadFormat::Geo
+                ? "; fix the script (open it in Gmsh to see the error in context)"
+                : "; check that it is a valid " + std::string(format_name(format)) +
+                      " file (export it again from the CAD tool)";
+        throw InputError(std::string(e.what()) + hint);
+    }
+}
+
+std::vector<int> entity_tags(int dim) {
+    gmsh::vectorpair dim_tags;
+    gmsh::model::getEntities(dim_tags, dim);
+    std::vector<int> tags;
+    tags.reserve(dim_tags.size());
+    for (const auto& [d, t] : dim_tags) tags.push_back(t);
+    // Tag order, so the same file always gives the same node and face numbering.
+    std::sort(tags.begin(), tags.end());
+    return tags;
+}
+
+void fuse_volumes(const std::string& path) {
+    const std::vector<int> volumes = entity_tags(3);
+    if (volumes.size() < 2) return;
+    gmsh::vectorpair occ_volumes;
+    gmsh_call(path + ": listing the solids",
+              [&] { gmsh::model::occ::getEntities(occ_volumes, 3); });
+    if (occ_volumes.size() != volumes.size())
+        throw InputError(path + ": cannot fuse the " + std::to_string(volumes.size()) +
+                         " solids: they are not OpenCASCADE entities (a built-in kernel .geo "
+                         "script); add SetFactory(\"OpenCASCADE\") to the script, or do the "
+                         "Boolean union in it and mesh without fuse");
+    gmsh::vectorpair object{{3, volumes.front()}};
+    gmsh::vectorpair tools;
+    for (std::size_t i = 1; i < volumes.size(); ++i) tools.emplace_back(3, volumes[i]);
+    gmsh_call(path + ": fusing the " + std::to_string(volumes.size()) +
+                  " solids into one (Boolean union) failed; repair the CAD or mesh without fuse",
+              [&] {
+                  gmsh::vectorpair out;
+                  std::vector<gmsh::vectorpair> out_map;
+                  gmsh::model::occ::fuse(object, tools, out, out_map);
+                  gmsh::model::occ::synchronize();
+              });
+}
+
+// A script that meshed itself ("Mesh 2;") would keep its curve mesh: generate(2) meshes the
+// surfaces again but not the curves, so the caller's sizes would apply only half. Clear it,
+// except when the model has discrete entities, whose mesh may be their only geometry (an STL
+// merged and classified by the script); Gmsh then re-meshes what it can.
+void clear_script_mesh(const std::string& path) {
+    gmsh_call(path + ": clearing the mesh the script made", [] {
+        std::vector<int> types;
+        std::vector<std::vector<std::size_t>> tags, nodes;
+        gmsh::model::mesh::getElements(types, tags, nodes, -1, -1);
+        if (types.empty()) return;
+        gmsh::vectorpair entities;
+        gmsh::model::getEntities(entities, -1);
+        for (const auto& [dim, tag] : entities) {
+            std::string type;
+            gmsh::model::getType(dim, tag, type);
+            if (type.find("Discrete") != std::string::npos) return;
+        }
+        gmsh::model::mesh::clear();
+    });
+}
+
+// One patch per 2D physical group (in group-tag order), then one per surface in no group
+// (surface-tag order). A surface in several groups goes to the first. Groups that hold no
+// existing surface (stale after a Boolean, or empty) make no patch.
+struct PatchPlan {
+    std::vector<Patch> patches;
+    std::map<int, Index> patch_of_surface;
+};
+
+PatchPlan plan_patches(const std::vector<int>& surfaces) {
+    PatchPlan plan;
+    gmsh::vectorpair groups;
+    gmsh::model::getPhysicalGroups(groups, 2);
+    std::sort(groups.begin(), groups.end());
+    const std::vector<int>& sorted = surfaces;  // sorted by entity_tags
+    for (const auto& [dim, group] : groups) {
+        std::vector<int> members;
+        gmsh::model::getEntitiesForPhysicalGroup(dim, group, members);
+        std::sort(members.begin(), members.end());
+        Index patch = kNone;
+        for (int s : members) {
+            if (!std::binary_search(sorted.begin(), sorted.end(), s)) continue;
+            if (plan.patch_of_surface.count(s)) continue;
+            if (patch == kNone) {
+                std::string name;
+                gmsh::model::getPhysicalName(dim, group, name);
+                if (name.empty()) name = "physical_" + std::to_string(group);
+                patch = static_cast<Index>(plan.patches.size());
+                plan.patches.push_back({name, PatchKind::Wall});
+            }
+            plan.patch_of_surface.emplace(s, patch);
+        }
+    }
+    for (int s : surfaces) {
+        if (plan.patch_of_surface.count(s)) continue;
+        plan.patch_of_surface.emplace(s, static_cast<Index>(plan.patches.size()));
+        plan.patches.push_back({"surface_" + std::to_string(s), PatchKind::Wall});
+    }
+    return plan;
+}
+
+SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces) {
+    SurfaceMesh mesh;
+    PatchPlan plan =
+        gmsh_call(path + ": reading the physical groups", [&] { return plan_patches(surfaces); });
+    mesh.patches = std::move(plan.patches);
+
+    std::vector<std::size_t> node_tags;
+    std::vector<double> coords, parametric;
+    gmsh_call(path + ": reading the mesh nodes", [&] {
+        gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, false, false);
+    });
+    // Gmsh node tags are global across entities on a conforming mesh, so one map from tag
+    // to slot makes nodes shared between surfaces appear once.
+    std::unordered_map<std::size_t, std::size_t> slot_of;
+    slot_of.reserve(node_tags.size());
+    for (std::size_t i = 0; i < node_tags.size(); ++i) slot_of.emplace(node_tags[i], i);
+    std::vector<Index> index_of(node_tags.size(), kNone);
+    constexpr auto kMaxIndex = static_cast<std::size_t>(std::numeric_limits<Index>::max());
+
+    auto node_index = [&](std::size_t tag, int surface) {
+        auto it = slot_of.find(tag);
+        if (it == slot_of.end())
+            throw BackendError(path + ": surface " + std::to_string(surface) +
+                               ": Gmsh returned an element with unknown node " +
+                               std::to_string(tag));
+        Index& id = index_of[it->second];
+        if (id == kNone) {
+            if (mesh.points.size() >= kMaxIndex)
+                throw InputError(path +
+                                 ": the mesh has more nodes than 32-bit indices hold; "
+                                 "use a larger size or build with STRATA_INDEX64");
+            id = static_cast<Index>(mesh.points.size());
+            const double* c = coords.data() + 3 * it->second;
+            mesh.points.emplace_back(c[0], c[1], c[2]);
+        }
+        return id;
+    };
+
+    for (int s : surfaces) {
+        std::vector<int> types;
+        std::vector<std::vector<std::size_t>> element_tags, element_nodes;
+        gmsh_call(path + ": reading the elements of surface " + std::to_string(s), [&] {
+            gmsh::model::mesh::getElements(types, element_tags, element_nodes, 2, s);
+        });
+        const Index patch = plan.patch_of_surface.at(s);
+        std::size_t count = 0;
+        for (std::size_t t = 0; t < types.size(); ++t) {
+            int nodes_per_face = 0;
+            if (types[t] == 2)
+                nodes_per_face = 3;  // 3-node triangle
+            else if (types[t] == 3)
+                nodes_per_face = 4;  // 4-node quadrangle
+            else {
+                std::string name = "type " + std::to_string(types[t]);
+                try {
+                    int dim = 0, order = 0, num_nodes = 0, num_primary = 0;
+                    std::vector<double> local;
+                    gmsh::model::mesh::getElementProperties(types[t], name, dim, order, num_nodes,
+                                                            local, num_primary);
+                } catch (...) {
+                }
+                throw BackendError(path + ": surface " + std::to_string(s) + ": Gmsh made '" +
+                                   name +
+                                   "' elements; Strata takes only 3-node triangles and "
+                                   "4-node quadrangles (remove Mesh.ElementOrder or other "
+                                   "element settings from the script)");
+            }
+            const std::vector<std::size_t>& nodes = element_nodes[t];
+            std::array<Index, 4> face{};
+            for (std::size_t e = 0; e + static_cast<std::size_t>(nodes_per_face) <= nodes.size();
+                 e += static_cast<std::size_t>(nodes_per_face)) {
+                for (int k = 0; k < nodes_per_face; ++k)
+                    face[static_cast<std::size_t>(k)] =
+                        node_index(nodes[e + static_cast<std::size_t>(k)], s);
+                mesh.add_face(face.data(), nodes_per_face, patch);
+                ++count;
+            }
+        }
+        if (count == 0)
+            throw BackendError(path + ": surface " + std::to_string(s) +
+                               " got no elements from Gmsh, which would leave a hole; the "
+                               "surface may be degenerate or too small for the element size: "
+                               "try a smaller size or another algorithm, or repair the CAD");
+    }
+    if (mesh.face_nodes.size() >= kMaxIndex)
+        throw InputError(path +
+                         ": the mesh is too large for 32-bit indices; use a larger size "
+                         "or build with STRATA_INDEX64");
+    return mesh;
+}
+
+}  // namespace
+
+bool is_cad_file(const std::string& path) { return format_of(path).has_value(); }
+
+SurfaceMesh mesh_cad(const std::string& path, const CadParams& params) {
+    const std::optional<CadFormat> format = format_of(path);
+    if (!format)
+        throw InputError(path +
+                         ": not a CAD file Strata reads; use .step/.stp, .iges/.igs, "
+                         ".brep/.brp or a Gmsh .geo script");
+    validate(params);
+    check_readable(path);
+    const bool script = *format == CadFormat::Geo;
+
+    GmshSession session("strata_cad");
+    OptionSnapshot options;  // declared after the session: restored while Gmsh is still locked
+
+    load(path, *format);
+
+    const std::vector<int> loaded_surfaces = entity_tags(2);
+    if (loaded_surfaces.empty())
+        throw InputError(path +
+                         ": no surfaces in the model; the file holds only points or "
+                         "curves (or nothing): export the surfaces or solids from the "
+                         "CAD tool");
+    if (params.fuse) fuse_volumes(path);
+    const std::vector<int> surfaces = entity_tags(2);
+
+    // A .geo script's own mesh settings stand unless the caller asked for something explicitly
+    // (a CadParams field away from its default); everything else gets Strata's defaults, set
+    // explicitly so that no earlier Gmsh user's settings leak in.
+    auto script_set = [&](const char* name) { return script && options.changed(name); };
+
+    double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
+    gmsh_call(path + ": computing the bounding box",
+              [&] { gmsh::model::getBoundingBox(-1, -1, xmin, ymin, zmin, xmax, ymax, zmax); });
+    const double diagonal =
+        std::sqrt((xmax - xmin) * (xmax - xmin) + (ymax - ymin) * (ymax - ymin) +
+                  (zmax - zmin) * (zmax - zmin));
+    if (!(diagonal > 0.0) || !std::isfinite(diagonal))
+        throw InputError(path + ": the model has no extent (bounding-box diagonal " +
+                         fmt(diagonal) + "); check the file's geometry");
+
+    if (params.size > 0.0)
+        set_number("Mesh.MeshSizeMax", params.size);
+    else if (!script_set("Mesh.MeshSizeMax"))
+        set_number("Mesh.MeshSizeMax", diagonal / 20.0);
+    const double size = get_number("Mesh.MeshSizeMax");
+
+    if (params.curvature_points > 0)
+        set_number("Mesh.MeshSizeFromCurvature", params.curvature_points);
+    else if (!script_set("Mesh.MeshSizeFromCurvature"))
+        set_number("Mesh.MeshSizeFromCurvature", 0);
+    const bool curvature = get_number("Mesh.MeshSizeFromCurvature") > 0;
+
+    if (params.size_min > 0.0)
+        set_number("Mesh.MeshSizeMin", params.size_min);
+    else if (!script_set("Mesh.MeshSizeMin"))
+        // The floor matters only for curvature refinement, which would otherwise resolve a
+        // sharp edge's tiny radius with needle-small elements. Without it, no floor: a
+        // script's point sizes are then never clamped.
+        set_number("Mesh.MeshSizeMin", curvature ? size / 20.0 : 0.0);
+
+    // Gmsh's default, explicit: sizes on curves (curvature-refined edges, a script's point
+    // sizes) spread into the surfaces they bound instead of jumping to the maximum size.
+    if (!script_set("Mesh.MeshSizeExtendFromBoundary"))
+        set_number("Mesh.MeshSizeExtendFromBoundary", 1);
+    if (!script_set("Mesh.MeshSizeFactor")) set_number("Mesh.MeshSizeFactor", 1);
+    // Strata needs linear faces, whatever a script asks for.
+    set_number("Mesh.ElementOrder", 1);
+    if (!script_set("Mesh.SubdivisionAlgorithm")) set_number("Mesh.SubdivisionAlgorithm", 0);
+
+    constexpr int kDefaultAlgorithm = CadParams{}.algorithm;
+    if (params.algorithm != kDefaultAlgorithm || !script_set("Mesh.Algorithm"))
+        set_number("Mesh.Algorithm", params.algorithm);
+    // A script's 7 or 8 would kill the process (see validate); 6 with the script's
+    // recombination settings still gives it quads.
+    if (const double a = get_number("Mesh.Algorithm"); a == 7 || a == 8)
+        set_number("Mesh.Algorithm", kDefaultAlgorithm);
+    if (!script_set("Mesh.RecombinationAlgorithm"))
+        set_number("Mesh.RecombinationAlgorithm", 1);  // Blossom
+
+    switch (params.elements) {
+        case SurfaceElements::Triangles:
+            if (!script_set("Mesh.RecombineAll")) set_number("Mesh.RecombineAll", 0);
+            break;
+        case SurfaceElements::Quads: set_number("Mesh.RecombineAll", 1); break;
+        case SurfaceElements::Mixed: {
+            set_number("Mesh.RecombineAll", 0);
+            for (int tag : params.quad_surfaces) {
+                if (!std::binary_search(surfaces.begin(), surfaces.end(), tag))
+                    throw InputError(path + ": quad surface " + std::to_string(tag) +
+                                     " is not a surface of the model" +
+                                     (params.fuse ? " (after fusing the solids)" : "") +
+                                     "; its surfaces are " + format_tags(surfaces));
+                gmsh_call(path + ": asking for quads on surface " + std::to_string(tag),
+                          [&] { gmsh::model::mesh::setRecombine(2, tag); });
+            }
+            break;
+        }
+    }
+
+    if (script) clear_script_mesh(path);
+
+    gmsh_call(path + ": Gmsh failed to mesh the surfaces (maximum size " + fmt(size) +
+                  "); try a smaller size, another algorithm, or repair the CAD",
+              [] { gmsh::model::mesh::generate(2); });
+
+    return extract(path, surfaces);
+}
+
+}  // namespace strata

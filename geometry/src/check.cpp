@@ -1,1 +1,125 @@
-// Being written.
+#include <strata/geometry/check.h>
+
+#include <strata/error.h>
+#include <strata/geometry/face_geometry.h>
+#include <strata/geometry/topology.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace strata {
+namespace {
+
+std::string format_point(const Vec3& p) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "(%.9g, %.9g, %.9g)", p.x(), p.y(), p.z());
+    return buf;
+}
+
+std::string format_number(double x) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return buf;
+}
+
+std::string patch_name(const SurfaceMesh& mesh, Index f) {
+    const Index p = mesh.face_patch[f];
+    return "'" + mesh.patches[p].name + "'";
+}
+
+/// "face 12 (patch 'wing', centroid (x, y, z))": enough to find the face in a viewer.
+std::string face_text(const SurfaceMesh& mesh, Index f) {
+    return "face " + std::to_string(f) + " (patch " + patch_name(mesh, f) + ", centroid " +
+           format_point(face_centroid(mesh, mesh.points, f)) + ")";
+}
+
+}  // namespace
+
+void check_surface(const SurfaceMesh& mesh, const std::string& source) {
+    const Index nf = mesh.num_faces();
+    const Index np = mesh.num_points();
+    if (nf <= 0) throw InputError(source + ": no faces; the surface mesh is empty, check that the input holds "
+                                           "triangles or quadrilaterals");
+
+    // The CSR arrays themselves: everything below indexes through them.
+    if (mesh.face_offsets.front() != 0 || mesh.face_offsets.back() != static_cast<Index>(mesh.face_nodes.size()) ||
+        mesh.face_patch.size() != static_cast<std::size_t>(nf))
+        throw InputError(source + ": inconsistent face arrays (" + std::to_string(nf) + " faces, " +
+                         std::to_string(mesh.face_nodes.size()) + " face nodes, " +
+                         std::to_string(mesh.face_patch.size()) + " face patches); the reader is broken, "
+                         "please report it");
+    for (Index f = 0; f < nf; ++f) {
+        const Index s = mesh.face_size(f);
+        if (s != 3 && s != 4)
+            throw TopologyError(source + ": face " + std::to_string(f) + " has " + std::to_string(s) +
+                                " nodes; only triangles and quadrilaterals are supported, remesh the surface");
+        const Index p = mesh.face_patch[f];
+        if (p < 0 || p >= static_cast<Index>(mesh.patches.size()))
+            throw InputError(source + ": face " + std::to_string(f) + " is on patch " + std::to_string(p) +
+                             ", but there are " + std::to_string(mesh.patches.size()) +
+                             " patches; the reader is broken, please report it");
+    }
+
+    for (Index v = 0; v < np; ++v) {
+        const Vec3& x = mesh.points[v];
+        if (!std::isfinite(x.x()) || !std::isfinite(x.y()) || !std::isfinite(x.z()))
+            throw InputError(source + ": node " + std::to_string(v) + " has a non-finite coordinate " +
+                             format_point(x) + "; fix the export of the surface mesh");
+    }
+
+    for (Index f = 0; f < nf; ++f) {
+        const Index* v = mesh.face_begin(f);
+        const Index s = mesh.face_size(f);
+        for (Index i = 0; i < s; ++i)
+            if (v[i] < 0 || v[i] >= np)
+                throw TopologyError(source + ": face " + std::to_string(f) + " (patch " + patch_name(mesh, f) +
+                                    ") references node " + std::to_string(v[i]) + ", but the mesh has " +
+                                    std::to_string(np) + " nodes; the file is corrupt, re-export it");
+    }
+
+    for (Index f = 0; f < nf; ++f) {
+        const Index* v = mesh.face_begin(f);
+        const Index s = mesh.face_size(f);
+        for (Index i = 0; i < s; ++i)
+            for (Index j = i + 1; j < s; ++j)
+                if (v[i] == v[j])
+                    throw TopologyError(source + ": " + face_text(mesh, f) + " uses node " + std::to_string(v[i]) +
+                                        " twice (a collapsed face, often from merging close nodes); remove "
+                                        "the face or remesh that region");
+    }
+
+    // Relative to the model size, so the check means the same in millimetres and metres.
+    const double diag = bounding_box(mesh.points).diagonal();
+    const double min_area = 1e-12 * diag * diag;
+    for (Index f = 0; f < nf; ++f) {
+        const double a = face_area_vector(mesh, f).norm();
+        if (!(a > min_area))  // also catches a == 0 on a zero-size model
+            throw TopologyError(source + ": " + face_text(mesh, f) + " has (near) zero area " + format_number(a) +
+                                " (its corners are collinear or coincident); remove the face or remesh "
+                                "that region");
+    }
+
+    const EdgeTable edges = edge_table(mesh);
+    Index bad = 0, first = kNone;
+    for (Index e = 0; e < edges.faces.rows(); ++e)
+        if (edges.faces.row_size(e) > 2) {
+            if (first == kNone) first = e;
+            ++bad;
+        }
+    if (first != kNone) {
+        const Index a = edges.nodes[first][0], b = edges.nodes[first][1];
+        std::string faces;
+        for (const Index* f = edges.faces.row_begin(first); f != edges.faces.row_end(first); ++f)
+            faces += (faces.empty() ? "" : ", ") + std::to_string(*f) + " (patch " + patch_name(mesh, *f) + ")";
+        throw TopologyError(source + ": non-manifold edge between node " + std::to_string(a) + " " +
+                            format_point(mesh.points[a]) + " and node " + std::to_string(b) + " " +
+                            format_point(mesh.points[b]) + " is shared by " +
+                            std::to_string(edges.faces.row_size(first)) + " faces: " + faces +
+                            (bad > 1 ? " (" + std::to_string(bad - 1) + " more such edges)" : std::string()) +
+                            "; an edge may bound at most two faces: fix the surface in the CAD tool or merge "
+                            "the duplicate faces");
+    }
+}
+
+}  // namespace strata

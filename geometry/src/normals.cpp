@@ -1,1 +1,317 @@
-// Being written.
+#include <strata/error.h>
+#include <strata/geometry/face_geometry.h>
+#include <strata/geometry/normals.h>
+#include <strata/geometry/topology.h>
+
+#include <Eigen/Geometry>  // cross()
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+namespace strata {
+
+std::string_view to_string(NormalMethod m) {
+    switch (m) {
+        case NormalMethod::AreaWeighted: return "area";
+        case NormalMethod::AngleWeighted: return "angle";
+        case NormalMethod::MaxMinDot: return "robust";
+        case NormalMethod::Max: return "max";
+    }
+    return "robust";
+}
+
+NormalMethod parse_normal_method(std::string_view text) {
+    std::string t(text);
+    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return std::tolower(c); });
+    for (NormalMethod m : {NormalMethod::AreaWeighted, NormalMethod::AngleWeighted, NormalMethod::MaxMinDot,
+                           NormalMethod::Max})
+        if (t == to_string(m)) return m;
+    throw InputError("unknown normal method '" + std::string(text) +
+                     "': use area (area-weighted, the paper's), angle (angle-weighted), robust "
+                     "(max-min dot product) or max (Nelson Max's weights, exact on a sphere; best "
+                     "for smooth walls)");
+}
+
+namespace {
+
+// A face whose vector area is below this fraction of its summed squared edge lengths is a
+// sliver or a collapsed face: its normal direction is rounding noise, so it is skipped.
+constexpr double kDegenerateArea = 1e-12;
+
+// Unit face normals closer than this (chord length) are one normal for MaxMinDot: the cap
+// through three normals is ill-conditioned when two nearly coincide, and dropping one moves
+// the optimum by at most this much.
+constexpr double kSameNormal = 1e-9;
+
+// Slack of "normal inside the cap" on dot products of unit vectors (a few hundred ulps), so
+// that the normals defining a cap test as inside it despite rounding.
+constexpr double kInside = 1e-13;
+
+// Below this sine of the triangle's angle, three normals are taken as lying on one great
+// circle and their circumscribed cap is not computed (see cap_through).
+constexpr double kCollinear = 1e-9;
+
+// MaxMinDot answers whose minimum dot product is not above this are useless as a marching
+// direction (the incident faces span a hemisphere or more).
+constexpr double kMinUsefulDot = 1e-12;
+
+// Incident faces with more distinct normals than this (rare: poles of UV-sphere meshes) are
+// handled without the stack buffer, recomputing face normals on the fly, so node_normals
+// never allocates beyond its result.
+constexpr int kStackNormals = 64;
+
+// Vector area of face f and whether it is usable (not degenerate, no NaN).
+bool face_area(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f, Vec3& area_vector) {
+    area_vector = face_area_vector(mesh, points, f);
+    const Index n = mesh.face_size(f);
+    const Index* v = mesh.face_begin(f);
+    double edges2 = 0.0;
+    for (Index i = 0; i < n; ++i) edges2 += (points[v[(i + 1) % n]] - points[v[i]]).squaredNorm();
+    // Written so that NaN compares false and counts as degenerate.
+    return area_vector.norm() > kDegenerateArea * edges2;
+}
+
+// Unit normal of face f, or zero when the face is degenerate.
+Vec3 unit_face_normal(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f) {
+    Vec3 a;
+    if (!face_area(mesh, points, f, a)) return Vec3::Zero();
+    return a.normalized();
+}
+
+// Interior angle of face f at its corner \p node (radians); 0 if an edge there has zero length.
+double corner_angle(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f, Index node) {
+    const Index n = mesh.face_size(f);
+    const Index* v = mesh.face_begin(f);
+    Index i = 0;
+    while (i < n - 1 && v[i] != node) ++i;
+    const Vec3 e1 = points[v[(i + 1) % n]] - points[node];
+    const Vec3 e2 = points[v[(i + n - 1) % n]] - points[node];
+    // atan2 of |sin| and cos keeps full accuracy at angles near 0 and π, unlike acos.
+    return std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+}
+
+// Normalised sum, or zero when the terms cancel (a folded surface) or there are none.
+Vec3 normalised(const Vec3& sum, double magnitude_of_terms) {
+    const double len = sum.norm();
+    if (!(len > 1e-12 * magnitude_of_terms)) return Vec3::Zero();
+    return sum / len;
+}
+
+Vec3 area_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Index* begin,
+                   const Index* end) {
+    Vec3 sum = Vec3::Zero();
+    double total = 0.0;
+    for (const Index* f = begin; f != end; ++f) {
+        Vec3 a;
+        if (!face_area(mesh, points, *f, a)) continue;
+        sum += a;
+        total += a.norm();
+    }
+    return normalised(sum, total);
+}
+
+Vec3 angle_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node,
+                    const Index* begin, const Index* end) {
+    Vec3 sum = Vec3::Zero();
+    double total = 0.0;
+    for (const Index* f = begin; f != end; ++f) {
+        Vec3 a;
+        if (!face_area(mesh, points, *f, a)) continue;
+        const double angle = corner_angle(mesh, points, *f, node);
+        sum += angle * a.normalized();
+        total += angle;
+    }
+    return normalised(sum, total);
+}
+
+// Nelson Max's weights: sum of (e1 × e2) / (|e1|² |e2|²) over the node's corners, e1 and e2
+// the face's edges from the node to the next and previous vertices (counter-clockwise, so
+// e1 × e2 points along the face normal). A face that lists the node more than once (pinched)
+// contributes every corner at it, as its area vector would.
+Vec3 max_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node,
+                  const Index* begin, const Index* end) {
+    Vec3 sum = Vec3::Zero();
+    double total = 0.0;
+    for (const Index* f = begin; f != end; ++f) {
+        Vec3 a;
+        if (!face_area(mesh, points, *f, a)) continue;
+        const Index n = mesh.face_size(*f);
+        const Index* v = mesh.face_begin(*f);
+        for (Index i = 0; i < n; ++i) {
+            if (v[i] != node) continue;
+            const Vec3 e1 = points[v[(i + 1) % n]] - points[node];
+            const Vec3 e2 = points[v[(i + n - 1) % n]] - points[node];
+            const double w = e1.squaredNorm() * e2.squaredNorm();
+            // Zero-length edge (or one so short its square underflows): no direction.
+            if (!(w > 0.0)) continue;
+            const Vec3 term = e1.cross(e2) / w;
+            if (!term.allFinite()) continue;
+            sum += term;
+            total += term.norm();
+        }
+    }
+    return normalised(sum, total);
+}
+
+// ---- MaxMinDot: the minimum spherical cap enclosing the incident unit normals ----------
+//
+// max over unit n of min_i n·n_i is the axis of the smallest cap {x : c·x ≥ t} on the unit
+// sphere that holds every n_i. For normals in an open hemisphere this is the LP-type problem
+// min |w| subject to w·n_i ≥ 1 (c = w/|w|, t = 1/|w|), of combinatorial dimension 3, so
+// Welzl's minimum-enclosing-disc recursion carries over with caps for discs: the cap is fixed
+// by one normal (c = n_1), two (the bisector) or three (the circumscribed cap, on the side
+// where c·n_i > 0 since w·n_i = 1). Expected linear time in a well-mixed order.
+
+struct Cap {
+    Vec3 c;    // unit axis
+    double t;  // cosine of the angular radius
+};
+
+bool inside(const Cap& cap, const Vec3& x) {
+    // Zero vectors stand for degenerate faces on the no-buffer path: they constrain nothing.
+    return cap.c.dot(x) >= cap.t - kInside || x.squaredNorm() == 0.0;
+}
+
+Cap cap_through(const Vec3& a) { return {a, 1.0}; }
+
+Cap cap_through(const Vec3& a, const Vec3& b) {
+    const Vec3 m = a + b;
+    const double len = m.norm();
+    // Opposite normals: no cap smaller than the whole sphere; the final check falls back.
+    if (!(len > 1e-150)) return {a, -1.0};
+    const Vec3 c = m / len;
+    return {c, std::min(c.dot(a), c.dot(b))};
+}
+
+Cap cap_through(const Vec3& a, const Vec3& b, const Vec3& p) {
+    const Vec3 ab = b - a, ap = p - a;
+    Vec3 c = ab.cross(ap);
+    const double len = c.norm();
+    if (len > kCollinear * ab.norm() * ap.norm()) {
+        c /= len;
+        if (c.dot(a) + c.dot(b) + c.dot(p) < 0.0) c = -c;
+        return {c, std::min({c.dot(a), c.dot(b), c.dot(p)})};
+    }
+    // Three normals on (nearly) one great circle: in exact arithmetic Welzl never asks for
+    // their common cap (none smaller than a hemisphere exists), so this is rounding; take
+    // the smallest pairwise cap holding all three, which is the right cap to within kCollinear.
+    Cap best{a, -2.0};
+    for (const Cap& cap : {cap_through(a, b), cap_through(a, p), cap_through(b, p)})
+        if (inside(cap, a) && inside(cap, b) && inside(cap, p) && cap.t > best.t) best = cap;
+    return best.t > -2.0 ? best : Cap{a, -1.0};
+}
+
+// A step coprime to n near n/φ: visiting i·step mod n spreads normals that arrive sorted
+// around the node (the usual order of a fan), which would be Welzl's quadratic worst case.
+int golden_step(int n) {
+    if (n <= 2) return 1;
+    int step = std::max(1, static_cast<int>(0.6180339887498949 * n));
+    while (std::gcd(step, n) != 1) ++step;
+    return step;
+}
+
+// Smallest cap holding normal(0 .. n-1); normal(i) is a unit vector or zero (ignored).
+template <class NormalAt>
+Cap smallest_cap(int n, NormalAt normal) {
+    const int step = golden_step(n);
+    auto at = [&](int i) { return normal(static_cast<int>((static_cast<long long>(i) * step) % n)); };
+    int first = 0;
+    Vec3 p0 = at(0);
+    while (p0.squaredNorm() == 0.0 && ++first < n) p0 = at(first);
+    Cap cap = cap_through(p0);
+    for (int i = first + 1; i < n; ++i) {
+        const Vec3 p = at(i);
+        if (inside(cap, p)) continue;
+        cap = cap_through(p);  // p is on the boundary of the cap of normals 0..i
+        for (int j = 0; j < i; ++j) {
+            const Vec3 q = at(j);
+            if (inside(cap, q)) continue;
+            cap = cap_through(p, q);  // ... and so is q for normals 0..j
+            for (int k = 0; k < j; ++k) {
+                const Vec3 r = at(k);
+                if (!inside(cap, r)) cap = cap_through(p, q, r);
+            }
+        }
+    }
+    return cap;
+}
+
+Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node,
+                 const Index* begin, const Index* end) {
+    // Distinct unit normals on the stack; flat regions repeat one normal many times.
+    std::array<Vec3, kStackNormals> normals;
+    int count = 0;
+    bool overflow = false;
+    for (const Index* f = begin; f != end && !overflow; ++f) {
+        const Vec3 n = unit_face_normal(mesh, points, *f);
+        if (n.squaredNorm() == 0.0) continue;
+        bool seen = false;
+        for (int i = 0; i < count && !seen; ++i) seen = (normals[i] - n).squaredNorm() < kSameNormal * kSameNormal;
+        if (seen) continue;
+        if (count == kStackNormals)
+            overflow = true;
+        else
+            normals[count++] = n;
+    }
+    if (count == 0) return Vec3::Zero();  // unused node, or only degenerate faces
+
+    Cap cap;
+    if (!overflow) {
+        cap = smallest_cap(count, [&](int i) { return normals[i]; });
+    } else {
+        cap = smallest_cap(static_cast<int>(end - begin),
+                           [&](int i) { return unit_face_normal(mesh, points, begin[i]); });
+    }
+
+    // The cap's own t carries the kInside slack; judge the answer by its true minimum.
+    double min_dot = 1.0;
+    if (!overflow) {
+        for (int i = 0; i < count; ++i) min_dot = std::min(min_dot, cap.c.dot(normals[i]));
+    } else {
+        for (const Index* f = begin; f != end; ++f) {
+            const Vec3 n = unit_face_normal(mesh, points, *f);
+            if (n.squaredNorm() != 0.0) min_dot = std::min(min_dot, cap.c.dot(n));
+        }
+    }
+    // The faces span a hemisphere or more (a cusp, a folded or zero-thickness edge): no
+    // direction sees them all from outside, so the angle-weighted normal is a fair compromise.
+    if (!(min_dot > kMinUsefulDot)) return angle_weighted(mesh, points, node, begin, end);
+    return cap.c;
+}
+
+}  // namespace
+
+std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
+                               const Csr& vertex_faces, NormalMethod method) {
+    const Index n = static_cast<Index>(points.size());
+    if (n != mesh.num_points() || vertex_faces.rows() != n)
+        throw InputError("node_normals: " + std::to_string(points.size()) + " positions and " +
+                         std::to_string(vertex_faces.rows()) + " node→face rows given for a mesh of " +
+                         std::to_string(mesh.num_points()) +
+                         " nodes; pass one position per mesh node and vertex_faces(mesh)");
+    std::vector<Vec3> normals(points.size(), Vec3::Zero());
+    // Each node is independent (reads only), so this loop can be parallelised as it is.
+    for (Index v = 0; v < n; ++v) {
+        const Index* begin = vertex_faces.row_begin(v);
+        const Index* end = vertex_faces.row_end(v);
+        if (begin == end) continue;
+        switch (method) {
+            case NormalMethod::AreaWeighted: normals[v] = area_weighted(mesh, points, begin, end); break;
+            case NormalMethod::AngleWeighted: normals[v] = angle_weighted(mesh, points, v, begin, end); break;
+            case NormalMethod::MaxMinDot: normals[v] = max_min_dot(mesh, points, v, begin, end); break;
+            case NormalMethod::Max: normals[v] = max_weighted(mesh, points, v, begin, end); break;
+        }
+    }
+    return normals;
+}
+
+std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
+                               NormalMethod method) {
+    return node_normals(mesh, points, vertex_faces(mesh), method);
+}
+
+}  // namespace strata

@@ -1,1 +1,80 @@
-// Being written.
+#include <strata/error.h>
+#include <strata/geometry/cad.h>
+#include <strata/geometry/check.h>
+#include <strata/geometry/prepare.h>
+#include <strata/geometry/read_surface.h>
+#include <strata/geometry/topology.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+
+namespace strata {
+namespace {
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+}
+
+SurfaceMesh read_any(const std::string& path, const CadParams& cad) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+        throw InputError("cannot open '" + path + "': no such file; check the path");
+    if (fs::is_directory(path, ec))
+        throw InputError("cannot open '" + path + "': it is a directory, not a geometry file");
+    if (!std::ifstream(path))
+        throw InputError("cannot open '" + path + "': permission denied or unreadable");
+    const std::string ext = lower(fs::path(path).extension().string());
+    if (is_cad_file(path)) return mesh_cad(path, cad);
+    if (ext == ".stl") return read_stl(path);
+    if (ext == ".msh") return read_msh(path);
+    throw InputError("'" + path + "': unknown file type '" + ext +
+                     "'; Strata reads CAD (.step .stp .iges .igs .brep .brp .geo) and surface "
+                     "meshes (.stl .msh)");
+}
+
+}  // namespace
+
+void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::string, PatchKind>>& kinds,
+                        const std::string& source) {
+    for (Patch& p : mesh.patches) {
+        const std::string n = lower(p.name);
+        if (n.find("symmetry") != std::string::npos)
+            p.kind = PatchKind::Symmetry;
+        else if (n.find("farfield") != std::string::npos)
+            p.kind = PatchKind::Farfield;
+        else
+            p.kind = PatchKind::Wall;
+    }
+    for (const auto& [name, kind] : kinds) {
+        const Index i = find_patch(mesh, name);
+        if (i == kNone) {
+            std::string list;
+            for (const Patch& p : mesh.patches) list += (list.empty() ? "" : ", ") + p.name;
+            throw InputError(source + ": --patch " + name + "=" + std::string(to_string(kind)) +
+                             ": no patch named '" + name + "'; the patches are: " + list);
+        }
+        mesh.patches[static_cast<std::size_t>(i)].kind = kind;
+    }
+}
+
+SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params, PrepareReport* report) {
+    SurfaceMesh raw = read_any(path, params.cad);
+    assign_patch_kinds(raw, params.patch_kinds, path);
+    // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
+    if (raw.num_faces() == 0) throw InputError(path + ": no faces; the file holds no surface mesh");
+    SurfaceMesh merged = merge_coincident_nodes(raw, params.merge_tolerance);
+    check_surface(merged, path);
+    OrientReport orient;
+    SurfaceMesh oriented = orient_surface(merged, &orient);
+    if (report) {
+        report->merged_nodes = raw.num_points() - merged.num_points();
+        report->orient = orient;
+    }
+    return oriented;
+}
+
+}  // namespace strata

@@ -1,1 +1,418 @@
-// Being written.
+#include <strata/geometry/topology.h>
+
+#include <strata/error.h>
+#include <strata/geometry/face_geometry.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+namespace strata {
+namespace {
+
+std::string format_point(const Vec3& p) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "(%.9g, %.9g, %.9g)", p.x(), p.y(), p.z());
+    return buf;
+}
+
+std::string node_text(const SurfaceMesh& mesh, Index v) {
+    return "node " + std::to_string(v) + " at " + format_point(mesh.points[v]);
+}
+
+/// Every function here indexes points by face node ids; a corrupt id would be undefined
+/// behaviour rather than an error, so refuse it up front (O(#face nodes)).
+void require_valid_ids(const SurfaceMesh& mesh, const char* who) {
+    const Index n = mesh.num_points();
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const Index s = mesh.face_size(f);
+        if (s != 3 && s != 4)
+            throw TopologyError(std::string(who) + ": face " + std::to_string(f) + " has " +
+                                std::to_string(s) +
+                                " nodes; only triangles and quadrilaterals are supported");
+        for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v)
+            if (*v < 0 || *v >= n)
+                throw TopologyError(std::string(who) + ": face " + std::to_string(f) +
+                                    " references node " + std::to_string(*v) + ", but the mesh has " +
+                                    std::to_string(n) + " nodes; the mesh is corrupt, re-export it");
+    }
+}
+
+/// Integer cell of the merge hash grid.
+struct CellKey {
+    std::int64_t x, y, z;
+    bool operator==(const CellKey&) const = default;
+};
+struct CellHash {
+    std::size_t operator()(const CellKey& k) const noexcept {
+        // Large odd multipliers mix the three coordinates; collisions only cost a longer bucket.
+        std::uint64_t h = static_cast<std::uint64_t>(k.x) * 0x9E3779B97F4A7C15ull;
+        h ^= static_cast<std::uint64_t>(k.y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+        h ^= static_cast<std::uint64_t>(k.z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+        return static_cast<std::size_t>(h);
+    }
+};
+
+bool is_finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
+
+/// Does face \p f traverse the undirected edge (a, b) as a → b?
+bool traverses(const SurfaceMesh& mesh, Index f, Index a, Index b) {
+    const Index* v = mesh.face_begin(f);
+    const Index n = mesh.face_size(f);
+    for (Index i = 0; i < n; ++i)
+        if (v[i] == a && v[(i + 1) % n] == b) return true;
+    return false;
+}
+
+}  // namespace
+
+SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol) {
+    require_valid_ids(mesh, "merge_coincident_nodes");
+    const Index n = mesh.num_points();
+    std::vector<char> used(n, 0);
+    for (Index v : mesh.face_nodes) used[v] = 1;
+
+    // Tolerance relative to the bounding box of the used, finite nodes: unused nodes are
+    // dropped anyway and a NaN must not poison the box (check_surface reports it later).
+    BoundingBox box;
+    bool any = false;
+    Index num_used = 0;
+    for (Index i = 0; i < n; ++i) {
+        if (!used[i]) continue;
+        ++num_used;
+        const Vec3& p = mesh.points[i];
+        if (!is_finite(p)) continue;
+        if (!any) {
+            box.min = box.max = p;
+            any = true;
+        } else {
+            box.min = box.min.cwiseMin(p);
+            box.max = box.max.cwiseMax(p);
+        }
+    }
+    const double diag = box.diagonal();
+    const double tol = (rel_tol > 0.0 && std::isfinite(rel_tol)) ? rel_tol * diag : 0.0;
+    // Cells of a few tolerances: a tolerance ball then usually lies in one cell (1 hash lookup
+    // instead of 27), at most 8. The floor of diag·1e-12 keeps the integer cell coordinates
+    // (relative to box.min) far from overflow when the tolerance is zero or tiny.
+    double cell = std::max(4.0 * tol, diag * 1e-12);
+    if (!(cell > 0.0)) cell = 1.0;
+    const double tol2 = tol * tol;
+    const double reach = tol * (1.0 + 1e-6);
+    auto cell_of = [&](double x, double lo) { return static_cast<std::int64_t>(std::floor((x - lo) / cell)); };
+
+    // Greedy in increasing id order: each node joins the lowest-id representative within the
+    // tolerance, otherwise becomes one. Only representatives enter the grid, so clusters do
+    // not chain across many tolerances and the result does not depend on hashing order.
+    std::vector<Index> rep(n, kNone);
+    std::vector<Index> chain(n, kNone);  // next representative in the same cell
+    std::unordered_map<CellKey, Index, CellHash> head;
+    head.reserve(static_cast<std::size_t>(num_used));
+    for (Index i = 0; i < n; ++i) {
+        if (!used[i]) continue;
+        const Vec3& p = mesh.points[i];
+        if (!is_finite(p)) {
+            rep[i] = i;
+            continue;
+        }
+        const CellKey k{cell_of(p.x(), box.min.x()), cell_of(p.y(), box.min.y()), cell_of(p.z(), box.min.z())};
+        // The cells the ball of radius tol around p overlaps (a hair wider, so rounding of
+        // p ± tol cannot miss a representative at exactly the tolerance).
+        const CellKey k0{cell_of(p.x() - reach, box.min.x()), cell_of(p.y() - reach, box.min.y()),
+                         cell_of(p.z() - reach, box.min.z())};
+        const CellKey k1{cell_of(p.x() + reach, box.min.x()), cell_of(p.y() + reach, box.min.y()),
+                         cell_of(p.z() + reach, box.min.z())};
+        Index best = kNone;
+        for (std::int64_t x = k0.x; x <= k1.x; ++x)
+            for (std::int64_t y = k0.y; y <= k1.y; ++y)
+                for (std::int64_t z = k0.z; z <= k1.z; ++z) {
+                    auto it = head.find(CellKey{x, y, z});
+                    if (it == head.end()) continue;
+                    for (Index j = it->second; j != kNone; j = chain[j])
+                        if ((mesh.points[j] - p).squaredNorm() <= tol2 && (best == kNone || j < best)) best = j;
+                }
+        if (best != kNone) {
+            rep[i] = best;
+        } else {
+            rep[i] = i;
+            auto [it, inserted] = head.try_emplace(k, i);
+            if (!inserted) {
+                chain[i] = it->second;
+                it->second = i;
+            }
+        }
+    }
+
+    // Representatives keep their relative order.
+    std::vector<Index> new_id(n, kNone);
+    SurfaceMesh out;
+    for (Index i = 0; i < n; ++i)
+        if (used[i] && rep[i] == i) {
+            new_id[i] = out.num_points();
+            out.points.push_back(mesh.points[i]);
+        }
+    out.face_offsets = mesh.face_offsets;
+    out.face_nodes.resize(mesh.face_nodes.size());
+    for (std::size_t k = 0; k < mesh.face_nodes.size(); ++k) out.face_nodes[k] = new_id[rep[mesh.face_nodes[k]]];
+    out.face_patch = mesh.face_patch;
+    out.patches = mesh.patches;
+    return out;
+}
+
+Csr vertex_faces(const SurfaceMesh& mesh) {
+    require_valid_ids(mesh, "vertex_faces");
+    const Index n = mesh.num_points();
+    Csr r;
+    r.offsets.assign(static_cast<std::size_t>(n) + 1, 0);
+    // A face that repeats a node (collapsed) is listed once for it.
+    auto first_occurrence = [&](Index f, Index i) {
+        const Index* v = mesh.face_begin(f);
+        for (Index j = 0; j < i; ++j)
+            if (v[j] == v[i]) return false;
+        return true;
+    };
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+        for (Index i = 0; i < mesh.face_size(f); ++i)
+            if (first_occurrence(f, i)) ++r.offsets[mesh.face_node(f, i) + 1];
+    for (Index v = 0; v < n; ++v) r.offsets[v + 1] += r.offsets[v];
+    r.values.resize(static_cast<std::size_t>(r.offsets.back()));
+    std::vector<Index> cursor(r.offsets.begin(), r.offsets.end() - 1);
+    for (Index f = 0; f < mesh.num_faces(); ++f)  // increasing f → rows sorted
+        for (Index i = 0; i < mesh.face_size(f); ++i)
+            if (first_occurrence(f, i)) r.values[cursor[mesh.face_node(f, i)]++] = f;
+    return r;
+}
+
+EdgeTable edge_table(const SurfaceMesh& mesh) {
+    require_valid_ids(mesh, "edge_table");
+    const Index n = mesh.num_points();
+    // Bucket the half-edges by their low node (counting sort, O(n)), then sort each small
+    // bucket by (high node, face): edges come out sorted by (low, high), faces increasing.
+    std::vector<Index> start(static_cast<std::size_t>(n) + 1, 0);
+    auto for_each_half_edge = [&](auto&& fn) {
+        for (Index f = 0; f < mesh.num_faces(); ++f) {
+            const Index* v = mesh.face_begin(f);
+            const Index s = mesh.face_size(f);
+            for (Index i = 0; i < s; ++i) {
+                const Index a = v[i], b = v[(i + 1) % s];
+                if (a != b) fn(std::min(a, b), std::max(a, b), f);
+            }
+        }
+    };
+    for_each_half_edge([&](Index lo, Index, Index) { ++start[lo + 1]; });
+    for (Index v = 0; v < n; ++v) start[v + 1] += start[v];
+    std::vector<std::pair<Index, Index>> half(static_cast<std::size_t>(start.back()));  // (high, face)
+    std::vector<Index> cursor(start.begin(), start.end() - 1);
+    for_each_half_edge([&](Index lo, Index hi, Index f) { half[cursor[lo]++] = {hi, f}; });
+
+    EdgeTable t;
+    t.nodes.reserve(half.size() / 2 + 1);
+    t.faces.values.reserve(half.size());
+    for (Index lo = 0; lo < n; ++lo) {
+        auto b = half.begin() + start[lo], e = half.begin() + start[lo + 1];
+        std::sort(b, e);
+        for (auto it = b; it != e;) {
+            const Index hi = it->first;
+            t.nodes.push_back({lo, hi});
+            Index last = kNone;
+            for (; it != e && it->first == hi; ++it)
+                if (it->second != last) {  // a collapsed face may list an edge twice
+                    t.faces.values.push_back(it->second);
+                    last = it->second;
+                }
+            t.faces.offsets.push_back(static_cast<Index>(t.faces.values.size()));
+        }
+    }
+    return t;
+}
+
+Csr boundary_loops(const SurfaceMesh& mesh) {
+    const EdgeTable t = edge_table(mesh);
+    const Index n = mesh.num_points();
+    std::vector<Index> next(n, kNone);
+    std::vector<char> incoming(n, 0);
+    auto touching = [&](Index v) {
+        return TopologyError("boundary_loops: two boundary loops touch at " + node_text(mesh, v) +
+                             " (or the faces there are inconsistently oriented); a node may lie on "
+                             "at most one boundary loop: split the node or fix the surface in the CAD tool");
+    };
+    for (std::size_t e = 0; e < t.nodes.size(); ++e) {
+        if (t.faces.row_size(static_cast<Index>(e)) != 1) continue;
+        const Index f = *t.faces.row_begin(static_cast<Index>(e));
+        Index a = t.nodes[e][0], b = t.nodes[e][1];
+        if (!traverses(mesh, f, a, b)) std::swap(a, b);
+        if (next[a] != kNone) throw touching(a);
+        if (incoming[b]) throw touching(b);
+        next[a] = b;
+        incoming[b] = 1;
+    }
+    // Each node has at most one boundary edge in and one out, so the boundary is a set of
+    // disjoint cycles (or broken chains if orientation is inconsistent). Starting from the
+    // lowest unvisited node makes every loop start at its lowest node id.
+    Csr loops;
+    std::vector<char> visited(n, 0);
+    for (Index s = 0; s < n; ++s) {
+        if (next[s] == kNone || visited[s]) continue;
+        Index v = s;
+        do {
+            visited[v] = 1;
+            loops.values.push_back(v);
+            v = next[v];
+            if (v == kNone || (visited[v] && v != s))
+                throw TopologyError("boundary_loops: the boundary through " + node_text(mesh, s) +
+                                    " does not close into a loop; the faces are inconsistently oriented "
+                                    "(run orient_surface first) or the surface is non-manifold there");
+        } while (v != s);
+        loops.offsets.push_back(static_cast<Index>(loops.values.size()));
+    }
+    return loops;
+}
+
+std::vector<Index> face_components(const SurfaceMesh& mesh, Index* num_components) {
+    const EdgeTable t = edge_table(mesh);
+    const Index nf = mesh.num_faces();
+    std::vector<Index> parent(static_cast<std::size_t>(nf));
+    std::iota(parent.begin(), parent.end(), Index{0});
+    auto find = [&](Index f) {
+        while (parent[f] != f) {
+            parent[f] = parent[parent[f]];  // path halving
+            f = parent[f];
+        }
+        return f;
+    };
+    for (Index e = 0; e < t.faces.rows(); ++e) {
+        const Index* fs = t.faces.row_begin(e);
+        for (Index k = 1; k < t.faces.row_size(e); ++k) {
+            const Index a = find(fs[0]), b = find(fs[k]);
+            if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        }
+    }
+    std::vector<Index> id(static_cast<std::size_t>(nf), kNone), comp(static_cast<std::size_t>(nf));
+    Index count = 0;
+    for (Index f = 0; f < nf; ++f) {
+        const Index r = find(f);
+        if (id[r] == kNone) id[r] = count++;  // numbered in order of their lowest face
+        comp[f] = id[r];
+    }
+    if (num_components) *num_components = count;
+    return comp;
+}
+
+NodeRings node_rings(const SurfaceMesh& mesh) {
+    const Csr vf = vertex_faces(mesh);
+    const Index n = mesh.num_points();
+
+    NodeRings r;
+    r.neighbours.offsets.reserve(static_cast<std::size_t>(n) + 1);
+    r.neighbours.values.reserve(vf.values.size() + static_cast<std::size_t>(n));
+    r.faces.reserve(vf.values.size() + static_cast<std::size_t>(n));
+    r.diagonals.reserve(vf.values.size() + static_cast<std::size_t>(n));
+    r.closed.assign(static_cast<std::size_t>(n), 0);
+
+    // One sector per incident face: walking counter-clockwise around o inside face f goes
+    // from the node after o (`next`) to the node before o (`prev`).
+    struct Sector {
+        Index next, prev, face, diagonal;
+    };
+    std::vector<Sector> sectors;
+    // Node-indexed scratch, reset after each node, so chaining sectors is O(1) per sector
+    // (O(total ring size) overall, also for high-valence poles).
+    std::vector<Index> by_next(static_cast<std::size_t>(n), kNone);
+    std::vector<char> is_prev(static_cast<std::size_t>(n), 0);
+
+    for (Index o = 0; o < n; ++o) {
+        sectors.clear();
+        for (const Index* fp = vf.row_begin(o); fp != vf.row_end(o); ++fp) {
+            const Index f = *fp;
+            const Index* v = mesh.face_begin(f);
+            const Index s = mesh.face_size(f);
+            Index i = 0;
+            while (v[i] != o) ++i;
+            const Sector sec{v[(i + 1) % s], v[(i + s - 1) % s], f, s == 4 ? v[(i + 2) % 4] : kNone};
+            if (sec.next == o || sec.prev == o || sec.next == sec.prev)
+                throw TopologyError("node_rings: face " + std::to_string(f) + " at " + node_text(mesh, o) +
+                                    " repeats a node; run check_surface and remove collapsed faces");
+            sectors.push_back(sec);
+        }
+        auto reset = [&] {
+            for (const Sector& s : sectors) {
+                by_next[s.next] = kNone;
+                is_prev[s.prev] = 0;
+            }
+        };
+        const Index ns = static_cast<Index>(sectors.size());
+        for (Index k = 0; k < ns; ++k) {
+            const Sector& s = sectors[k];
+            // Two faces leaving o along the same edge, or arriving along the same edge: the edge
+            // is used twice in one direction (inconsistent orientation) or is non-manifold.
+            const bool clash_next = by_next[s.next] != kNone;
+            const bool clash_prev = is_prev[s.prev] != 0;
+            if (clash_next || clash_prev) {
+                const Index other = clash_next ? sectors[by_next[s.next]].face : kNone;
+                const Index m = clash_next ? s.next : s.prev;
+                reset();
+                throw TopologyError("node_rings: " + node_text(mesh, o) + ": the edge to node " +
+                                    std::to_string(m) + " is traversed in the same direction by face " +
+                                    std::to_string(s.face) +
+                                    (other != kNone ? " and face " + std::to_string(other) : std::string()) +
+                                    "; orient the surface consistently (orient_surface) and check it "
+                                    "is manifold (check_surface)");
+            }
+            by_next[s.next] = k;
+            is_prev[s.prev] = 1;
+        }
+        // An open fan starts at the neighbour no sector arrives at; a closed one at the
+        // sector of the lowest incident face (deterministic).
+        Index start = ns > 0 ? 0 : kNone;
+        Index open_starts = 0;
+        for (Index k = 0; k < ns; ++k)
+            if (!is_prev[sectors[k].next]) {
+                if (open_starts == 0) start = k;
+                ++open_starts;
+            }
+        Index walked = 0;
+        bool closed = false;
+        if (start != kNone && open_starts <= 1) {
+            Index k = start;
+            while (true) {
+                const Sector& s = sectors[k];
+                r.neighbours.values.push_back(s.next);
+                r.faces.push_back(s.face);
+                r.diagonals.push_back(s.diagonal);
+                ++walked;
+                const Index nk = by_next[s.prev];
+                if (nk == start) {
+                    closed = true;
+                    break;
+                }
+                if (nk == kNone || walked > ns) {
+                    // Open side: the last neighbour closes the list, its sector is empty.
+                    r.neighbours.values.push_back(s.prev);
+                    r.faces.push_back(kNone);
+                    r.diagonals.push_back(kNone);
+                    break;
+                }
+                k = nk;
+            }
+        }
+        reset();
+        if (walked != ns || open_starts > 1) {
+            const Index fans = std::max<Index>(open_starts, 2);
+            throw TopologyError("node_rings: " + node_text(mesh, o) +
+                                " is a non-manifold vertex: its " + std::to_string(ns) +
+                                " faces form " + (open_starts > 1 ? std::to_string(fans) : std::string("several")) +
+                                " separate fans touching at the node; split the node or fix the surface "
+                                "in the CAD tool");
+        }
+        r.closed[o] = closed ? 1 : 0;
+        r.neighbours.offsets.push_back(static_cast<Index>(r.neighbours.values.size()));
+    }
+    return r;
+}
+
+}  // namespace strata

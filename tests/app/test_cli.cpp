@@ -1,1 +1,184 @@
+// End-to-end tests of the `strata` program: real inputs succeed and write what they claim;
+// every bad input gives one line on stderr, a non-zero exit and no output file.
+
+#include <strata/geometry/read_surface.h>
+#include <strata/geometry/topology.h>
+
 #include <gtest/gtest.h>
+
+#include "test_support.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace strata {
+namespace {
+
+namespace fs = std::filesystem;
+using test::example_data;
+using test::test_data;
+
+struct CliResult {
+    int code = -1;
+    std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// Run the strata program with \p args (already shell-quoted) in \p dir.
+CliResult strata_cli(const test::ScratchDir& dir, const std::string& args) {
+    const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+    const std::string cmd = "cd '" + dir.path().string() + "' && '" + STRATA_CLI + "' " + args + " >'" + out +
+                            "' 2>'" + err + "' </dev/null";
+    const int status = std::system(cmd.c_str());
+    CliResult r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+}
+
+/// Files in \p dir (after the runner removed its own capture files).
+std::vector<std::string> files_in(const test::ScratchDir& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir.path())) names.push_back(e.path().filename().string());
+    return names;
+}
+
+std::size_t lines(const std::string& s) {
+    std::size_t n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+/// Every undirected edge of a closed surface is used by exactly two faces.
+bool closed_manifold(const SurfaceMesh& m) {
+    const EdgeTable e = edge_table(m);
+    for (Index i = 0; i < e.faces.rows(); ++i)
+        if (e.faces.row_size(i) != 2) return false;
+    return true;
+}
+
+TEST(Cli, HelpAndVersion) {
+    test::ScratchDir dir("cli_help");
+    CliResult h = strata_cli(dir, "--help");
+    EXPECT_EQ(h.code, 0);
+    EXPECT_NE(h.out.find("surface"), std::string::npos);
+    CliResult hs = strata_cli(dir, "surface --help");
+    EXPECT_EQ(hs.code, 0);
+    for (const char* opt : {"--size", "--quads", "--mixed", "--patch", "--fuse", "--curvature", "-o"})
+        EXPECT_NE(hs.out.find(opt), std::string::npos) << opt;
+    CliResult v = strata_cli(dir, "--version");
+    EXPECT_EQ(v.code, 0);
+    EXPECT_EQ(v.out.rfind("strata ", 0), 0u) << v.out;
+    CliResult none = strata_cli(dir, "");
+    EXPECT_NE(none.code, 0);
+}
+
+TEST(Cli, SurfaceFromStl) {
+    test::ScratchDir dir("cli_stl");
+    CliResult r = strata_cli(dir, "surface '" + example_data("sphere.stl") + "' -o sphere.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const SurfaceMesh m = read_msh(dir.file("sphere.msh"));
+    EXPECT_EQ(m.num_triangles(), 606);
+    EXPECT_EQ(m.num_points(), 305);  // closed genus-0 triangulation: V = F/2 + 2
+    EXPECT_TRUE(closed_manifold(m));
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"sphere.msh"});  // no temporary left behind
+}
+
+TEST(Cli, SurfaceFromQuadMsh) {
+    test::ScratchDir dir("cli_quads");
+    CliResult r = strata_cli(dir, "surface '" + example_data("sphere_pyhyp_quads.msh") + "' -o s.msh --msh-version 2.2");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const SurfaceMesh m = read_msh(dir.file("s.msh"));
+    EXPECT_EQ(m.num_quads(), 1536);
+    EXPECT_EQ(m.num_triangles(), 0);
+    EXPECT_TRUE(closed_manifold(m));
+    EXPECT_EQ(slurp(dir.file("s.msh")).rfind("$MeshFormat\n2.2", 0), 0u);
+}
+
+TEST(Cli, SurfaceFromMixedMshWithPatchKind) {
+    test::ScratchDir dir("cli_mixed");
+    const SurfaceMesh in = read_msh(example_data("onera_m6_mixed_quadtri.msh"));
+    ASSERT_FALSE(in.patches.empty());
+    const std::string name = in.patches.front().name;
+    CliResult r = strata_cli(dir, "surface '" + example_data("onera_m6_mixed_quadtri.msh") + "' -o m6.msh --patch '" +
+                                name + "=symmetry'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("symmetry"), std::string::npos) << r.out;
+    const SurfaceMesh m = read_msh(dir.file("m6.msh"));
+    EXPECT_EQ(m.num_quads(), 7753);
+    EXPECT_EQ(m.num_triangles(), 2588);
+    EXPECT_TRUE(closed_manifold(m));
+}
+
+TEST(Cli, SurfaceFromStep) {
+    test::ScratchDir dir("cli_step");
+    CliResult r = strata_cli(dir, "surface '" + example_data("onera_m6_sharp_te.stp") + "' -o m6.msh --size 60");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const SurfaceMesh m = read_msh(dir.file("m6.msh"));
+    EXPECT_GT(m.num_triangles(), 500);
+    EXPECT_EQ(m.patches.size(), 11u);
+    EXPECT_TRUE(closed_manifold(m));
+}
+
+TEST(Cli, SurfaceFromStepFused) {
+    test::ScratchDir dir("cli_fuse");
+    CliResult r = strata_cli(dir, "surface '" + example_data("wing_fuselage.step") + "' -o wf.msh --fuse --quads");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const SurfaceMesh m = read_msh(dir.file("wf.msh"));
+    EXPECT_GT(m.num_quads(), m.num_triangles());
+    EXPECT_TRUE(closed_manifold(m));
+    Index components = 0;
+    face_components(m, &components);
+    EXPECT_EQ(components, 1);
+}
+
+/// A bad input: non-zero exit, exactly one line on stderr naming \p must_name, nothing written.
+void expect_clean_failure(const std::string& args, const std::string& must_name, const std::string& tag) {
+    test::ScratchDir dir("cli_bad_" + tag);
+    CliResult r = strata_cli(dir, args);
+    EXPECT_NE(r.code, 0) << args;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("strata: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(must_name), std::string::npos) << r.err;
+    EXPECT_TRUE(files_in(dir).empty()) << args;
+}
+
+TEST(Cli, BadInputsFailCleanly) {
+    const std::string out = " -o out.msh";
+    expect_clean_failure("surface /nonexistent/wing.step" + out, "/nonexistent/wing.step", "missing");
+    expect_clean_failure("surface '" + test_data("cli_empty.stl") + "'" + out, "cli_empty.stl", "empty");
+    expect_clean_failure("surface '" + test_data("cli_nan.stl") + "'" + out, "cli_nan.stl", "nan");
+    expect_clean_failure("surface '" + test_data("cli_nonmanifold.stl") + "'" + out, "non-manifold", "nonmanifold");
+    expect_clean_failure("surface '" + test_data("cli_degenerate.stl") + "'" + out, "cli_degenerate.stl", "degenerate");
+    expect_clean_failure("surface '" + test_data("cli_mobius.stl") + "'" + out, "orient", "mobius");
+    expect_clean_failure("surface '" + test_data("cad_unit_sphere.geo") + "' -o out.xyz123", "out.xyz123", "badext");
+    expect_clean_failure("surface '" + example_data("SOURCES.md") + "'" + out, "SOURCES.md", "unknowntype");
+    expect_clean_failure("surface '" + example_data("sphere.stl") + "'" + out + " --quads", "sphere.stl", "quadsonstl");
+    expect_clean_failure("surface '" + example_data("sphere.stl") + "'" + out + " --patch nosuch=wall", "nosuch", "patch");
+    expect_clean_failure("surface '" + example_data("sphere.stl") + "'" + out + " --patch wall=wobbly", "wobbly", "kind");
+    expect_clean_failure("surface '" + example_data("sphere.stl") + "' -o nodir/out.msh", "nodir", "nodir");
+    expect_clean_failure("surface '" + example_data("sphere.stl") + "'", "output", "noout");
+}
+
+TEST(Cli, CorruptStepFailsCleanly) {
+    test::ScratchDir src("cli_corrupt_src");
+    {
+        std::ofstream(src.file("broken.step")) << "ISO-10303-21;\nthis is not a STEP file\n";
+    }
+    expect_clean_failure("surface '" + src.file("broken.step") + "' -o out.msh", "broken.step", "corrupt");
+}
+
+}  // namespace
+}  // namespace strata

@@ -1,1 +1,524 @@
+// CAD input and surface meshing (cad.h) on the real geometries of examples/data and small
+// files of tests/data. Closedness is computed here from edge use counts, independently of
+// topology.h, so these tests do not lean on another unit's code.
+#include <strata/error.h>
+#include <strata/geometry/cad.h>
+#include <strata/geometry/gmsh_session.h>
+
+#include "test_support.h"
+
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace strata {
+namespace {
+
+using test::example_data;
+using test::ScratchDir;
+using test::test_data;
+
+// Undirected edge → number of faces using it.
+std::map<std::pair<Index, Index>, int> edge_uses(const SurfaceMesh& m) {
+    std::map<std::pair<Index, Index>, int> uses;
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        const Index n = m.face_size(f);
+        for (Index k = 0; k < n; ++k) {
+            const Index a = m.face_node(f, k);
+            const Index b = m.face_node(f, (k + 1) % n);
+            ++uses[{std::min(a, b), std::max(a, b)}];
+        }
+    }
+    return uses;
+}
+
+// Every undirected edge used by exactly two faces: a closed, conforming surface.
+::testing::AssertionResult closed(const SurfaceMesh& m) {
+    if (m.num_faces() == 0) return ::testing::AssertionFailure() << "no faces";
+    int bad = 0;
+    std::pair<Index, Index> first{};
+    int first_count = 0;
+    for (const auto& [edge, n] : edge_uses(m))
+        if (n != 2 && bad++ == 0) {
+            first = edge;
+            first_count = n;
+        }
+    if (bad == 0) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure()
+           << bad << " edges not used exactly twice, e.g. (" << first.first << ", " << first.second
+           << ") used " << first_count << " times";
+}
+
+// Connected components of faces joined through shared nodes.
+int components(const SurfaceMesh& m) {
+    std::vector<Index> parent(m.points.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find = [&](Index i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    };
+    std::vector<bool> used(m.points.size(), false);
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        used[m.face_node(f, 0)] = true;
+        for (Index k = 1; k < m.face_size(f); ++k) {
+            used[m.face_node(f, k)] = true;
+            parent[find(m.face_node(f, k))] = find(m.face_node(f, 0));
+        }
+    }
+    int n = 0;
+    for (Index i = 0; i < m.num_points(); ++i) n += used[i] && find(i) == i;
+    return n;
+}
+
+struct Box3 {
+    Vec3 lo, hi;
+};
+Box3 bounds(const SurfaceMesh& m) {
+    Box3 b{m.points.at(0), m.points.at(0)};
+    for (const Vec3& p : m.points) {
+        b.lo = b.lo.cwiseMin(p);
+        b.hi = b.hi.cwiseMax(p);
+    }
+    return b;
+}
+
+// Faces per patch, split into triangles and quads.
+std::vector<std::array<int, 2>> tri_quad_per_patch(const SurfaceMesh& m) {
+    std::vector<std::array<int, 2>> n(m.patches.size(), {0, 0});
+    for (Index f = 0; f < m.num_faces(); ++f) ++n.at(m.face_patch[f])[m.face_size(f) == 4 ? 1 : 0];
+    return n;
+}
+
+// Basic invariants every extracted mesh must have, whatever the input.
+void expect_well_formed(const SurfaceMesh& m) {
+    ASSERT_GT(m.num_faces(), 0);
+    ASSERT_EQ(m.face_patch.size(), static_cast<std::size_t>(m.num_faces()));
+    std::vector<bool> used(m.points.size(), false);
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        ASSERT_TRUE(m.face_size(f) == 3 || m.face_size(f) == 4) << "face " << f;
+        ASSERT_GE(m.face_patch[f], 0);
+        ASSERT_LT(m.face_patch[f], static_cast<Index>(m.patches.size()));
+        std::set<Index> distinct(m.face_begin(f), m.face_end(f));
+        ASSERT_EQ(distinct.size(), static_cast<std::size_t>(m.face_size(f))) << "face " << f;
+        for (const Index* v = m.face_begin(f); v != m.face_end(f); ++v) {
+            ASSERT_GE(*v, 0);
+            ASSERT_LT(*v, m.num_points());
+            used[*v] = true;
+        }
+    }
+    // No orphan nodes, and nodes shared between surfaces appear once.
+    EXPECT_TRUE(std::all_of(used.begin(), used.end(), [](bool b) { return b; }));
+    std::set<std::array<double, 3>> coords;
+    for (const Vec3& p : m.points) coords.insert({p.x(), p.y(), p.z()});
+    EXPECT_EQ(coords.size(), m.points.size()) << "duplicate node coordinates";
+    for (const Patch& p : m.patches) EXPECT_EQ(p.kind, PatchKind::Wall) << p.name;
+}
+
+std::string write_file(const ScratchDir& dir, const std::string& name, const std::string& text) {
+    const std::string path = dir.file(name);
+    std::ofstream(path) << text;
+    return path;
+}
+
+template <class F>
+std::string error_text(F&& f) {
+    try {
+        f();
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "<no exception>";
+}
+
+// ---------------------------------------------------------------------------------------
+
+TEST(CadFile, RecognisesExtensionsCaseInsensitively) {
+    for (const char* p : {"a.step", "a.stp", "b/A.STEP", "a.Stp", "a.iges", "a.IGS", "a.brep",
+                          "a.BRP", "x/y.geo", "y.GEO"})
+        EXPECT_TRUE(is_cad_file(p)) << p;
+    for (const char* p : {"a.stl", "a.msh", "step", "a.step.txt", "a", "a.geo_unrolled", ""})
+        EXPECT_FALSE(is_cad_file(p)) << p;
+}
+
+TEST(MeshCad, OneraM6TrianglesAreClosedWithOnePatchPerFace) {
+    const SurfaceMesh m = mesh_cad(example_data("onera_m6_sharp_te.stp"), {});
+    expect_well_formed(m);
+    EXPECT_EQ(m.num_triangles(), m.num_faces());
+    ASSERT_EQ(m.patches.size(), 11u);
+    for (int s = 1; s <= 11; ++s)
+        EXPECT_NE(find_patch(m, "surface_" + std::to_string(s)), kNone) << s;
+    for (const auto& [tri, quad] : tri_quad_per_patch(m)) EXPECT_GT(tri + quad, 0);
+    EXPECT_TRUE(closed(m));
+    EXPECT_EQ(components(m), 1);
+    // The wing in millimetres: root chord 806 at y = 0, span 1196 plus the rounded tip,
+    // maximum thickness 78 mm (the STEP declares mm; OpenCASCADE keeps it).
+    const Box3 b = bounds(m);
+    EXPECT_NEAR(b.lo.x(), 0.0, 1e-3);
+    EXPECT_NEAR(b.hi.x(), 1146.57, 0.1);
+    EXPECT_NEAR(b.lo.y(), 0.0, 1e-3);
+    EXPECT_NEAR(b.hi.y(), 1218.4, 1.0);
+    EXPECT_NEAR(b.lo.z(), -39.4, 0.5);
+    EXPECT_NEAR(b.hi.z(), 39.4, 0.5);
+}
+
+TEST(MeshCad, OneraM6QuadsAreMostlyQuads) {
+    CadParams p;
+    p.size = 40.0;
+    p.elements = SurfaceElements::Quads;
+    const SurfaceMesh m = mesh_cad(example_data("onera_m6_sharp_te.stp"), p);
+    expect_well_formed(m);
+    EXPECT_GT(m.num_quads(), 0.8 * m.num_faces()) << m.num_quads() << " of " << m.num_faces();
+    EXPECT_TRUE(closed(m));
+}
+
+TEST(MeshCad, MixedPutsQuadsOnTheChosenSurfaceOnly) {
+    CadParams p;
+    p.elements = SurfaceElements::Mixed;
+    p.quad_surfaces = {10};  // one of the two large wing skins
+    const SurfaceMesh m = mesh_cad(example_data("onera_m6_sharp_te.stp"), p);
+    expect_well_formed(m);
+    const Index chosen = find_patch(m, "surface_10");
+    ASSERT_NE(chosen, kNone);
+    const auto counts = tri_quad_per_patch(m);
+    for (std::size_t i = 0; i < counts.size(); ++i) {
+        if (static_cast<Index>(i) == chosen) {
+            EXPECT_GT(counts[i][1], 4 * counts[i][0]) << "quads on surface_10";
+        } else {
+            EXPECT_EQ(counts[i][1], 0) << m.patches[i].name;
+        }
+    }
+    EXPECT_TRUE(closed(m));  // quads and triangles conform along the skin's edges
+}
+
+TEST(MeshCad, UnknownQuadSurfaceListsTheValidTags) {
+    CadParams p;
+    p.elements = SurfaceElements::Mixed;
+    p.quad_surfaces = {3, 99};
+    const std::string path = example_data("onera_m6_sharp_te.stp");
+    EXPECT_THROW(mesh_cad(path, p), InputError);
+    const std::string what = error_text([&] { mesh_cad(path, p); });
+    EXPECT_NE(what.find("99"), std::string::npos) << what;
+    EXPECT_NE(what.find("1-11"), std::string::npos) << what;
+    EXPECT_NE(what.find("onera_m6_sharp_te.stp"), std::string::npos) << what;
+}
+
+TEST(MeshCad, WingFuselageFusedIsOneClosedSurface) {
+    CadParams p;
+    p.fuse = true;
+    const SurfaceMesh fused = mesh_cad(example_data("wing_fuselage.step"), p);
+    expect_well_formed(fused);
+    EXPECT_TRUE(closed(fused));
+    EXPECT_EQ(components(fused), 1);
+
+    // Unfused: the two solids are meshed as they are, two closed surfaces crossing each other
+    // (no shared node), with the wing's root and the fuselage inside each other.
+    const SurfaceMesh apart = mesh_cad(example_data("wing_fuselage.step"), {});
+    expect_well_formed(apart);
+    EXPECT_TRUE(closed(apart));
+    EXPECT_EQ(components(apart), 2);
+    EXPECT_EQ(apart.patches.size(), 16u);
+    EXPECT_LT(fused.patches.size(), apart.patches.size());  // the Boolean removed and merged faces
+    EXPECT_LT(fused.num_faces(), apart.num_faces());        // the internal parts are gone
+
+    // The union spans both bodies; the STEP is in metres and comes out in mm.
+    const Box3 b = bounds(fused);
+    EXPECT_NEAR(b.lo.y(), -400.0, 0.5);
+    EXPECT_NEAR(b.hi.y(), 400.0, 0.5);
+    EXPECT_NEAR(b.lo.x(), -137.85, 0.5);
+}
+
+TEST(MeshCad, BrepBenchmarksMeshClosed) {
+    const SurfaceMesh notch = mesh_cad(example_data("bl3d_4_box_notch_concave_corner.brep"), {});
+    expect_well_formed(notch);
+    EXPECT_EQ(notch.patches.size(), 11u);
+    EXPECT_TRUE(closed(notch));
+    const Box3 b = bounds(notch);
+    EXPECT_NEAR(b.lo.x(), -0.5, 1e-9);
+    EXPECT_NEAR(b.hi.z(), 1.0, 1e-9);
+
+    const SurfaceMesh fin = mesh_cad(example_data("bl3d_5_body_fin_in_box.brep"), {});
+    expect_well_formed(fin);
+    EXPECT_EQ(fin.patches.size(), 13u);
+    EXPECT_TRUE(closed(fin));
+}
+
+TEST(MeshCad, ExtensionCaseAndBrpAreAccepted) {
+    ScratchDir dir("cad_ext");
+    const std::string upper = dir.file("NOTCH.BRP");
+    std::filesystem::copy_file(example_data("bl3d_4_box_notch_concave_corner.brep"), upper);
+    const SurfaceMesh a = mesh_cad(upper, {});
+    const SurfaceMesh b = mesh_cad(example_data("bl3d_4_box_notch_concave_corner.brep"), {});
+    EXPECT_EQ(a.num_faces(), b.num_faces());
+    EXPECT_EQ(a.num_points(), b.num_points());
+}
+
+TEST(MeshCad, GeoSphereNodesLieOnTheSphere) {
+    CadParams p;
+    p.size = 0.05;
+    const SurfaceMesh m = mesh_cad(test_data("cad_unit_sphere.geo"), p);
+    expect_well_formed(m);
+    ASSERT_EQ(m.patches.size(), 1u);
+    EXPECT_EQ(m.patches[0].name, "surface_1");
+    EXPECT_GT(m.num_faces(), 5000);  // 4π / (0.05² √3/4) ≈ 11,600 triangles
+    for (Index i = 0; i < m.num_points(); ++i)
+        ASSERT_NEAR(m.points[i].norm(), 1.0, 1e-6) << "node " << i;
+    EXPECT_TRUE(closed(m));  // across the sphere's seam and poles too
+}
+
+TEST(MeshCad, BuiltInKernelGeoMeshes) {
+    const SurfaceMesh m = mesh_cad(example_data("naca0012_wing_between_walls.geo"), {});
+    expect_well_formed(m);
+    EXPECT_EQ(m.patches.size(), 12u);
+    EXPECT_NE(find_patch(m, "surface_14"), kNone);    // the wing's tip cap
+    EXPECT_NE(find_patch(m, "surface_1100"), kNone);  // a wall
+    EXPECT_TRUE(closed(m));
+    const Box3 b = bounds(m);
+    EXPECT_NEAR(b.lo.x(), -10.0, 1e-9);
+    EXPECT_NEAR(b.hi.y(), 10.0, 1e-9);
+    // The script's point size lc = 0.1 on the airfoil (root at y = 0, tip cap at y = 1) is
+    // respected under the default cap (1/20 of the diagonal, 1.5): edges near the leading
+    // edge are about 0.1 long, not 1.5.
+    double shortest_le = 1e9;
+    for (const auto& [e, n] : edge_uses(m)) {
+        const Vec3& a = m.points[e.first];
+        const Vec3& c = m.points[e.second];
+        if (a.x() < 0.05 && c.x() < 0.05 && std::abs(a.z()) < 0.1 && a.y() > 0.1 && a.y() < 0.9)
+            shortest_le = std::min(shortest_le, (a - c).norm());
+    }
+    EXPECT_LT(shortest_le, 0.2);
+}
+
+TEST(MeshCad, GeoPhysicalGroupsBecomePatches) {
+    const SurfaceMesh m = mesh_cad(test_data("cad_box_groups.geo"), {});
+    expect_well_formed(m);
+    ASSERT_EQ(m.patches.size(), 5u);
+    EXPECT_EQ(m.patches[0].name, "inlet");
+    EXPECT_EQ(m.patches[1].name, "walls");
+    EXPECT_EQ(m.patches[2].name, "physical_7");
+    EXPECT_EQ(m.patches[3].name, "surface_2");
+    EXPECT_EQ(m.patches[4].name, "surface_6");
+    const auto counts = tri_quad_per_patch(m);
+    for (std::size_t i = 0; i < counts.size(); ++i) EXPECT_GT(counts[i][0], 0) << m.patches[i].name;
+    // "walls" holds two unit faces, the others one: about twice as many triangles.
+    EXPECT_GT(counts[1][0], 1.5 * counts[0][0]);
+    EXPECT_TRUE(closed(m));
+}
+
+TEST(MeshCad, IgesMeshes) {
+    const SurfaceMesh m = mesh_cad(test_data("cad_box_with_hole.igs"), {});
+    expect_well_formed(m);
+    EXPECT_EQ(m.patches.size(), 7u);
+    EXPECT_TRUE(closed(m));
+    const Box3 b = bounds(m);
+    EXPECT_NEAR(b.lo.x(), 0.0, 1e-6);
+    EXPECT_NEAR(b.hi.x(), 2.0, 1e-6);
+    EXPECT_NEAR(b.hi.y(), 1.0, 1e-6);
+    EXPECT_NEAR(b.hi.z(), 0.5, 1e-6);
+    // Nodes on the hole's wall are at radius 0.25 from its axis.
+    int on_hole = 0;
+    for (const Vec3& p : m.points) {
+        const double r = std::hypot(p.x() - 1.0, p.y() - 0.5);
+        if (r < 0.3) {
+            EXPECT_NEAR(r, 0.25, 1e-6);
+            ++on_hole;
+        }
+    }
+    EXPECT_GT(on_hole, 10);
+}
+
+TEST(MeshCad, CurvatureRefinementAddsFaces) {
+    CadParams p;
+    p.size = 0.4;
+    const SurfaceMesh plain = mesh_cad(test_data("cad_unit_sphere.geo"), p);
+    p.curvature_points = 40;
+    const SurfaceMesh curved = mesh_cad(test_data("cad_unit_sphere.geo"), p);
+    EXPECT_TRUE(closed(curved));
+    // 40 elements per 2π on a unit radius: size 0.157 instead of 0.4.
+    EXPECT_GT(curved.num_faces(), 2 * plain.num_faces())
+        << curved.num_faces() << " vs " << plain.num_faces();
+}
+
+TEST(MeshCad, HalvingTheSizeRoughlyQuadruplesTheFaces) {
+    CadParams p;
+    p.size = 0.2;
+    const SurfaceMesh coarse = mesh_cad(test_data("cad_unit_sphere.geo"), p);
+    p.size = 0.1;
+    const SurfaceMesh fine = mesh_cad(test_data("cad_unit_sphere.geo"), p);
+    const double ratio = static_cast<double>(fine.num_faces()) / coarse.num_faces();
+    EXPECT_GT(ratio, 3.0);
+    EXPECT_LT(ratio, 5.5);
+}
+
+TEST(MeshCad, DefaultSizeIsATwentiethOfTheDiagonal) {
+    // Unit sphere: diagonal 2√3, size 0.173; the same as asking for that size.
+    const SurfaceMesh automatic = mesh_cad(test_data("cad_unit_sphere.geo"), {});
+    CadParams p;
+    p.size = 2.0 * std::sqrt(3.0) / 20.0;
+    const SurfaceMesh explicit_size = mesh_cad(test_data("cad_unit_sphere.geo"), p);
+    EXPECT_EQ(automatic.num_faces(), explicit_size.num_faces());
+}
+
+TEST(MeshCad, GeoScriptSizesStandUnlessTheCallerGivesOne) {
+    ScratchDir dir("cad_script_size");
+    const std::string sphere = "SetFactory(\"OpenCASCADE\");\nSphere(1) = {0,0,0,1};\n";
+    const std::string coarse = write_file(dir, "coarse.geo", sphere + "Mesh.MeshSizeMax = 0.5;\n");
+    const SurfaceMesh script = mesh_cad(coarse, {});
+    const SurfaceMesh plain = mesh_cad(test_data("cad_unit_sphere.geo"), {});
+    EXPECT_LT(2 * script.num_faces(), plain.num_faces());  // 0.5 rather than 0.173
+
+    CadParams p;
+    p.size = 0.1;
+    const SurfaceMesh caller = mesh_cad(coarse, p);
+    const SurfaceMesh reference = mesh_cad(test_data("cad_unit_sphere.geo"), p);
+    EXPECT_EQ(caller.num_faces(), reference.num_faces());
+
+    // A script that meshes itself is meshed again, curves included, with the caller's size.
+    const std::string meshed =
+        write_file(dir, "meshed.geo", sphere + "Mesh.MeshSizeMax = 0.5;\nMesh 2;\n");
+    EXPECT_EQ(mesh_cad(meshed, p).num_faces(), reference.num_faces());
+
+    // High-order requests are ignored: Strata needs linear faces.
+    const std::string order2 = write_file(dir, "order2.geo", sphere + "Mesh.ElementOrder = 2;\n");
+    const SurfaceMesh linear = mesh_cad(order2, {});
+    EXPECT_EQ(linear.num_triangles(), linear.num_faces());
+    EXPECT_EQ(linear.num_faces(), plain.num_faces());
+}
+
+TEST(MeshCad, OptionsDoNotLeakIntoAnOpenGmshSession) {
+    ScratchDir dir("cad_leak");
+    // An outer session keeps Gmsh initialised across the calls, as a front end would.
+    GmshSession outer("outer");
+    double before = 0.0;
+    gmsh::option::getNumber("Mesh.MeshSizeMax", before);
+    const SurfaceMesh first = mesh_cad(test_data("cad_unit_sphere.geo"), {});
+    const std::string coarse =
+        write_file(dir, "coarse.geo",
+                   "SetFactory(\"OpenCASCADE\");\nSphere(1) = {0,0,0,1};\n"
+                   "Mesh.MeshSizeMax = 0.5;\nMesh.RecombineAll = 1;\nMesh.MeshSizeFactor = 3;\n");
+    const SurfaceMesh script = mesh_cad(coarse, {});
+    EXPECT_GT(script.num_quads(), 0);  // the script's recombination stood
+    const SurfaceMesh again = mesh_cad(test_data("cad_unit_sphere.geo"), {});
+    EXPECT_EQ(again.num_faces(), first.num_faces());
+    EXPECT_EQ(again.num_quads(), 0);
+    double after = 0.0;
+    gmsh::option::getNumber("Mesh.MeshSizeMax", after);
+    EXPECT_EQ(after, before);
+}
+
+TEST(MeshCad, SameInputGivesTheSameMesh) {
+    CadParams p;
+    p.elements = SurfaceElements::Mixed;
+    p.quad_surfaces = {10, 11};
+    const SurfaceMesh a = mesh_cad(example_data("onera_m6_sharp_te.stp"), p);
+    const SurfaceMesh b = mesh_cad(example_data("onera_m6_sharp_te.stp"), p);
+    ASSERT_EQ(a.points.size(), b.points.size());
+    for (std::size_t i = 0; i < a.points.size(); ++i) ASSERT_EQ(a.points[i], b.points[i]) << i;
+    EXPECT_EQ(a.face_offsets, b.face_offsets);
+    EXPECT_EQ(a.face_nodes, b.face_nodes);
+    EXPECT_EQ(a.face_patch, b.face_patch);
+    ASSERT_EQ(a.patches.size(), b.patches.size());
+    for (std::size_t i = 0; i < a.patches.size(); ++i)
+        EXPECT_EQ(a.patches[i].name, b.patches[i].name);
+}
+
+// --- errors ------------------------------------------------------------------------------
+
+TEST(MeshCadErrors, MissingFileNamesThePath) {
+    const std::string path = "/nonexistent/strata/wing.step";
+    EXPECT_THROW(mesh_cad(path, {}), InputError);
+    EXPECT_NE(error_text([&] { mesh_cad(path, {}); }).find(path), std::string::npos);
+    const std::string geo = "/nonexistent/strata/wing.geo";  // Gmsh would make an empty model
+    EXPECT_THROW(mesh_cad(geo, {}), InputError);
+    EXPECT_NE(error_text([&] { mesh_cad(geo, {}); }).find(geo), std::string::npos);
+}
+
+TEST(MeshCadErrors, DirectoryAndUnknownExtensionAreInputErrors) {
+    ScratchDir dir("cad_dirs");
+    std::filesystem::create_directories(dir.file("folder.step"));
+    EXPECT_THROW(mesh_cad(dir.file("folder.step"), {}), InputError);
+    const std::string stl = write_file(dir, "x.stl", "solid x\nendsolid x\n");
+    EXPECT_THROW(mesh_cad(stl, {}), InputError);
+}
+
+TEST(MeshCadErrors, CorruptStepNamesTheFile) {
+    ScratchDir dir("cad_corrupt");
+    const std::string path = write_file(dir, "corrupt_wing.step", "garbage\n");
+    EXPECT_THROW(mesh_cad(path, {}), InputError);
+    const std::string what = error_text([&] { mesh_cad(path, {}); });
+    EXPECT_NE(what.find("corrupt_wing.step"), std::string::npos) << what;
+    EXPECT_NE(what.find("STEP"), std::string::npos) << what;
+}
+
+TEST(MeshCadErrors, BrokenGeoScriptNamesTheFile) {
+    ScratchDir dir("cad_badgeo");
+    const std::string path = write_file(dir, "broken.geo", "Sphere(1) = {0,0,0,1};\nfoo bar;\n");
+    EXPECT_THROW(mesh_cad(path, {}), InputError);
+    EXPECT_NE(error_text([&] { mesh_cad(path, {}); }).find("broken.geo"), std::string::npos);
+}
+
+TEST(MeshCadErrors, ModelWithoutSurfaces) {
+    ScratchDir dir("cad_nosurf");
+    const std::string path = write_file(
+        dir, "curves.geo", "Point(1) = {0,0,0};\nPoint(2) = {1,0,0};\nLine(1) = {1,2};\n");
+    EXPECT_THROW(mesh_cad(path, {}), InputError);
+    const std::string what = error_text([&] { mesh_cad(path, {}); });
+    EXPECT_NE(what.find("curves.geo: no surfaces in the model"), std::string::npos) << what;
+    EXPECT_THROW(mesh_cad(write_file(dir, "empty.geo", ""), {}), InputError);
+}
+
+TEST(MeshCadErrors, BadParametersAreRefusedBeforeReading) {
+    const std::string path = test_data("cad_unit_sphere.geo");
+    CadParams p;
+    p.size = -1.0;
+    EXPECT_THROW(mesh_cad(path, p), InputError);
+    p = {};
+    p.size = 1.0;
+    p.size_min = 2.0;
+    EXPECT_THROW(mesh_cad(path, p), InputError);
+    p = {};
+    p.curvature_points = -3;
+    EXPECT_THROW(mesh_cad(path, p), InputError);
+    for (int algorithm : {0, 3, 7, 8, 42}) {
+        p = {};
+        p.algorithm = algorithm;
+        EXPECT_THROW(mesh_cad(path, p), InputError) << algorithm;
+    }
+    p = {};
+    p.algorithm = 5;
+    EXPECT_TRUE(closed(mesh_cad(path, p)));
+}
+
+TEST(MeshCadErrors, FuseNeedsOpenCascadeSolids) {
+    ScratchDir dir("cad_fuse_geo");
+    // Two built-in kernel cubes: fuse cannot apply, and says how to fix it.
+    const std::string path = write_file(dir, "builtin.geo",
+                                        "Point(1) = {0,0,0,0.5};\n"
+                                        "l[] = Extrude {1,0,0} { Point{1}; };\n"
+                                        "s[] = Extrude {0,1,0} { Line{l[1]}; };\n"
+                                        "v[] = Extrude {0,0,1} { Surface{s[1]}; };\n"
+                                        "Point(101) = {2,0,0,0.5};\n"
+                                        "m[] = Extrude {1,0,0} { Point{101}; };\n"
+                                        "t[] = Extrude {0,1,0} { Line{m[1]}; };\n"
+                                        "w[] = Extrude {0,0,1} { Surface{t[1]}; };\n");
+    CadParams p;
+    p.fuse = true;
+    EXPECT_THROW(mesh_cad(path, p), InputError);
+    EXPECT_NE(error_text([&] { mesh_cad(path, p); }).find("OpenCASCADE"), std::string::npos);
+    // Without fuse the two cubes mesh as two closed surfaces.
+    const SurfaceMesh m = mesh_cad(path, {});
+    EXPECT_TRUE(closed(m));
+    EXPECT_EQ(components(m), 2);
+}
+
+}  // namespace
+}  // namespace strata

@@ -1,1 +1,358 @@
 #include <gtest/gtest.h>
+
+#include <strata/error.h>
+#include <strata/geometry/check.h>
+#include <strata/geometry/face_geometry.h>
+#include <strata/geometry/topology.h>
+
+#include "test_support.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace strata {
+namespace {
+
+using test::quad_grid;
+
+// ---------------------------------------------------------------- helpers
+
+/// Runs \p f, expects exception E, returns its message.
+template <class E, class F>
+std::string message_of(F&& f) {
+    try {
+        f();
+    } catch (const E& e) {
+        return e.what();
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "wrong exception type: " << e.what();
+        return {};
+    }
+    ADD_FAILURE() << "no exception thrown";
+    return {};
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+/// Append an icosphere (20·4^levels triangles) of \p radius around \p centre on \p patch,
+/// every face oriented outward.
+void add_icosphere(SurfaceMesh& m, int levels, double radius, const Vec3& centre, Index patch) {
+    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+    std::vector<Vec3> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<std::array<Index, 3>> tri = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
+                                             {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                             {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
+                                             {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    for (Vec3& x : p) x.normalize();
+    for (int l = 0; l < levels; ++l) {
+        std::map<std::pair<Index, Index>, Index> mid;
+        auto midpoint = [&](Index a, Index b) {
+            const auto key = std::minmax(a, b);
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            p.push_back((p[a] + p[b]).normalized());
+            return mid[key] = static_cast<Index>(p.size()) - 1;
+        };
+        std::vector<std::array<Index, 3>> next;
+        for (const auto& f : tri) {
+            const Index ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+            next.push_back({f[0], ab, ca});
+            next.push_back({f[1], bc, ab});
+            next.push_back({f[2], ca, bc});
+            next.push_back({ab, bc, ca});
+        }
+        tri = std::move(next);
+    }
+    const Index base = m.num_points();
+    for (const Vec3& x : p) m.points.push_back(centre + radius * x);
+    for (auto f : tri) {
+        // Orientation from geometry, so the builder cannot silently be inward.
+        if ((p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).dot(p[f[0]]) < 0) std::swap(f[1], f[2]);
+        m.add_face({base + f[0], base + f[1], base + f[2]}, patch);
+    }
+}
+
+SurfaceMesh sphere(int levels = 2, double radius = 1.0, const Vec3& centre = Vec3::Zero(),
+                   PatchKind kind = PatchKind::Wall) {
+    SurfaceMesh m;
+    m.patches.push_back({kind == PatchKind::Farfield ? "farfield" : "wall", kind});
+    add_icosphere(m, levels, radius, centre, 0);
+    return m;
+}
+
+/// Reverse face f completely (a,b,c → c,b,a): a different node order from orient's own flip.
+void reverse_face(SurfaceMesh& m, Index f) {
+    std::reverse(m.face_nodes.begin() + m.face_offsets[f], m.face_nodes.begin() + m.face_offsets[f + 1]);
+}
+
+/// Signed "outwardness" of face f relative to centre: > 0 when its normal points away.
+double outwardness(const SurfaceMesh& m, Index f, const Vec3& centre) {
+    return face_area_vector(m, f).dot(face_centroid(m, m.points, f) - centre);
+}
+
+/// Same node set, same first node: orient only reorders the tail of a face.
+void expect_same_faces_up_to_orientation(const SurfaceMesh& a, const SurfaceMesh& b) {
+    ASSERT_EQ(a.num_faces(), b.num_faces());
+    EXPECT_EQ(a.face_offsets, b.face_offsets);
+    EXPECT_EQ(a.points, b.points);
+    EXPECT_EQ(a.face_patch, b.face_patch);
+    for (Index f = 0; f < a.num_faces(); ++f) {
+        std::vector<Index> x(a.face_begin(f), a.face_end(f)), y(b.face_begin(f), b.face_end(f));
+        EXPECT_EQ(x[0], y[0]) << "face " << f;
+        std::sort(x.begin(), x.end());
+        std::sort(y.begin(), y.end());
+        EXPECT_EQ(x, y) << "face " << f;
+    }
+}
+
+// ---------------------------------------------------------------- check_surface
+
+TEST(CheckSurface, ValidMeshesPass) {
+    EXPECT_NO_THROW(check_surface(quad_grid(4, 3), "grid"));
+    EXPECT_NO_THROW(check_surface(sphere(), "sphere"));
+    // The area threshold is relative: a millimetre-sized model is not degenerate.
+    EXPECT_NO_THROW(check_surface(quad_grid(10, 10, 1e-7), "tiny"));
+    EXPECT_NO_THROW(check_surface(sphere(1, 1e-4, Vec3(1e3, 0, 0)), "far"));
+}
+
+TEST(CheckSurface, EmptyMeshIsAnInputError) {
+    const std::string msg = message_of<InputError>([] { check_surface(SurfaceMesh{}, "wing.stl"); });
+    EXPECT_EQ(msg.rfind("wing.stl: no faces", 0), 0u) << msg;
+}
+
+TEST(CheckSurface, NonFiniteCoordinateNamesTheNode) {
+    SurfaceMesh m = quad_grid(2, 2);
+    m.points[4].y() = std::numeric_limits<double>::quiet_NaN();
+    std::string msg = message_of<InputError>([&] { check_surface(m, "body.msh"); });
+    EXPECT_EQ(msg.rfind("body.msh: ", 0), 0u) << msg;
+    EXPECT_TRUE(contains(msg, "node 4 ")) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos);
+
+    m.points[4].y() = 1.0;
+    m.points[7].z() = std::numeric_limits<double>::infinity();
+    msg = message_of<InputError>([&] { check_surface(m, "body.msh"); });
+    EXPECT_TRUE(contains(msg, "node 7 ")) << msg;
+}
+
+TEST(CheckSurface, OutOfRangeNodeId) {
+    SurfaceMesh m = quad_grid(1, 1);
+    m.add_face({0, 2, 99}, 0);
+    const std::string msg = message_of<TopologyError>([&] { check_surface(m, "in.stl"); });
+    EXPECT_TRUE(contains(msg, "face 1 ")) << msg;
+    EXPECT_TRUE(contains(msg, "node 99")) << msg;
+}
+
+TEST(CheckSurface, RepeatedNodeNamesTheFaceAndPatch) {
+    SurfaceMesh m = quad_grid(1, 1);
+    m.patches.push_back({"fin", PatchKind::Wall});
+    m.points.emplace_back(2.0, 0.0, 0.0);
+    m.add_face({1, 4, 4}, 1);
+    const std::string msg = message_of<TopologyError>([&] { check_surface(m, "in.msh"); });
+    EXPECT_EQ(msg.rfind("in.msh: face 1 ", 0), 0u) << msg;
+    EXPECT_TRUE(contains(msg, "'fin'")) << msg;
+    EXPECT_TRUE(contains(msg, "node 4 twice")) << msg;
+}
+
+TEST(CheckSurface, ZeroAreaFaceNamesTheFacePatchAndCentroid) {
+    SurfaceMesh m = quad_grid(1, 1);
+    m.patches.push_back({"flap", PatchKind::Wall});
+    m.points.emplace_back(2.0, 0.0, 0.0);
+    m.points.emplace_back(3.0, 0.0, 0.0);
+    m.add_face({1, 4, 5}, 1);  // collinear corners
+    const std::string msg = message_of<TopologyError>([&] { check_surface(m, "in.msh"); });
+    EXPECT_TRUE(contains(msg, "face 1 ")) << msg;
+    EXPECT_TRUE(contains(msg, "'flap'")) << msg;
+    EXPECT_TRUE(contains(msg, "(2, 0, 0)")) << msg;  // centroid
+    EXPECT_TRUE(contains(msg, "zero area")) << msg;
+
+    // Near zero relative to the model: a sliver of area ~1e-15 in a unit model.
+    SurfaceMesh s = quad_grid(1, 1);
+    s.points.emplace_back(0.5, 1e-15, 0.0);
+    s.add_face({0, 1, 4}, 0);
+    EXPECT_TRUE(contains(message_of<TopologyError>([&] { check_surface(s, "s"); }), "face 1 "));
+}
+
+TEST(CheckSurface, NonManifoldEdgeNamesBothNodesAndTheFaces) {
+    SurfaceMesh m;
+    m.patches.push_back({"wall", PatchKind::Wall});
+    m.points = {Vec3(1, 0, 0.5), Vec3(-1, 0, 0.5), Vec3(0, 1, 0.5), Vec3(0, -1, 0.5),
+                Vec3(0, 0, 0),   Vec3(5, 5, 5),    Vec3(6, 5, 5),   Vec3(0, 0, 1)};
+    m.add_face({4, 7, 0}, 0);
+    m.add_face({7, 4, 1}, 0);
+    m.add_face({4, 7, 2}, 0);  // third face on edge 4–7
+    m.add_face({3, 5, 6}, 0);
+    const std::string msg = message_of<TopologyError>([&] { check_surface(m, "fins.stl"); });
+    EXPECT_EQ(msg.rfind("fins.stl: ", 0), 0u) << msg;
+    EXPECT_TRUE(contains(msg, "node 4 (0, 0, 0)")) << msg;
+    EXPECT_TRUE(contains(msg, "node 7 (0, 0, 1)")) << msg;
+    EXPECT_TRUE(contains(msg, "3 faces: 0 ")) << msg;
+    EXPECT_TRUE(contains(msg, ", 1 ") && contains(msg, ", 2 ")) << msg;
+    EXPECT_TRUE(contains(msg, "merge the duplicate faces")) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos);
+}
+
+TEST(CheckSurface, SameDirectionEdgeIsLeftToOrient) {
+    SurfaceMesh m = quad_grid(2, 1);
+    reverse_face(m, 1);
+    EXPECT_NO_THROW(check_surface(m, "grid"));
+}
+
+// ---------------------------------------------------------------- orient_surface
+
+TEST(OrientSurface, SphereWithThirtyPercentFlippedFacesIsRepairedOutward) {
+    const SurfaceMesh good = sphere();
+    ASSERT_EQ(good.num_faces(), 320);
+    for (unsigned seed : {1u, 2u, 3u}) {
+        SurfaceMesh m = good;
+        std::vector<Index> order(320);
+        for (Index f = 0; f < 320; ++f) order[f] = f;
+        std::mt19937 rng(seed);
+        std::shuffle(order.begin(), order.end(), rng);
+        order.resize(96);  // 30 %
+        if (seed == 1 && std::find(order.begin(), order.end(), 0) == order.end()) order[0] = 0;  // BFS root flipped
+        for (Index f : order) reverse_face(m, f);
+
+        OrientReport rep;
+        const SurfaceMesh o = orient_surface(m, &rep);
+        EXPECT_EQ(rep.flipped_faces, 96);
+        EXPECT_EQ(rep.components, 1);
+        EXPECT_EQ(rep.closed_components, 1);
+        for (Index f = 0; f < o.num_faces(); ++f) EXPECT_GT(outwardness(o, f, Vec3::Zero()), 0.0) << "face " << f;
+        expect_same_faces_up_to_orientation(m, o);
+        EXPECT_NO_THROW(node_rings(o));
+    }
+}
+
+TEST(OrientSurface, InwardSphereBecomesOutward) {
+    SurfaceMesh m = sphere();
+    for (Index f = 0; f < m.num_faces(); ++f) reverse_face(m, f);
+    OrientReport rep;
+    const SurfaceMesh o = orient_surface(m, &rep);
+    EXPECT_EQ(rep.flipped_faces, m.num_faces());
+    for (Index f = 0; f < o.num_faces(); ++f) EXPECT_GT(outwardness(o, f, Vec3::Zero()), 0.0);
+
+    // Already outward: untouched. Far from the origin: still outward (volume measured locally).
+    const SurfaceMesh far = sphere(2, 1e-3, Vec3(1e5, -2e5, 3e5));
+    EXPECT_EQ(orient_surface(far, &rep).face_nodes, far.face_nodes);
+    EXPECT_EQ(rep.flipped_faces, 0);
+}
+
+TEST(OrientSurface, QuadCubeFlipKeepsTheFirstNode) {
+    // Unit cube of inward quads; orient reverses each as a,b,c,d → a,d,c,b.
+    SurfaceMesh m;
+    m.patches.push_back({"wall", PatchKind::Wall});
+    for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 2; ++x) m.points.emplace_back(x, y, z);
+    m.add_face({0, 1, 3, 2}, 0);
+    m.add_face({4, 6, 7, 5}, 0);
+    m.add_face({0, 4, 5, 1}, 0);
+    m.add_face({2, 3, 7, 6}, 0);
+    m.add_face({0, 2, 6, 4}, 0);
+    m.add_face({1, 5, 7, 3}, 0);
+    OrientReport rep;
+    const SurfaceMesh o = orient_surface(m, &rep);
+    EXPECT_EQ(rep.flipped_faces, 6);
+    EXPECT_EQ((std::vector<Index>(o.face_begin(0), o.face_end(0))), (std::vector<Index>{0, 2, 3, 1}));
+    for (Index f = 0; f < 6; ++f) EXPECT_GT(outwardness(o, f, Vec3(0.5, 0.5, 0.5)), 0.0);
+}
+
+TEST(OrientSurface, SphereInsideSphereOuterPointsInwardInnerOutward) {
+    for (bool inner_first : {true, false}) {
+        SurfaceMesh m;
+        m.patches.push_back({"body", PatchKind::Wall});
+        m.patches.push_back({"box", PatchKind::Wall});  // not named farfield: containment decides
+        const Vec3 ci(0.7, -0.4, 0.3);
+        if (inner_first) add_icosphere(m, 2, 1.0, ci, 0);
+        add_icosphere(m, 2, 5.0, Vec3::Zero(), 1);
+        if (!inner_first) add_icosphere(m, 2, 1.0, ci, 0);
+        // Scramble some faces of both so neither starts consistent.
+        for (Index f = 0; f < m.num_faces(); f += 3) reverse_face(m, f);
+
+        OrientReport rep;
+        const SurfaceMesh o = orient_surface(m, &rep);
+        EXPECT_EQ(rep.components, 2);
+        EXPECT_EQ(rep.closed_components, 2);
+        for (Index f = 0; f < o.num_faces(); ++f) {
+            if (o.face_patch[f] == 0)
+                EXPECT_GT(outwardness(o, f, ci), 0.0) << "inner face " << f;
+            else
+                EXPECT_LT(outwardness(o, f, Vec3::Zero()), 0.0) << "outer face " << f;
+        }
+    }
+}
+
+TEST(OrientSurface, SideBySideBodiesBothPointOutward) {
+    SurfaceMesh m;
+    m.patches.push_back({"wall", PatchKind::Wall});
+    add_icosphere(m, 1, 1.0, Vec3(-2, 0, 0), 0);
+    add_icosphere(m, 1, 1.0, Vec3(2, 0, 0), 0);
+    for (Index f = 0; f < m.num_faces(); ++f) reverse_face(m, f);
+    OrientReport rep;
+    const SurfaceMesh o = orient_surface(m, &rep);
+    EXPECT_EQ(rep.components, 2);
+    for (Index f = 0; f < o.num_faces(); ++f) {
+        const Vec3 c = face_centroid(o, o.points, f).x() < 0 ? Vec3(-2, 0, 0) : Vec3(2, 0, 0);
+        EXPECT_GT(outwardness(o, f, c), 0.0);
+    }
+}
+
+TEST(OrientSurface, FarfieldSphereAlonePointsInward) {
+    const SurfaceMesh m = sphere(2, 10.0, Vec3::Zero(), PatchKind::Farfield);
+    OrientReport rep;
+    const SurfaceMesh o = orient_surface(m, &rep);
+    EXPECT_EQ(rep.flipped_faces, m.num_faces());
+    for (Index f = 0; f < o.num_faces(); ++f) EXPECT_LT(outwardness(o, f, Vec3::Zero()), 0.0);
+}
+
+TEST(OrientSurface, MoebiusStripIsNotOrientable) {
+    SurfaceMesh m;
+    m.patches.push_back({"strip", PatchKind::Wall});
+    const int n = 12;
+    for (int i = 0; i < n; ++i) {
+        const double th = 2.0 * std::numbers::pi * i / n, tw = th / 2.0;
+        const Vec3 c(3.0 * std::cos(th), 3.0 * std::sin(th), 0.0);
+        const Vec3 d = std::cos(tw) * Vec3(std::cos(th), std::sin(th), 0.0) + std::sin(tw) * Vec3::UnitZ();
+        m.points.push_back(c + 0.5 * d);  // top    2i
+        m.points.push_back(c - 0.5 * d);  // bottom 2i+1
+    }
+    for (Index i = 0; i + 1 < n; ++i) m.add_face({2 * i, 2 * i + 1, 2 * i + 3, 2 * i + 2}, 0);
+    m.add_face({2 * (n - 1), 2 * (n - 1) + 1, 0, 1}, 0);  // half twist: bottom joins top
+    ASSERT_NO_THROW(check_surface(m, "strip"));
+    const std::string msg = message_of<TopologyError>([&] { orient_surface(m); });
+    EXPECT_TRUE(contains(msg, "not orientable")) << msg;
+    EXPECT_TRUE(contains(msg, "component 0")) << msg;
+    EXPECT_TRUE(contains(msg, "edge between node ")) << msg;
+}
+
+TEST(OrientSurface, OpenGridKeepsTheMajorityOrientation) {
+    const SurfaceMesh grid = quad_grid(4, 4);
+    for (Index bad : {Index{0}, Index{9}, Index{15}}) {
+        SurfaceMesh m = grid;
+        reverse_face(m, bad);
+        OrientReport rep;
+        const SurfaceMesh o = orient_surface(m, &rep);
+        EXPECT_EQ(rep.flipped_faces, 1) << "flipped face " << bad;
+        EXPECT_EQ(rep.components, 1);
+        EXPECT_EQ(rep.closed_components, 0);
+        for (Index f = 0; f < o.num_faces(); ++f) EXPECT_GT(face_area_vector(o, f).z(), 0.0);
+    }
+    // A consistent -z grid stays -z.
+    SurfaceMesh down = grid;
+    for (Index f = 0; f < down.num_faces(); ++f) reverse_face(down, f);
+    OrientReport rep;
+    EXPECT_EQ(orient_surface(down, &rep).face_nodes, down.face_nodes);
+    EXPECT_EQ(rep.flipped_faces, 0);
+}
+
+}  // namespace
+}  // namespace strata

@@ -3,6 +3,7 @@
 /// The one index type and sentinel used everywhere in Strata, and the point type.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products on Vec3
 #include <cstdint>
 #include <vector>
 

@@ -10,31 +10,73 @@
 
 namespace strata {
 
+/// Which faces Gmsh makes on the CAD surfaces.
 enum class SurfaceElements {
     Triangles,  ///< all triangles (default)
-    Quads,      ///< recombined into quadrilaterals everywhere (Blossom; a few triangles may remain)
+    Quads,      ///< recombined into quadrilaterals everywhere (Blossom; a few triangles remain,
+                ///< mostly on small or strongly curved faces: ~88 % quads on the ONERA M6
+                ///< at size 40)
     Mixed,      ///< quads on CadParams::quad_surfaces, triangles elsewhere
 };
 
-/// Parameters of CAD surface meshing. Sizes are in the model's units.
+/// Parameters of CAD surface meshing. Sizes are in the model's units, which for STEP and IGES
+/// are millimetres: OpenCASCADE converts every STEP/IGES file to mm whatever unit it declares
+/// (a STEP in metres comes out 1000 times larger; examples/data/wing_fuselage.step does).
+/// BREP and .geo have no units: their numbers are kept.
+///
+/// A .geo script is the authority on its own mesh settings: point sizes, fields, Recombine
+/// Surface and the Mesh.* options it sets stand, unless a field here is away from its default
+/// (then the field wins). Mesh.ElementOrder is always forced to 1 (Strata needs linear faces),
+/// and a mesh the script made itself ("Mesh 2;") is cleared and made again with these settings
+/// (kept if the model has discrete entities, whose mesh may be their only geometry).
 struct CadParams {
-    double size = 0.0;                ///< target element size; 0 = 1/20 of the bounding-box diagonal
-    double size_min = 0.0;            ///< lower bound for curvature refinement; 0 = size / 20
-    int curvature_points = 0;         ///< elements per 2π of curvature radius (0 = off)
+    /// Maximum element size (Mesh.MeshSizeMax). 0 = 1/20 of the model's bounding-box diagonal,
+    /// or for a .geo that sets Mesh.MeshSizeMax itself, the script's value. Sizes a .geo gives
+    /// its points are respected below this bound.
+    double size = 0.0;
+    /// Minimum element size (Mesh.MeshSizeMin), a floor for curvature refinement so that a
+    /// sharp edge's tiny radius does not give needle-small elements. 0 = size / 20 when
+    /// curvature refinement is on, no floor otherwise.
+    double size_min = 0.0;
+    /// Curvature refinement: target elements per 2π radians of curvature
+    /// (Mesh.MeshSizeFromCurvature); 0 = off.
+    int curvature_points = 0;
     SurfaceElements elements = SurfaceElements::Triangles;
-    std::vector<int> quad_surfaces;   ///< CAD surface tags meshed with quads when Mixed
-    bool fuse = false;                ///< fuse all solids into one body first (Boolean union)
-    int algorithm = 6;                ///< Gmsh Mesh.Algorithm (6 = Frontal-Delaunay)
+    /// CAD surface tags (as Gmsh numbers them, after fuse if fuse is set) meshed with quads when
+    /// elements is Mixed; ignored otherwise. A tag that is not a surface → InputError listing
+    /// the valid tags.
+    std::vector<int> quad_surfaces;
+    /// Fuse all solids into one body first (OpenCASCADE Boolean union, first solid as object,
+    /// the others as tools): faces inside the union disappear. Without it several solids are
+    /// meshed as they are, so overlapping solids give intersecting surfaces that later checks
+    /// reject. Needs OpenCASCADE entities (STEP/IGES/BREP, or SetFactory("OpenCASCADE") in a
+    /// .geo). Faces the union changes lose their physical group.
+    bool fuse = false;
+    /// Gmsh 2D algorithm (Mesh.Algorithm): 1 MeshAdapt, 2 Automatic, 5 Delaunay,
+    /// 6 Frontal-Delaunay (default), 9 packing of parallelograms. 7 (BAMG) and 8 (Frontal-
+    /// Delaunay for quads) are refused: in Gmsh 4.8.4 they abort the process (BAMG on curved
+    /// surfaces, algorithm 8 on every surface). Quads come from recombination instead; a .geo
+    /// that sets Mesh.Algorithm 7 or 8 gets 6.
+    int algorithm = 6;
 };
 
-/// Read \p path (.step/.stp, .iges/.igs, .brep/.brp, .geo), optionally fuse its solids,
-/// and mesh its surfaces. Patches: one per 2D physical group if the model has any, else one
-/// per CAD surface ("surface_<tag>"). When solids are fused, internal faces disappear and
-/// only the boundary of the union is meshed. Throws InputError for an unreadable or empty
-/// model (naming the file), BackendError when Gmsh fails to mesh (naming the surface if known).
+/// Read \p path (.step/.stp, .iges/.igs, .brep/.brp, .geo; extension case-insensitive),
+/// optionally fuse its solids, and mesh its surfaces with Gmsh (surfaces only: generate(2)).
+/// Surfaces sharing a curve share its nodes, so a closed solid gives a closed, conforming mesh.
+///
+/// Patches: one per 2D physical group if the model has any (named by the group, or
+/// "physical_<tag>"; a surface in several groups goes to the lowest group tag), and one per
+/// surface in no group ("surface_<tag>"); without physical groups, one per CAD surface
+/// ("surface_<tag>"). All patches are PatchKind::Wall (the caller assigns kinds). Face node
+/// order is Gmsh's (the caller orients). Nodes are numbered in order of first use, faces
+/// surface by surface in tag order: the same file and parameters give the same mesh.
+///
+/// Throws InputError for bad parameters, a missing, unreadable or corrupt file, or a model
+/// without surfaces (each naming the file); BackendError when Gmsh fails to mesh or leaves a
+/// surface without elements (naming the surface).
 SurfaceMesh mesh_cad(const std::string& path, const CadParams& params);
 
-/// True for the extensions mesh_cad understands.
+/// True for the extensions mesh_cad understands (case-insensitive); looks at the name only.
 bool is_cad_file(const std::string& path);
 
 }  // namespace strata

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Strata's one entry point on a fresh Debian 12 machine: install every dependency from
+# Debian's packages (idempotent), configure and build, then
+#   scripts/setup.sh example   run the main job on a bundled example (the default)
+#   scripts/setup.sh test      run the test suite (what .ci/run calls)
+#   scripts/setup.sh build     only install and build
+# Environment: BUILD_DIR (default build), JOBS (default: number of cores).
+set -euo pipefail
+
+cd "$(dirname "$0")/.."
+mode=${1:-example}
+build_dir=${BUILD_DIR:-build}
+jobs=${JOBS:-$(nproc)}
+
+# Debian packages Strata builds against (see README, "Dependencies").
+packages=(
+  build-essential cmake pkg-config
+  libgmsh-dev          # Gmsh SDK 4.8 with OpenCASCADE: CAD import, surface meshing, .msh I/O
+  libeigen3-dev        # small dense linear algebra
+  libtet1.5-dev        # TetGen 1.5 (tetrahedral fill)
+  libgtest-dev         # GoogleTest
+  libcli11-dev         # command-line parsing for the strata program
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build_dir" -j "$jobs"
+
+case "$mode" in
+  build) ;;
+  test)
+    ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
+    ;;
+  example)
+    mkdir -p out
+    "$build_dir"/app/strata surface examples/data/onera_m6_sharp_te.stp -o out/onera_m6_surface.msh \
+      --size 40 --curvature 16
+    ;;
+  *)
+    echo "usage: scripts/setup.sh [example|test|build]" >&2
+    exit 2
+    ;;
+esac
