@@ -1,0 +1,59 @@
+#pragma once
+/// \file
+/// The boundary-layer module: Poisson marching extrusion of prism and hexahedron layers
+/// (Thompson, Chalasani & Soni; ALGORITHM.md).
+
+#include <strata/geometry/normals.h>
+#include <strata/geometry/surface_mesh.h>
+#include <strata/module/distribution.h>
+#include <strata/module/volume_mesh.h>
+#include <strata/progress.h>
+
+#include <vector>
+
+namespace strata {
+
+/// Parameters of layer generation. Lengths in model units.
+struct LayerParams {
+    DistributionParams distribution;          ///< number of layers and their heights
+    int sweeps = 10;                          ///< point-Jacobi sweeps per layer (the paper's ten)
+    int max_sweeps = 50;                      ///< extra sweeps allowed while the residual is high
+    double tolerance = 1e-3;                  ///< stop extra sweeps when max update < tolerance × δ_k
+    bool control_functions = true;            ///< Φ, Ψ from the wall, Θ from the distribution
+    bool concave = true;                      ///< the concave-region modification (Eqs. 15–18)
+    NormalMethod normals = NormalMethod::AreaWeighted;  ///< node normals per level
+    bool smoothing = true;                    ///< false: plain normal extrusion (reference mesh only)
+    int threads = 0;                          ///< OpenMP threads; 0 = OpenMP's default
+    /// Diagnostics only: return layers with inverted cells instead of throwing (the stats
+    /// then show min_scaled_jacobian ≤ 0). Never used for a mesh that is written.
+    bool keep_invalid = false;
+};
+
+/// Quality of one layer's cells.
+struct LayerStats {
+    double height = 0.0;               ///< δ_k
+    double min_scaled_jacobian = 0.0;  ///< over every corner of every cell of the layer
+    double mean_scaled_jacobian = 0.0;
+    double max_orthogonality_deg = 0.0;  ///< largest angle between a layer edge and the wall-side face normal
+    double mean_orthogonality_deg = 0.0;
+    int sweeps = 0;                    ///< sweeps done
+};
+
+/// The layers: a volume mesh of prisms (on triangles) and hexahedra (on quads), node
+/// `k * nw + i` being wall node i on level k (nw = wall node count).
+struct LayerMesh {
+    VolumeMesh mesh;            ///< boundary: wall patches, side faces on open-boundary patches, "layer_top"
+    SurfaceMesh top;            ///< outermost level as a surface (same faces as the wall), for the next stage
+    std::vector<LayerStats> stats;  ///< one per layer
+    Index wall_nodes = 0;
+    int layers = 0;
+    Index unsmoothed_nodes = 0;  ///< nodes with no stencil (open edge off any plane): plain normal extrusion
+};
+
+/// Extrude \p wall (oriented, normals into the flow; faces on Wall patches are extruded).
+/// Open boundaries of the wall that lie on a plane (a symmetry or outflow plane) keep their
+/// nodes in that plane. Throws TopologyError naming the layer, face and position of the first
+/// cell that would invert.
+LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, Progress* progress = nullptr);
+
+}  // namespace strata

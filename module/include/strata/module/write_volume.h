@@ -1,0 +1,21 @@
+#pragma once
+/// \file
+/// Volume-mesh writer through the Gmsh API: every format Gmsh writes, by extension.
+
+#include <strata/module/volume_mesh.h>
+
+#include <string>
+
+namespace strata {
+
+/// Write \p mesh to \p path (.msh as MSH \p msh_version 4.1 or 2.2; .vtk, .su2, .unv, ... by
+/// extension): one discrete volume with all cells and a physical group "fluid" (3D), one
+/// discrete surface and one 2D physical group per boundary patch, named after the patch.
+/// Atomic (temporary name, then rename). Does not validate: callers run require_valid_mesh first.
+void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version = 4.1);
+
+/// Read a volume mesh written by write_volume (or any .msh with linear tets, pyramids,
+/// prisms and hexes, and 2D physical groups as patches) through the Gmsh API.
+VolumeMesh read_volume_msh(const std::string& path);
+
+}  // namespace strata

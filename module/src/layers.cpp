@@ -1,0 +1,401 @@
+// Poisson marching extrusion (Thompson, Chalasani & Soni), as ALGORITHM.md restates it.
+// Per layer: a three-level locally orthogonal reference mesh (Eqs. 11–12), point-Jacobi
+// smoothing of the middle level with the Poisson equation (Eq. 3) in Knupp's local logical
+// space, level 2 regenerated after every sweep; then the middle level becomes the next wall.
+
+#include <strata/error.h>
+#include <strata/geometry/face_geometry.h>
+#include <strata/geometry/topology.h>
+#include <strata/module/cell_quality.h>
+#include <strata/module/layers.h>
+#include <strata/module/stencil.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace strata {
+namespace {
+
+std::string point_text(const Vec3& p) {
+    char b[96];
+    std::snprintf(b, sizeof b, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
+    return b;
+}
+
+/// The extruded part of the input: faces on Wall patches, nodes renumbered compactly.
+struct Wall {
+    SurfaceMesh mesh;
+    std::vector<Index> input_node;  ///< wall node → input node
+    std::vector<Index> input_face;  ///< wall face → input face
+};
+
+Wall extract_wall(const SurfaceMesh& in) {
+    Wall w;
+    w.mesh.patches = in.patches;
+    auto is_wall = [&](Index f) { return in.patches[static_cast<std::size_t>(in.face_patch[f])].kind == PatchKind::Wall; };
+    // Wall nodes keep the input's order (identity when every face is a wall).
+    std::vector<Index> map(static_cast<std::size_t>(in.num_points()), kNone);
+    for (Index f = 0; f < in.num_faces(); ++f)
+        if (is_wall(f))
+            for (const Index* v = in.face_begin(f); v != in.face_end(f); ++v) map[static_cast<std::size_t>(*v)] = 0;
+    for (Index i = 0; i < in.num_points(); ++i)
+        if (map[static_cast<std::size_t>(i)] == 0) {
+            map[static_cast<std::size_t>(i)] = static_cast<Index>(w.input_node.size());
+            w.input_node.push_back(i);
+            w.mesh.points.push_back(in.points[i]);
+        }
+    for (Index f = 0; f < in.num_faces(); ++f) {
+        if (!is_wall(f)) continue;
+        Index v[4];
+        const Index n = in.face_size(f);
+        for (Index i = 0; i < n; ++i) v[i] = map[static_cast<std::size_t>(in.face_node(f, i))];
+        w.mesh.add_face(v, n, in.face_patch[f]);
+        w.input_face.push_back(f);
+    }
+    return w;
+}
+
+/// Planes the nodes of the wall's open boundaries stay in (and across which their rings are
+/// mirrored). A boundary loop lying in one plane that the wall crosses (the wall's normals
+/// lie in it, as on a symmetry or outflow plane) gives that plane to all its nodes. Otherwise
+/// each node gets the local plane spanned by the loop's tangent and the wall normal, so open
+/// edges still slide consistently; nodes where the loop turns sharply (corners) get none and
+/// are extruded along their normal.
+void boundary_planes(const SurfaceMesh& wall, const Csr& loops, const std::vector<Vec3>& normals,
+                     std::vector<MirrorPlane>& planes, std::vector<Index>& node_plane) {
+    node_plane.assign(static_cast<std::size_t>(wall.num_points()), kNone);
+    const double diag = bounding_box(wall.points).diagonal();
+    for (Index l = 0; l < loops.rows(); ++l) {
+        const Index* lv = loops.row_begin(l);
+        const Index m = loops.row_size(l);
+        Vec3 c = Vec3::Zero();
+        for (Index i = 0; i < m; ++i) c += wall.points[lv[i]];
+        c /= static_cast<double>(m);
+        Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+        for (Index i = 0; i < m; ++i) {
+            const Vec3 d = wall.points[lv[i]] - c;
+            cov += d * d.transpose();
+        }
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+        const Vec3 normal = es.eigenvectors().col(0).normalized();
+        double dev = 0.0, cross = 0.0;
+        for (Index i = 0; i < m; ++i) {
+            dev = std::max(dev, std::abs((wall.points[lv[i]] - c).dot(normal)));
+            cross = std::max(cross, std::abs(normals[lv[i]].dot(normal)));
+        }
+        if (m >= 3 && dev <= 1e-6 * diag && cross < 0.5) {
+            for (Index i = 0; i < m; ++i) node_plane[static_cast<std::size_t>(lv[i])] = static_cast<Index>(planes.size());
+            planes.push_back({c, normal});
+            continue;
+        }
+        for (Index i = 0; i < m; ++i) {
+            const Vec3& p = wall.points[lv[i]];
+            const Vec3 t0 = (p - wall.points[lv[(i + m - 1) % m]]).normalized();
+            const Vec3 t1 = (wall.points[lv[(i + 1) % m]] - p).normalized();
+            if (t0.dot(t1) < std::cos(30.0 * std::numbers::pi / 180.0)) continue;  // a corner of the loop
+            const Vec3 pn = (t0 + t1).cross(normals[lv[i]]);
+            if (pn.norm() < 1e-12) continue;
+            node_plane[static_cast<std::size_t>(lv[i])] = static_cast<Index>(planes.size());
+            planes.push_back({p, pn.normalized()});
+        }
+    }
+}
+
+/// f(α) of Eq. 18: full weight for neighbours leaning towards the normal, none beyond 90°.
+double concave_ramp(double alpha) {
+    constexpr double q = std::numbers::pi / 4.0, h = std::numbers::pi / 2.0;
+    if (alpha <= q) return 1.0;
+    if (alpha >= h) return 0.0;
+    return 0.5 * (1.0 - std::cos(4.0 * alpha));
+}
+
+/// First and second ξ, η derivatives of the level-1 positions at node o.
+struct Derivs {
+    Vec3 d[5];
+};
+
+/// Everything the sweeps need, fixed for the whole extrusion.
+struct Marcher {
+    const SurfaceMesh& wall;
+    const LayerParams& params;
+    Csr vf;
+    Stencils st;
+    std::vector<MirrorPlane> planes;
+    std::vector<Index> node_plane;
+    std::vector<double> phi, psi;  ///< control functions, per node, from the wall
+
+    Vec3 at(const std::vector<Vec3>& r, const StencilPoint& p) const {
+        return p.mirror == kNone ? r[p.node] : planes[p.mirror].reflect(r[p.node]);
+    }
+
+    Derivs derivatives(const std::vector<Vec3>& r, Index o) const {
+        Derivs out;
+        for (int d = 0; d < 5; ++d) out.d[d] = st.centre[o][d] * r[o];
+        for (Index j = st.offsets[o]; j < st.offsets[o + 1]; ++j) {
+            const Vec3 p = at(r, st.points[j]);
+            for (int d = 0; d < 5; ++d) out.d[d] += st.weights[j][d] * p;
+        }
+        return out;
+    }
+
+    std::vector<Vec3> normals(const std::vector<Vec3>& r) const {
+        std::vector<Vec3> n = node_normals(wall, r, vf, params.normals);
+        // Nodes on a plane march in it: their normal is the mirror-symmetric one.
+        for (std::size_t i = 0; i < n.size(); ++i)
+            if (node_plane[i] != kNone) {
+                const Vec3& pn = planes[node_plane[i]].normal;
+                const Vec3 t = n[i] - n[i].dot(pn) * pn;
+                if (t.norm() > 1e-12) n[i] = t.normalized();
+            }
+        return n;
+    }
+
+    /// Φ, Ψ (Eq. 14 in the form of ALGORITHM.md section 4) from the initial surface.
+    void control_functions() {
+        const Index n = wall.num_points();
+        phi.assign(static_cast<std::size_t>(n), 0.0);
+        psi.assign(static_cast<std::size_t>(n), 0.0);
+        if (!params.control_functions) return;
+        for (Index o = 0; o < n; ++o) {
+            if (!st.valid[o]) continue;
+            const Derivs g = derivatives(wall.points, o);
+            const Vec3 &rx = g.d[Stencils::Xi], &ry = g.d[Stencils::Eta];
+            const double g11 = rx.dot(rx), g12 = rx.dot(ry), g22 = ry.dot(ry);
+            const Vec3 R = g22 * g.d[Stencils::XiXi] - 2.0 * g12 * g.d[Stencils::XiEta] + g11 * g.d[Stencils::EtaEta];
+            // [g11 g22, g11 g12; g12 g22, g11 g22] (Φ, Ψ) = −(R·r_ξ, R·r_η)
+            const double a = g11 * g22, b = g11 * g12, c = g12 * g22, d = g11 * g22;
+            const double det = a * d - b * c;
+            if (!(std::abs(det) > 1e-12 * a * d)) continue;
+            const double ra = -R.dot(rx), rb = -R.dot(ry);
+            phi[o] = (d * ra - b * rb) / det;
+            psi[o] = (a * rb - c * ra) / det;
+        }
+    }
+};
+
+}  // namespace
+
+LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
+    const std::vector<double> delta = layer_heights(params.distribution);
+    const int nlayers = params.distribution.layers;
+    if (params.sweeps < 0 || params.max_sweeps < params.sweeps)
+        throw InputError("--sweeps " + std::to_string(params.sweeps) + ": need 0 ≤ sweeps ≤ max sweeps (" +
+                         std::to_string(params.max_sweeps) + ")");
+    Wall w = extract_wall(surface);
+    if (w.mesh.num_faces() == 0)
+        throw InputError("no wall faces to extrude: every patch is symmetry, farfield or other; mark the body with --patch NAME=wall");
+#ifdef _OPENMP
+    const int threads = params.threads > 0 ? params.threads : omp_get_max_threads();
+#endif
+
+    Marcher mc{w.mesh, params, vertex_faces(w.mesh), {}, {}, {}, {}, {}};
+    const NodeRings rings = node_rings(w.mesh);
+    const Csr loops = boundary_loops(w.mesh);
+    boundary_planes(w.mesh, loops, node_normals(w.mesh, w.mesh.points, mc.vf, params.normals), mc.planes,
+                    mc.node_plane);
+    mc.st = build_stencils(w.mesh, rings, mc.node_plane, mc.planes);
+    mc.control_functions();
+
+    const Index nw = w.mesh.num_points();
+    LayerMesh out;
+    out.wall_nodes = nw;
+    out.layers = nlayers;
+    for (Index i = 0; i < nw; ++i) out.unsmoothed_nodes += mc.st.valid[i] ? 0 : 1;
+    std::vector<Vec3>& pts = out.mesh.points;
+    pts.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(nlayers + 1));
+    pts.insert(pts.end(), w.mesh.points.begin(), w.mesh.points.end());
+
+    std::vector<Vec3> r0 = w.mesh.points, r1(r0.size()), r2(r0.size()), next(r0.size());
+    for (int k = 0; k < nlayers; ++k) {
+        const double dk = delta[static_cast<std::size_t>(k)], dk1 = delta[static_cast<std::size_t>(k) + 1];
+        const double theta = params.control_functions ? -2.0 * (dk1 - dk) / (dk + dk1) : 0.0;
+        const std::vector<Vec3> n0 = mc.normals(r0);
+        for (Index i = 0; i < nw; ++i) r1[i] = r0[i] + dk * n0[i];  // Eq. 11
+
+        LayerStats stats;
+        stats.height = dk;
+        const int max_sweeps = params.smoothing ? params.max_sweeps : 0;
+        int sweep = 0;
+        for (; sweep < max_sweeps; ++sweep) {
+            const std::vector<Vec3> n1 = mc.normals(r1);
+            for (Index i = 0; i < nw; ++i) r2[i] = r1[i] + dk1 * n1[i];  // Eq. 12
+            double max_move = 0.0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : max_move)
+            for (Index o = 0; o < nw; ++o) {
+                next[o] = r1[o];
+                if (!mc.st.valid[o]) continue;
+                const Derivs g = mc.derivatives(r1, o);
+                const Vec3 &rx = g.d[Stencils::Xi], &ry = g.d[Stencils::Eta];
+                const Vec3 rz = 0.5 * (r2[o] - r0[o]);
+                const double g11 = rx.dot(rx), g12 = rx.dot(ry), g22 = ry.dot(ry), g33 = rz.dot(rz);
+                const double A = g22 * g33, B = -2.0 * g12 * g33, C = g11 * g33, D = g11 * g22 - g12 * g12;
+                const auto& c = mc.st.centre[o];
+                // L(r) = A (r_ξξ + Φ r_ξ) + B r_ξη + C (r_ηη + Ψ r_η) + D (r_ζζ + Θ r_ζ) + E = 0,
+                // written as K r_o + rest; r_ζζ = r2 − 2 r1 + r0 carries −2 r_o.
+                Vec3 L = A * (g.d[Stencils::XiXi] + mc.phi[o] * rx) + B * g.d[Stencils::XiEta] +
+                         C * (g.d[Stencils::EtaEta] + mc.psi[o] * ry) + D * (r2[o] - 2.0 * r1[o] + r0[o] + theta * rz);
+                double K = A * (c[Stencils::XiXi] + mc.phi[o] * c[Stencils::Xi]) + B * c[Stencils::XiEta] +
+                           C * (c[Stencils::EtaEta] + mc.psi[o] * c[Stencils::Eta]) - 2.0 * D;
+                if (params.concave) {
+                    // Eqs. 15–18, bounded reading, in the rotation-invariant form: Σ ν_m times the
+                    // second derivative along neighbour m's direction, scaled by the metric across it
+                    // (for M = 4 exactly g22 g33 (ν_E + ν_W) r_ξξ + g11 g33 (ν_N + ν_S) r_ηη).
+                    const Vec3 nrm = (r2[o] - r1[o]).normalized();
+                    for (Index j = mc.st.offsets[o]; j < mc.st.offsets[o + 1]; ++j) {
+                        const auto& dir = mc.st.direction[j];
+                        if (dir[0] == 0.0 && dir[1] == 0.0) continue;
+                        const Vec3 e = mc.at(r1, mc.st.points[j]) - r1[o];
+                        const double gm = e.squaredNorm();
+                        if (gm <= g33) continue;
+                        const double alpha = std::acos(std::clamp(e.dot(nrm) / std::sqrt(gm), -1.0, 1.0));
+                        const double nu = (1.0 - g33 / gm) * concave_ramp(alpha);
+                        if (nu <= 0.0) continue;
+                        const double cs = dir[0], sn = dir[1];
+                        const double gperp = sn * sn * g11 - 2.0 * sn * cs * g12 + cs * cs * g22;
+                        const double wt = g33 * nu * gperp;
+                        L += wt * (cs * cs * g.d[Stencils::XiXi] + 2.0 * cs * sn * g.d[Stencils::XiEta] +
+                                  sn * sn * g.d[Stencils::EtaEta]);
+                        K += wt * (cs * cs * c[Stencils::XiXi] + 2.0 * cs * sn * c[Stencils::XiEta] +
+                                  sn * sn * c[Stencils::EtaEta]);
+                    }
+                }
+                if (!(K < 0.0)) continue;  // degenerate metrics: leave the reference position
+                Vec3 p = r1[o] - L / K;    // K r_o_new + (L − K r_o) = 0
+                if (mc.node_plane[o] != kNone) p = mc.planes[mc.node_plane[o]].project(p);
+                next[o] = p;
+                max_move = std::max(max_move, (p - r1[o]).norm());
+            }
+            std::swap(r1, next);
+            if (sweep + 1 >= params.sweeps && max_move <= params.tolerance * dk) {
+                ++sweep;
+                break;
+            }
+        }
+        stats.sweeps = sweep;
+
+        // Cells of this layer and their quality; an inverted cell stops the extrusion.
+        const Index base0 = static_cast<Index>(k) * nw, base1 = base0 + nw;
+        pts.insert(pts.end(), r1.begin(), r1.end());
+        double jmin = 1.0, jsum = 0.0, omax = 0.0, osum = 0.0;
+        Index worst_face = kNone;
+        for (Index f = 0; f < w.mesh.num_faces(); ++f) {
+            const Index* v = w.mesh.face_begin(f);
+            const double j = w.mesh.face_size(f) == 3
+                                 ? prism_min_scaled_jacobian(pts, {base0 + v[0], base0 + v[1], base0 + v[2], base1 + v[0],
+                                                                   base1 + v[1], base1 + v[2]})
+                                 : hex_min_scaled_jacobian(pts, {base0 + v[0], base0 + v[1], base0 + v[2], base0 + v[3],
+                                                                 base1 + v[0], base1 + v[1], base1 + v[2], base1 + v[3]});
+            if (j < jmin || worst_face == kNone) jmin = std::min(jmin, j), worst_face = j <= jmin ? f : worst_face;
+            jsum += j;
+        }
+        for (Index i = 0; i < nw; ++i) {
+            const Vec3 e = r1[i] - r0[i];
+            const double ang = std::acos(std::clamp(e.normalized().dot(n0[i]), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+            omax = std::max(omax, ang);
+            osum += ang;
+        }
+        stats.min_scaled_jacobian = jmin;
+        stats.mean_scaled_jacobian = jsum / static_cast<double>(w.mesh.num_faces());
+        stats.max_orthogonality_deg = omax;
+        stats.mean_orthogonality_deg = osum / static_cast<double>(nw);
+        out.stats.push_back(stats);
+        if (jmin <= 0.0 && !params.keep_invalid) {
+            const Index f = worst_face;
+            const Vec3 c = face_centroid(w.mesh, r0, f);
+            throw TopologyError("layer " + std::to_string(k + 1) + " of " + std::to_string(nlayers) + ": the " +
+                                (w.mesh.face_size(f) == 3 ? "prism" : "hexahedron") + " over wall face " +
+                                std::to_string(w.input_face[static_cast<std::size_t>(f)]) + " (patch '" +
+                                w.mesh.patches[static_cast<std::size_t>(w.mesh.face_patch[f])].name + "') at " +
+                                point_text(c) + " would invert (min scaled Jacobian " + std::to_string(jmin) +
+                                "); the layers fold there: use fewer layers or a smaller total thickness, more --sweeps, "
+                                "or keep the concave modification on");
+        }
+        std::swap(r0, r1);
+        report(progress, "layers", static_cast<double>(k + 1) / nlayers);
+    }
+
+    // Cells in Gmsh order (bottom face = wall orientation, whose normal points into the cell).
+    for (int k = 0; k < nlayers; ++k) {
+        const Index b0 = static_cast<Index>(k) * nw, b1 = b0 + nw;
+        for (Index f = 0; f < w.mesh.num_faces(); ++f) {
+            const Index* v = w.mesh.face_begin(f);
+            if (w.mesh.face_size(f) == 3)
+                out.mesh.prisms.push_back({b0 + v[0], b0 + v[1], b0 + v[2], b1 + v[0], b1 + v[1], b1 + v[2]});
+            else
+                out.mesh.hexes.push_back(
+                    {b0 + v[0], b0 + v[1], b0 + v[2], b0 + v[3], b1 + v[0], b1 + v[1], b1 + v[2], b1 + v[3]});
+        }
+    }
+
+    // Boundary: the wall (reversed: out of the layers), the top, and side quads on open edges.
+    SurfaceMesh& bnd = out.mesh.boundary;
+    bnd.patches = w.mesh.patches;
+    const Index top_patch = static_cast<Index>(bnd.patches.size());
+    bnd.patches.push_back({"layer_top", PatchKind::Other});
+    const Index top = static_cast<Index>(nlayers) * nw;
+    for (Index f = 0; f < w.mesh.num_faces(); ++f) {
+        Index v[4];
+        const Index n = w.mesh.face_size(f);
+        v[0] = w.mesh.face_node(f, 0);
+        for (Index i = 1; i < n; ++i) v[i] = w.mesh.face_node(f, n - i);
+        bnd.add_face(v, n, w.mesh.face_patch[f]);
+    }
+    for (Index f = 0; f < w.mesh.num_faces(); ++f) {
+        Index v[4];
+        const Index n = w.mesh.face_size(f);
+        for (Index i = 0; i < n; ++i) v[i] = top + w.mesh.face_node(f, i);
+        bnd.add_face(v, n, top_patch);
+    }
+    if (loops.rows() > 0) {
+        // Side faces take the patch of the input face across the open edge if there is one
+        // (a symmetry plane of a half model), else one "layer_side" patch.
+        const EdgeTable in_edges = edge_table(surface);
+        Index side_patch = kNone;
+        for (Index l = 0; l < loops.rows(); ++l) {
+            const Index m = loops.row_size(l);
+            for (Index i = 0; i < m; ++i) {
+                const Index a = loops.row_begin(l)[i], b = loops.row_begin(l)[(i + 1) % m];
+                Index patch = kNone;
+                const Index ia = w.input_node[static_cast<std::size_t>(a)], ib = w.input_node[static_cast<std::size_t>(b)];
+                const std::array<Index, 2> key{std::min(ia, ib), std::max(ia, ib)};
+                const auto it = std::lower_bound(in_edges.nodes.begin(), in_edges.nodes.end(), key);
+                if (it != in_edges.nodes.end() && *it == key) {
+                    const Index e = static_cast<Index>(it - in_edges.nodes.begin());
+                    for (const Index* f = in_edges.faces.row_begin(e); f != in_edges.faces.row_end(e); ++f)
+                        if (surface.patches[static_cast<std::size_t>(surface.face_patch[*f])].kind != PatchKind::Wall)
+                            patch = surface.face_patch[*f];
+                }
+                if (patch == kNone) {
+                    if (side_patch == kNone) {
+                        side_patch = static_cast<Index>(bnd.patches.size());
+                        bnd.patches.push_back({"layer_side", PatchKind::Other});
+                    }
+                    patch = side_patch;
+                }
+                for (int k = 0; k < nlayers; ++k) {
+                    const Index b0 = static_cast<Index>(k) * nw, b1 = b0 + nw;
+                    bnd.add_face({b0 + a, b0 + b, b1 + b, b1 + a}, patch);
+                }
+            }
+        }
+    }
+
+    // The outermost level as a surface for the next stage.
+    out.top.points.assign(pts.end() - nw, pts.end());
+    out.top.face_offsets = w.mesh.face_offsets;
+    out.top.face_nodes = w.mesh.face_nodes;
+    out.top.face_patch = w.mesh.face_patch;
+    out.top.patches = w.mesh.patches;
+    return out;
+}
+
+}  // namespace strata
