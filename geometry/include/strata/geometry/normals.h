@@ -13,14 +13,17 @@ namespace strata {
 /// (vector area ≤ 1e-12 × the sum of squared edge lengths) and assume the faces are
 /// consistently oriented (orient_surface).
 ///
-/// Which to use: on smooth walls use Max, the only one exact for nodes on a sphere and
-/// second-order accurate on smooth surfaces (the unit sphere meshed by Gmsh at size 0.05: max
-/// error 2.6e-15 Max, against 1.5e-2 area, 5.3e-3 angle, 7.4e-3 robust; means 1.5e-3, 7.8e-4,
-/// 7.8e-4 for the last three). The averages of unit or area-weighted face normals are only
-/// first-order accurate where the fan around a node is lopsided. Near sharp edges and corners
-/// use MaxMinDot (robust) or AngleWeighted, which give the exact bisector there; Max, like
-/// AreaWeighted, leans towards the sides with the smaller faces. AreaWeighted stays the
-/// default elsewhere in Strata.
+/// Which to use: on smooth walls, Max. It is exact for nodes on a sphere, however irregular
+/// the mesh (the unit sphere meshed by Gmsh at size 0.05: max error 2.6e-15, against 1.5e-2
+/// area, 5.3e-3 angle, 7.4e-3 robust), and elsewhere its leading error, O(h) at irregular
+/// nodes, is proportional to the difference of the principal curvatures rather than to the
+/// curvature, so it is smallest on rounded, near-umbilic walls. The three averages of face
+/// normals are first-order accurate wherever the fan around a node is lopsided (O(h) times
+/// the curvature), and second-order only on centrally symmetric stencils. Caveat: on strongly
+/// anisotropic walls (thin cylinders, saddles) meshed irregularly Max is also first order and
+/// no better than AngleWeighted. At sharp edges and corners use MaxMinDot (robust) or
+/// AngleWeighted, which give the exact bisector there; Max leans towards the side with the
+/// smaller faces, AreaWeighted towards the larger. AreaWeighted stays the default elsewhere.
 enum class NormalMethod {
     AreaWeighted,   ///< sum of incident face area vectors, normalised (the paper's); leans
                     ///< towards large faces at sharp edges and corners
@@ -35,14 +38,15 @@ enum class NormalMethod {
                     ///< normals", J. Graphics Tools 4(2), 1999): the sum over incident faces of
                     ///< (e1 × e2) / (|e1|² |e2|²), e1 and e2 the face's two edges leaving the node
                     ///< in counter-clockwise order (for a quad or polygon, the two edges at the
-                    ///< node, not a diagonal), normalised. Exact when the node and its edge
-                    ///< neighbours lie on a sphere (inversion about the node maps the sphere to a
-                    ///< plane normal to the sphere's normal there, and the terms sum to twice the
-                    ///< area vector of the inverted neighbour polygon), so second-order accurate
-                    ///< on smooth surfaces however irregular the mesh. The weights favour small
-                    ///< faces (1/(|e1| |e2|) × the sine of the corner angle). Corners with a
-                    ///< zero-length edge are skipped. Exactness needs a closed fan: at a mesh
-                    ///< boundary or a skipped face it is only an approximation
+                    ///< node, never a diagonal), normalised. The weight of a face's unit normal is
+                    ///< sin(corner angle) / (|e1| |e2|): small faces count more. Exact when the
+                    ///< node and its edge neighbours lie on a sphere (inversion about the node maps
+                    ///< the sphere to a plane normal to it there, and the terms add up to twice
+                    ///< the area vector of the inverted ring of neighbours); this needs a closed
+                    ///< fan, so at a mesh boundary or next to a skipped face it is approximate.
+                    ///< On other smooth surfaces: O(h |k1 - k2|) at irregular nodes, second order
+                    ///< or better on symmetric stencils and at umbilic points. Corners with a
+                    ///< zero-length edge are skipped (a node with no other corner gets (0,0,0))
 };
 /// "area", "angle", "robust", "max".
 std::string_view to_string(NormalMethod m);
