@@ -5,16 +5,22 @@
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/geometry/write_surface.h>
+#include <strata/module/layers.h>
+#include <strata/module/validate.h>
+#include <strata/module/write_volume.h>
 #include <strata/progress.h>
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace {
 
@@ -119,6 +125,133 @@ int run_surface(const SurfaceOptions& o) {
     return 0;
 }
 
+struct LayerOptions {
+    SurfaceOptions surface;
+    int layers = 0;
+    double first_height = 0.0;
+    double growth = 0.0;
+    double thickness = 0.0;
+    double yplus = 0.0;
+    double reynolds = 0.0;
+    double ref_length = 1.0;
+    std::string distribution;
+    int sweeps = 10;
+    int max_sweeps = 50;
+    bool no_control = false;
+    bool no_concave = false;
+    std::string normals = "robust";
+    int threads = 0;
+};
+
+void add_layer_options(CLI::App& cmd, LayerOptions& o) {
+    cmd.add_option("--layers", o.layers, "number of layers")->required()->check(CLI::PositiveNumber);
+    cmd.add_option("--first-height", o.first_height, "height of the first layer, model units")->check(CLI::PositiveNumber);
+    cmd.add_option("--growth", o.growth, "growth ratio of geometric layers (default 1.2)")->check(CLI::Range(1.0, 10.0));
+    cmd.add_option("--thickness", o.thickness, "total thickness of the layers, model units")->check(CLI::PositiveNumber);
+    cmd.add_option("--yplus", o.yplus, "first height from this target y+ (with --reynolds, --ref-length)")
+        ->check(CLI::PositiveNumber);
+    cmd.add_option("--reynolds", o.reynolds, "Reynolds number for --yplus")->check(CLI::PositiveNumber);
+    cmd.add_option("--ref-length", o.ref_length, "reference length of the Reynolds number, model units (default 1)")
+        ->check(CLI::PositiveNumber);
+    cmd.add_option("--distribution", o.distribution,
+                   "geometric (first height + growth), thickness (first height + thickness: growth solved) or tanh "
+                   "(the paper's; first height + thickness); default from the options given")
+        ->check(CLI::IsMember({"geometric", "thickness", "tanh"}));
+    cmd.add_option("--sweeps", o.sweeps, "Poisson smoothing sweeps per layer (default 10)")->check(CLI::NonNegativeNumber);
+    cmd.add_option("--max-sweeps", o.max_sweeps, "more sweeps allowed while the update stays large (default 50)")
+        ->check(CLI::NonNegativeNumber);
+    cmd.add_flag("--no-control", o.no_control, "no control functions (Phi, Psi from the wall; Theta from the distribution)");
+    cmd.add_flag("--no-concave", o.no_concave, "no extra smoothing in concave regions");
+    cmd.add_option("--normals", o.normals, "node normals: robust (default), area (the paper's), angle, max")
+        ->check(CLI::IsMember({"robust", "area", "angle", "max"}));
+    cmd.add_option("--threads", o.threads, "threads for smoothing (default: all cores)")->check(CLI::NonNegativeNumber);
+}
+
+strata::LayerParams layer_params(const LayerOptions& o) {
+    strata::LayerParams p;
+    strata::DistributionParams& d = p.distribution;
+    d.layers = o.layers;
+    d.first_height = o.first_height;
+    d.thickness = o.thickness;
+    d.yplus = o.yplus;
+    d.reynolds = o.reynolds;
+    d.reference_length = o.ref_length;
+    if (o.first_height > 0.0 && o.yplus > 0.0)
+        throw strata::InputError("--first-height and --yplus both set the first layer height: give one of them");
+    if (!(o.first_height > 0.0) && !(o.yplus > 0.0))
+        throw strata::InputError("the first layer height is missing: give --first-height H or --yplus Y --reynolds RE");
+    if (o.distribution == "tanh")
+        d.kind = strata::Distribution::Tanh;
+    else if (o.distribution == "thickness" || (o.distribution.empty() && o.thickness > 0.0 && o.growth == 0.0))
+        d.kind = strata::Distribution::Thickness;
+    else
+        d.kind = strata::Distribution::Geometric;
+    if (d.kind == strata::Distribution::Geometric) {
+        if (o.thickness > 0.0)
+            throw strata::InputError("--thickness with --growth over-determines the layers: give two of first height, growth "
+                                     "and thickness");
+        d.growth = o.growth > 0.0 ? o.growth : 1.2;
+    } else if (!(o.thickness > 0.0)) {
+        throw strata::InputError("--distribution " + std::string(strata::to_string(d.kind)) + " needs --thickness");
+    }
+    p.sweeps = o.sweeps;
+    p.max_sweeps = std::max(o.max_sweeps, o.sweeps);
+    p.control_functions = !o.no_control;
+    p.concave = !o.no_concave;
+    p.normals = strata::parse_normal_method(o.normals);
+    p.threads = o.threads;
+    return p;
+}
+
+/// One-line progress bar on stderr when it is a terminal.
+class BarProgress : public strata::Progress {
+public:
+    void report(std::string_view stage, double fraction) override {
+        if (!isatty(2)) return;
+        const int w = 30, n = static_cast<int>(fraction * w + 0.5);
+        std::fprintf(stderr, "\r%-8.*s [%-*s] %3d%%", static_cast<int>(stage.size()), stage.data(), w,
+                     std::string(static_cast<std::size_t>(n), '#').c_str(), static_cast<int>(fraction * 100 + 0.5));
+        if (fraction >= 1.0) std::fprintf(stderr, "\n");
+    }
+};
+
+int run_layers(const LayerOptions& o) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const strata::PrepareParams pp = prepare_params(o.surface);
+    const strata::LayerParams lp = layer_params(o);
+    double version = 4.1;
+    if (o.surface.msh_version == "2.2")
+        version = 2.2;
+    else if (o.surface.msh_version != "4.1")
+        throw strata::InputError("--msh-version " + o.surface.msh_version + ": use 4.1 or 2.2");
+    strata::PrepareReport rep;
+    const strata::SurfaceMesh wall = strata::prepare_surface(o.surface.input, pp, &rep);
+    const auto t1 = std::chrono::steady_clock::now();
+    BarProgress bar;
+    const strata::LayerMesh lm = strata::extrude_layers(wall, lp, o.surface.quiet ? nullptr : &bar);
+    const auto t2 = std::chrono::steady_clock::now();
+    const strata::ValidationReport v = strata::require_valid_mesh(lm.mesh, o.surface.input);
+    strata::write_volume(lm.mesh, o.surface.output, version);
+    const auto t3 = std::chrono::steady_clock::now();
+    if (o.surface.quiet) return 0;
+    print_surface_summary(wall, rep);
+    std::printf("layer  height       min SJ  mean SJ  max orth  mean orth  sweeps\n");
+    for (std::size_t k = 0; k < lm.stats.size(); ++k) {
+        const strata::LayerStats& s = lm.stats[k];
+        std::printf("%5zu  %-11.4g  %6.3f  %7.3f  %7.1f°  %8.2f°  %6d\n", k + 1, s.height, s.min_scaled_jacobian,
+                    s.mean_scaled_jacobian, s.max_orthogonality_deg, s.mean_orthogonality_deg, s.sweeps);
+    }
+    if (lm.unsmoothed_nodes > 0)
+        std::printf("note: %d nodes on open edges off any plane (corners) were extruded along their normal without smoothing\n",
+                    static_cast<int>(lm.unsmoothed_nodes));
+    auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+    std::printf("cells: %zu hexahedra, %zu prisms; min scaled Jacobian %.3f; volume %.6g\n", lm.mesh.hexes.size(),
+                lm.mesh.prisms.size(), v.min_scaled_jacobian, v.cell_volume);
+    std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", secs(t0, t1), secs(t1, t2), secs(t2, t3));
+    std::printf("wrote %s\n", o.surface.output.c_str());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -134,6 +267,14 @@ int main(int argc, char** argv) {
     surface->add_option("-o,--output", so.output, "output surface mesh (.msh; .vtk, .stl, ... by extension)")->required();
     surface->add_option("--msh-version", so.msh_version, "MSH file version for .msh output: 4.1 (default) or 2.2");
     surface->add_flag("-q,--quiet", so.quiet, "print nothing but errors");
+
+    LayerOptions lo;
+    CLI::App* layers = app.add_subcommand("layers", "extrude boundary-layer prisms and hexahedra from the walls; write the layers");
+    add_surface_input_options(*layers, lo.surface);
+    layers->add_option("-o,--output", lo.surface.output, "output volume mesh (.msh; .vtk, .su2, ... by extension)")->required();
+    layers->add_option("--msh-version", lo.surface.msh_version, "MSH file version for .msh output: 4.1 (default) or 2.2");
+    layers->add_flag("-q,--quiet", lo.surface.quiet, "print nothing but errors");
+    add_layer_options(*layers, lo);
 
     try {
         app.parse(argc, argv);
@@ -151,6 +292,7 @@ int main(int argc, char** argv) {
 
     try {
         if (*surface) return run_surface(so);
+        if (*layers) return run_layers(lo);
     } catch (const strata::Cancelled& e) {
         std::cerr << "strata: " << e.what() << "\n";
         return 130;

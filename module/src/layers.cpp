@@ -257,7 +257,11 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
                         const double gm = e.squaredNorm();
                         if (gm <= g33) continue;
                         const double alpha = std::acos(std::clamp(e.dot(nrm) / std::sqrt(gm), -1.0, 1.0));
-                        const double nu = (1.0 - g33 / gm) * concave_ramp(alpha);
+                        // Literal reading g_m/g33 − 1, capped (ALGORITHM.md section 6); the
+                        // bounded reading 1 − g33/g_m when the cap is 0.
+                        const double cap = params.concave_cap;
+                        const double nu = (cap > 0.0 ? std::min(gm / g33 - 1.0, cap) : 1.0 - g33 / gm) *
+                                          concave_ramp(alpha);
                         if (nu <= 0.0) continue;
                         const double cs = dir[0], sn = dir[1];
                         const double gperp = sn * sn * g11 - 2.0 * sn * cs * g12 + cs * cs * g22;

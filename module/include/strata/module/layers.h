@@ -21,7 +21,14 @@ struct LayerParams {
     double tolerance = 1e-3;                  ///< stop extra sweeps when max update < tolerance × δ_k
     bool control_functions = true;            ///< Φ, Ψ from the wall, Θ from the distribution
     bool concave = true;                      ///< the concave-region modification (Eqs. 15–18)
-    NormalMethod normals = NormalMethod::AreaWeighted;  ///< node normals per level
+    /// Cap on ν_m in the literal reading ν_m = (g_m/g33 − 1) f(α_m); 0 selects the bounded
+    /// reading (1 − g33/g_m) f(α_m). Measured on the notched box and the body-fin junction
+    /// (ALGORITHM.md section 6 cases): a cap of 10 keeps every cell valid where the bounded
+    /// reading lets the fin's leading-edge junction fold at layer 20.
+    double concave_cap = 10.0;
+    /// Node normals per level. The paper's area weighting tilts at sharp edges and corners
+    /// (the fin's trailing edge inverts the first layer); the max-min normal does not.
+    NormalMethod normals = NormalMethod::MaxMinDot;
     bool smoothing = true;                    ///< false: plain normal extrusion (reference mesh only)
     int threads = 0;                          ///< OpenMP threads; 0 = OpenMP's default
     /// Diagnostics only: return layers with inverted cells instead of throwing (the stats
