@@ -21,7 +21,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -656,12 +655,11 @@ void explain_unmatched(const FaceCodec& codec, const std::vector<std::uint64_t>&
         return it != triangles.end() && it->key == probe.key ? it - triangles.begin() : -1;
     };
 
-    std::vector<char> excused(unmatched.size(), 0);  // quads explained, and their triangles
-    std::vector<std::uint64_t> consumed;
+    std::vector<char> excused(unmatched.size(), 0);  // quads explained by two triangles
+    std::vector<std::uint64_t> consumed;             // those triangles
     for (std::size_t u = 0; u < unmatched.size(); ++u) {
         if (codec.nodes(unmatched[u], v) != 4) continue;
-        for (int split = 0; split < 2; ++split) {
-            const int s = split;  // split 0: diagonal v0-v2; split 1: diagonal v1-v3
+        for (int s = 0; s < 2; ++s) {  // s = 0: diagonal v0–v2; s = 1: diagonal v1–v3
             const std::ptrdiff_t t1 = find(v[s], v[s + 1], v[(s + 2) % 4]);
             if (t1 < 0) continue;
             used[t1] = 1;

@@ -40,9 +40,11 @@ constexpr int kPyramid5 = 7;
 constexpr int kVolumeTag = 1;
 
 /// Formats Gmsh 4.8 writes volume meshes to, by extension (.cgns and .med only if this Gmsh
-/// was built with them). Surface-only formats (.stl, .off, .ply2, .wrl, ...) are left out.
-constexpr std::array<const char*, 12> kVolumeExtensions = {".msh", ".vtk", ".su2", ".unv", ".mesh", ".bdf",
-                                                           ".nas", ".inp", ".cgns", ".med", ".neu", ".key"};
+/// was built with them: BackendError otherwise). Surface-only formats (.stl, .off, .ply2,
+/// .wrl, ...) are left out, and so is Gambit .neu: Gmsh 4.8's writer corrupts the heap (the
+/// process aborts) on a mesh mixing cell types.
+constexpr std::array<const char*, 11> kVolumeExtensions = {".msh", ".vtk", ".su2", ".unv", ".mesh", ".bdf",
+                                                           ".nas", ".inp", ".cgns", ".med", ".key"};
 
 std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

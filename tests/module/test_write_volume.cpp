@@ -180,11 +180,23 @@ TEST(WriteVolume, VtkByExtension) {
     EXPECT_EQ(files_in(dir.path()), std::vector<std::string>{"mesh.vtk"});
 }
 
+TEST(WriteVolume, OtherFormatsByExtension) {
+    ScratchDir dir("write_volume_formats");
+    const VolumeMesh m = all_types_mesh();
+    for (const char* name : {"mesh.su2", "mesh.unv", "mesh.inp", "mesh.bdf", "mesh.mesh"}) {
+        write_volume(m, dir.file(name));
+        EXPECT_GT(std::filesystem::file_size(dir.file(name)), 500u) << name;
+    }
+    EXPECT_NE(read_text(dir.file("mesh.su2")).find("NELEM= 15"), std::string::npos);
+    EXPECT_EQ(files_in(dir.path()).size(), 5u);
+}
+
 TEST(WriteVolume, UnknownExtensionAndMissingDirectoryThrowAndLeaveNoFile) {
     ScratchDir dir("write_volume_bad");
     const VolumeMesh m = all_types_mesh();
     EXPECT_THROW(write_volume(m, dir.file("mesh.xyz")), InputError);
     EXPECT_THROW(write_volume(m, dir.file("mesh.stl")), InputError);  // surface-only format
+    EXPECT_THROW(write_volume(m, dir.file("mesh.neu")), InputError);  // Gmsh 4.8 crashes on it
     EXPECT_THROW(write_volume(m, dir.file("no_such_dir/mesh.msh")), InputError);
     EXPECT_THROW(write_volume(m, dir.file("mesh.msh"), 3.0), InputError);
     EXPECT_TRUE(files_in(dir.path()).empty());
