@@ -45,7 +45,9 @@ case "$mode" in
   example)
     mkdir -p out
     "$build_dir"/app/strata surface examples/data/onera_m6_sharp_te.stp -o out/onera_m6_surface.msh \
-      --size 40 --curvature 16
+      --size 40 --curvature 8
+    "$build_dir"/app/strata layers examples/data/onera_m6_pyhyp_quads.msh -o out/m6_layers.msh \
+      --layers 20 --first-height 1e-5 --growth 1.15
     ;;
   *)
     echo "usage: scripts/setup.sh [example|test|build]" >&2

@@ -180,5 +180,31 @@ TEST(Cli, CorruptStepFailsCleanly) {
     expect_clean_failure("surface '" + src.file("broken.step") + "' -o out.msh", "broken.step", "corrupt");
 }
 
+TEST(Cli, LayersOnQuadSphere) {
+    test::ScratchDir dir("cli_layers");
+    CliResult r = strata_cli(dir, "layers '" + example_data("sphere_pyhyp_quads.msh") +
+                                      "' -o layers.msh --layers 8 --first-height 1e-3 --growth 1.2");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("12288 hexahedra"), std::string::npos) << r.out;  // 1536 quads × 8 layers
+    EXPECT_NE(r.out.find("min SJ"), std::string::npos) << r.out;
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"layers.msh"});
+}
+
+TEST(Cli, LayersBadInputsFailCleanly) {
+    const std::string in = "layers '" + example_data("sphere_pyhyp_quads.msh") + "' -o out.msh";
+    expect_clean_failure(in + " --first-height 1e-3", "--layers", "nolayers");
+    expect_clean_failure(in + " --layers 5", "first layer height", "noheight");
+    expect_clean_failure(in + " --layers 5 --first-height 1e-3 --yplus 1 --reynolds 1e6", "--yplus", "twoheights");
+    expect_clean_failure(in + " --layers 5 --first-height 1e-3 --growth 1.2 --thickness 0.1", "--thickness", "overdetermined");
+    expect_clean_failure(in + " --layers 5 --first-height 1e-2 --thickness 0.01", "thickness", "thin");
+    expect_clean_failure(in + " --layers 5 --first-height 1e-3 --normals sideways", "sideways", "normals");
+    // Plain extrusion into the notched box's concave corner folds: reported, nothing written.
+    expect_clean_failure("layers '" + example_data("bl3d_4_box_notch_concave_corner.brep") +
+                             "' -o out.msh --layers 20 --first-height 5e-4 --growth 1.15 --sweeps 0 --max-sweeps 0 "
+                             "--patch surface_1=farfield --patch surface_2=farfield --patch surface_3=farfield "
+                             "--patch surface_4=farfield --patch surface_6=farfield",
+                         "would invert", "folds");
+}
+
 }  // namespace
 }  // namespace strata
