@@ -242,7 +242,7 @@ int run_layers(const LayerOptions& o) {
                     s.mean_scaled_jacobian, s.max_orthogonality_deg, s.mean_orthogonality_deg, s.sweeps);
     }
     if (lm.unsmoothed_nodes > 0)
-        std::printf("note: %d nodes on open edges off any plane (corners) were extruded along their normal without smoothing\n",
+        std::printf("note: %d nodes (sharp convex edges, corners of open edges) were extruded along their normal without smoothing\n",
                     static_cast<int>(lm.unsmoothed_nodes));
     auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     std::printf("cells: %zu hexahedra, %zu prisms; min scaled Jacobian %.3f; volume %.6g\n", lm.mesh.hexes.size(),

@@ -110,6 +110,34 @@ void boundary_planes(const SurfaceMesh& wall, const Csr& loops, const std::vecto
     }
 }
 
+/// Nodes on sharp convex edges and corners (a wing's sharp trailing edge, a box corner seen
+/// from outside): some incident face is more than 60° off the node's max-min normal and the
+/// node is convex there. The Poisson terms pull such a node across the edge and fold the
+/// thin cells on its sides within a few layers, so it is extruded along its normal without
+/// smoothing (ALGORITHM.md section 9 leaves sharp convex edges open; this is our decision).
+void freeze_sharp_convex_nodes(const SurfaceMesh& wall, const Csr& vf, Stencils& st) {
+    static const double kSharp = std::cos(60.0 * std::numbers::pi / 180.0);
+    const std::vector<Vec3> n = node_normals(wall, wall.points, vf, NormalMethod::MaxMinDot);
+    for (Index o = 0; o < wall.num_points(); ++o) {
+        if (!st.valid[o]) continue;
+        double worst = 1.0;
+        for (const Index* f = vf.row_begin(o); f != vf.row_end(o); ++f) {
+            const Vec3 a = face_area_vector(wall, *f);
+            if (a.norm() > 0.0) worst = std::min(worst, n[o].dot(a.normalized()));
+        }
+        if (worst >= kSharp) continue;
+        // Convex all round: every neighbour lies below the tangent plane. A node where a sharp
+        // edge meets a concave junction (a fin's trailing edge on a body) keeps its smoothing,
+        // which the concave term needs there.
+        double highest = -1.0;
+        for (Index j = st.offsets[o]; j < st.offsets[o + 1]; ++j) {
+            const Vec3 e = wall.points[st.points[j].node] - wall.points[o];
+            if (st.points[j].mirror == kNone && e.norm() > 0.0) highest = std::max(highest, n[o].dot(e) / e.norm());
+        }
+        if (highest < 0.05) st.valid[o] = 0;
+    }
+}
+
 /// f(α) of Eq. 18: full weight for neighbours leaning towards the normal, none beyond 90°.
 double concave_ramp(double alpha) {
     constexpr double q = std::numbers::pi / 4.0, h = std::numbers::pi / 2.0;
@@ -203,6 +231,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     boundary_planes(w.mesh, loops, node_normals(w.mesh, w.mesh.points, mc.vf, params.normals), mc.planes,
                     mc.node_plane);
     mc.st = build_stencils(w.mesh, rings, mc.node_plane, mc.planes);
+    freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st);
     mc.control_functions();
 
     const Index nw = w.mesh.num_points();

@@ -54,7 +54,7 @@ struct LayerMesh {
     std::vector<LayerStats> stats;  ///< one per layer
     Index wall_nodes = 0;
     int layers = 0;
-    Index unsmoothed_nodes = 0;  ///< nodes with no stencil (open edge off any plane): plain normal extrusion
+    Index unsmoothed_nodes = 0;  ///< nodes extruded along their normal without smoothing (sharp convex edges, open-edge corners)
 };
 
 /// Extrude \p wall (oriented, normals into the flow; faces on Wall patches are extruded).
