@@ -87,32 +87,6 @@ Csr bucket(const std::vector<Index>& key, std::size_t rows) {
     return out;
 }
 
-/// Gmsh options are process-wide: set ours for the write and put the caller's back after,
-/// so a Gmsh user embedding Strata keeps their settings.
-class OptionScope {
-public:
-    OptionScope() = default;
-    OptionScope(const OptionScope&) = delete;
-    OptionScope& operator=(const OptionScope&) = delete;
-    ~OptionScope() {
-        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
-            try {
-                gmsh::option::setNumber(it->first, it->second);
-            } catch (...) {
-            }
-        }
-    }
-    void set(const std::string& name, double value) {
-        double old = 0.0;
-        gmsh::option::getNumber(name, old);
-        saved_.emplace_back(name, old);
-        gmsh::option::setNumber(name, value);
-    }
-
-private:
-    std::vector<std::pair<std::string, double>> saved_;
-};
-
 }  // namespace
 
 void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_version) {
@@ -139,7 +113,7 @@ void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_
 
     AtomicFile out(path);  // InputError now if the directory does not exist
     GmshSession session("write_surface");
-    OptionScope options;  // declared after the session: restored before the session ends
+    GmshOptionScope options;  // declared after the session: restored before the session ends
     gmsh_call("writing '" + path + "'", [&] {
         options.set("Mesh.MshFileVersion", msh_version);
         options.set("Mesh.Binary", 0);

@@ -112,32 +112,6 @@ void check_mesh(const VolumeMesh& mesh, const std::string& path) {
     }
 }
 
-/// Gmsh options are process-wide: set ours for the write and put the caller's back after,
-/// so a Gmsh user embedding Strata keeps their settings (as write_surface does).
-class OptionScope {
-public:
-    OptionScope() = default;
-    OptionScope(const OptionScope&) = delete;
-    OptionScope& operator=(const OptionScope&) = delete;
-    ~OptionScope() {
-        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
-            try {
-                gmsh::option::setNumber(it->first, it->second);
-            } catch (...) {
-            }
-        }
-    }
-    void set(const std::string& name, double value) {
-        double old = 0.0;
-        gmsh::option::getNumber(name, old);
-        saved_.emplace_back(name, old);
-        gmsh::option::setNumber(name, value);
-    }
-
-private:
-    std::vector<std::pair<std::string, double>> saved_;
-};
-
 /// Add one block of cells as Gmsh elements of \p type; tags first_tag, first_tag + 1, ...
 template <std::size_t N>
 void add_cells(const std::vector<std::array<Index, N>>& cells, int type, std::size_t first_tag) {
@@ -257,7 +231,7 @@ void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_ve
 
     AtomicFile out(path);  // InputError now if the directory does not exist
     GmshSession session("write_volume");
-    OptionScope options;  // declared after the session: restored before the session ends
+    GmshOptionScope options;  // declared after the session: restored before the session ends
     gmsh_call("writing '" + path + "'", [&] {
         options.set("Mesh.MshFileVersion", msh_version);
         options.set("Mesh.Binary", 0);

@@ -14,6 +14,7 @@
 #include <mutex>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace strata {
 
@@ -36,6 +37,33 @@ private:
     std::string model_;
     std::string previous_model_;
     bool initialised_here_ = false;
+};
+
+/// Gmsh options are process-wide: a scope sets Strata's for one operation and puts the
+/// caller's values back when it ends, so a Gmsh user embedding Strata keeps their settings.
+class GmshOptionScope {
+public:
+    GmshOptionScope() = default;
+    GmshOptionScope(const GmshOptionScope&) = delete;
+    GmshOptionScope& operator=(const GmshOptionScope&) = delete;
+    ~GmshOptionScope() {
+        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
+            try {
+                gmsh::option::setNumber(it->first, it->second);
+            } catch (...) {
+            }
+        }
+    }
+    /// Remember the current value of numeric option \p name and set it to \p value.
+    void set(const std::string& name, double value) {
+        double old = 0.0;
+        gmsh::option::getNumber(name, old);
+        saved_.emplace_back(name, old);
+        gmsh::option::setNumber(name, value);
+    }
+
+private:
+    std::vector<std::pair<std::string, double>> saved_;
 };
 
 /// Run \p f (calls into gmsh::), turning any exception Gmsh throws into a BackendError
