@@ -5,6 +5,8 @@
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/geometry/write_surface.h>
+#include <strata/hybrid/cobalt.h>
+#include <strata/hybrid/hybrid_mesh.h>
 #include <strata/module/layers.h>
 #include <strata/module/validate.h>
 #include <strata/module/write_volume.h>
@@ -252,6 +254,65 @@ int run_layers(const LayerOptions& o) {
     return 0;
 }
 
+struct MeshOptions {
+    LayerOptions layer;
+    std::string farfield = "sphere";
+    double farfield_size = 20.0;
+    double pyramid_height = 0.5;
+    double radius_edge = 1.5;
+    double tet_growth = 0.3;
+};
+
+bool is_cobalt(const std::string& path) {
+    const auto dot = path.rfind('.');
+    const std::string ext = dot == std::string::npos ? "" : path.substr(dot);
+    return ext == ".cgr" || ext == ".cog" || ext == ".grd";
+}
+
+int run_mesh(const MeshOptions& o) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const SurfaceOptions& so = o.layer.surface;
+    const strata::PrepareParams pp = prepare_params(so);
+    strata::HybridParams hp;
+    hp.layers = layer_params(o.layer);
+    hp.farfield.shape = strata::parse_farfield_shape(o.farfield);
+    hp.farfield.size = o.farfield_size;
+    hp.pyramids.height = o.pyramid_height;
+    hp.tets.radius_edge = o.radius_edge;
+    hp.tets.growth = o.tet_growth;
+    double version = 4.1;
+    if (so.msh_version == "2.2")
+        version = 2.2;
+    else if (so.msh_version != "4.1")
+        throw strata::InputError("--msh-version " + so.msh_version + ": use 4.1 or 2.2");
+    strata::PrepareReport rep;
+    const strata::SurfaceMesh surface = strata::prepare_surface(so.input, pp, &rep);
+    const double t_surface = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    BarProgress bar;
+    strata::HybridReport hr;
+    const strata::VolumeMesh mesh = strata::build_hybrid_mesh(surface, hp, so.quiet ? nullptr : &bar, &hr);
+    const auto t1 = std::chrono::steady_clock::now();
+    if (is_cobalt(so.output))
+        strata::write_cobalt(mesh, so.output);
+    else
+        strata::write_volume(mesh, so.output, version);
+    const double t_write = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    if (so.quiet) return 0;
+    print_surface_summary(surface, rep);
+    double jmin = 1.0;
+    for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
+    std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
+    std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n", mesh.hexes.size(),
+                mesh.prisms.size(), mesh.pyramids.size(), mesh.tets.size(), static_cast<int>(mesh.num_cells()),
+                mesh.points.size());
+    std::printf("valid: min scaled Jacobian %.3f, volume %.6g (boundary %.6g)\n", hr.validation.min_scaled_jacobian,
+                hr.validation.cell_volume, hr.validation.boundary_volume);
+    std::printf("time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f s\n",
+                t_surface, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
+    std::printf("wrote %s%s\n", so.output.c_str(), is_cobalt(so.output) ? (" and " + so.output + ".bc").c_str() : "");
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -276,6 +337,28 @@ int main(int argc, char** argv) {
     layers->add_flag("-q,--quiet", lo.surface.quiet, "print nothing but errors");
     add_layer_options(*layers, lo);
 
+    MeshOptions mo;
+    CLI::App* meshcmd = app.add_subcommand("mesh", "the whole pipeline: surface, boundary layers, pyramids, tetrahedra; "
+                                                   "write one validated hybrid mesh");
+    add_surface_input_options(*meshcmd, mo.layer.surface);
+    meshcmd->add_option("-o,--output", mo.layer.surface.output,
+                        "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .msh, .vtk, .su2, ...")
+        ->required();
+    meshcmd->add_option("--msh-version", mo.layer.surface.msh_version, "MSH file version for .msh output: 4.1 (default) or 2.2");
+    meshcmd->add_flag("-q,--quiet", mo.layer.surface.quiet, "print nothing but errors");
+    add_layer_options(*meshcmd, mo.layer);
+    meshcmd->add_option("--farfield", mo.farfield, "generated outer boundary when the input has no farfield patch: sphere "
+                                                   "(default) or box")
+        ->check(CLI::IsMember({"sphere", "box"}));
+    meshcmd->add_option("--farfield-size", mo.farfield_size, "farfield extent as a multiple of the body size (default 20)")
+        ->check(CLI::Range(1.5, 1e4));
+    meshcmd->add_option("--pyramid-height", mo.pyramid_height, "pyramid apex height relative to the quad size (default 0.5)")
+        ->check(CLI::Range(0.1, 2.0));
+    meshcmd->add_option("--radius-edge", mo.radius_edge, "tetrahedron quality bound, radius/edge (TetGen -q; default 1.5)")
+        ->check(CLI::Range(1.1, 10.0));
+    meshcmd->add_option("--tet-growth", mo.tet_growth, "growth of the tetrahedron size with distance from the body (default 0.3)")
+        ->check(CLI::NonNegativeNumber);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -293,6 +376,7 @@ int main(int argc, char** argv) {
     try {
         if (*surface) return run_surface(so);
         if (*layers) return run_layers(lo);
+        if (*meshcmd) return run_mesh(mo);
     } catch (const strata::Cancelled& e) {
         std::cerr << "strata: " << e.what() << "\n";
         return 130;

@@ -12,3 +12,14 @@ if(NOT TARGET strata::gmsh_api)
     INTERFACE_INCLUDE_DIRECTORIES "${GMSH_INCLUDE_DIR}"
     INTERFACE_LINK_LIBRARIES "${GMSH_LIBRARY}")
 endif()
+
+# TetGen 1.5 (Debian's libtet1.5-dev): the header, and the library's path for dlopen. It is
+# not linked: libgmsh exports its own TetGen under the same symbol names (see hybrid/).
+if(NOT TARGET strata::tetgen)
+  find_path(TETGEN_INCLUDE_DIR tetgen.h REQUIRED)
+  find_library(TETGEN_LIBRARY NAMES libtet.so.1.5 tet REQUIRED)
+  add_library(strata::tetgen INTERFACE IMPORTED)
+  set_target_properties(strata::tetgen PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${TETGEN_INCLUDE_DIR}"
+    INTERFACE_COMPILE_DEFINITIONS "STRATA_LIBTET=\"${TETGEN_LIBRARY}\"")
+endif()

@@ -44,10 +44,9 @@ case "$mode" in
     ;;
   example)
     mkdir -p out
-    "$build_dir"/app/strata surface examples/data/onera_m6_sharp_te.stp -o out/onera_m6_surface.msh \
-      --size 40 --curvature 8
-    "$build_dir"/app/strata layers examples/data/onera_m6_pyhyp_quads.msh -o out/m6_layers.msh \
-      --layers 20 --first-height 1e-5 --growth 1.15
+    # The main job: the ONERA M6 wing from its STEP file to a hybrid mesh (Cobalt60 + patch map).
+    "$build_dir"/app/strata mesh examples/data/onera_m6_sharp_te.stp -o out/onera_m6.cgr \
+      --size 30 --layers 20 --first-height 0.02 --growth 1.2
     ;;
   *)
     echo "usage: scripts/setup.sh [example|test|build]" >&2

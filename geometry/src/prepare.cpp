@@ -61,20 +61,26 @@ void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::stri
     }
 }
 
-SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params, PrepareReport* report) {
-    SurfaceMesh raw = read_any(path, params.cad);
-    assign_patch_kinds(raw, params.patch_kinds, path);
+SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source,
+                         PrepareReport* report) {
+    assign_patch_kinds(raw, params.patch_kinds, source);
     // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
-    if (raw.num_faces() == 0) throw InputError(path + ": no faces; the file holds no surface mesh");
+    if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
     SurfaceMesh merged = merge_coincident_nodes(raw, params.merge_tolerance);
-    check_surface(merged, path);
+    const Index merged_nodes = raw.num_points() - merged.num_points();
+    raw = SurfaceMesh{};  // the input copy is no longer needed
+    check_surface(merged, source);
     OrientReport orient;
     SurfaceMesh oriented = orient_surface(merged, &orient);
     if (report) {
-        report->merged_nodes = raw.num_points() - merged.num_points();
+        report->merged_nodes = merged_nodes;
         report->orient = orient;
     }
     return oriented;
+}
+
+SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params, PrepareReport* report) {
+    return prepare_mesh(read_any(path, params.cad), params, path, report);
 }
 
 }  // namespace strata

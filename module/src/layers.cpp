@@ -223,6 +223,12 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         throw InputError("no wall faces to extrude: every patch is symmetry, farfield or other; mark the body with --patch NAME=wall");
 #ifdef _OPENMP
     const int threads = params.threads > 0 ? params.threads : omp_get_max_threads();
+    // node_normals (geometry) parallelises with OpenMP's default team: make it this call's.
+    struct ThreadScope {
+        int saved = omp_get_max_threads();
+        explicit ThreadScope(int n) { omp_set_num_threads(n); }
+        ~ThreadScope() { omp_set_num_threads(saved); }
+    } thread_scope(threads);
 #endif
 
     Marcher mc{w.mesh, params, vertex_faces(w.mesh), {}, {}, {}, {}, {}};

@@ -10,6 +10,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
@@ -204,6 +205,30 @@ TEST(Cli, LayersBadInputsFailCleanly) {
                              "--patch surface_1=farfield --patch surface_2=farfield --patch surface_3=farfield "
                              "--patch surface_4=farfield --patch surface_6=farfield",
                          "would invert", "folds");
+}
+
+TEST(Cli, MeshSphereToCobaltAndMsh) {
+    test::ScratchDir dir("cli_mesh");
+    const std::string common = " --layers 6 --first-height 2e-3 --growth 1.2 --farfield box --farfield-size 8";
+    CliResult r = strata_cli(dir, "mesh '" + example_data("sphere_pyhyp_quads.msh") + "' -o s.cgr" + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* word : {"hexahedra", "pyramids", "tetrahedra", "min scaled Jacobian", "time:"})
+        EXPECT_NE(r.out.find(word), std::string::npos) << word << "\n" << r.out;
+    CliResult m = strata_cli(dir, "mesh '" + example_data("sphere.stl") + "' -o s.msh" + common);
+    ASSERT_EQ(m.code, 0) << m.err;
+    const std::vector<std::string> expected{"s.cgr", "s.cgr.bc", "s.msh"};
+    std::vector<std::string> got = files_in(dir);
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, expected);
+}
+
+TEST(Cli, MeshBadInputsFailCleanly) {
+    expect_clean_failure("mesh '" + example_data("onera_m6_pyhyp_quads.msh") + "' -o out.cgr --layers 5 --first-height 1e-5",
+                         "open", "halfmodel");
+    expect_clean_failure("mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 5 --first-height 1e-3 --farfield cone",
+                         "cone", "farfield");
+    expect_clean_failure("mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 5 --first-height 1e-3 --farfield-size 1",
+                         "farfield-size", "ffsize");
 }
 
 }  // namespace

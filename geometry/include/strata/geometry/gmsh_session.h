@@ -39,6 +39,22 @@ private:
     bool initialised_here_ = false;
 };
 
+/// Gmsh's lock alone, for functions that work on the caller's CURRENT model (the Gmsh-API
+/// entry points, surface_from_gmsh_model, add_volume_to_gmsh_model) rather than a scratch
+/// model. Gmsh must already be initialised, by the user or by an enclosing GmshSession;
+/// otherwise InputError "<context>: Gmsh is not initialised: call gmsh::initialize() first".
+/// When no GmshSession is open, the initialisation is the user's: that is recorded, so a later
+/// GmshSession neither initialises Gmsh again (nor resets its options) nor finalises it.
+class GmshLock {
+public:
+    explicit GmshLock(const std::string& context);
+    GmshLock(const GmshLock&) = delete;
+    GmshLock& operator=(const GmshLock&) = delete;
+
+private:
+    std::unique_lock<std::recursive_mutex> lock_;
+};
+
 /// Gmsh options are process-wide: a scope sets Strata's for one operation and puts the
 /// caller's values back when it ends, so a Gmsh user embedding Strata keeps their settings.
 class GmshOptionScope {

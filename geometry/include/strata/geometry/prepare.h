@@ -28,10 +28,19 @@ struct PrepareReport {
 /// Read \p path (CAD: mesh_cad; .stl: read_stl; .msh: read_msh), then apply patch kinds:
 /// a patch whose name contains "symmetry" or "farfield" (any case) gets that kind, every
 /// other patch is a wall, and --patch mappings override (an unknown name is an InputError
-/// listing the patches). Then merge_coincident_nodes, check_surface, orient_surface.
-/// Throws InputError for a missing file or an unknown extension.
+/// listing the patches). Then merge_coincident_nodes, check_surface, orient_surface (all of
+/// this after reading is prepare_mesh). Throws InputError for a missing file or an unknown
+/// extension.
 SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params,
                             PrepareReport* report = nullptr);
+
+/// The part of prepare_surface after reading, for a mesh that comes from elsewhere (the
+/// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,
+/// then merge_coincident_nodes (\p params.merge_tolerance), check_surface, orient_surface.
+/// \p source names the mesh in errors ("wing.stl", "Gmsh model 'sphere'"). InputError if
+/// \p raw has no faces.
+SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source,
+                         PrepareReport* report = nullptr);
 
 /// Apply the naming rule and mappings above to \p mesh's patch table.
 void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::string, PatchKind>>& kinds,

@@ -1,0 +1,38 @@
+#pragma once
+/// \file
+/// The tetrahedral fill through TetGen (libtet, linked as a library): the region enclosed by a
+/// closed triangulated boundary is meshed with tetrahedra, the boundary preserved exactly.
+
+#include <strata/geometry/surface_mesh.h>
+
+#include <array>
+#include <vector>
+
+namespace strata {
+
+struct TetFillParams {
+    double radius_edge = 1.5;     ///< quality bound (TetGen -q), ≥ 1.2 recommended
+    double min_dihedral = 0.0;    ///< extra dihedral bound in degrees (-q/ratio/angle); 0 = TetGen's default
+    bool refine = true;           ///< add interior Steiner points for quality and size (never on the boundary)
+    double max_volume = 0.0;      ///< global volume bound per tetrahedron (-a); 0 = none
+    /// Size grading: target edge length grows linearly with distance from the boundary faces
+    /// whose patch is not Farfield (the layer top): h(d) = h_wall + growth × d, capped at the
+    /// farfield's own edge length. 0 = no sizing field.
+    double growth = 0.0;
+};
+
+/// The tetrahedra filling a region.
+struct TetFill {
+    std::vector<Vec3> points;                ///< the boundary's points first (same ids), then Steiner points
+    std::vector<std::array<Index, 4>> tets;  ///< Gmsh order, positive volume
+};
+
+/// Mesh the region bounded by \p boundary (triangles only; closed, manifold; orientation
+/// with normals pointing OUT of the region to fill). \p holes: one point inside each closed
+/// part of the boundary that bounds a cavity not to mesh (e.g. inside the body with its
+/// layers). The boundary is preserved: no Steiner point on it (TetGen -Y), its triangles are
+/// exactly faces of the result. TetGen's failures become BackendError naming the cause
+/// (self-intersecting boundary, ...) and what to do.
+TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& holes, const TetFillParams& params);
+
+}  // namespace strata
