@@ -27,6 +27,7 @@
 #include <strata/error.h>
 #include <strata/geometry/atomic_file.h>
 #include <strata/hybrid/cobalt.h>
+#include <strata/module/cell_faces.h>
 
 #include <algorithm>
 #include <array>
@@ -49,23 +50,8 @@ namespace {
 // Identical to validate.cpp's tables (tests/hybrid/test_cobalt.cpp checks every written face
 // geometrically and runs validate_mesh on the mesh rebuilt from the file).
 
-struct FaceTable {
-    int count;                // faces per cell
-    std::array<int, 6> size;  // 3 or 4 nodes
-    std::array<std::array<int, 4>, 6> node;
-};
-
-constexpr FaceTable kTetFaces{4, {3, 3, 3, 3, 0, 0}, {{{0, 2, 1, 0}, {0, 1, 3, 0}, {0, 3, 2, 0}, {3, 1, 2, 0}}}};
-constexpr FaceTable kPyramidFaces{
-    5, {4, 3, 3, 3, 3, 0}, {{{0, 3, 2, 1}, {0, 1, 4, 0}, {3, 0, 4, 0}, {1, 2, 4, 0}, {2, 3, 4, 0}}}};
-constexpr FaceTable kPrismFaces{
-    5, {3, 3, 4, 4, 4, 0}, {{{0, 2, 1, 0}, {3, 4, 5, 0}, {0, 1, 4, 3}, {0, 3, 5, 2}, {1, 2, 5, 4}}}};
-constexpr FaceTable kHexFaces{6,
-                              {4, 4, 4, 4, 4, 4},
-                              {{{0, 3, 2, 1}, {0, 1, 5, 4}, {0, 4, 7, 3}, {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}}}};
-
-constexpr std::array<CellType, 4> kTypes{CellType::Tet, CellType::Pyramid, CellType::Prism, CellType::Hex};
-constexpr std::array<const FaceTable*, 4> kTables{&kTetFaces, &kPyramidFaces, &kPrismFaces, &kHexFaces};
+using FaceTable = CellFaceTable;  // module/cell_faces.h
+constexpr const auto& kTypes = kCellTypes;
 
 // ---------------------------------------------------------------------------------------
 // Messages.
@@ -97,7 +83,7 @@ public:
         for (int t = 0; t < 4; ++t) {
             start_[t + 1] = start_[t] + static_cast<std::int64_t>(sizes[t]);
             slot_start_[t + 1] = slot_start_[t] + static_cast<std::uint64_t>(sizes[t]) *
-                                                      static_cast<std::uint64_t>(kTables[t]->count);
+                                                      static_cast<std::uint64_t>(cell_faces(kTypes[t]).count);
         }
     }
     std::int64_t count() const { return start_[4]; }
@@ -124,7 +110,7 @@ public:
         int t = 0;
         while (t < 3 && slot >= slot_start_[t + 1]) ++t;
         const std::uint64_t r = slot - slot_start_[t];
-        const auto per = static_cast<std::uint64_t>(kTables[t]->count);
+        const auto per = static_cast<std::uint64_t>(cell_faces(kTypes[t]).count);
         return {t, static_cast<std::int64_t>(r / per), static_cast<int>(r % per)};
     }
     std::int64_t global_cell(const Slot& s) const { return start_[s.type] + s.index; }
@@ -132,7 +118,7 @@ public:
     /// Nodes of the face in \p slot, outward from its cell; returns the node count.
     int face_nodes(std::uint64_t slot, Index* out) const {
         const Slot s = locate(slot);
-        const FaceTable& table = *kTables[s.type];
+        const FaceTable& table = cell_faces(kTypes[s.type]);
         const Index* v = nodes(s.type, s.index);
         const int n = table.size[s.face];
         for (int k = 0; k < n; ++k) out[k] = v[table.node[s.face][k]];
@@ -224,7 +210,7 @@ Buckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
     // bucket holds its codes in ascending order.
     auto for_each_face = [&](auto&& visit) {
         for (int t = 0; t < 4; ++t) {
-            const FaceTable& table = *kTables[t];
+            const FaceTable& table = cell_faces(kTypes[t]);
             std::uint64_t slot = cells.slot_start(t);
             for (std::int64_t i = 0; i < cells.count(t); ++i) {
                 const Index* v = cells.nodes(t, i);
@@ -554,7 +540,7 @@ void write_cobalt(const VolumeMesh& mesh, const std::string& path) {
             out.put('\n');
         }
         for (int t = 0; t < 4; ++t) {
-            const FaceTable& table = *kTables[t];
+            const FaceTable& table = cell_faces(kTypes[t]);
             std::uint64_t slot = cells.slot_start(t);
             for (std::int64_t i = 0; i < cells.count(t); ++i) {
                 const Index* v = cells.nodes(t, i);

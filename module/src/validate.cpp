@@ -14,6 +14,7 @@
 #include <strata/error.h>
 #include <strata/geometry/face_geometry.h>
 #include <strata/module/cell_quality.h>
+#include <strata/module/cell_faces.h>
 #include <strata/module/validate.h>
 
 #include <algorithm>
@@ -32,32 +33,9 @@ namespace {
 // Local faces of each cell type, Gmsh node order, right-hand normal pointing out of the cell
 // (checked against Gmsh's reference elements in tests/module/test_validate.cpp).
 
-struct FaceTable {
-    int count;                 // faces per cell
-    std::array<int, 6> size;   // 3 or 4 nodes
-    std::array<std::array<int, 4>, 6> node;
-};
+using FaceTable = CellFaceTable;  // module/cell_faces.h
+constexpr const auto& kTypes = kCellTypes;
 
-constexpr FaceTable kTetFaces{4, {3, 3, 3, 3, 0, 0}, {{{0, 2, 1, 0}, {0, 1, 3, 0}, {0, 3, 2, 0}, {3, 1, 2, 0}}}};
-constexpr FaceTable kPyramidFaces{
-    5, {4, 3, 3, 3, 3, 0}, {{{0, 3, 2, 1}, {0, 1, 4, 0}, {3, 0, 4, 0}, {1, 2, 4, 0}, {2, 3, 4, 0}}}};
-constexpr FaceTable kPrismFaces{
-    5, {3, 3, 4, 4, 4, 0}, {{{0, 2, 1, 0}, {3, 4, 5, 0}, {0, 1, 4, 3}, {0, 3, 5, 2}, {1, 2, 5, 4}}}};
-constexpr FaceTable kHexFaces{6,
-                              {4, 4, 4, 4, 4, 4},
-                              {{{0, 3, 2, 1}, {0, 1, 5, 4}, {0, 4, 7, 3}, {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}}}};
-
-constexpr std::array<CellType, 4> kTypes{CellType::Tet, CellType::Pyramid, CellType::Prism, CellType::Hex};
-
-const FaceTable& faces_of(CellType t) {
-    switch (t) {
-        case CellType::Tet: return kTetFaces;
-        case CellType::Pyramid: return kPyramidFaces;
-        case CellType::Prism: return kPrismFaces;
-        case CellType::Hex: return kHexFaces;
-    }
-    return kHexFaces;
-}
 
 /// (1/3) (c − r)·A of one face, A its area vector (quads: ½ d1×d2), c the mean of its
 /// corners: the face's share of the enclosed volume. Shared by cells and the boundary.
@@ -229,7 +207,7 @@ struct FaceCodec {
         const auto id = static_cast<std::int64_t>(code >> 3);
         if (id < cells.count()) {
             const auto [t, i] = cells.locate(id);
-            const FaceTable& table = faces_of(kTypes[t]);
+            const FaceTable& table = cell_faces(kTypes[t]);
             const int local = static_cast<int>(code & 7u);
             const Index* v = cells.nodes(t, i);
             const int n = table.size[local];
@@ -450,7 +428,7 @@ Buckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
     // Two passes (count, fill) over the same traversal, visiting faces in code order.
     auto for_each_face = [&](auto&& visit) {
         for (int t = 0; t < 4; ++t) {
-            const FaceTable& table = faces_of(kTypes[t]);
+            const FaceTable& table = cell_faces(kTypes[t]);
             for (std::int64_t i = 0; i < cells.count(t); ++i) {
                 const Index* v = cells.nodes(t, i);
                 const auto base = static_cast<std::uint64_t>(cells.start(t) + i) << 3;
@@ -770,7 +748,7 @@ double cell_volume(const std::vector<Vec3>& p, const Index* cell, CellType type)
     r /= static_cast<double>(n);
     std::array<Vec3, 8> x;
     for (int k = 0; k < n; ++k) x[k] = p[cell[k]] - r;
-    const FaceTable& table = faces_of(type);
+    const FaceTable& table = cell_faces(type);
     double sum = 0.0;
     Vec3 f[4];
     for (int i = 0; i < table.count; ++i) {
