@@ -149,48 +149,6 @@ private:
 // Input sanity: indices in range, face sizes, finite coordinates. Matching dereferences
 // without looking afterwards.
 
-void check_input(const VolumeMesh& mesh, const Cells& cells, const std::string& where) {
-    if (cells.count() == 0) throw InputError(where + "the mesh has no cells");
-    const Index num_points = static_cast<Index>(mesh.points.size());
-    for (int t = 0; t < 4; ++t) {
-        const int n = cell_corners(kTypes[t]);
-        for (std::int64_t i = 0; i < cells.count(t); ++i) {
-            const Index* v = cells.nodes(t, i);
-            for (int k = 0; k < n; ++k)
-                if (v[k] < 0 || v[k] >= num_points)
-                    throw InputError(where + std::string(to_string(kTypes[t])) + " " + std::to_string(i) + " " +
-                                     fmt_nodes(v, n) + " uses node " + std::to_string(v[k]) + " but the mesh has " +
-                                     std::to_string(num_points) + " nodes");
-        }
-    }
-    for (std::size_t i = 0; i < mesh.points.size(); ++i)
-        if (!mesh.points[i].allFinite())
-            throw TopologyError(where + "node " + std::to_string(i) + " has a non-finite coordinate " +
-                                fmt_point(mesh.points[i]));
-
-    const SurfaceMesh& b = mesh.boundary;
-    if (b.face_offsets.empty() || b.face_offsets.front() != 0 ||
-        static_cast<std::size_t>(b.face_offsets.back()) != b.face_nodes.size())
-        throw InputError(where + "boundary.face_offsets is malformed (must start at 0 and end at face_nodes.size())");
-    if (b.face_patch.size() != static_cast<std::size_t>(b.num_faces()))
-        throw InputError(where + "boundary.face_patch has " + std::to_string(b.face_patch.size()) + " entries for " +
-                         std::to_string(b.num_faces()) + " boundary faces");
-    for (Index f = 0; f < b.num_faces(); ++f) {
-        const Index n = b.face_size(f);
-        if (n != 3 && n != 4)
-            throw InputError(where + "boundary face " + std::to_string(f) + " has " + std::to_string(n) +
-                             " nodes; boundary faces are triangles or quads");
-        for (const Index* v = b.face_begin(f); v != b.face_end(f); ++v)
-            if (*v < 0 || *v >= num_points)
-                throw InputError(where + "boundary face " + std::to_string(f) + " " +
-                                 fmt_nodes(b.face_begin(f), static_cast<int>(n)) + " uses node " + std::to_string(*v) +
-                                 " but the mesh has " + std::to_string(num_points) + " nodes");
-        const Index p = b.face_patch[f];
-        if (p < 0 || p >= static_cast<Index>(b.patches.size()))
-            throw InputError(where + "boundary face " + std::to_string(f) + " is on patch " + std::to_string(p) +
-                             " but the mesh has " + std::to_string(b.patches.size()) + " patches");
-    }
-}
 
 // ---------------------------------------------------------------------------------------
 // Face matching. A face code is a slot (< num_slots) or num_slots + boundary face index.
@@ -496,7 +454,7 @@ void check_not_directory(const std::string& target) {
 void write_cobalt(const VolumeMesh& mesh, const std::string& path) {
     const std::string where = "cannot write Cobalt grid '" + path + "': ";
     const Cells cells(mesh);
-    check_input(mesh, cells, where);
+    check_volume_mesh(mesh, where);
 
     // Patch numbers 1..npatches over the patches with faces, in patch-table order.
     const SurfaceMesh& b = mesh.boundary;

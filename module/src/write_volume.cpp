@@ -69,45 +69,6 @@ void check_msh_version(const std::string& path, double version) {
                      " is not supported for volume meshes; use 4.1 (default) or 2.2");
 }
 
-/// Catch a malformed mesh here, with the cell or face named, rather than as a Gmsh error.
-/// \p where prefixes every message ("cannot write 'mesh.msh': ").
-void check_mesh(const VolumeMesh& mesh, const std::string& where) {
-    if (mesh.num_cells() == 0) throw InputError(where + "the mesh has no cells");
-    const Index num_points = static_cast<Index>(mesh.points.size());
-    auto check_cells = [&](const auto& cells, CellType type) {
-        for (std::size_t c = 0; c < cells.size(); ++c)
-            for (Index v : cells[c])
-                if (v < 0 || v >= num_points)
-                    throw InputError(where + std::string(to_string(type)) + " " + std::to_string(c) + " uses node " +
-                                     std::to_string(v) + " but the mesh has " + std::to_string(num_points) + " nodes");
-    };
-    check_cells(mesh.tets, CellType::Tet);
-    check_cells(mesh.pyramids, CellType::Pyramid);
-    check_cells(mesh.prisms, CellType::Prism);
-    check_cells(mesh.hexes, CellType::Hex);
-
-    const SurfaceMesh& b = mesh.boundary;
-    if (b.face_offsets.empty() || b.face_offsets.front() != 0 ||
-        static_cast<std::size_t>(b.face_offsets.back()) != b.face_nodes.size())
-        throw InputError(where + "boundary.face_offsets is malformed");
-    if (b.face_patch.size() != static_cast<std::size_t>(b.num_faces()))
-        throw InputError(where + "boundary.face_patch has " + std::to_string(b.face_patch.size()) + " entries for " +
-                         std::to_string(b.num_faces()) + " boundary faces");
-    for (Index f = 0; f < b.num_faces(); ++f) {
-        const Index n = b.face_size(f);
-        if (n != 3 && n != 4)
-            throw InputError(where + "boundary face " + std::to_string(f) + " has " + std::to_string(n) +
-                             " nodes; only triangles and quadrangles can be written");
-        for (const Index* v = b.face_begin(f); v != b.face_end(f); ++v)
-            if (*v < 0 || *v >= num_points)
-                throw InputError(where + "boundary face " + std::to_string(f) + " uses node " + std::to_string(*v) +
-                                 " but the mesh has " + std::to_string(num_points) + " nodes");
-        const Index p = b.face_patch[f];
-        if (p < 0 || p >= static_cast<Index>(b.patches.size()))
-            throw InputError(where + "boundary face " + std::to_string(f) + " is on patch " + std::to_string(p) +
-                             " but the mesh has " + std::to_string(b.patches.size()) + " patches");
-    }
-}
 
 /// Add one block of cells to volume \p volume as Gmsh elements of \p type; tags first_tag,
 /// first_tag + 1, ...; node i is Gmsh node node_base + i + 1.
@@ -320,14 +281,14 @@ std::vector<std::array<Index, N>> to_cells(const RawBlock& block, const GmshNode
 void add_volume_to_gmsh_model(const VolumeMesh& mesh) {
     const std::string context = "adding the volume mesh to the current Gmsh model";
     GmshLock lock(context);
-    check_mesh(mesh, "cannot add the volume mesh to the current Gmsh model: ");
+    check_volume_mesh(mesh, "cannot add the volume mesh to the current Gmsh model: ");
     gmsh_call(context, [&] { add_volume(mesh); });
 }
 
 void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version) {
     check_extension(path);
     if (extension_of(path) == ".msh") check_msh_version(path, msh_version);
-    check_mesh(mesh, "cannot write '" + path + "': ");
+    check_volume_mesh(mesh, "cannot write '" + path + "': ");
 
     AtomicFile out(path);  // InputError now if the directory does not exist
     GmshSession session("write_volume");

@@ -31,4 +31,10 @@ struct VolumeMesh {
     }
 };
 
+/// Refuse a malformed mesh before a writer hands it on: no cells, a node id out of range, a
+/// non-finite coordinate, malformed boundary CSR, a boundary face that is not a triangle or a
+/// quad, a patch id out of range. \p where prefixes every message ("cannot write 'm.msh': ").
+/// Throws InputError (TopologyError for a non-finite coordinate).
+void check_volume_mesh(const VolumeMesh& mesh, const std::string& where);
+
 }  // namespace strata
