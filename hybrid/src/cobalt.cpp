@@ -191,25 +191,6 @@ Buckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
     return b;
 }
 
-/// Sorted node set; a triangle's 4th entry is kNone. A sorting network: called once per face.
-std::array<Index, 4> sorted_key(const Index* v, int n) {
-    std::array<Index, 4> k{v[0], v[1], v[2], n == 4 ? v[3] : kNone};
-    auto order = [&k](int i, int j) {
-        if (k[j] < k[i]) std::swap(k[i], k[j]);
-    };
-    if (n == 3) {
-        order(0, 1);
-        order(1, 2);
-        order(0, 1);
-    } else {
-        order(0, 1);
-        order(2, 3);
-        order(0, 2);
-        order(1, 3);
-        order(1, 2);
-    }
-    return k;
-}
 
 struct Item {
     std::array<Index, 4> key;
@@ -258,7 +239,7 @@ private:
             for (std::size_t e = begin; e < end; ++e) {
                 const std::uint64_t code = buckets.codes[e];
                 const int n = nodes(code, v);
-                items.push_back({sorted_key(v, n), code});
+                items.push_back({sorted_face_key(v, n), code});
             }
             std::sort(items.begin(), items.end());
             for (std::size_t g = 0; g < items.size();) {

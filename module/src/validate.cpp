@@ -458,25 +458,6 @@ struct Item {
     bool operator<(const Item& o) const { return key != o.key ? key < o.key : code < o.code; }
 };
 
-/// The node set as a sorted key (a sorting network: 3 or 4 entries, called ~30M times).
-std::array<Index, 4> sorted_key(const Index* v, int n) {
-    std::array<Index, 4> k{v[0], v[1], v[2], n == 4 ? v[3] : kNone};
-    auto order = [&k](int i, int j) {
-        if (k[j] < k[i]) std::swap(k[i], k[j]);
-    };
-    if (n == 3) {
-        order(0, 1);
-        order(1, 2);
-        order(0, 1);
-    } else {
-        order(0, 1);
-        order(2, 3);
-        order(0, 2);
-        order(1, 3);
-        order(1, 2);
-    }
-    return k;
-}
 
 /// Judge one group of faces with the same node set: \p cs cell faces, \p bs boundary faces.
 void judge_group(const FaceCodec& codec, const std::vector<std::uint64_t>& cs, const std::vector<std::uint64_t>& bs,
@@ -584,7 +565,7 @@ MatchResult match_faces_with(const VolumeMesh& mesh, const Cells& cells) {
                 for (std::size_t e = begin; e < stop; ++e) {
                     const std::uint64_t code = buckets.codes[e];
                     const int n = codec.nodes(code, v);
-                    items.push_back({sorted_key(v, n), code});
+                    items.push_back({sorted_face_key(v, n), code});
                 }
                 std::sort(items.begin(), items.end());
                 for (std::size_t g = 0; g < items.size();) {
@@ -622,12 +603,12 @@ void explain_unmatched(const FaceCodec& codec, const std::vector<std::uint64_t>&
     std::vector<Item> triangles;
     Index v[4];
     for (std::uint64_t code : unmatched)
-        if (codec.nodes(code, v) == 3) triangles.push_back({sorted_key(v, 3), code});
+        if (codec.nodes(code, v) == 3) triangles.push_back({sorted_face_key(v, 3), code});
     std::sort(triangles.begin(), triangles.end());
     std::vector<char> used(triangles.size(), 0);
     auto find = [&](Index a, Index b, Index c) -> std::ptrdiff_t {
         const Index t[3] = {a, b, c};
-        const Item probe{sorted_key(t, 3), 0};
+        const Item probe{sorted_face_key(t, 3), 0};
         auto it = std::lower_bound(triangles.begin(), triangles.end(), probe);
         while (it != triangles.end() && it->key == probe.key && used[it - triangles.begin()]) ++it;
         return it != triangles.end() && it->key == probe.key ? it - triangles.begin() : -1;

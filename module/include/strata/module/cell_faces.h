@@ -8,6 +8,7 @@
 #include <strata/module/volume_mesh.h>
 
 #include <array>
+#include <utility>
 
 namespace strata {
 
@@ -36,6 +37,28 @@ inline const CellFaceTable& cell_faces(CellType t) {
         case CellType::Hex: return kHexFaces;
     }
     return kTetFaces;
+}
+
+/// The node set of a face (3 or 4 nodes) as a sorted key, a triangle's 4th entry kNone: two
+/// faces are the same face exactly when their keys are equal. A sorting network, as this runs
+/// once per cell face.
+inline std::array<Index, 4> sorted_face_key(const Index* v, int n) {
+    std::array<Index, 4> k{v[0], v[1], v[2], n == 4 ? v[3] : kNone};
+    auto order = [&k](int i, int j) {
+        if (k[j] < k[i]) std::swap(k[i], k[j]);
+    };
+    if (n == 3) {
+        order(0, 1);
+        order(1, 2);
+        order(0, 1);
+    } else {
+        order(0, 1);
+        order(2, 3);
+        order(0, 2);
+        order(1, 3);
+        order(1, 2);
+    }
+    return k;
 }
 
 }  // namespace strata
