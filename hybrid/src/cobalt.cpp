@@ -154,15 +154,10 @@ private:
 // Face matching. A face code is a slot (< num_slots) or num_slots + boundary face index.
 
 template <class Code>
-struct Buckets {
-    std::vector<std::size_t> offsets;  // #points + 1
-    std::vector<Code> codes;
-};
+using Buckets = FaceBuckets<Code>;
 
 template <class Code>
 Buckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
-    Buckets<Code> b;
-    b.offsets.assign(mesh.points.size() + 1, 0);
     const SurfaceMesh& bnd = mesh.boundary;
     // Two passes (count, fill) over the same traversal, visiting faces in code order, so each
     // bucket holds its codes in ascending order.
@@ -183,12 +178,7 @@ Buckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
             visit(*std::min_element(bnd.face_begin(f), bnd.face_end(f)),
                   cells.num_slots() + static_cast<std::uint64_t>(f));
     };
-    for_each_face([&](Index m, std::uint64_t) { ++b.offsets[m + 1]; });
-    for (std::size_t i = 1; i < b.offsets.size(); ++i) b.offsets[i] += b.offsets[i - 1];
-    b.codes.resize(b.offsets.back());
-    std::vector<std::size_t> fill(b.offsets.begin(), b.offsets.end() - 1);
-    for_each_face([&](Index m, std::uint64_t code) { b.codes[fill[m]++] = static_cast<Code>(code); });
-    return b;
+    return bucket_faces_by_key<Code>(mesh.points.size(), for_each_face);
 }
 
 

@@ -413,17 +413,11 @@ struct MatchResult {
     Problems problems;
 };
 
-/// Faces bucketed by their smallest node: offsets (#points + 1) and codes.
 template <class Code>
-struct Buckets {
-    std::vector<std::size_t> offsets;
-    std::vector<Code> codes;
-};
+using Buckets = FaceBuckets<Code>;
 
 template <class Code>
 Buckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
-    Buckets<Code> b;
-    b.offsets.assign(mesh.points.size() + 1, 0);
     const SurfaceMesh& bnd = mesh.boundary;
     // Two passes (count, fill) over the same traversal, visiting faces in code order.
     auto for_each_face = [&](auto&& visit) {
@@ -444,12 +438,7 @@ Buckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
             visit(m, static_cast<std::uint64_t>(cells.count() + f) << 3);
         }
     };
-    for_each_face([&](Index m, std::uint64_t) { ++b.offsets[m + 1]; });
-    for (std::size_t i = 1; i < b.offsets.size(); ++i) b.offsets[i] += b.offsets[i - 1];
-    b.codes.resize(b.offsets.back());
-    std::vector<std::size_t> fill(b.offsets.begin(), b.offsets.end() - 1);
-    for_each_face([&](Index m, std::uint64_t code) { b.codes[fill[m]++] = static_cast<Code>(code); });
-    return b;
+    return bucket_faces_by_key<Code>(mesh.points.size(), for_each_face);
 }
 
 struct Item {

@@ -8,7 +8,10 @@
 #include <strata/module/volume_mesh.h>
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <utility>
+#include <vector>
 
 namespace strata {
 
@@ -59,6 +62,28 @@ inline std::array<Index, 4> sorted_face_key(const Index* v, int n) {
         order(1, 2);
     }
     return k;
+}
+
+/// Faces grouped by a key (e.g. their smallest node): group k is codes[offsets[k], offsets[k+1]).
+template <class Code>
+struct FaceBuckets {
+    std::vector<std::size_t> offsets;  ///< #keys + 1
+    std::vector<Code> codes;
+};
+
+/// Counting sort of face codes into \p num_keys groups. \p for_each_face(visit) must call
+/// visit(key, code) for every face, the same way on both of its two calls; codes keep that
+/// visiting order within a group, so the result is deterministic.
+template <class Code, class ForEachFace>
+FaceBuckets<Code> bucket_faces_by_key(std::size_t num_keys, ForEachFace&& for_each_face) {
+    FaceBuckets<Code> b;
+    b.offsets.assign(num_keys + 1, 0);
+    for_each_face([&](Index key, std::uint64_t) { ++b.offsets[static_cast<std::size_t>(key) + 1]; });
+    for (std::size_t i = 1; i < b.offsets.size(); ++i) b.offsets[i] += b.offsets[i - 1];
+    b.codes.resize(b.offsets.back());
+    std::vector<std::size_t> fill(b.offsets.begin(), b.offsets.end() - 1);
+    for_each_face([&](Index key, std::uint64_t code) { b.codes[fill[static_cast<std::size_t>(key)]++] = static_cast<Code>(code); });
+    return b;
 }
 
 }  // namespace strata
