@@ -1,5 +1,11 @@
 #include <strata/geometry/face_geometry.h>
 
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace strata {
 
 Vec3 face_area_vector(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f) {
@@ -26,6 +32,36 @@ BoundingBox bounding_box(const std::vector<Vec3>& points) {
         b.max = b.max.cwiseMax(p);
     }
     return b;
+}
+
+PatchPlane patch_plane(const SurfaceMesh& mesh, Index patch) {
+    PatchPlane pl;
+    std::vector<char> used(static_cast<std::size_t>(mesh.num_points()), 0);
+    std::vector<Vec3> pts;
+    Vec3 area = Vec3::Zero();
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        if (mesh.face_patch[f] != patch) continue;
+        area += face_area_vector(mesh, f);
+        for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v)
+            if (!used[static_cast<std::size_t>(*v)]) {
+                used[static_cast<std::size_t>(*v)] = 1;
+                pts.push_back(mesh.points[*v]);
+            }
+    }
+    if (pts.size() < 3) {
+        pl.deviation = std::numeric_limits<double>::infinity();
+        return pl;
+    }
+    for (const Vec3& p : pts) pl.point += p;
+    pl.point /= static_cast<double>(pts.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Vec3& p : pts) cov += (p - pl.point) * (p - pl.point).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+    pl.normal = es.eigenvectors().col(0).normalized();
+    if (pl.normal.dot(area) < 0.0) pl.normal = -pl.normal;
+    for (const Vec3& p : pts) pl.deviation = std::max(pl.deviation, std::abs((p - pl.point).dot(pl.normal)));
+    pl.size = bounding_box(pts).diagonal();
+    return pl;
 }
 
 }  // namespace strata

@@ -2,6 +2,7 @@
 #include <strata/geometry/face_geometry.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
+#include <strata/hybrid/outer_boundary.h>
 
 #include <chrono>
 
@@ -12,16 +13,28 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// A point inside the cavity that the layer top encloses: the centroid of the first cell of
-/// the first layer (inside the layers, hence inside the cavity, whatever the body's shape).
-Vec3 point_in_layers(const LayerMesh& lm) {
-    Vec3 c = Vec3::Zero();
-    if (!lm.mesh.prisms.empty()) {
-        for (Index v : lm.mesh.prisms.front()) c += lm.mesh.points[v];
-        return c / 6.0;
+/// One point inside each cavity that the layer top encloses (a closed component of it, i.e. a
+/// body not cut by a plane): the centroid of the first-layer cell on the component's first
+/// face. Components ending on a plane open onto the outside of the region and need none.
+std::vector<Vec3> points_in_layers(const LayerMesh& lm) {
+    Index nc = 0;
+    const std::vector<Index> comp = face_components(lm.top, &nc);
+    std::vector<char> open(static_cast<std::size_t>(nc), 0);
+    const EdgeTable et = edge_table(lm.top);
+    for (Index e = 0; e < static_cast<Index>(et.nodes.size()); ++e)
+        if (et.faces.row_size(e) == 1) open[static_cast<std::size_t>(comp[static_cast<std::size_t>(*et.faces.row_begin(e))])] = 1;
+    std::vector<Vec3> holes;
+    std::vector<char> done(static_cast<std::size_t>(nc), 0);
+    const Index nw = lm.wall_nodes;
+    for (Index f = 0; f < lm.top.num_faces(); ++f) {
+        const std::size_t c = static_cast<std::size_t>(comp[static_cast<std::size_t>(f)]);
+        if (open[c] || done[c]) continue;
+        done[c] = 1;
+        Vec3 x = Vec3::Zero();
+        for (const Index* v = lm.top.face_begin(f); v != lm.top.face_end(f); ++v) x += lm.mesh.points[*v] + lm.mesh.points[nw + *v];
+        holes.push_back(x / (2.0 * static_cast<double>(lm.top.face_size(f))));
     }
-    for (Index v : lm.mesh.hexes.front()) c += lm.mesh.points[v];
-    return c / 8.0;
+    return holes;
 }
 
 }  // namespace
@@ -29,30 +42,19 @@ Vec3 point_in_layers(const LayerMesh& lm) {
 VolumeMesh build_hybrid_mesh(const SurfaceMesh& surface, const HybridParams& params, Progress* progress,
                              HybridReport* report) {
     HybridReport rep;
-    // The closed outer boundary: the input's farfield faces, or a generated one.
-    SurfaceMesh outer;
-    outer.patches = surface.patches;
-    bool has_farfield = false, has_symmetry = false;
-    for (Index f = 0; f < surface.num_faces(); ++f) {
-        const PatchKind k = surface.patches[static_cast<std::size_t>(surface.face_patch[f])].kind;
-        has_farfield |= k == PatchKind::Farfield;
-        has_symmetry |= k == PatchKind::Symmetry || k == PatchKind::Other;
-    }
-    if (has_symmetry)
-        throw InputError("symmetry and other non-wall, non-farfield patches (half models, outflow planes) are not "
-                         "supported by the hybrid stage yet: mesh the full body, or run strata layers for the layers alone");
-
+    // The input is a fluid domain (walls inside farfield, symmetry, outflow patches) if it has
+    // any non-wall face; otherwise a farfield is generated around the walls.
+    bool has_outer = false;
+    for (Index f = 0; f < surface.num_faces(); ++f)
+        has_outer |= surface.patches[static_cast<std::size_t>(surface.face_patch[f])].kind != PatchKind::Wall;
     if (boundary_loops(surface).rows() > 0)
-        throw InputError("the surface is open (e.g. a half model cut at its symmetry plane) and the hybrid stage needs a "
-                         "closed body or a closed fluid domain: mesh the full body, or run strata layers for the layers alone");
+        throw InputError("the surface is open (e.g. a half model cut at its symmetry plane without the plane itself) and the "
+                         "hybrid stage needs a closed body or a closed fluid domain: close it with its symmetry and farfield "
+                         "patches, mesh the full body, or run strata layers for the layers alone");
     auto t0 = std::chrono::steady_clock::now();
     const LayerMesh lm = extrude_layers(surface, params.layers, progress);
     rep.layer_stats = lm.stats;
     rep.unsmoothed_nodes = lm.unsmoothed_nodes;
-    if (boundary_loops(lm.top).rows() > 0)
-        throw InputError("the walls end on another patch (a symmetry plane or a farfield side), so the layers' sides lie "
-                         "on it; re-meshing that plane around the layers is not supported yet: mark the whole closed "
-                         "boundary as walls, or run strata layers for the layers alone");
     rep.seconds_layers = seconds_since(t0);
 
     t0 = std::chrono::steady_clock::now();
@@ -65,47 +67,46 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& surface, const HybridParams& par
     t0 = std::chrono::steady_clock::now();
     SurfaceMesh region;
     region.patches = surface.patches;
-    const Index top_patch = static_cast<Index>(region.patches.size());
+    OuterBoundary outer;
+    Index farfield_patch = kNone;
+    if (has_outer) {
+        outer = outer_boundary(surface, lm);
+    } else {
+        outer.mesh = make_farfield(surface.points, params.farfield);
+        outer.top_node.assign(outer.mesh.points.size(), kNone);
+        for (Index f = 0; f < outer.mesh.num_faces(); ++f)  // outward → into the fluid, as the input's
+            std::swap(outer.mesh.face_nodes[static_cast<std::size_t>(outer.mesh.face_offsets[f]) + 1],
+                      outer.mesh.face_nodes[static_cast<std::size_t>(outer.mesh.face_offsets[f]) + 2]);
+        farfield_patch = static_cast<Index>(region.patches.size());
+        region.patches.push_back({"farfield", PatchKind::Farfield});
+    }
+    rep.remeshed_patches = outer.remeshed;
+    const Index top_patch = static_cast<Index>(region.patches.size());  // the last one
     region.patches.push_back({"layer_top", PatchKind::Other});
     region.points = pyr.surface.points;
     for (Index f = 0; f < pyr.surface.num_faces(); ++f) {
         const Index* v = pyr.surface.face_begin(f);
         region.add_face({v[0], v[2], v[1]}, top_patch);
     }
-    const Index outer_base = region.num_points();
-    if (has_farfield) {
-        // The input's own farfield faces (already oriented into the fluid: reverse them so
-        // their normals point out of the region).
-        std::vector<Index> map(static_cast<std::size_t>(surface.num_points()), kNone);
-        for (Index f = 0; f < surface.num_faces(); ++f) {
-            if (surface.patches[static_cast<std::size_t>(surface.face_patch[f])].kind != PatchKind::Farfield) continue;
-            Index v[4];
-            const Index n = surface.face_size(f);
-            for (Index i = 0; i < n; ++i) {
-                Index& m = map[static_cast<std::size_t>(surface.face_node(f, i))];
-                if (m == kNone) {
-                    m = region.num_points();
-                    region.points.push_back(surface.points[surface.face_node(f, i)]);
-                }
-                v[n - 1 - i] = m;
-            }
-            if (n == 4) {  // TetGen's boundary is triangles
-                region.add_face({v[0], v[1], v[2]}, surface.face_patch[f]);
-                region.add_face({v[0], v[2], v[3]}, surface.face_patch[f]);
-            } else {
-                region.add_face(v, 3, surface.face_patch[f]);
-            }
+    // The outer boundary, reversed too (its normals point into the fluid). Its layer-top
+    // points are the top nodes already in region (the pyramid surface's points start with
+    // the top nodes, same ids).
+    std::vector<Index> region_of(outer.mesh.points.size());
+    for (std::size_t i = 0; i < outer.mesh.points.size(); ++i) {
+        if (outer.top_node[i] != kNone) {
+            region_of[i] = outer.top_node[i];
+            continue;
         }
-    } else {
-        const SurfaceMesh ff = make_farfield(surface.points, params.farfield);
-        const Index patch = static_cast<Index>(region.patches.size());
-        region.patches.push_back({"farfield", PatchKind::Farfield});
-        region.points.insert(region.points.end(), ff.points.begin(), ff.points.end());
-        for (Index f = 0; f < ff.num_faces(); ++f)
-            region.add_face({outer_base + ff.face_node(f, 0), outer_base + ff.face_node(f, 1), outer_base + ff.face_node(f, 2)},
-                            patch);
+        region_of[i] = region.num_points();
+        region.points.push_back(outer.mesh.points[i]);
     }
-    const TetFill fill = fill_with_tets(region, {point_in_layers(lm)}, params.tets);
+    for (Index f = 0; f < outer.mesh.num_faces(); ++f) {
+        const Index* v = outer.mesh.face_begin(f);
+        region.add_face({region_of[static_cast<std::size_t>(v[0])], region_of[static_cast<std::size_t>(v[2])],
+                         region_of[static_cast<std::size_t>(v[1])]},
+                        has_outer ? outer.mesh.face_patch[f] : farfield_patch);
+    }
+    const TetFill fill = fill_with_tets(region, points_in_layers(lm), params.tets);
     rep.seconds_tets = seconds_since(t0);
     strata::report(progress, "tetrahedra", 1.0);
 
@@ -126,31 +127,20 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& surface, const HybridParams& par
     for (const auto& p : pyr.pyramids)
         mesh.pyramids.push_back({to_global(p[0]), to_global(p[1]), to_global(p[2]), to_global(p[3]), to_global(p[4])});
     for (const auto& t : fill.tets) mesh.tets.push_back({to_global(t[0]), to_global(t[1]), to_global(t[2]), to_global(t[3])});
-    // Boundary: the walls (as the layers wrote them) and the outer faces of the fill.
-    mesh.boundary.patches = surface.patches;
+    // Boundary: the walls and the side faces on planes (as the layers wrote them; their
+    // patches are the input's, below layer_top's), then the outer faces of the fill.
+    mesh.boundary.patches.assign(region.patches.begin(), region.patches.end() - 1);
     const SurfaceMesh& lb = lm.mesh.boundary;
+    const Index input_patches = static_cast<Index>(surface.patches.size());
     for (Index f = 0; f < lb.num_faces(); ++f) {
-        const PatchKind k = lb.patches[static_cast<std::size_t>(lb.face_patch[f])].kind;
-        if (k != PatchKind::Wall) continue;  // layer_top is interior now
+        if (lb.face_patch[f] >= input_patches) continue;  // layer_top is interior now
         mesh.boundary.add_face(lb.face_begin(f), lb.face_size(f), lb.face_patch[f]);
     }
-    // Region patches beyond the input's (a generated farfield) are appended once.
-    std::vector<Index> patch_of(region.patches.size(), kNone);
     for (Index f = 0; f < region.num_faces(); ++f) {
-        const Index rp = region.face_patch[f];
-        if (rp == top_patch) continue;
-        Index& patch = patch_of[static_cast<std::size_t>(rp)];
-        if (patch == kNone) {
-            if (rp < static_cast<Index>(surface.patches.size())) {
-                patch = rp;
-            } else {
-                patch = static_cast<Index>(mesh.boundary.patches.size());
-                mesh.boundary.patches.push_back(region.patches[static_cast<std::size_t>(rp)]);
-            }
-        }
+        if (region.face_patch[f] == top_patch) continue;
         mesh.boundary.add_face({to_global(region.face_node(f, 0)), to_global(region.face_node(f, 1)),
                                 to_global(region.face_node(f, 2))},
-                               patch);
+                               region.face_patch[f]);
     }
     rep.validation = require_valid_mesh(mesh, "hybrid mesh");
     rep.seconds_validate = seconds_since(t0);

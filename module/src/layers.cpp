@@ -70,13 +70,14 @@ Wall extract_wall(const SurfaceMesh& in) {
 /// each node gets the local plane spanned by the loop's tangent and the wall normal, so open
 /// edges still slide consistently; nodes where the loop turns sharply (corners) get none and
 /// are extruded along their normal.
+/// Nodes already constrained by patch_constraints (\p fixed) keep their constraint.
 void boundary_planes(const SurfaceMesh& wall, const Csr& loops, const std::vector<Vec3>& normals,
-                     std::vector<MirrorPlane>& planes, std::vector<Index>& node_plane) {
-    node_plane.assign(static_cast<std::size_t>(wall.num_points()), kNone);
+                     const std::vector<char>& fixed, std::vector<MirrorPlane>& planes, std::vector<Index>& node_plane) {
     const double diag = bounding_box(wall.points).diagonal();
     for (Index l = 0; l < loops.rows(); ++l) {
         const Index* lv = loops.row_begin(l);
         const Index m = loops.row_size(l);
+        const bool any_fixed = std::any_of(lv, lv + m, [&](Index v) { return fixed[static_cast<std::size_t>(v)] != 0; });
         Vec3 c = Vec3::Zero();
         for (Index i = 0; i < m; ++i) c += wall.points[lv[i]];
         c /= static_cast<double>(m);
@@ -92,12 +93,13 @@ void boundary_planes(const SurfaceMesh& wall, const Csr& loops, const std::vecto
             dev = std::max(dev, std::abs((wall.points[lv[i]] - c).dot(normal)));
             cross = std::max(cross, std::abs(normals[lv[i]].dot(normal)));
         }
-        if (m >= 3 && dev <= 1e-6 * diag && cross < 0.5) {
+        if (!any_fixed && m >= 3 && dev <= 1e-6 * diag && cross < 0.5) {
             for (Index i = 0; i < m; ++i) node_plane[static_cast<std::size_t>(lv[i])] = static_cast<Index>(planes.size());
             planes.push_back({c, normal});
             continue;
         }
         for (Index i = 0; i < m; ++i) {
+            if (fixed[static_cast<std::size_t>(lv[i])]) continue;
             const Vec3& p = wall.points[lv[i]];
             const Vec3 t0 = (p - wall.points[lv[(i + m - 1) % m]]).normalized();
             const Vec3 t1 = (wall.points[lv[(i + 1) % m]] - p).normalized();
@@ -108,6 +110,56 @@ void boundary_planes(const SurfaceMesh& wall, const Csr& loops, const std::vecto
             planes.push_back({p, pn.normalized()});
         }
     }
+}
+
+/// Open-boundary nodes of the wall that lie on planar non-wall patches of the input (a
+/// symmetry or outflow plane, the side of a box): on one such patch the node marches in its
+/// plane (the mirror plane of its ring), on two it marches along their line of intersection
+/// (\p node_line, unit, pointing into the flow) without smoothing, so the layers' side faces
+/// lie exactly in the planes and the planes can be re-meshed around them. Marks the nodes it
+/// constrains in \p fixed.
+void patch_constraints(const SurfaceMesh& surface, const Wall& w, const Csr& loops, const std::vector<Vec3>& normals,
+                       std::vector<MirrorPlane>& planes, std::vector<Index>& node_plane, std::vector<Vec3>& node_line,
+                       std::vector<char>& fixed) {
+    const Csr in_vf = vertex_faces(surface);
+    std::vector<Index> plane_of_patch(surface.patches.size(), -2);  // -2: not fitted yet
+    auto plane_of = [&](Index patch) {
+        Index& p = plane_of_patch[static_cast<std::size_t>(patch)];
+        if (p == -2) {
+            const PatchPlane pp = patch_plane(surface, patch);
+            p = kNone;
+            if (pp.planar()) {
+                p = static_cast<Index>(planes.size());
+                planes.push_back({pp.point, pp.normal});
+            }
+        }
+        return p;
+    };
+    for (Index l = 0; l < loops.rows(); ++l)
+        for (const Index* v = loops.row_begin(l); v != loops.row_end(l); ++v) {
+            const Index in = w.input_node[static_cast<std::size_t>(*v)];
+            std::vector<Index> on;  // planes of the non-wall patches at the node
+            for (const Index* f = in_vf.row_begin(in); f != in_vf.row_end(in); ++f) {
+                const Index patch = surface.face_patch[*f];
+                if (surface.patches[static_cast<std::size_t>(patch)].kind == PatchKind::Wall) continue;
+                const Index p = plane_of(patch);
+                if (p == kNone || std::find(on.begin(), on.end(), p) != on.end()) continue;
+                // Planes within ~6° of one another hold the node as one plane.
+                if (std::any_of(on.begin(), on.end(),
+                                [&](Index q) { return planes[q].normal.cross(planes[p].normal).norm() < 0.1; }))
+                    continue;
+                on.push_back(p);
+            }
+            if (on.empty()) continue;
+            fixed[static_cast<std::size_t>(*v)] = 1;
+            if (on.size() == 1) {
+                node_plane[static_cast<std::size_t>(*v)] = on[0];
+                continue;
+            }
+            Vec3 d = planes[on[0]].normal.cross(planes[on[1]].normal).normalized();
+            if (d.dot(normals[*v]) < 0.0) d = -d;
+            node_line[static_cast<std::size_t>(*v)] = d;
+        }
 }
 
 /// Nodes on sharp convex edges and corners (a wing's sharp trailing edge, a box corner seen
@@ -159,6 +211,7 @@ struct Marcher {
     Stencils st;
     std::vector<MirrorPlane> planes;
     std::vector<Index> node_plane;
+    std::vector<Vec3> node_line;  ///< zero, or the line a node marches along (two planes meet there)
     std::vector<double> phi, psi;  ///< control functions, per node, from the wall
 
     Vec3 at(const std::vector<Vec3>& r, const StencilPoint& p) const {
@@ -183,6 +236,8 @@ struct Marcher {
                 const Vec3& pn = planes[node_plane[i]].normal;
                 const Vec3 t = n[i] - n[i].dot(pn) * pn;
                 if (t.norm() > 1e-12) n[i] = t.normalized();
+            } else if (node_line[i] != Vec3::Zero()) {
+                n[i] = node_line[i];
             }
         return n;
     }
@@ -231,11 +286,18 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     } thread_scope(threads);
 #endif
 
-    Marcher mc{w.mesh, params, vertex_faces(w.mesh), {}, {}, {}, {}, {}};
+    Marcher mc{w.mesh, params, vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}};
     const NodeRings rings = node_rings(w.mesh);
     const Csr loops = boundary_loops(w.mesh);
-    boundary_planes(w.mesh, loops, node_normals(w.mesh, w.mesh.points, mc.vf, params.normals), mc.planes,
-                    mc.node_plane);
+    {
+        const std::vector<Vec3> n = node_normals(w.mesh, w.mesh.points, mc.vf, params.normals);
+        const std::size_t nn = static_cast<std::size_t>(w.mesh.num_points());
+        mc.node_plane.assign(nn, kNone);
+        mc.node_line.assign(nn, Vec3::Zero());
+        std::vector<char> fixed(nn, 0);
+        patch_constraints(surface, w, loops, n, mc.planes, mc.node_plane, mc.node_line, fixed);
+        boundary_planes(w.mesh, loops, n, fixed, mc.planes, mc.node_plane);
+    }
     mc.st = build_stencils(w.mesh, rings, mc.node_plane, mc.planes);
     freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st);
     mc.control_functions();
@@ -244,6 +306,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     LayerMesh out;
     out.wall_nodes = nw;
     out.layers = nlayers;
+    out.input_node = w.input_node;
     for (Index i = 0; i < nw; ++i) out.unsmoothed_nodes += mc.st.valid[i] ? 0 : 1;
     std::vector<Vec3>& pts = out.mesh.points;
     pts.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(nlayers + 1));

@@ -23,4 +23,17 @@ struct BoundingBox {
 };
 BoundingBox bounding_box(const std::vector<Vec3>& points);
 
+/// Least-squares plane through the nodes of the faces of one patch.
+struct PatchPlane {
+    Vec3 point = Vec3::Zero();    ///< centroid of the patch's nodes
+    Vec3 normal = Vec3::UnitZ();  ///< unit, on the side the faces' normals point to
+    double deviation = 0.0;       ///< largest distance of a node from the plane
+    double size = 0.0;            ///< bounding-box diagonal of the patch's nodes
+    /// Flat to within \p rel_tol of the patch's size (CAD planes and STL planes are flat to
+    /// round-off).
+    bool planar(double rel_tol = 1e-6) const { return deviation <= rel_tol * size; }
+};
+/// The plane of the faces of \p mesh on patch \p patch (no faces: size 0, not planar).
+PatchPlane patch_plane(const SurfaceMesh& mesh, Index patch);
+
 }  // namespace strata

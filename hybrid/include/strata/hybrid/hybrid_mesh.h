@@ -23,6 +23,7 @@ struct HybridParams {
 struct HybridReport {
     std::vector<LayerStats> layer_stats;
     Index unsmoothed_nodes = 0;
+    std::vector<Index> remeshed_patches;  ///< input patches re-meshed around the layers' side faces
     ValidationReport validation;
     double seconds_layers = 0.0, seconds_pyramids = 0.0, seconds_tets = 0.0, seconds_validate = 0.0;
 };
@@ -32,8 +33,10 @@ struct HybridReport {
 /// by a generated box or sphere. Cells: the layers' hexahedra and prisms, pyramids on the
 /// quads of the outermost layer, tetrahedra beyond. Patches: the input's (walls, farfield,
 /// symmetry). The result passes require_valid_mesh (checked here; a failure throws).
-/// Surfaces whose layers end on a symmetry or outflow plane (open walls) are not supported
-/// yet: InputError.
+/// Walls may end on planar non-wall patches (a half model's symmetry plane, an outflow plane,
+/// a box side): the layers march in those planes and the planes are re-meshed around the
+/// layers' side faces (outer_boundary). The input must be closed: a body (walls only) or a
+/// fluid domain; otherwise InputError.
 VolumeMesh build_hybrid_mesh(const SurfaceMesh& surface, const HybridParams& params, Progress* progress = nullptr,
                              HybridReport* report = nullptr);
 

@@ -53,13 +53,15 @@ struct LayerMesh {
     SurfaceMesh top;            ///< outermost level as a surface (same faces as the wall), for the next stage
     std::vector<LayerStats> stats;  ///< one per layer
     Index wall_nodes = 0;
+    std::vector<Index> input_node;  ///< wall node → node of the input surface
     int layers = 0;
     Index unsmoothed_nodes = 0;  ///< nodes extruded along their normal without smoothing (sharp convex edges, open-edge corners)
 };
 
 /// Extrude \p wall (oriented, normals into the flow; faces on Wall patches are extruded).
-/// Open boundaries of the wall that lie on a plane (a symmetry or outflow plane) keep their
-/// nodes in that plane. Throws TopologyError naming the layer, face and position of the first
+/// Open boundaries of the wall keep their nodes on the planar non-wall patches they meet (a
+/// symmetry or outflow plane, a box side; along the line where two such planes meet), or, with
+/// no such patch, in the plane of the open boundary loop if it is planar. Throws TopologyError naming the layer, face and position of the first
 /// cell that would invert.
 LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, Progress* progress = nullptr);
 
