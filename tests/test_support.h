@@ -4,6 +4,7 @@
 #include <strata/geometry/surface_mesh.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <unistd.h>
 
@@ -46,6 +47,21 @@ inline SurfaceMesh quad_grid(int nx, int ny, double h = 1.0) {
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) m.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}, 0);
     return m;
+}
+
+/// A .geo (OpenCASCADE) written into \p dir: the box [0,1]² × [0,height] as a fluid domain
+/// whose floor (z = 0) is the wall, the four sides symmetry planes ("symmetry_x0", "_x1",
+/// "_y0", "_y1") and the lid the farfield, meshed with triangles of size \p size. Layers
+/// grown from the floor end on the four sides and march up the box's vertical edges.
+inline std::string box_domain_geo(const ScratchDir& dir, double height, double size) {
+    const std::string path = dir.file("box_domain.geo");
+    std::ofstream(path) << "SetFactory(\"OpenCASCADE\");\n"
+                        << "Box(1) = {0, 0, 0, 1, 1, " << height << "};\n"
+                        << "Physical Surface(\"symmetry_x0\") = {1};\nPhysical Surface(\"symmetry_x1\") = {2};\n"
+                        << "Physical Surface(\"symmetry_y0\") = {3};\nPhysical Surface(\"symmetry_y1\") = {4};\n"
+                        << "Physical Surface(\"floor\") = {5};\nPhysical Surface(\"farfield_lid\") = {6};\n"
+                        << "Mesh.MeshSizeMax = " << size << ";\n";
+    return path;
 }
 
 }  // namespace strata::test

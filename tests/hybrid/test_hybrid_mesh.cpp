@@ -6,13 +6,11 @@
 #include <strata/geometry/face_geometry.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
-#include <strata/hybrid/cobalt.h>
 #include <strata/hybrid/hybrid_mesh.h>
-#include <strata/module/write_volume.h>
 
 #include <gtest/gtest.h>
 
-#include "hybrid/cobalt_reader.h"
+#include "hybrid/reread_checks.h"
 #include "test_support.h"
 
 #include <cmath>
@@ -93,23 +91,7 @@ TEST(HybridMesh, QuadSphereHasEveryCellTypeButTetsAndItWritesAndRereads) {
     ASSERT_TRUE(rep.validation.ok());
 
     test::ScratchDir dir("hybrid_rw");
-    // Cobalt60, re-read and validated.
-    write_cobalt(m, dir.file("sphere.cgr"));
-    const test::CobaltGrid g = test::read_cobalt(dir.file("sphere.cgr"));
-    EXPECT_EQ(g.ncells, m.num_cells());
-    EXPECT_EQ(g.max_nodes_per_face, 4);
-    EXPECT_EQ(g.max_faces_per_cell, 6);
-    const test::RebuiltMesh rb = test::rebuild_mesh(g, test::read_cobalt_bc(dir.file("sphere.cgr.bc")));
-    const ValidationReport rv = validate_mesh(rb.mesh);
-    EXPECT_TRUE(rv.ok()) << (rv.problems.empty() ? "" : rv.problems.front());
-    EXPECT_NEAR(rv.cell_volume, rep.validation.cell_volume, 1e-9 * rep.validation.cell_volume);
-    // Gmsh .msh, re-read through the Gmsh API and validated.
-    write_volume(m, dir.file("sphere.msh"));
-    const VolumeMesh back = read_volume_msh(dir.file("sphere.msh"));
-    EXPECT_EQ(back.num_cells(), m.num_cells());
-    EXPECT_EQ(back.pyramids.size(), m.pyramids.size());
-    const ValidationReport bv = validate_mesh(back);
-    EXPECT_TRUE(bv.ok()) << (bv.problems.empty() ? "" : bv.problems.front());
+    test::expect_rereads_valid(m, dir, "sphere");
 }
 
 TEST(HybridMesh, HalfModelIsRefusedClearly) {
