@@ -302,6 +302,12 @@ int run_mesh(const MeshOptions& o) {
     double jmin = 1.0;
     for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
     std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
+    if (!hr.remeshed_patches.empty()) {
+        std::string names;
+        for (strata::Index p : hr.remeshed_patches)
+            names += (names.empty() ? "" : ", ") + surface.patches[static_cast<std::size_t>(p)].name;
+        std::printf("planes re-meshed around the layers' sides: %s\n", names.c_str());
+    }
     std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n", mesh.hexes.size(),
                 mesh.prisms.size(), mesh.pyramids.size(), mesh.tets.size(), static_cast<int>(mesh.num_cells()),
                 mesh.points.size());

@@ -222,6 +222,18 @@ TEST(Cli, MeshSphereToCobaltAndMsh) {
     EXPECT_EQ(got, expected);
 }
 
+TEST(Cli, MeshBoxDomainRemeshesTheSidesTheLayersEndOn) {
+    test::ScratchDir dir("cli_mesh_planes");
+    CliResult r = strata_cli(dir, "mesh '" + example_data("bl3d_5_body_fin_in_box.brep") +
+                                      "' -o box.su2 --layers 10 --first-height 5e-4 --growth 1.15 --patch surface_1=farfield "
+                                      "--patch surface_2=farfield --patch surface_4=farfield --patch surface_6=farfield");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("planes re-meshed around the layers' sides: surface_1, surface_2, surface_4, surface_6"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"box.su2"});
+}
+
 TEST(Cli, MeshBadInputsFailCleanly) {
     expect_clean_failure("mesh '" + example_data("onera_m6_pyhyp_quads.msh") + "' -o out.cgr --layers 5 --first-height 1e-5",
                          "open", "halfmodel");
