@@ -260,6 +260,7 @@ struct MeshOptions {
     double farfield_size = 20.0;
     double pyramid_height = 0.5;
     double radius_edge = 1.5;
+    double min_dihedral = 0.0;
     double tet_growth = 0.3;
 };
 
@@ -279,6 +280,7 @@ int run_mesh(const MeshOptions& o) {
     hp.farfield.size = o.farfield_size;
     hp.pyramids.height = o.pyramid_height;
     hp.tets.radius_edge = o.radius_edge;
+    hp.tets.min_dihedral = o.min_dihedral;
     hp.tets.growth = o.tet_growth;
     double version = 4.1;
     if (so.msh_version == "2.2")
@@ -311,8 +313,8 @@ int run_mesh(const MeshOptions& o) {
     std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n", mesh.hexes.size(),
                 mesh.prisms.size(), mesh.pyramids.size(), mesh.tets.size(), static_cast<int>(mesh.num_cells()),
                 mesh.points.size());
-    std::printf("valid: min scaled Jacobian %.3f, volume %.6g (boundary %.6g)\n", hr.validation.min_scaled_jacobian,
-                hr.validation.cell_volume, hr.validation.boundary_volume);
+    std::printf("valid: min scaled Jacobian %.3f (%s), volume %.6g (boundary %.6g)\n", hr.validation.min_scaled_jacobian,
+                hr.validation.worst_cell.c_str(), hr.validation.cell_volume, hr.validation.boundary_volume);
     std::printf("time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f s\n",
                 t_surface, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
     std::printf("wrote %s%s\n", so.output.c_str(), is_cobalt(so.output) ? (" and " + so.output + ".bc").c_str() : "");
@@ -362,6 +364,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.1, 2.0));
     meshcmd->add_option("--radius-edge", mo.radius_edge, "tetrahedron quality bound, radius/edge (TetGen -q; default 1.5)")
         ->check(CLI::Range(1.1, 10.0));
+    meshcmd->add_option("--min-dihedral", mo.min_dihedral,
+                        "smallest dihedral angle of the tetrahedra TetGen should aim for, degrees (TetGen -q R/D; 0 = TetGen's own)")
+        ->check(CLI::Range(0.0, 30.0));
     meshcmd->add_option("--tet-growth", mo.tet_growth, "growth of the tetrahedron size with distance from the body (default 0.3)")
         ->check(CLI::NonNegativeNumber);
 

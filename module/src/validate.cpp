@@ -338,6 +338,7 @@ constexpr std::int64_t kCellChunk = 1 << 15;
 
 struct CellResult {
     double min_jacobian = 1.0;
+    std::int64_t worst = -1;  ///< the first cell with min_jacobian (global cell number)
     double volume = 0.0;
     Problems problems;
 };
@@ -379,6 +380,7 @@ CellResult check_cells(const VolumeMesh& mesh, const Cells& cells) {
             const Index* v = cells.nodes(t, i);
             const double j = cell_min_jacobian(mesh.points, v, t);
             const double vol = cell_volume(mesh.points, v, kTypes[t]);
+            if (r.worst < 0 || j < r.min_jacobian) r.worst = g;
             sticky_min(r.min_jacobian, j);
             r.volume += vol;
             if (!(j > 0.0))
@@ -396,6 +398,7 @@ CellResult check_cells(const VolumeMesh& mesh, const Cells& cells) {
     }
     CellResult out;
     for (CellResult& r : results) {  // chunk order: independent of the thread count
+        if (out.worst < 0 || r.min_jacobian < out.min_jacobian) out.worst = r.worst;
         sticky_min(out.min_jacobian, r.min_jacobian);
         out.volume += r.volume;
         out.problems.merge(std::move(r.problems));
@@ -681,6 +684,10 @@ ValidationReport validate(const VolumeMesh& mesh, double volume_tolerance, std::
 
     CellResult cr = check_cells(mesh, cells);
     report.min_scaled_jacobian = cr.min_jacobian;
+    if (cr.worst >= 0) {
+        const auto [t, i] = cells.locate(cr.worst);
+        report.worst_cell = cells.describe(t, i);
+    }
     report.cell_volume = cr.volume;
     problems.merge(std::move(cr.problems));
 

@@ -15,6 +15,7 @@ namespace strata {
 struct ValidationReport {
     Index cells = 0;
     double min_scaled_jacobian = 1.0;  ///< over all corners of all cells
+    std::string worst_cell;            ///< the cell that has it: "prism 12 at (x, y, z)"; empty for no cells
     double cell_volume = 0.0;          ///< Σ cell volumes
     double boundary_volume = 0.0;      ///< volume enclosed by the boundary faces
     Index interior_faces = 0;
