@@ -1,3 +1,4 @@
+#include <strata/format.h>
 #include <strata/geometry/check.h>
 
 #include <strata/error.h>
@@ -10,12 +11,6 @@
 
 namespace strata {
 namespace {
-
-std::string format_point(const Vec3& p) {
-    char buf[128];
-    std::snprintf(buf, sizeof buf, "(%.9g, %.9g, %.9g)", p.x(), p.y(), p.z());
-    return buf;
-}
 
 std::string format_number(double x) {
     char buf[64];
@@ -31,7 +26,7 @@ std::string patch_name(const SurfaceMesh& mesh, Index f) {
 /// "face 12 (patch 'wing', centroid (x, y, z))": enough to find the face in a viewer.
 std::string face_text(const SurfaceMesh& mesh, Index f) {
     return "face " + std::to_string(f) + " (patch " + patch_name(mesh, f) + ", centroid " +
-           format_point(face_centroid(mesh, mesh.points, f)) + ")";
+           format_point(face_centroid(mesh, mesh.points, f), 9) + ")";
 }
 
 }  // namespace
@@ -65,7 +60,7 @@ void check_surface(const SurfaceMesh& mesh, const std::string& source) {
         const Vec3& x = mesh.points[v];
         if (!std::isfinite(x.x()) || !std::isfinite(x.y()) || !std::isfinite(x.z()))
             throw InputError(source + ": node " + std::to_string(v) + " has a non-finite coordinate " +
-                             format_point(x) + "; fix the export of the surface mesh");
+                             format_point(x, 9) + "; fix the export of the surface mesh");
     }
 
     for (Index f = 0; f < nf; ++f) {
@@ -113,8 +108,8 @@ void check_surface(const SurfaceMesh& mesh, const std::string& source) {
         for (const Index* f = edges.faces.row_begin(first); f != edges.faces.row_end(first); ++f)
             faces += (faces.empty() ? "" : ", ") + std::to_string(*f) + " (patch " + patch_name(mesh, *f) + ")";
         throw TopologyError(source + ": non-manifold edge between node " + std::to_string(a) + " " +
-                            format_point(mesh.points[a]) + " and node " + std::to_string(b) + " " +
-                            format_point(mesh.points[b]) + " is shared by " +
+                            format_point(mesh.points[a], 9) + " and node " + std::to_string(b) + " " +
+                            format_point(mesh.points[b], 9) + " is shared by " +
                             std::to_string(edges.faces.row_size(first)) + " faces: " + faces +
                             (bad > 1 ? " (" + std::to_string(bad - 1) + " more such edges)" : std::string()) +
                             "; an edge may bound at most two faces: fix the surface in the CAD tool or merge "

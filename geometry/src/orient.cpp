@@ -1,3 +1,4 @@
+#include <strata/format.h>
 #include <strata/geometry/check.h>
 
 #include <strata/error.h>
@@ -14,12 +15,6 @@
 
 namespace strata {
 namespace {
-
-std::string format_point(const Vec3& p) {
-    char buf[128];
-    std::snprintf(buf, sizeof buf, "(%.9g, %.9g, %.9g)", p.x(), p.y(), p.z());
-    return buf;
-}
 
 /// +1 if face f traverses the edge (lo, hi) as lo → hi, -1 if hi → lo.
 int direction(const SurfaceMesh& mesh, Index f, Index lo, Index hi) {
@@ -80,8 +75,8 @@ SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report) {
 
     auto edge_text = [&](Index e) {
         const Index a = edges.nodes[e][0], b = edges.nodes[e][1];
-        return "edge between node " + std::to_string(a) + " " + format_point(mesh.points[a]) + " and node " +
-               std::to_string(b) + " " + format_point(mesh.points[b]);
+        return "edge between node " + std::to_string(a) + " " + format_point(mesh.points[a], 9) + " and node " +
+               std::to_string(b) + " " + format_point(mesh.points[b], 9);
     };
 
     // Breadth-first from the lowest face of each component. flip[g] is chosen so that g

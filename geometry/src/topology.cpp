@@ -1,3 +1,4 @@
+#include <strata/format.h>
 #include <strata/geometry/topology.h>
 
 #include <strata/error.h>
@@ -15,14 +16,8 @@
 namespace strata {
 namespace {
 
-std::string format_point(const Vec3& p) {
-    char buf[128];
-    std::snprintf(buf, sizeof buf, "(%.9g, %.9g, %.9g)", p.x(), p.y(), p.z());
-    return buf;
-}
-
 std::string node_text(const SurfaceMesh& mesh, Index v) {
-    return "node " + std::to_string(v) + " at " + format_point(mesh.points[v]);
+    return "node " + std::to_string(v) + " at " + format_point(mesh.points[v], 9);
 }
 
 /// Every function here indexes points by face node ids; a corrupt id would be undefined

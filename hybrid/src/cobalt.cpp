@@ -24,6 +24,7 @@
 // are complete. Coordinates use the shortest decimal form that reads back to the same double
 // (std::to_chars), which round-trips exactly like %.17g but is shorter.
 
+#include <strata/format.h>
 #include <strata/error.h>
 #include <strata/geometry/atomic_file.h>
 #include <strata/hybrid/cobalt.h>
@@ -55,12 +56,6 @@ constexpr const auto& kTypes = kCellTypes;
 
 // ---------------------------------------------------------------------------------------
 // Messages.
-
-std::string fmt_point(const Vec3& x) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", x.x(), x.y(), x.z());
-    return buf;
-}
 
 std::string fmt_nodes(const Index* v, int n) {
     std::string s = "(";
@@ -132,7 +127,7 @@ public:
         Vec3 c = Vec3::Zero();
         for (int k = 0; k < n; ++k) c += m_.points[v[k]];
         return std::string(to_string(kTypes[t])) + " " + std::to_string(i) + " (cell " +
-               std::to_string(start_[t] + i + 1) + " in the file) at " + fmt_point(c / static_cast<double>(n));
+               std::to_string(start_[t] + i + 1) + " in the file) at " + format_point(c / static_cast<double>(n));
     }
     std::string describe_slot(std::uint64_t slot) const {
         const Slot s = locate(slot);

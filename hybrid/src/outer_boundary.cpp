@@ -1,5 +1,6 @@
 // Re-meshing the planes the layers end on (symmetry, outflow, box sides): outer_boundary.h.
 
+#include <strata/format.h>
 #include <strata/error.h>
 #include <strata/geometry/face_geometry.h>
 #include <strata/geometry/gmsh_session.h>
@@ -16,12 +17,6 @@
 
 namespace strata {
 namespace {
-
-std::string point_text(const Vec3& p) {
-    char b[96];
-    std::snprintf(b, sizeof b, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
-    return b;
-}
 
 std::uint64_t edge_key(Index a, Index b) {
     const auto lo = static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b)));
@@ -187,8 +182,8 @@ struct Builder {
             // The layers must have marched along the patch edge.
             const Vec3 along = (surface.points[next] - e.base).normalized();
             if ((e.top - e.base).cross(along).norm() > 1e-3 * e.height || e.dir.dot(along) <= 0.0)
-                throw TopologyError("the layers at " + point_text(e.base) + " leave the edge between two non-wall patches "
-                                    "that they should march along (their top is at " + point_text(e.top) +
+                throw TopologyError("the layers at " + format_point(e.base) + " leave the edge between two non-wall patches "
+                                    "that they should march along (their top is at " + format_point(e.top) +
                                     "): the patches meeting there must be planar");
             return e;
         };
@@ -202,8 +197,8 @@ struct Builder {
             kept.push_back(i);
         }
         auto too_short = [&](const End& e, const Vec3& far) {
-            return TopologyError("the layers at " + point_text(e.base) + " (" + std::to_string(e.height) +
-                                 " thick) reach beyond the end of the patch edge they march along, at " + point_text(far) +
+            return TopologyError("the layers at " + format_point(e.base) + " (" + std::to_string(e.height) +
+                                 " thick) reach beyond the end of the patch edge they march along, at " + format_point(far) +
                                  ": use thinner layers (fewer, or a smaller --first-height or --growth)");
         };
         if (kept.empty()) {
@@ -283,7 +278,7 @@ struct Builder {
                 for (std::size_t j = 0; j <= edges; ++j)
                     if (loop[(i + j) % m] != (forward ? c[j] : c[edges - j]))
                         throw TopologyError("patch '" + patch_name(patch) + "': its boundary leaves the edge it shares with "
-                                            "another patch at " + point_text(surface.points[loop[(i + j) % m]]) +
+                                            "another patch at " + format_point(surface.points[loop[(i + j) % m]]) +
                                             " (a non-manifold patch boundary)");
                 pts.insert(pts.end(), cp.begin(), cp.end() - 1);
                 i += edges;
@@ -307,7 +302,7 @@ struct Builder {
             for (Index p : loop) {
                 const double off = std::abs((out.mesh.points[p] - pl.point).dot(n));
                 if (off > 1e-6 * pl.size)
-                    throw TopologyError(ctx + ": the point " + point_text(out.mesh.points[p]) + " of its new boundary is " +
+                    throw TopologyError(ctx + ": the point " + format_point(out.mesh.points[p]) + " of its new boundary is " +
                                         std::to_string(off) + " off the plane" +
                                         (out.top_node[static_cast<std::size_t>(p)] != kNone ? " (a node of the layer top)" : ""));
             }
@@ -339,7 +334,7 @@ struct Builder {
                     (best == surfaces.size() || area[surfaces[s][0]] < area[surfaces[best][0]]))
                     best = s;
             if (best == surfaces.size())
-                throw TopologyError(ctx + ": a hole of its boundary at " + point_text(out.mesh.points[loops[l][0]]) +
+                throw TopologyError(ctx + ": a hole of its boundary at " + format_point(out.mesh.points[loops[l][0]]) +
                                     " lies outside every outer loop");
             surfaces[best].push_back(l);
         }
@@ -364,7 +359,7 @@ struct Builder {
                 for (std::size_t i = 0; i < m; ++i) {
                     const Index p = loop[i];
                     if (point_tag.count(p))
-                        throw TopologyError(ctx + ": its new boundary passes twice through " + point_text(out.mesh.points[p]));
+                        throw TopologyError(ctx + ": its new boundary passes twice through " + format_point(out.mesh.points[p]));
                     const Vec3& x = out.mesh.points[p];
                     const double h = 0.5 * ((x - out.mesh.points[loop[(i + 1) % m]]).norm() +
                                             (x - out.mesh.points[loop[(i + m - 1) % m]]).norm());

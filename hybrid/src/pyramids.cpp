@@ -48,6 +48,7 @@
 // the largest clearance) stay valid throughout: O(n) checks per round after an O(n log n)
 // sort, and few rounds (each moves a pyramid down one of its few candidates).
 
+#include <strata/format.h>
 #include <strata/error.h>
 #include <strata/geometry/face_geometry.h>
 #include <strata/geometry/topology.h>
@@ -230,12 +231,6 @@ bool triangles_meet(const Tri& s, const Tri& t, double tol) {
 
 // ---------------------------------------------------------------------------------------
 
-std::string fmt_point(const Vec3& x) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", x.x(), x.y(), x.z());
-    return buf;
-}
-
 std::string fmt_double(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -393,7 +388,7 @@ void Builder::setup() {
             shortest = std::min(shortest, l);
         }
         if (!(area.norm() > 1e-12 * p.size * p.size) || !std::isfinite(area.norm()) || !(shortest > 1e-12 * p.size))
-            throw TopologyError("pyramids: quad " + std::to_string(f) + " of the layer top at " + fmt_point(p.c) +
+            throw TopologyError("pyramids: quad " + std::to_string(f) + " of the layer top at " + format_point(p.c) +
                                 " is degenerate (no area or a collapsed edge); check the wall surface there");
         p.n = area.normalized();
         // Candidates: h0, h0/2, ... while above min_height, then min_height itself.
@@ -596,7 +591,7 @@ void Builder::fail(Index k, const Failure& why, double h) const {
     const Pyr& p = pyr_[static_cast<std::size_t>(k)];
     auto face_at = [&](Index g) {
         return "face " + std::to_string(g) + " of the layer top at " +
-               fmt_point(face_centroid_[static_cast<std::size_t>(g)]);
+               format_point(face_centroid_[static_cast<std::size_t>(g)]);
     };
     std::string reason;
     switch (why.kind) {
@@ -617,13 +612,13 @@ void Builder::fail(Index k, const Failure& why, double h) const {
             break;
         case Failure::Pyramid: {
             const Pyr& q = pyr_[static_cast<std::size_t>(why.other)];
-            reason = "it intersects or crowds the pyramid on quad " + std::to_string(q.face) + " at " + fmt_point(q.c);
+            reason = "it intersects or crowds the pyramid on quad " + std::to_string(q.face) + " at " + format_point(q.c);
             break;
         }
         case Failure::None:
             break;
     }
-    throw TopologyError("pyramids: quad " + std::to_string(p.face) + " of the layer top (centroid " + fmt_point(p.c) +
+    throw TopologyError("pyramids: quad " + std::to_string(p.face) + " of the layer top (centroid " + format_point(p.c) +
                         ", mean edge " + fmt_double(p.size) + ") cannot be capped with a pyramid: " + reason +
                         ", even with the apex at " + fmt_double(h) + " (min_height " + fmt_double(params_.min_height) +
                         " x mean edge). The layer top leaves no room there: use fewer layers or a smaller total "

@@ -83,6 +83,7 @@
 // program replaces them (as AddressSanitizer does), while tetgenio's inline destructor uses
 // the program's: run sanitizer builds with ASAN_OPTIONS=alloc_dealloc_mismatch=0.
 
+#include <strata/format.h>
 #include <strata/error.h>
 #include <strata/geometry/face_geometry.h>
 #include <strata/hybrid/tetgen_fill.h>
@@ -138,17 +139,13 @@ std::string fmt(const char* format, double v) {
     return buf;
 }
 
-std::string fmt_point(const Vec3& x) {
-    return "(" + fmt("%.6g", x.x()) + ", " + fmt("%.6g", x.y()) + ", " + fmt("%.6g", x.z()) + ")";
-}
-
 std::string face_name(const SurfaceMesh& b, Index f) {
     std::string s = "boundary triangle " + std::to_string(f);
     const Index p = b.face_patch[f];
     if (p >= 0 && p < static_cast<Index>(b.patches.size())) s += " (patch '" + b.patches[p].name + "')";
     Vec3 c = Vec3::Zero();
     for (int i = 0; i < 3; ++i) c += b.points[b.face_node(f, i)];
-    return s + " at " + fmt_point(c / 3.0);
+    return s + " at " + format_point(c / 3.0);
 }
 
 /// (1/6) a·(b×c): the triangle's share of the volume it and the rest of a closed surface enclose.
@@ -688,7 +685,7 @@ TetFill convert_and_check(const SurfaceMesh& b, const FaceIndex& face_of, const 
     for (Index i = 0; i < nb; ++i)
         if (fill.points[i] != b.points[i])
             throw BackendError(where + "TetGen moved or renumbered boundary node " + std::to_string(i) + " at " +
-                               fmt_point(b.points[i]) + " (now " + fmt_point(fill.points[i]) +
+                               format_point(b.points[i]) + " (now " + format_point(fill.points[i]) +
                                "); merge coincident nodes and remove unused ones first");
 
     // TetGen 1.5 writes a tet (a, b, c, d) with its orient3d(a, b, c, d) < 0, i.e. d on the
@@ -708,7 +705,7 @@ TetFill convert_and_check(const SurfaceMesh& b, const FaceIndex& face_of, const 
             tet_volume(fill.points[tet[0]], fill.points[tet[1]], fill.points[tet[2]], fill.points[tet[3]]);
         if (!(vol > 0.0))
             throw BackendError(where + "TetGen's tet " + std::to_string(t) + " at " +
-                               fmt_point(0.25 * (fill.points[tet[0]] + fill.points[tet[1]] + fill.points[tet[2]] +
+                               format_point(0.25 * (fill.points[tet[0]] + fill.points[tet[1]] + fill.points[tet[2]] +
                                                  fill.points[tet[3]])) +
                                " has volume " + fmt("%.3g", vol) + " (not positive)");
         tet_volume_sum += vol;

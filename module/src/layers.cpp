@@ -3,6 +3,7 @@
 // smoothing of the middle level with the Poisson equation (Eq. 3) in Knupp's local logical
 // space, level 2 regenerated after every sweep; then the middle level becomes the next wall.
 
+#include <strata/format.h>
 #include <strata/error.h>
 #include <strata/geometry/face_geometry.h>
 #include <strata/geometry/topology.h>
@@ -24,12 +25,6 @@
 
 namespace strata {
 namespace {
-
-std::string point_text(const Vec3& p) {
-    char b[96];
-    std::snprintf(b, sizeof b, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
-    return b;
-}
 
 /// The extruded part of the input: faces on Wall patches, nodes renumbered compactly.
 struct Wall {
@@ -417,7 +412,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
                                 (w.mesh.face_size(f) == 3 ? "prism" : "hexahedron") + " over wall face " +
                                 std::to_string(w.input_face[static_cast<std::size_t>(f)]) + " (patch '" +
                                 w.mesh.patches[static_cast<std::size_t>(w.mesh.face_patch[f])].name + "') at " +
-                                point_text(c) + " would invert (min scaled Jacobian " + std::to_string(jmin) +
+                                format_point(c) + " would invert (min scaled Jacobian " + std::to_string(jmin) +
                                 "); the layers fold there: use fewer layers or a smaller total thickness, more --sweeps, "
                                 "or keep the concave modification on");
         }

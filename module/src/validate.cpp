@@ -11,6 +11,7 @@
 // Work is cut into fixed chunks whose results are merged in chunk order, so the report
 // (problems, sums) does not depend on the number of threads.
 
+#include <strata/format.h>
 #include <strata/error.h>
 #include <strata/geometry/face_geometry.h>
 #include <strata/module/cell_quality.h>
@@ -52,10 +53,6 @@ std::string fmt(const char* format, double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, format, v);
     return buf;
-}
-
-std::string fmt_point(const Vec3& x) {
-    return "(" + fmt("%.6g", x.x()) + ", " + fmt("%.6g", x.y()) + ", " + fmt("%.6g", x.z()) + ")";
 }
 
 std::string fmt_nodes(const Index* v, int n) {
@@ -185,7 +182,7 @@ public:
         return c / static_cast<double>(n);
     }
     std::string describe(int t, std::int64_t i) const {
-        return std::string(to_string(kTypes[t])) + " " + std::to_string(i) + " at " + fmt_point(centroid(t, i));
+        return std::string(to_string(kTypes[t])) + " " + std::to_string(i) + " at " + format_point(centroid(t, i));
     }
 
 private:
@@ -243,7 +240,7 @@ struct FaceCodec {
         Vec3 c = Vec3::Zero();
         for (int k = 0; k < n; ++k) c += mesh.points[v[k]];
         return "boundary face " + std::to_string(f) + " " + fmt_nodes(v, n) + " of patch " + patch_name(f) +
-               " at " + fmt_point(c / static_cast<double>(n));
+               " at " + format_point(c / static_cast<double>(n));
     }
     /// "hexahedron 3 at (x, y, z)" or "boundary face 7 of patch 'wall'".
     std::string owner(std::uint64_t code) const {
@@ -326,7 +323,7 @@ bool check_input(const VolumeMesh& mesh, const Cells& cells, Problems& problems)
     for (std::size_t i = 0; i < mesh.points.size(); ++i)
         if (!mesh.points[i].allFinite())
             problems.add(kBadInput, [&] {
-                return "node " + std::to_string(i) + " has a non-finite coordinate " + fmt_point(mesh.points[i]);
+                return "node " + std::to_string(i) + " has a non-finite coordinate " + format_point(mesh.points[i]);
             });
     return safe;
 }
