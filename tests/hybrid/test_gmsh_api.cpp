@@ -264,5 +264,40 @@ TEST(GmshApi, AddVolumeNextToAnExistingMeshOffsetsEveryTag) {
     for (std::size_t n : nodes) EXPECT_GT(n, max_old);
 }
 
+TEST(GmshApi, HalfDomainWithSymmetryPlanesInAUsersModel) {
+    // A Gmsh user's fluid domain: a box whose floor is the wall, its sides symmetry planes and
+    // its lid the farfield, as physical groups; the layers end on the sides, which Strata
+    // re-meshes (in scratch models of its own) while the user's model stays current.
+    UserGmsh user;
+    gmsh::model::add("channel");
+    gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
+    gmsh::model::occ::synchronize();
+    const std::array<const char*, 6> names{"symmetry_x0", "symmetry_x1", "symmetry_y0", "symmetry_y1", "floor", "farfield_lid"};
+    for (int s = 1; s <= 6; ++s) {
+        gmsh::model::addPhysicalGroup(2, {s}, s);
+        gmsh::model::setPhysicalName(2, s, names[static_cast<std::size_t>(s - 1)]);
+    }
+    gmsh::option::setNumber("Mesh.MeshSizeMax", 0.125);
+    gmsh::model::mesh::generate(2);
+    std::vector<std::string> models_before, models;
+    gmsh::model::list(models_before);
+    const HybridReport report = mesh_current_gmsh_model(ten_layers());
+    EXPECT_TRUE(report.validation.ok());
+    EXPECT_NEAR(report.validation.cell_volume, 1.0, 1e-9);
+    EXPECT_EQ(report.remeshed_patches.size(), 4u);
+    std::string current;
+    gmsh::model::getCurrent(current);
+    EXPECT_EQ(current, "channel");
+    gmsh::model::list(models);
+    EXPECT_EQ(models, models_before) << "a scratch model was left behind";
+    double size_max = 0.0;
+    gmsh::option::getNumber("Mesh.MeshSizeMax", size_max);
+    EXPECT_EQ(size_max, 0.125) << "the user's Gmsh options must be theirs again";
+    const auto g2 = groups(2);
+    for (const char* n : names) EXPECT_EQ(g2.count(n), 1u) << n;
+    EXPECT_GT(count_elements(kPrism6), 0u);
+    EXPECT_GT(count_elements(kTet4), 0u);
+}
+
 }  // namespace
 }  // namespace strata
