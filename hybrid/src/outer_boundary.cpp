@@ -1,17 +1,15 @@
 // Re-meshing the planes the layers end on (symmetry, outflow, box sides): outer_boundary.h.
 
-#include <strata/format.h>
 #include <strata/error.h>
+#include <strata/format.h>
 #include <strata/geometry/face_geometry.h>
-#include <strata/geometry/gmsh_session.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/outer_boundary.h>
+#include <strata/hybrid/plane_mesh.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <map>
 #include <string>
 #include <unordered_map>
 
@@ -288,139 +286,21 @@ struct Builder {
         return result;
     }
 
-    /// Mesh re-meshed patch \p patch (planar, plane \p pl) inside \p loops with Gmsh.
+    /// Mesh re-meshed patch \p patch (planar, plane \p pl) inside \p loops.
     void mesh_patch(Index patch, const PatchPlane& pl, const std::vector<std::vector<Index>>& loops) {
         const std::string ctx = "re-meshing patch '" + patch_name(patch) + "' around the layers";
-        const Vec3 n = pl.normal;
-        const Vec3 u = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
-        const Vec3 v = n.cross(u);
-        auto uv = [&](Index p) {
-            const Vec3 d = out.mesh.points[p] - pl.point;
-            return Eigen::Vector2d(d.dot(u), d.dot(v));
-        };
         for (const auto& loop : loops)
             for (Index p : loop) {
-                const double off = std::abs((out.mesh.points[p] - pl.point).dot(n));
+                const double off = std::abs((out.mesh.points[p] - pl.point).dot(pl.normal));
                 if (off > 1e-6 * pl.size)
                     throw TopologyError(ctx + ": the point " + format_point(out.mesh.points[p]) + " of its new boundary is " +
                                         std::to_string(off) + " off the plane" +
                                         (out.top_node[static_cast<std::size_t>(p)] != kNone ? " (a node of the layer top)" : ""));
             }
-        // Outer loops run counter-clockwise about n, holes clockwise (the faces' orientation).
-        std::vector<double> area(loops.size(), 0.0);
-        for (std::size_t l = 0; l < loops.size(); ++l)
-            for (std::size_t i = 0; i < loops[l].size(); ++i) {
-                const Eigen::Vector2d p = uv(loops[l][i]), q = uv(loops[l][(i + 1) % loops[l].size()]);
-                area[l] += 0.5 * (p.x() * q.y() - q.x() * p.y());
-            }
-        auto inside = [&](const Eigen::Vector2d& x, const std::vector<Index>& loop) {
-            bool in = false;
-            for (std::size_t i = 0, j = loop.size() - 1; i < loop.size(); j = i++) {
-                const Eigen::Vector2d a = uv(loop[i]), b = uv(loop[j]);
-                if ((a.y() > x.y()) != (b.y() > x.y()) && x.x() < (b.x() - a.x()) * (x.y() - a.y()) / (b.y() - a.y()) + a.x())
-                    in = !in;
-            }
-            return in;
-        };
-        std::vector<std::vector<std::size_t>> surfaces;  // outer loop, then its holes
-        for (std::size_t l = 0; l < loops.size(); ++l)
-            if (area[l] > 0.0) surfaces.push_back({l});
-        if (surfaces.empty()) throw TopologyError(ctx + ": nothing of the patch is left outside the layers");
-        for (std::size_t l = 0; l < loops.size(); ++l) {
-            if (area[l] > 0.0) continue;
-            std::size_t best = surfaces.size();
-            for (std::size_t s = 0; s < surfaces.size(); ++s)
-                if (inside(uv(loops[l][0]), loops[surfaces[s][0]]) &&
-                    (best == surfaces.size() || area[surfaces[s][0]] < area[surfaces[best][0]]))
-                    best = s;
-            if (best == surfaces.size())
-                throw TopologyError(ctx + ": a hole of its boundary at " + format_point(out.mesh.points[loops[l][0]]) +
-                                    " lies outside every outer loop");
-            surfaces[best].push_back(l);
-        }
-
-        GmshSession session("strata_plane");
-        GmshOptionScope opts;
-        gmsh_call(ctx, [&] {
-            opts.set("Mesh.Algorithm", 6);
-            opts.set("Mesh.MeshSizeMin", 0.0);
-            opts.set("Mesh.MeshSizeMax", 1e22);
-            opts.set("Mesh.MeshSizeFactor", 1.0);
-            opts.set("Mesh.MeshSizeFromPoints", 1);
-            opts.set("Mesh.MeshSizeExtendFromBoundary", 1);
-            opts.set("Mesh.MeshSizeFromCurvature", 0);
-            opts.set("Mesh.RecombineAll", 0);
-            opts.set("Mesh.ElementOrder", 1);
-            std::map<Index, int> point_tag;  // outer point → geo point
-            std::vector<int> loop_tag(loops.size()), lines;
-            for (std::size_t l = 0; l < loops.size(); ++l) {
-                const auto& loop = loops[l];
-                const std::size_t m = loop.size();
-                for (std::size_t i = 0; i < m; ++i) {
-                    const Index p = loop[i];
-                    if (point_tag.count(p))
-                        throw TopologyError(ctx + ": its new boundary passes twice through " + format_point(out.mesh.points[p]));
-                    const Vec3& x = out.mesh.points[p];
-                    const double h = 0.5 * ((x - out.mesh.points[loop[(i + 1) % m]]).norm() +
-                                            (x - out.mesh.points[loop[(i + m - 1) % m]]).norm());
-                    const Eigen::Vector2d q = uv(p);
-                    point_tag[p] = gmsh::model::geo::addPoint(q.x(), q.y(), 0.0, h);
-                }
-                std::vector<int> ll;
-                for (std::size_t i = 0; i < m; ++i) {
-                    ll.push_back(gmsh::model::geo::addLine(point_tag[loop[i]], point_tag[loop[(i + 1) % m]]));
-                    lines.push_back(ll.back());
-                }
-                loop_tag[l] = gmsh::model::geo::addCurveLoop(ll);
-            }
-            std::vector<int> surf_tags;
-            for (const auto& s : surfaces) {
-                std::vector<int> wires;
-                for (std::size_t l : s) wires.push_back(loop_tag[l]);
-                surf_tags.push_back(gmsh::model::geo::addPlaneSurface(wires));
-            }
-            gmsh::model::geo::synchronize();
-            for (int line : lines) gmsh::model::mesh::setTransfiniteCurve(line, 2);
-            gmsh::model::mesh::generate(2);
-
-            std::unordered_map<std::size_t, Index> node;  // Gmsh node → outer point
-            std::vector<std::size_t> tags;
-            std::vector<double> xyz, par;
-            for (const auto& [p, t] : point_tag) {
-                gmsh::model::mesh::getNodes(tags, xyz, par, 0, t);
-                if (tags.size() != 1) throw BackendError(ctx + ": Gmsh gave no node for a boundary point");
-                node[tags[0]] = p;
-            }
-            gmsh::model::mesh::getNodes(tags, xyz, par, 1, -1, false, false);
-            if (!tags.empty()) throw BackendError(ctx + ": Gmsh added nodes on the boundary it was to keep");
-            for (int s : surf_tags) {
-                gmsh::model::mesh::getNodes(tags, xyz, par, 2, s, false, false);
-                for (std::size_t i = 0; i < tags.size(); ++i)
-                    node[tags[i]] = add_point(pl.point + xyz[3 * i] * u + xyz[3 * i + 1] * v, kNone);
-            }
-            double meshed = 0.0, expected = 0.0;
-            for (double a : area) expected += a;
-            for (int s : surf_tags) {
-                std::vector<std::size_t> elems, enodes;
-                gmsh::model::mesh::getElementsByType(2, elems, enodes, s);
-                for (std::size_t e = 0; e < elems.size(); ++e) {
-                    Index t[3];
-                    for (int i = 0; i < 3; ++i) {
-                        const auto it = node.find(enodes[3 * e + static_cast<std::size_t>(i)]);
-                        if (it == node.end()) throw BackendError(ctx + ": a triangle uses a node Gmsh did not report");
-                        t[i] = it->second;
-                    }
-                    const Eigen::Vector2d a = uv(t[0]), b = uv(t[1]), c = uv(t[2]);
-                    const double ar = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-                    if (ar < 0.0) std::swap(t[1], t[2]);  // normal along n: into the fluid, as the input
-                    meshed += std::abs(ar);
-                    out.mesh.add_face({t[0], t[1], t[2]}, patch);
-                }
-            }
-            if (std::abs(meshed - expected) > 1e-6 * expected)
-                throw BackendError(ctx + ": the triangles cover an area of " + std::to_string(meshed) + " instead of " +
-                                   std::to_string(expected) + " (Gmsh's 2D mesher failed on the plane)");
-        });
+        const PlaneMesh pm = mesh_plane_region(out.mesh.points, loops, pl.point, pl.normal, ctx);
+        // New points are appended in order, so their ids are the ones mesh_plane_region gave.
+        for (const Vec3& x : pm.new_points) add_point(x, kNone);
+        for (const auto& t : pm.triangles) out.mesh.add_face({t[0], t[1], t[2]}, patch);
     }
 };
 
