@@ -307,7 +307,7 @@ int run_mesh(const MeshOptions& o) {
     if (!hr.remeshed_patches.empty()) {
         std::string names;
         for (strata::Index p : hr.remeshed_patches)
-            names += (names.empty() ? "" : ", ") + surface.patches[static_cast<std::size_t>(p)].name;
+            names += (names.empty() ? "" : ", ") + mesh.boundary.patches[static_cast<std::size_t>(p)].name;
         std::printf("planes re-meshed around the layers' sides: %s\n", names.c_str());
     }
     std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n", mesh.hexes.size(),

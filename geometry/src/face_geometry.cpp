@@ -34,8 +34,24 @@ BoundingBox bounding_box(const std::vector<Vec3>& points) {
     return b;
 }
 
-PatchPlane patch_plane(const SurfaceMesh& mesh, Index patch) {
+PatchPlane fit_plane(const std::vector<Vec3>& pts) {
     PatchPlane pl;
+    if (pts.size() < 3) {
+        pl.deviation = std::numeric_limits<double>::infinity();
+        return pl;
+    }
+    for (const Vec3& p : pts) pl.point += p;
+    pl.point /= static_cast<double>(pts.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Vec3& p : pts) cov += (p - pl.point) * (p - pl.point).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+    pl.normal = es.eigenvectors().col(0).normalized();
+    for (const Vec3& p : pts) pl.deviation = std::max(pl.deviation, std::abs((p - pl.point).dot(pl.normal)));
+    pl.size = bounding_box(pts).diagonal();
+    return pl;
+}
+
+PatchPlane patch_plane(const SurfaceMesh& mesh, Index patch) {
     std::vector<char> used(static_cast<std::size_t>(mesh.num_points()), 0);
     std::vector<Vec3> pts;
     Vec3 area = Vec3::Zero();
@@ -48,19 +64,8 @@ PatchPlane patch_plane(const SurfaceMesh& mesh, Index patch) {
                 pts.push_back(mesh.points[*v]);
             }
     }
-    if (pts.size() < 3) {
-        pl.deviation = std::numeric_limits<double>::infinity();
-        return pl;
-    }
-    for (const Vec3& p : pts) pl.point += p;
-    pl.point /= static_cast<double>(pts.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const Vec3& p : pts) cov += (p - pl.point) * (p - pl.point).transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
-    pl.normal = es.eigenvectors().col(0).normalized();
+    PatchPlane pl = fit_plane(pts);
     if (pl.normal.dot(area) < 0.0) pl.normal = -pl.normal;
-    for (const Vec3& p : pts) pl.deviation = std::max(pl.deviation, std::abs((p - pl.point).dot(pl.normal)));
-    pl.size = bounding_box(pts).diagonal();
     return pl;
 }
 

@@ -1,9 +1,13 @@
 #include <strata/error.h>
 #include <strata/geometry/face_geometry.h>
+#include <strata/geometry/topology.h>
 #include <strata/hybrid/farfield.h>
+#include <strata/hybrid/plane_mesh.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -19,8 +23,10 @@ FarfieldShape parse_farfield_shape(std::string_view text) {
 
 namespace {
 
-/// Box [c − h, c + h]³, each side an n × n grid of squares split into triangles, outward.
-SurfaceMesh box(const Vec3& c, double h, int n) {
+/// Box c + h [−1, 1]³ in the right-handed frame \p e, each side an n × n grid of squares
+/// split into triangles, outward. \p half: only its part with e[2] coordinate ≥ 0 (n even),
+/// open on the plane through c normal to e[2].
+SurfaceMesh box(const Vec3& c, const std::array<Vec3, 3>& e, double h, int n, bool half) {
     SurfaceMesh m;
     m.patches.push_back({"farfield", PatchKind::Farfield});
     std::map<std::array<int, 3>, Index> ids;  // lattice coordinates → node (shared edges)
@@ -29,16 +35,18 @@ SurfaceMesh box(const Vec3& c, double h, int n) {
         auto it = ids.find(key);
         if (it != ids.end()) return it->second;
         const Index id = m.num_points();
-        m.points.push_back(c + h * Vec3(2.0 * i / n - 1.0, 2.0 * j / n - 1.0, 2.0 * k / n - 1.0));
+        m.points.push_back(c + h * ((2.0 * i / n - 1.0) * e[0] + (2.0 * j / n - 1.0) * e[1] + (2.0 * k / n - 1.0) * e[2]));
         ids.emplace(key, id);
         return id;
     };
+    const auto lo = [&](int axis) { return half && axis == 2 ? n / 2 : 0; };  // first lattice index per axis
     // For each axis and side, (u, v) span the face so that u × v points outward.
     for (int axis = 0; axis < 3; ++axis)
         for (int side = 0; side < 2; ++side) {
+            if (half && axis == 2 && side == 0) continue;  // the open side, on the plane
             const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-            for (int i = 0; i < n; ++i)
-                for (int j = 0; j < n; ++j) {
+            for (int i = lo(a); i < n; ++i)
+                for (int j = lo(b); j < n; ++j) {
                     auto at = [&](int u, int v) {
                         std::array<int, 3> p{};
                         p[axis] = side * n;
@@ -104,15 +112,108 @@ SurfaceMesh sphere(const Vec3& c, double r, int n) {
 
 }  // namespace
 
-SurfaceMesh make_farfield(const std::vector<Vec3>& body_points, const FarfieldParams& params) {
+namespace {
+
+void check_params(const FarfieldParams& params) {
     if (!(params.size > 1.0))
         throw InputError("--farfield-size " + std::to_string(params.size) +
                          ": the farfield must be larger than the body (a multiple of its size > 1, typically 10 to 50)");
     if (params.divisions < 2) throw InputError("farfield divisions must be at least 2");
+}
+
+}  // namespace
+
+SurfaceMesh make_farfield(const std::vector<Vec3>& body_points, const FarfieldParams& params) {
+    check_params(params);
     const BoundingBox bb = bounding_box(body_points);
     const Vec3 c = 0.5 * (bb.min + bb.max);
     const double half = 0.5 * params.size * bb.diagonal();
-    return params.shape == FarfieldShape::Box ? box(c, half, params.divisions) : sphere(c, half, params.divisions);
+    return params.shape == FarfieldShape::Box ? box(c, {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()}, half, params.divisions, false)
+                                              : sphere(c, half, params.divisions);
+}
+
+SurfaceMesh make_half_farfield(const std::vector<Vec3>& body_points, const Vec3& plane_point, const Vec3& plane_normal,
+                               const FarfieldParams& params) {
+    check_params(params);
+    const Vec3 w = plane_normal.normalized();
+    const Vec3 u = (std::abs(w.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(w).normalized();
+    const Vec3 v = w.cross(u);
+    // The body and its mirror image: their bounding box in the frame (u, v, w), centred on the plane.
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec3& p : body_points) {
+        const Vec3 d = p - plane_point;
+        const Vec3 q(d.dot(u), d.dot(v), std::abs(d.dot(w)));
+        lo = lo.cwiseMin(q);
+        hi = hi.cwiseMax(q);
+    }
+    const double du = hi.x() - lo.x(), dv = hi.y() - lo.y(), dw = 2.0 * hi.z();
+    const double half = 0.5 * params.size * std::sqrt(du * du + dv * dv + dw * dw);
+    const Vec3 c = plane_point + 0.5 * (lo.x() + hi.x()) * u + 0.5 * (lo.y() + hi.y()) * v;
+    const int n = params.divisions + params.divisions % 2;
+    SurfaceMesh m = box(c, {u, v, w}, half, n, true);
+    if (params.shape == FarfieldShape::Sphere)  // the half cube projected onto the hemisphere
+        for (Vec3& p : m.points) p = c + half * (p - c).normalized();
+    return m;
+}
+
+SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& params) {
+    const Csr open = boundary_loops(walls);
+    std::vector<Vec3> on_plane;
+    for (Index v : open.values) on_plane.push_back(walls.points[v]);
+    const PatchPlane pl = fit_plane(on_plane);
+    const double diag = bounding_box(walls.points).diagonal();
+    if (open.rows() == 0 || !(pl.deviation <= 1e-6 * diag))
+        throw InputError("the surface is open, but its open edges do not lie in one plane (they are " +
+                         std::to_string(pl.deviation) + " off their best plane, the body's size is " + std::to_string(diag) +
+                         "): only a half model cut by one symmetry plane is closed automatically; close the fluid domain "
+                         "yourself (walls plus symmetry and farfield patches) or mesh the full body");
+    // The plane's normal towards the body.
+    double below = 0.0, above = 0.0;
+    for (const Vec3& p : walls.points) {
+        const double w = (p - pl.point).dot(pl.normal);
+        below = std::min(below, w);
+        above = std::max(above, w);
+    }
+    const Vec3 n = above >= -below ? pl.normal : Vec3(-pl.normal);
+    if (std::min(above, -below) > 1e-6 * diag)
+        throw InputError("the surface is open along a plane (a half model) but lies on both sides of it (" +
+                         std::to_string(std::max(above, -below)) + " and " + std::to_string(std::min(above, -below)) +
+                         " away): a half model must lie on one side of its symmetry plane");
+
+    SurfaceMesh dom;
+    dom.patches = walls.patches;
+    const Index sym = static_cast<Index>(dom.patches.size()), far = sym + 1;
+    dom.patches.push_back({"symmetry", PatchKind::Symmetry});
+    dom.patches.push_back({"farfield", PatchKind::Farfield});
+    dom.points = walls.points;
+    for (Index f = 0; f < walls.num_faces(); ++f) dom.add_face(walls.face_begin(f), walls.face_size(f), walls.face_patch[f]);
+    const SurfaceMesh ff = make_half_farfield(walls.points, pl.point, n, params);
+    const Index base = dom.num_points();
+    dom.points.insert(dom.points.end(), ff.points.begin(), ff.points.end());
+    for (Index f = 0; f < ff.num_faces(); ++f)  // outward → into the fluid
+        dom.add_face({base + ff.face_node(f, 0), base + ff.face_node(f, 2), base + ff.face_node(f, 1)}, far);
+
+    // The symmetry plane: inside the farfield's open edge, outside the walls' open edges.
+    std::vector<std::vector<Index>> loops;
+    auto add_loop = [&](const Index* b, const Index* e, Index offset, bool outer) {
+        std::vector<Index> loop;
+        for (const Index* v = b; v != e; ++v) loop.push_back(offset + *v);
+        const Vec3 c = dom.points[loop[0]];
+        Vec3 area = Vec3::Zero();
+        for (std::size_t i = 0; i < loop.size(); ++i)
+            area += (dom.points[loop[i]] - c).cross(dom.points[loop[(i + 1) % loop.size()]] - c);
+        if ((area.dot(n) > 0.0) != outer) std::reverse(loop.begin(), loop.end());
+        loops.push_back(std::move(loop));
+    };
+    const Csr ff_open = boundary_loops(ff);
+    for (Index l = 0; l < ff_open.rows(); ++l) add_loop(ff_open.row_begin(l), ff_open.row_end(l), base, true);
+    for (Index l = 0; l < open.rows(); ++l) add_loop(open.row_begin(l), open.row_end(l), 0, false);
+    const PlaneMesh pm = mesh_plane_region(dom.points, loops, pl.point, n, "meshing the symmetry plane of the half model");
+    dom.points.insert(dom.points.end(), pm.new_points.begin(), pm.new_points.end());
+    for (const auto& t : pm.triangles) dom.add_face({t[0], t[1], t[2]}, sym);
+    if (boundary_loops(dom).rows() != 0)
+        throw TopologyError("closing the half model: the symmetry plane does not join the walls and the farfield edge to edge");
+    return dom;
 }
 
 }  // namespace strata

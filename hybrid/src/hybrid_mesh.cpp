@@ -39,18 +39,26 @@ std::vector<Vec3> points_in_layers(const LayerMesh& lm) {
 
 }  // namespace
 
-VolumeMesh build_hybrid_mesh(const SurfaceMesh& surface, const HybridParams& params, Progress* progress,
+VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& params, Progress* progress,
                              HybridReport* report) {
     HybridReport rep;
     // The input is a fluid domain (walls inside farfield, symmetry, outflow patches) if it has
-    // any non-wall face; otherwise a farfield is generated around the walls.
+    // any non-wall face; walls alone get a generated farfield, and a half model (walls open
+    // along one plane) a generated half farfield and symmetry plane.
     bool has_outer = false;
-    for (Index f = 0; f < surface.num_faces(); ++f)
-        has_outer |= surface.patches[static_cast<std::size_t>(surface.face_patch[f])].kind != PatchKind::Wall;
-    if (boundary_loops(surface).rows() > 0)
-        throw InputError("the surface is open (e.g. a half model cut at its symmetry plane without the plane itself) and the "
-                         "hybrid stage needs a closed body or a closed fluid domain: close it with its symmetry and farfield "
-                         "patches, mesh the full body, or run strata layers for the layers alone");
+    for (Index f = 0; f < input.num_faces(); ++f)
+        has_outer |= input.patches[static_cast<std::size_t>(input.face_patch[f])].kind != PatchKind::Wall;
+    SurfaceMesh closed;
+    if (boundary_loops(input).rows() > 0) {
+        if (has_outer)
+            throw InputError("the fluid domain is open: its walls, symmetry, outflow and farfield patches must enclose it "
+                             "(a hole in the surface, or a patch missing from the input); close it, or run strata layers "
+                             "for the layers alone");
+        closed = close_half_model(input, params.farfield);
+        rep.closed_half_model = true;
+        has_outer = true;
+    }
+    const SurfaceMesh& surface = rep.closed_half_model ? closed : input;
     auto t0 = std::chrono::steady_clock::now();
     const LayerMesh lm = extrude_layers(surface, params.layers, progress);
     rep.layer_stats = lm.stats;

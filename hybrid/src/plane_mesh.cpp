@@ -5,6 +5,8 @@
 #include <strata/geometry/gmsh_session.h>
 #include <strata/hybrid/plane_mesh.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <unordered_map>
@@ -61,6 +63,7 @@ PlaneMesh mesh_plane_region(const std::vector<Vec3>& points, const std::vector<s
     GmshOptionScope opts;
     gmsh_call(ctx, [&] {
         opts.set("Mesh.Algorithm", 6);
+        opts.set("Mesh.RandomFactor", 1e-12);
         opts.set("Mesh.MeshSizeMin", 0.0);
         opts.set("Mesh.MeshSizeMax", 1e22);
         opts.set("Mesh.MeshSizeFactor", 1.0);
@@ -123,24 +126,65 @@ PlaneMesh mesh_plane_region(const std::vector<Vec3>& points, const std::vector<s
         for (int s : surf_tags) {
             std::vector<std::size_t> elems, enodes;
             gmsh::model::mesh::getElementsByType(2, elems, enodes, s);
+            // Gmsh orients the triangles of one surface consistently: flip them all or none
+            // (by their total signed area; triangles with three nearly collinear boundary points
+            // have a sign that is round-off and must follow the others).
+            const std::size_t first = out.triangles.size();
+            double signed_area = 0.0;
+            std::vector<double> area_of;
             for (std::size_t e = 0; e < elems.size(); ++e) {
-                Index t[3];
-                for (int i = 0; i < 3; ++i) {
-                    const auto it = node.find(enodes[3 * e + static_cast<std::size_t>(i)]);
+                std::array<Index, 3> t{};
+                for (std::size_t i = 0; i < 3; ++i) {
+                    const auto it = node.find(enodes[3 * e + i]);
                     if (it == node.end()) throw BackendError(ctx + ": a triangle uses a node Gmsh did not report");
                     t[i] = it->second;
                 }
                 const Eigen::Vector2d a = uv(t[0]), b = uv(t[1]), c = uv(t[2]);
-                const double ar = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-                if (ar < 0.0) std::swap(t[1], t[2]);  // normal along n: into the fluid, as the input
-                meshed += std::abs(ar);
-                out.triangles.push_back({t[0], t[1], t[2]});
+                area_of.push_back(0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x()));
+                signed_area += area_of.back();
+                out.triangles.push_back(t);
+            }
+            const double sign = signed_area < 0.0 ? -1.0 : 1.0;
+            for (std::size_t e = 0; e < elems.size(); ++e) {
+                auto& t = out.triangles[first + e];
+                if (sign < 0.0) std::swap(t[1], t[2]);  // counter-clockwise about the normal
+                const double ar = sign * area_of[e];
+                double longest = 0.0;
+                for (int i = 0; i < 3; ++i) longest = std::max(longest, (uv(t[static_cast<std::size_t>(i)]) - uv(t[static_cast<std::size_t>((i + 1) % 3)])).norm());
+                if (ar < -1e-9 * longest * longest)
+                    throw BackendError(ctx + ": Gmsh's triangles overlap near " + format_point(points.size() > static_cast<std::size_t>(t[0]) ? points[static_cast<std::size_t>(t[0])] : out.new_points[static_cast<std::size_t>(t[0]) - points.size()]));
+                meshed += ar;
             }
         }
         if (std::abs(meshed - expected) > 1e-6 * expected)
             throw BackendError(ctx + ": the triangles cover an area of " + std::to_string(meshed) + " instead of " +
                                std::to_string(expected) + " (Gmsh's 2D mesher failed on the plane)");
     });
+    // Conforming, edge by edge: every directed edge of the triangles once at most; its reverse
+    // present too (an interior edge) unless it runs along a loop in the loop's direction (the
+    // region lies left of its loops). A triangle folded over a nearly straight stretch of a
+    // loop breaks this even when the areas add up.
+    std::map<std::pair<Index, Index>, int> used;
+    for (const auto& t : out.triangles)
+        for (std::size_t i = 0; i < 3; ++i) ++used[{t[i], t[(i + 1) % 3]}];
+    std::map<std::pair<Index, Index>, int> on_loop;
+    for (const auto& loop : loops)
+        for (std::size_t i = 0; i < loop.size(); ++i) on_loop[{loop[i], loop[(i + 1) % loop.size()]}] = 1;
+    for (const auto& [e, count] : used) {
+        const bool ok = count == 1 && (on_loop.count(e) ? !used.count({e.second, e.first}) : used.count({e.second, e.first}) == 1);
+        if (!ok) {
+            const Index a = e.first;
+            const Vec3 x = static_cast<std::size_t>(a) < points.size() ? points[static_cast<std::size_t>(a)]
+                                                                        : out.new_points[static_cast<std::size_t>(a) - points.size()];
+            throw BackendError(ctx + ": Gmsh's triangles of the plane do not join edge to edge near " + format_point(x) +
+                               " (they fold over a nearly straight stretch of its boundary); a coarser or smoother "
+                               "surface mesh there avoids it");
+        }
+    }
+    for (const auto& [e, one] : on_loop)
+        if (!used.count(e))
+            throw BackendError(ctx + ": a boundary segment at " + format_point(points[static_cast<std::size_t>(e.first)]) +
+                               " is not an edge of Gmsh's triangles");
     return out;
 }
 

@@ -2,7 +2,7 @@
 //
 // Each quad q of the layer top gets an apex a = c + h n (c the corner mean, n the unit
 // vector area, h = height × mean edge length L). h is taken from a descending list of
-// candidates, h0, h0/2, h0/4, ... and finally min_height × L itself, and a candidate is
+// candidates, h0, h0/2, h0/4, ... and finally min_height × (shortest edge) itself, and a candidate is
 // accepted only if the pyramid passes every rule below. Rules depend on one pyramid alone
 // ("static": the pyramid and the fixed top surface) or on a pair of pyramids.
 //
@@ -320,6 +320,7 @@ private:
         std::array<Vec3, 4> x;
         Vec3 c, n;
         double size = 0.0;            // mean edge length
+        double shortest = 0.0;        // shortest edge length
         std::vector<double> heights;  // candidates, descending
         // S1–S4 at each candidate, evaluated when first needed: -1 unknown, 0 fails, 1 passes.
         std::vector<signed char> static_ok;  // aligned with heights
@@ -391,8 +392,11 @@ void Builder::setup() {
             throw TopologyError("pyramids: quad " + std::to_string(f) + " of the layer top at " + format_point(p.c) +
                                 " is degenerate (no area or a collapsed edge); check the wall surface there");
         p.n = area.normalized();
-        // Candidates: h0, h0/2, ... while above min_height, then min_height itself.
-        const double h0 = params_.height * p.size, hmin = params_.min_height * p.size;
+        // Candidates: h0, h0/2, ... while above the floor, then the floor itself. The floor
+        // follows the shortest edge, so a stretched quad (a blunt trailing edge's 1:60 quads)
+        // can still get a pyramid that does not lean over its short sides.
+        p.shortest = shortest;
+        const double h0 = params_.height * p.size, hmin = params_.min_height * shortest;
         for (double h = h0; h >= hmin * (1.0 - 1e-12); h *= 0.5) p.heights.push_back(h);
         if (p.heights.back() > hmin * (1.0 + 1e-12)) p.heights.push_back(hmin);
         pyr_of_face_[static_cast<std::size_t>(f)] = static_cast<Index>(pyr_.size());
@@ -621,7 +625,7 @@ void Builder::fail(Index k, const Failure& why, double h) const {
     throw TopologyError("pyramids: quad " + std::to_string(p.face) + " of the layer top (centroid " + format_point(p.c) +
                         ", mean edge " + fmt_double(p.size) + ") cannot be capped with a pyramid: " + reason +
                         ", even with the apex at " + fmt_double(h) + " (min_height " + fmt_double(params_.min_height) +
-                        " x mean edge). The layer top leaves no room there: use fewer layers or a smaller total "
+                        " x shortest edge " + fmt_double(p.shortest) + "). The layer top leaves no room there: use fewer layers or a smaller total "
                         "layer thickness, or a smaller pyramid min_height");
 }
 

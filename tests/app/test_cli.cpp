@@ -235,8 +235,9 @@ TEST(Cli, MeshBoxDomainRemeshesTheSidesTheLayersEndOn) {
 }
 
 TEST(Cli, MeshBadInputsFailCleanly) {
-    expect_clean_failure("mesh '" + example_data("onera_m6_pyhyp_quads.msh") + "' -o out.cgr --layers 5 --first-height 1e-5",
-                         "open", "halfmodel");
+    // Open, but not along one plane: not a half model that could be closed.
+    expect_clean_failure("mesh '" + test_data("cli_open_bent.stl") + "' -o out.cgr --layers 2 --first-height 1e-3",
+                         "do not lie in one plane", "notahalfmodel");
     expect_clean_failure("mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 5 --first-height 1e-3 --farfield cone",
                          "cone", "farfield");
     expect_clean_failure("mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 5 --first-height 1e-3 --farfield-size 1",

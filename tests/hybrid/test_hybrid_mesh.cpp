@@ -13,7 +13,9 @@
 #include "hybrid/reread_checks.h"
 #include "test_support.h"
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <numbers>
 
 namespace strata {
@@ -94,13 +96,87 @@ TEST(HybridMesh, QuadSphereHasEveryCellTypeButTetsAndItWritesAndRereads) {
     test::expect_rereads_valid(m, dir, "sphere");
 }
 
-TEST(HybridMesh, HalfModelIsRefusedClearly) {
-    SurfaceMesh wall = prepare_surface(example_data("onera_m6_pyhyp_quads.msh"), {});
+/// The upper half of a unit sphere as an open shell (its flat disk removed): a half model
+/// whose open edge lies in the plane z = 0.
+SurfaceMesh hemisphere_shell(const test::ScratchDir& dir) {
+    const std::string geo = dir.file("hemisphere.geo");
+    std::ofstream(geo) << "SetFactory(\"OpenCASCADE\");\nSphere(1) = {0, 0, 0, 1, 0, Pi/2, 2*Pi};\nMesh.MeshSizeMax = 0.15;\n";
+    const SurfaceMesh solid = prepare_surface(geo, {});
+    SurfaceMesh shell;
+    shell.patches = solid.patches;
+    std::vector<Index> id(static_cast<std::size_t>(solid.num_points()), kNone);
+    for (Index f = 0; f < solid.num_faces(); ++f) {
+        if (patch_plane(solid, solid.face_patch[f]).planar()) continue;  // the disk
+        Index v[4];
+        for (Index i = 0; i < solid.face_size(f); ++i) {
+            Index& k = id[static_cast<std::size_t>(solid.face_node(f, i))];
+            if (k == kNone) {
+                k = shell.num_points();
+                shell.points.push_back(solid.points[solid.face_node(f, i)]);
+            }
+            v[i] = k;
+        }
+        shell.add_face(v, solid.face_size(f), solid.face_patch[f]);
+    }
+    return shell;
+}
+
+TEST(HybridMesh, HalfModelGetsAHalfFarfieldAndASymmetryPlane) {
+    test::ScratchDir dir("hybrid_half");
+    const SurfaceMesh shell = hemisphere_shell(dir);
+    ASSERT_EQ(boundary_loops(shell).rows(), 1);
+    for (FarfieldShape shape : {FarfieldShape::Box, FarfieldShape::Sphere}) {
+        HybridParams p = sphere_params();
+        p.farfield.shape = shape;
+        HybridReport rep;
+        const VolumeMesh m = build_hybrid_mesh(shell, p, nullptr, &rep);
+        ASSERT_TRUE(rep.validation.ok());
+        EXPECT_TRUE(rep.closed_half_model);
+        EXPECT_GT(rep.validation.min_scaled_jacobian, 0.0);
+        // Patches: the shell's, then the generated symmetry plane and farfield.
+        ASSERT_EQ(m.boundary.patches.size(), shell.patches.size() + 2);
+        const Patch& sym = m.boundary.patches[shell.patches.size()];
+        EXPECT_EQ(sym.name, "symmetry");
+        EXPECT_EQ(sym.kind, PatchKind::Symmetry);
+        EXPECT_EQ(m.boundary.patches.back().kind, PatchKind::Farfield);
+        EXPECT_EQ(rep.remeshed_patches, std::vector<Index>{static_cast<Index>(shell.patches.size())});
+        // Everything on the body's side of the plane, the symmetry faces in it, the farfield
+        // at the right distance: a half box of half-width 10 × diagonal / 2 (the body and its
+        // mirror image have a diagonal of 2√3, less a little for the facets), or a hemisphere
+        // of that radius.
+        const double h = 0.5 * p.farfield.size * 2.0 * std::sqrt(3.0);
+        for (const Vec3& x : m.points) EXPECT_GE(x.z(), -1e-12);
+        for (Index f = 0; f < m.boundary.num_faces(); ++f) {
+            const Patch& pt = m.boundary.patches[static_cast<std::size_t>(m.boundary.face_patch[f])];
+            for (const Index* v = m.boundary.face_begin(f); v != m.boundary.face_end(f); ++v) {
+                const Vec3& x = m.points[*v];
+                if (pt.kind == PatchKind::Symmetry) {
+                    EXPECT_NEAR(x.z(), 0.0, 1e-12);
+                } else if (pt.kind == PatchKind::Farfield && shape == FarfieldShape::Sphere) {
+                    EXPECT_NEAR(x.norm(), h, 1e-2 * h);
+                } else if (pt.kind == PatchKind::Farfield) {
+                    EXPECT_NEAR(std::max({std::abs(x.x()), std::abs(x.y()), x.z()}), h, 1e-2 * h);
+                }
+            }
+        }
+        if (shape == FarfieldShape::Box) {  // the half box minus the half sphere (faceted: within 1 %)
+            EXPECT_NEAR(rep.validation.cell_volume, 4.0 * h * h * h - 2.0 / 3.0 * std::numbers::pi, 0.03 * 4.0 * h * h * h);
+            test::expect_rereads_valid(m, dir, "half");
+        }
+    }
+}
+
+TEST(HybridMesh, OpenSurfaceThatIsNotAHalfModelIsRefusedClearly) {
+    SurfaceMesh bent;
+    bent.patches.push_back({"sheet", PatchKind::Wall});
+    bent.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 1), Vec3(0, 1, 0)};
+    bent.add_face({0, 1, 2}, 0);
+    bent.add_face({0, 2, 3}, 0);
     try {
-        build_hybrid_mesh(wall, sphere_params());
-        FAIL() << "an open wall without a symmetry patch must not silently give a mesh";
+        build_hybrid_mesh(bent, sphere_params());
+        FAIL() << "an open wall that is not cut along one plane must not silently give a mesh";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("open"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("do not lie in one plane"), std::string::npos) << e.what();
     }
 }
 

@@ -35,5 +35,8 @@ struct PatchPlane {
 };
 /// The plane of the faces of \p mesh on patch \p patch (no faces: size 0, not planar).
 PatchPlane patch_plane(const SurfaceMesh& mesh, Index patch);
+/// The least-squares plane through \p points (fewer than 3: not planar); the normal's sign is
+/// arbitrary.
+PatchPlane fit_plane(const std::vector<Vec3>& points);
 
 }  // namespace strata

@@ -23,7 +23,10 @@ struct HybridParams {
 struct HybridReport {
     std::vector<LayerStats> layer_stats;
     Index unsmoothed_nodes = 0;
-    std::vector<Index> remeshed_patches;  ///< input patches re-meshed around the layers' side faces
+    std::vector<Index> remeshed_patches;  ///< patches (of the result's boundary) re-meshed around the layers' side faces
+    /// The input was a half model (walls open along one plane): a half farfield and a
+    /// "symmetry" patch were generated; their patches follow the input's.
+    bool closed_half_model = false;
     ValidationReport validation;
     double seconds_layers = 0.0, seconds_pyramids = 0.0, seconds_tets = 0.0, seconds_validate = 0.0;
 };
@@ -35,8 +38,9 @@ struct HybridReport {
 /// symmetry). The result passes require_valid_mesh (checked here; a failure throws).
 /// Walls may end on planar non-wall patches (a half model's symmetry plane, an outflow plane,
 /// a box side): the layers march in those planes and the planes are re-meshed around the
-/// layers' side faces (outer_boundary). The input must be closed: a body (walls only) or a
-/// fluid domain; otherwise InputError.
+/// layers' side faces (outer_boundary). A half model (walls only, open along one plane) is
+/// closed first (close_half_model: half farfield, symmetry plane). Any other open input:
+/// InputError.
 VolumeMesh build_hybrid_mesh(const SurfaceMesh& surface, const HybridParams& params, Progress* progress = nullptr,
                              HybridReport* report = nullptr);
 
