@@ -108,6 +108,21 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
                 static_cast<int>(rep.orient.flipped_faces));
 }
 
+/// Where layers were held back to stay valid (LayerParams::hold_back), so the user knows they are thinner there.
+void print_held_back(const std::vector<strata::LayerStats>& stats) {
+    int layers = 0, most = 0, first = 0;
+    for (std::size_t k = 0; k < stats.size(); ++k) {
+        if (stats[k].held_nodes == 0) continue;
+        if (layers++ == 0) first = static_cast<int>(k) + 1;
+        most = std::max(most, static_cast<int>(stats[k].held_nodes));
+    }
+    if (layers > 0)
+        std::printf(
+            "note: from layer %d on, %d layers were held back (lowered, unsmoothed) at up to %d nodes where their "
+            "cells would have inverted; the layers are thinner there\n",
+            first, layers, most);
+}
+
 int run_surface(const SurfaceOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     const strata::PrepareParams params = prepare_params(o);
@@ -244,8 +259,11 @@ int run_layers(const LayerOptions& o) {
                     s.mean_scaled_jacobian, s.max_orthogonality_deg, s.mean_orthogonality_deg, s.sweeps);
     }
     if (lm.unsmoothed_nodes > 0)
-        std::printf("note: %d nodes (sharp convex edges, corners of open edges) were extruded along their normal without smoothing\n",
-                    static_cast<int>(lm.unsmoothed_nodes));
+        std::printf(
+            "note: %d nodes (sharp convex edges, corners of open edges, ends of needle triangles) were extruded along "
+            "their normal without smoothing\n",
+            static_cast<int>(lm.unsmoothed_nodes));
+    print_held_back(lm.stats);
     auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     std::printf("cells: %zu hexahedra, %zu prisms; min scaled Jacobian %.3f; volume %.6g\n", lm.mesh.hexes.size(),
                 lm.mesh.prisms.size(), v.min_scaled_jacobian, v.cell_volume);
@@ -304,6 +322,7 @@ int run_mesh(const MeshOptions& o) {
     double jmin = 1.0;
     for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
     std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
+    print_held_back(hr.layer_stats);
     if (!hr.remeshed_patches.empty()) {
         std::string names;
         for (strata::Index p : hr.remeshed_patches)

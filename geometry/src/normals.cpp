@@ -285,6 +285,22 @@ Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index
 
 }  // namespace
 
+Vec3 max_min_dot_direction(const std::vector<Vec3>& directions, double* min_dot) {
+    double lowest = -1.0;
+    Vec3 axis = Vec3::Zero();
+    const int n = static_cast<int>(directions.size());
+    bool any = false;
+    for (const Vec3& d : directions) any |= d.squaredNorm() != 0.0;
+    if (any) {
+        axis = smallest_cap(n, [&](int i) { return directions[static_cast<std::size_t>(i)]; }).c;
+        lowest = 1.0;
+        for (const Vec3& d : directions)
+            if (d.squaredNorm() != 0.0) lowest = std::min(lowest, axis.dot(d));
+    }
+    if (min_dot) *min_dot = lowest;
+    return axis;
+}
+
 std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
                                const Csr& vertex_faces, NormalMethod method) {
     const Index n = static_cast<Index>(points.size());

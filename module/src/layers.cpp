@@ -260,6 +260,153 @@ struct Marcher {
     }
 };
 
+/// sin² of the smallest angle between r_ξ and r_η below which a node's local logical space is
+/// taken as degenerate. The mixed M6's tip-edge nodes, whose rings join 0.03 mm cap edges to
+/// one 25 mm needle, measure 3e-5 to 6e-3; the other example walls 0.05 and more.
+constexpr double kDegenerateLogical = 0.01;
+
+/// Nodes whose local logical space is degenerate on the wall: r_ξ and r_η of their stencil are
+/// within ~6° of parallel, which happens when one edge neighbour is hundreds of times farther
+/// than the others (the apex of a fan of needle triangles). Knupp's space puts every neighbour
+/// on the unit circle, so that neighbour alone makes both derivatives, g11 g22 − g12² nearly
+/// vanishes and the point-Jacobi update loses the diagonal dominance it needs: on the mixed M6
+/// it swings to and fro along the needle, 0.4 layer heights at sweep 5, 100 at sweep 8. Such
+/// nodes are extruded along their normal, like the sharp convex ones.
+void freeze_degenerate_nodes(Marcher& mc) {
+    for (Index o = 0; o < mc.wall.num_points(); ++o) {
+        if (!mc.st.valid[o]) continue;
+        const Derivs g = mc.derivatives(mc.wall.points, o);
+        const Vec3 &rx = g.d[Stencils::Xi], &ry = g.d[Stencils::Eta];
+        const double g11 = rx.dot(rx), g12 = rx.dot(ry), g22 = ry.dot(ry);
+        if (!(g11 * g22 - g12 * g12 > kDegenerateLogical * g11 * g22)) mc.st.valid[o] = 0;
+    }
+}
+
+/// Scaled Jacobian of the cell over wall face f between levels \p a and \p b, corner by corner
+/// as cell_quality.h measures prisms and hexahedra.
+double cell_jacobian(const SurfaceMesh& wall, Index f, const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    const Index* v = wall.face_begin(f);
+    const Index n = wall.face_size(f);
+    double j = 1.0;
+    for (Index i = 0; i < n; ++i) {
+        const Index next = v[(i + 1) % n], prev = v[(i + n - 1) % n];
+        j = std::min(j, corner_scaled_jacobian(a[v[i]], a[next], a[prev], b[v[i]]));
+        j = std::min(j, corner_scaled_jacobian(b[v[i]], b[prev], b[next], a[v[i]]));
+    }
+    return j;
+}
+
+/// The column direction at node i of level \p r that maximises the smallest wall-side corner
+/// Jacobian of its cells: the max-min direction of the unit corner normals (e_next × e_prev at
+/// i), not of the face normals, as a warped quadrilateral's corner can face away from its area
+/// vector. In the plane of a plane node. \p min_dot: its smallest dot product with them.
+Vec3 corner_direction(const Marcher& mc, const std::vector<Vec3>& r, Index i, double& min_dot) {
+    std::vector<Vec3> corners;
+    for (const Index* f = mc.vf.row_begin(i); f != mc.vf.row_end(i); ++f) {
+        const Index* v = mc.wall.face_begin(*f);
+        const Index n = mc.wall.face_size(*f);
+        for (Index c = 0; c < n; ++c) {
+            if (v[c] != i) continue;
+            const Vec3 x = (r[v[(c + 1) % n]] - r[i]).cross(r[v[(c + n - 1) % n]] - r[i]);
+            corners.push_back(x.norm() > 0.0 ? Vec3(x.normalized()) : Vec3::Zero());
+        }
+    }
+    Vec3 d = max_min_dot_direction(corners, &min_dot);
+    if (mc.node_plane[i] != kNone) {
+        const Vec3& pn = mc.planes[mc.node_plane[i]].normal;
+        d -= d.dot(pn) * pn;
+        if (!(d.norm() > 1e-12)) return min_dot = -1.0, Vec3::Zero();
+        d.normalize();
+        min_dot = 1.0;
+        for (const Vec3& c : corners)
+            if (c.squaredNorm() != 0.0) min_dot = std::min(min_dot, d.dot(c));
+    }
+    return d;
+}
+
+/// Stops the layer locally where its cells would invert after smoothing (ALGORITHM.md
+/// section 6 asks for "a validity check that stops layers locally"). The nodes of such cells
+/// are held back: their smoothing is dropped, they go along corner_direction, and their height
+/// is cut by kHoldShrink per round until the cells around them are valid and keep at least
+/// half of what their columns allow at vanishing height (so that the cells next to a held
+/// node do not end just above zero either). This is what keeps the layer where the Poisson
+/// smoothing cannot: on the mixed M6 the wing-tip cap next to the sharp trailing edge is
+/// 0.03–0.1 mm across and meshed with a few faces round it, while ten layers make 0.52 mm,
+/// so the cap's curvature times the layer height is near 1 (the control functions assume it
+/// small), and even plain extrusion crosses columns there by layer 5. Returns the number of
+/// nodes held back: 0, with \p r1 untouched, when no cell inverted. A node whose corners span
+/// a hemisphere has no valid direction and is left as it is (the validity check reports it).
+Index hold_back_folds(const Marcher& mc, const std::vector<Vec3>& r0, double dk, std::vector<Vec3>& r1) {
+    constexpr double kHoldShrink = 0.8;  // height factor per round (0.5 lost twice the thickness on the M6)
+    constexpr int kHoldRounds = 100;     // 0.8^100 ≈ 2e-10 of the layer height
+    const SurfaceMesh& wall = mc.wall;
+    const Index nw = wall.num_points(), nf = wall.num_faces();
+    std::vector<Index> check;  // faces to (re)check this round
+    for (Index f = 0; f < nf; ++f)
+        if (cell_jacobian(wall, f, r0, r1) <= 0.0) check.push_back(f);
+    if (check.empty()) return 0;
+    check.resize(static_cast<std::size_t>(nf));
+    for (Index f = 0; f < nf; ++f) check[static_cast<std::size_t>(f)] = f;
+
+    std::vector<char> held(static_cast<std::size_t>(nw), 0);
+    std::vector<double> scale(static_cast<std::size_t>(nw), 1.0);
+    std::vector<Vec3> dir(static_cast<std::size_t>(nw), Vec3::Zero());
+    std::vector<int> node_round(static_cast<std::size_t>(nw), -1), face_round(static_cast<std::size_t>(nf), -1);
+    std::vector<Index> moved;
+    // What the cell over f tends to as its columns shrink: the smallest wall-side corner
+    // Jacobian, sin(corner angle) times the cosine between corner normal and column.
+    auto limit = [&](Index f) {
+        const Index* v = wall.face_begin(f);
+        const Index n = wall.face_size(f);
+        double q = 1.0;
+        for (Index c = 0; c < n; ++c) {
+            const Index i = v[c];
+            const Vec3 col = held[i] ? dir[i] : Vec3(r1[i] - r0[i]);
+            const Vec3 e1 = r0[v[(c + 1) % n]] - r0[i], e2 = r0[v[(c + n - 1) % n]] - r0[i];
+            const double l = e1.norm() * e2.norm() * col.norm();
+            q = std::min(q, l > 0.0 ? e1.cross(e2).dot(col) / l : 0.0);
+        }
+        return q;
+    };
+    Index count = 0;
+    for (int round = 0; round < kHoldRounds && !check.empty(); ++round) {
+        // Nodes of the cells that fail: held back, or lowered further if they already are.
+        moved.clear();
+        for (const Index f : check) {
+            bool near_held = false;
+            for (const Index* v = wall.face_begin(f); v != wall.face_end(f); ++v) near_held |= held[*v] != 0;
+            const double need = near_held ? std::max(0.0, 0.5 * limit(f)) : 0.0;
+            if (cell_jacobian(wall, f, r0, r1) > need) continue;
+            for (const Index* v = wall.face_begin(f); v != wall.face_end(f); ++v)
+                if (node_round[static_cast<std::size_t>(*v)] != round) {
+                    node_round[static_cast<std::size_t>(*v)] = round;
+                    moved.push_back(*v);
+                }
+        }
+        for (const Index i : moved) {
+            if (!held[i]) {
+                double min_dot = -1.0;
+                dir[i] = corner_direction(mc, r0, i, min_dot);
+                if (!(min_dot > 0.0)) continue;
+                held[i] = 1;
+                ++count;
+            } else {
+                scale[i] *= kHoldShrink;
+            }
+            r1[i] = r0[i] + scale[i] * dk * dir[i];
+        }
+        // Only the cells of the nodes that moved can change.
+        check.clear();
+        for (const Index i : moved)
+            for (const Index* f = mc.vf.row_begin(i); f != mc.vf.row_end(i); ++f)
+                if (face_round[static_cast<std::size_t>(*f)] != round) {
+                    face_round[static_cast<std::size_t>(*f)] = round;
+                    check.push_back(*f);
+                }
+    }
+    return count;
+}
+
 }  // namespace
 
 LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
@@ -295,6 +442,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     }
     mc.st = build_stencils(w.mesh, rings, mc.node_plane, mc.planes);
     freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st);
+    freeze_degenerate_nodes(mc);
     mc.control_functions();
 
     const Index nw = w.mesh.num_points();
@@ -378,6 +526,8 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
             }
         }
         stats.sweeps = sweep;
+        if (params.hold_back && max_sweeps > 0 && !params.keep_invalid)
+            stats.held_nodes = hold_back_folds(mc, r0, dk, r1);
 
         // Cells of this layer and their quality; an inverted cell stops the extrusion.
         const Index base0 = static_cast<Index>(k) * nw, base1 = base0 + nw;

@@ -546,5 +546,37 @@ TEST(NodeNormals, MaxMinDotHandlesRepeatedNormals) {
     }
 }
 
+// The same cap for any set of directions (the module passes the corner normals of cells).
+TEST(MaxMinDotDirection, IsTheOptimumForAnySetOfDirections) {
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> gauss;
+    for (int trial = 0; trial < 50; ++trial) {
+        std::vector<Vec3> ds;
+        const Vec3 axis = Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
+        for (int i = 0; i < 3 + trial % 12; ++i) {
+            const Vec3 d = (axis + 0.8 * Vec3(gauss(rng), gauss(rng), gauss(rng))).normalized();
+            if (d.dot(axis) > 0.1) ds.push_back(d);
+        }
+        if (ds.empty()) continue;
+        ds.push_back(Vec3::Zero());  // ignored
+        double got = -2.0;
+        const Vec3 c = max_min_dot_direction(ds, &got);
+        ds.pop_back();
+        ASSERT_NEAR(c.norm(), 1.0, 1e-14);
+        EXPECT_NEAR(got, min_dot(c, ds), 1e-15);
+        EXPECT_NEAR(got, brute_force_max_min_dot(ds), 1e-12) << "trial " << trial;
+    }
+    // Three orthogonal directions: the diagonal.
+    double got = 0.0;
+    const Vec3 c = max_min_dot_direction({Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()}, &got);
+    EXPECT_NEAR((c - Vec3(1, 1, 1).normalized()).norm(), 0.0, 1e-14);
+    EXPECT_NEAR(got, 1.0 / std::sqrt(3.0), 1e-14);
+    // Opposite directions: no direction sees both; nothing at all: zero and −1.
+    max_min_dot_direction({Vec3::UnitZ(), -Vec3::UnitZ()}, &got);
+    EXPECT_LE(got, 0.0);
+    EXPECT_EQ(max_min_dot_direction({Vec3::Zero()}, &got), Vec3::Zero());
+    EXPECT_EQ(got, -1.0);
+}
+
 }  // namespace
 }  // namespace strata

@@ -458,6 +458,33 @@ TEST(Stencil, FourTrianglesWithABoundaryOuterEdgeAreInvalid) {
     EXPECT_FALSE(s.valid[0]);
 }
 
+TEST(Stencil, NeedleFarVertexIsDroppedForTheOtherSectorsCrossDerivatives) {
+    // Sector 0's outer triangle is a needle: its far vertex lies a thousand sector sizes out
+    // (the apex of a fan of needles, as at the mixed M6's wing tip). As the diagonal it would
+    // make f_ξη about a thousand times too large; the one-sided estimates of the other three
+    // sectors, each exact for quadratics, stand in for it.
+    SurfaceMesh m = plus_ring({false, false, false, false}, {true, true, true, true});
+    m.points[5] = Vec3(600.0, 800.0, 0.0);
+    const Stencils s = stencils_of(m);
+    check_layout(s, m);
+    ASSERT_TRUE(s.valid[0]);
+    const auto pts = row(s, 0);
+    EXPECT_EQ(pts.size(), 7u);
+    for (const auto& p : pts) EXPECT_NE(p.node, 5) << "the needle's apex entered the stencil";
+    expect_quadratics_exact(s, m, kNoPlanes, 0, 1e-12, "M = 4, one needle");
+    // With every far vertex that far out, nothing is left for f_ξη: the node is not smoothed.
+    for (Index k = 5; k <= 8; ++k) m.points[sz(k)] *= 1000.0;
+    EXPECT_FALSE(stencils_of(m).valid[0]);
+}
+
+TEST(Stencil, ThreeTrianglesWithANeedleFarVertexAreInvalid) {
+    SurfaceMesh m = three_triangles(true);
+    m.points[4] *= 500.0;
+    const Stencils s = stencils_of(m);
+    check_layout(s, m);
+    EXPECT_FALSE(s.valid[0]) << "the interleaved M = 6 ring needs all three diagonals";
+}
+
 TEST(Stencil, UnionJackValence4NodesGiveCentralDifferences) {
     // 2×2 blocks of squares, each split by diagonals through the block centre: nodes with i + j
     // odd have M = 4 and only triangles, and their far vertices are the grid diagonals.

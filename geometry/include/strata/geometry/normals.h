@@ -53,6 +53,14 @@ std::string_view to_string(NormalMethod m);
 /// Inverse of to_string (case-insensitive); throws InputError naming \p text and the choices.
 NormalMethod parse_normal_method(std::string_view text);
 
+/// The unit vector maximising the minimum dot product with \p directions (unit vectors; zero
+/// vectors are ignored): the axis of their smallest enclosing cone, computed as MaxMinDot does
+/// for face normals, but for any set (the module uses the corner normals of the cells at a
+/// node). \p min_dot receives that minimum; it is ≤ 0 when the directions span a hemisphere
+/// or more, and then no direction has a positive dot product with all of them and the axis
+/// returned means nothing. With no nonzero direction: (0,0,0) and min_dot = −1.
+Vec3 max_min_dot_direction(const std::vector<Vec3>& directions, double* min_dot = nullptr);
+
 /// One unit normal per node for the node positions \p points (#nodes, model units; may differ
 /// from mesh.points: the module calls this on every layer). A node no usable face touches gets
 /// (0,0,0), as does a node whose face normals cancel (a folded surface). Nodes are independent

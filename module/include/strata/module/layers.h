@@ -30,9 +30,16 @@ struct LayerParams {
     /// (the fin's trailing edge inverts the first layer); the max-min normal does not.
     NormalMethod normals = NormalMethod::MaxMinDot;
     bool smoothing = true;                    ///< false: plain normal extrusion (reference mesh only)
+    /// Where a layer's cells would still invert after smoothing, stop the layer locally instead
+    /// of throwing: the nodes of those cells drop their smoothing, march along the direction
+    /// that is best for their cells' corners and are lowered until the cells are valid
+    /// (LayerStats::held_nodes counts them). Only where smoothing runs (smoothing, max_sweeps
+    /// > 0): plain extrusion stays the bare reference mesh. Never with keep_invalid.
+    bool hold_back = true;
     int threads = 0;                          ///< OpenMP threads; 0 = OpenMP's default
     /// Diagnostics only: return layers with inverted cells instead of throwing (the stats
-    /// then show min_scaled_jacobian ≤ 0). Never used for a mesh that is written.
+    /// then show min_scaled_jacobian ≤ 0), as marched: nothing is held back. Never used for a
+    /// mesh that is written.
     bool keep_invalid = false;
 };
 
@@ -44,6 +51,7 @@ struct LayerStats {
     double max_orthogonality_deg = 0.0;  ///< largest angle between a layer edge and the wall-side face normal
     double mean_orthogonality_deg = 0.0;
     int sweeps = 0;                    ///< sweeps done
+    Index held_nodes = 0;              ///< nodes held back (lowered, unsmoothed) to keep the layer valid
 };
 
 /// The layers: a volume mesh of prisms (on triangles) and hexahedra (on quads), node
@@ -55,7 +63,8 @@ struct LayerMesh {
     Index wall_nodes = 0;
     std::vector<Index> input_node;  ///< wall node → node of the input surface
     int layers = 0;
-    Index unsmoothed_nodes = 0;  ///< nodes extruded along their normal without smoothing (sharp convex edges, open-edge corners)
+    Index unsmoothed_nodes = 0;  ///< nodes extruded along their normal without smoothing (sharp convex edges,
+                                 ///< open-edge corners, degenerate stencils: ends of needle triangles)
 };
 
 /// Extrude \p wall (oriented, normals into the flow; faces on Wall patches are extruded).

@@ -42,6 +42,9 @@ struct MirrorPlane {
 /// M ≥ 5: Eq. 8. M = 4: Eq. 9 with the four diagonal nodes (Eq. 10); where a sector is a
 /// triangle, its "diagonal" is the far vertex of the triangle across the ring's outer edge.
 /// M = 3: the three edge neighbours interleaved with three diagonals, Eq. 8 with M = 6.
+/// A diagonal more than four of its sector's edge lengths from where a parallelogram would put
+/// it (the far apex of a needle triangle) is dropped: for M = 4 f_ξη then averages the one-
+/// sided estimates of the other sectors (valid = 0 if none is left), M = 3 gets valid = 0.
 /// An open ring whose node has a plane in \p node_plane (index into \p planes, kNone for none)
 /// is completed with the mirror images of its interior neighbours; other open-ring nodes
 /// get valid = 0 (the marcher keeps them on their extrusion line).
