@@ -156,6 +156,7 @@ struct LayerOptions {
     int max_sweeps = 50;
     bool no_control = false;
     bool no_concave = false;
+    bool no_hold_back = false;
     std::string normals = "robust";
     int threads = 0;
 };
@@ -179,6 +180,8 @@ void add_layer_options(CLI::App& cmd, LayerOptions& o) {
         ->check(CLI::NonNegativeNumber);
     cmd.add_flag("--no-control", o.no_control, "no control functions (Phi, Psi from the wall; Theta from the distribution)");
     cmd.add_flag("--no-concave", o.no_concave, "no extra smoothing in concave regions");
+    cmd.add_flag("--no-hold-back", o.no_hold_back,
+                 "where a layer's cells would invert, stop with an error instead of holding the layer back there");
     cmd.add_option("--normals", o.normals, "node normals: robust (default), area (the paper's), angle, max")
         ->check(CLI::IsMember({"robust", "area", "angle", "max"}));
     cmd.add_option("--threads", o.threads, "threads for smoothing (default: all cores)")->check(CLI::NonNegativeNumber);
@@ -215,6 +218,7 @@ strata::LayerParams layer_params(const LayerOptions& o) {
     p.max_sweeps = std::max(o.max_sweeps, o.sweeps);
     p.control_functions = !o.no_control;
     p.concave = !o.no_concave;
+    p.hold_back = !o.no_hold_back;
     p.normals = strata::parse_normal_method(o.normals);
     p.threads = o.threads;
     return p;

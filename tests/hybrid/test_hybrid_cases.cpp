@@ -37,7 +37,7 @@ std::vector<std::string> names(const SurfaceMesh& s, const std::vector<Index>& p
 void expect_valid_case(const std::string& name, const VolumeMesh& m, const HybridReport& rep) {
     ASSERT_TRUE(rep.validation.ok()) << name << ": " << rep.validation.problems.front();
     EXPECT_GT(rep.validation.min_scaled_jacobian, 0.0) << name;
-    std::printf("%s: %zu hex, %zu prisms, %zu pyramids, %zu tets; min scaled Jacobian %.3f (layers %.3f)\n", name.c_str(),
+    std::printf("%s: %zu hex, %zu prisms, %zu pyramids, %zu tets; min scaled Jacobian %.2e (layers %.2e)\n", name.c_str(),
                 m.hexes.size(), m.prisms.size(), m.pyramids.size(), m.tets.size(), rep.validation.min_scaled_jacobian,
                 std::min_element(rep.layer_stats.begin(), rep.layer_stats.end(),
                                  [](const LayerStats& a, const LayerStats& b) {
@@ -91,6 +91,27 @@ TEST(HybridCases, BodyFinInABoxWhoseSidesAreFarfield) {
     // The floor's and the ceiling's layers end on all four sides.
     EXPECT_EQ(names(s, rep.remeshed_patches), (std::vector<std::string>{"surface_1", "surface_2", "surface_4", "surface_6"}));
     expect_valid_case("body_fin_box", m, rep);
+}
+
+TEST(HybridCases, WingFuselageFusedFromTwoSolids) {
+    PrepareParams pp;
+    pp.cad.fuse = true;
+    const SurfaceMesh s = prepare_surface(example_data("wing_fuselage.step"), pp);
+    HybridReport rep;
+    const VolumeMesh m = build_hybrid_mesh(s, params(5, 0.05), nullptr, &rep);
+    EXPECT_GT(m.prisms.size(), 0u);
+    expect_valid_case("wing_fuselage", m, rep);
+}
+
+TEST(HybridCases, MixedQuadTriangleOneraM6HasEveryCellType) {
+    const SurfaceMesh s = prepare_surface(example_data("onera_m6_mixed_quadtri.msh"), {});
+    HybridReport rep;
+    const VolumeMesh m = build_hybrid_mesh(s, params(5, 0.01), nullptr, &rep);
+    EXPECT_GT(m.hexes.size(), 0u);
+    EXPECT_GT(m.prisms.size(), 0u);
+    EXPECT_EQ(m.pyramids.size(), m.hexes.size() / 5);  // one per quad of the outermost layer
+    EXPECT_GT(m.tets.size(), 0u);
+    expect_valid_case("m6_mixed", m, rep);
 }
 
 }  // namespace

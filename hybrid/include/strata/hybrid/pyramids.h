@@ -14,7 +14,7 @@ struct PyramidParams {
     /// Apex height relative to the quad's size (mean edge length): √2/2 gives equilateral
     /// triangle sides on a square. Shortened where it would hit something.
     double height = 0.5;
-    double min_height = 0.1;  ///< lowest apex, relative to the quad's shortest edge; below it the quad cannot be covered: error
+    double min_height = 0.02;  ///< lowest apex, relative to the quad's shortest edge; below it the quad cannot be covered: error
 };
 
 struct PyramidLayer {
