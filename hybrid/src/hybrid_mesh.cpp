@@ -114,7 +114,9 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
                          region_of[static_cast<std::size_t>(v[1])]},
                         has_outer ? outer.mesh.face_patch[f] : farfield_patch);
     }
-    const TetFill fill = fill_with_tets(region, points_in_layers(lm), params.tets);
+    TetFillParams tet_params = params.tets;
+    tet_params.background_mesh = params.tets.background_mesh && outer.remeshed.empty();  // see TetFillParams
+    const TetFill fill = fill_with_tets(region, points_in_layers(lm), tet_params);
     rep.seconds_tets = seconds_since(t0);
     strata::report(progress, "tetrahedra", 1.0);
 

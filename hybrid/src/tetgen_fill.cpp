@@ -221,14 +221,12 @@ double enclosed_volume(const SurfaceMesh& b) {
 
 /// Points and facets (one triangle each) and hole seeds into \p io; the arrays are new[]ed
 /// and owned by io from here on (tetgenio::deinitialize delete[]s them).
-void set_plc(tetgenio& io, const SurfaceMesh& b, const std::vector<Vec3>& holes, const std::vector<Vec3>& extra = {}) {
+void set_plc(tetgenio& io, const SurfaceMesh& b, const std::vector<Vec3>& holes) {
     io.firstnumber = 0;
-    io.numberofpoints = static_cast<int>(b.points.size() + extra.size());
-    io.pointlist = new REAL[3 * (b.points.size() + extra.size())];
-    for (std::size_t i = 0; i < b.points.size() + extra.size(); ++i) {
-        const Vec3& x = i < b.points.size() ? b.points[i] : extra[i - b.points.size()];
-        for (int k = 0; k < 3; ++k) io.pointlist[3 * i + k] = x[k];
-    }
+    io.numberofpoints = static_cast<int>(b.points.size());
+    io.pointlist = new REAL[3 * b.points.size()];
+    for (std::size_t i = 0; i < b.points.size(); ++i)
+        for (int k = 0; k < 3; ++k) io.pointlist[3 * i + k] = b.points[i][k];
 
     const int nf = static_cast<int>(b.num_faces());
     io.facetlist = new tetgenio::facet[nf];
@@ -291,7 +289,6 @@ std::string switches(const TetFillParams& p, bool sizing, bool background) {
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
     std::string s = "pYzQ";
     if (background) {
-        s += 'c';  // keep the convex hull: with the enclosing box's corners, every boundary point is inside
         s += 'q';
         s += fmt("%.17g", kBackgroundRatio);
         return s;
@@ -777,19 +774,15 @@ TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& hol
     }
 
     const SizeField h(boundary, params.growth, params.max_volume);
+    if (!params.background_mesh) {  // sizes at the boundary points only, interpolated by TetGen
+        set_sizes(in, boundary.num_points(), h);
+        run_tetgen(switches(params, true, false), in, out, nullptr);
+        return convert_and_check(boundary, face_of, out, volume);
+    }
     tetgenio background;
     {
-        // The background mesh is searched for every point of the final mesh; a point on its
-        // hull (a symmetry plane's points all are) makes TetGen's walk leave the mesh and fall
-        // back to a search of every tet. So it covers a box around everything, kept whole (c).
-        const BoundingBox bb = bounding_box(boundary.points);
-        const Vec3 pad = Vec3::Constant(0.05 * bb.diagonal());
-        std::vector<Vec3> corners;
-        for (int i = 0; i < 8; ++i)
-            corners.emplace_back(i & 1 ? bb.max.x() + pad.x() : bb.min.x() - pad.x(), i & 2 ? bb.max.y() + pad.y() : bb.min.y() - pad.y(),
-                                 i & 4 ? bb.max.z() + pad.z() : bb.min.z() - pad.z());
         tetgenio bg_in;
-        set_plc(bg_in, boundary, holes, corners);
+        set_plc(bg_in, boundary, holes);
         run_tetgen(switches(params, false, true), bg_in, background, nullptr);
     }
     if (background.numberofpoints < boundary.num_points() || background.numberoftetrahedra <= 0)

@@ -19,6 +19,13 @@ struct TetFillParams {
     /// whose patch is not Farfield (the layer top): h(d) = h_wall + growth × d, capped at the
     /// farfield's own edge length. 0 = no sizing field.
     double growth = 0.0;
+    /// Sample the size field on a background mesh (a quality-only TetGen run), so the growth
+    /// holds throughout; false: at the boundary points only, TetGen interpolating linearly
+    /// between them. TetGen locates every point in the background mesh, and a point on its hull
+    /// (each point of a symmetry plane) costs a search of all its tets: with large planes on
+    /// the boundary the background mesh takes minutes, and the boundary points (the planes'
+    /// own points graded by the same field) carry the grading well enough.
+    bool background_mesh = true;
 };
 
 /// The tetrahedra filling a region.
