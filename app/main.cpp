@@ -57,19 +57,23 @@ struct SurfaceOptions {
 void add_surface_input_options(CLI::App& cmd, SurfaceOptions& o) {
     cmd.add_option("INPUT", o.input, "CAD (.step .stp .iges .igs .brep .brp .geo) or surface mesh (.stl .msh)")
         ->required();
-    cmd.add_option("--size", o.size, "target surface element size, model units (CAD only; default: 1/20 of the bounding-box diagonal)")
+    cmd.add_option("--size", o.size,
+                   "target surface element size, model units (CAD only; default: 1/20 of the bounding-box diagonal)")
         ->check(CLI::NonNegativeNumber);
-    cmd.add_option("--size-min", o.size_min, "smallest element size under curvature refinement (CAD only; default: size/20)")
+    cmd.add_option("--size-min", o.size_min,
+                   "smallest element size under curvature refinement (CAD only; default: size/20)")
         ->check(CLI::NonNegativeNumber);
     cmd.add_option("--curvature", o.curvature, "refine by curvature: elements per 2*pi of radius (CAD only; 0 = off)")
         ->check(CLI::NonNegativeNumber);
     auto* q = cmd.add_flag("--quads", o.quads, "recombine the surface mesh into quadrilaterals (CAD only)");
-    auto* m = cmd.add_option("--mixed", o.mixed, "quadrilaterals on these CAD surface tags, triangles elsewhere (CAD only)")
-                  ->delimiter(',')
-                  ->expected(1, -1);
+    auto* m =
+        cmd.add_option("--mixed", o.mixed, "quadrilaterals on these CAD surface tags, triangles elsewhere (CAD only)")
+            ->delimiter(',')
+            ->expected(1, -1);
     q->excludes(m);
     cmd.add_flag("--fuse", o.fuse, "fuse all solids into one body before meshing (CAD only)");
-    cmd.add_option("--patch", o.patches, "set a patch's kind, NAME=KIND with KIND wall|symmetry|farfield|other (repeatable)");
+    cmd.add_option("--patch", o.patches,
+                   "set a patch's kind, NAME=KIND with KIND wall|symmetry|farfield|other (repeatable)");
 }
 
 strata::PrepareParams prepare_params(const SurfaceOptions& o) {
@@ -102,10 +106,11 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
     for (std::size_t i = 0; i < mesh.patches.size(); ++i)
         std::printf("  patch %zu %-24s %-9s %d faces\n", i + 1, mesh.patches[i].name.c_str(),
                     std::string(strata::to_string(mesh.patches[i].kind)).c_str(), count[i]);
-    std::printf("topology: %d connected components (%d closed), %d open boundary loops, %d merged nodes, %d faces re-oriented\n",
-                static_cast<int>(rep.orient.components), static_cast<int>(rep.orient.closed_components),
-                static_cast<int>(loops.rows()), static_cast<int>(rep.merged_nodes),
-                static_cast<int>(rep.orient.flipped_faces));
+    std::printf(
+        "topology: %d connected components (%d closed), %d open boundary loops, %d merged nodes, %d faces "
+        "re-oriented\n",
+        static_cast<int>(rep.orient.components), static_cast<int>(rep.orient.closed_components),
+        static_cast<int>(loops.rows()), static_cast<int>(rep.merged_nodes), static_cast<int>(rep.orient.flipped_faces));
 }
 
 /// Where layers were held back to stay valid (LayerParams::hold_back), so the user knows they are thinner there.
@@ -163,9 +168,12 @@ struct LayerOptions {
 
 void add_layer_options(CLI::App& cmd, LayerOptions& o) {
     cmd.add_option("--layers", o.layers, "number of layers")->required()->check(CLI::PositiveNumber);
-    cmd.add_option("--first-height", o.first_height, "height of the first layer, model units")->check(CLI::PositiveNumber);
-    cmd.add_option("--growth", o.growth, "growth ratio of geometric layers (default 1.2)")->check(CLI::Range(1.0, 10.0));
-    cmd.add_option("--thickness", o.thickness, "total thickness of the layers, model units")->check(CLI::PositiveNumber);
+    cmd.add_option("--first-height", o.first_height, "height of the first layer, model units")
+        ->check(CLI::PositiveNumber);
+    cmd.add_option("--growth", o.growth, "growth ratio of geometric layers (default 1.2)")
+        ->check(CLI::Range(1.0, 10.0));
+    cmd.add_option("--thickness", o.thickness, "total thickness of the layers, model units")
+        ->check(CLI::PositiveNumber);
     cmd.add_option("--yplus", o.yplus, "first height from this target y+ (with --reynolds, --ref-length)")
         ->check(CLI::PositiveNumber);
     cmd.add_option("--reynolds", o.reynolds, "Reynolds number for --yplus")->check(CLI::PositiveNumber);
@@ -175,10 +183,12 @@ void add_layer_options(CLI::App& cmd, LayerOptions& o) {
                    "geometric (first height + growth), thickness (first height + thickness: growth solved) or tanh "
                    "(the paper's; first height + thickness); default from the options given")
         ->check(CLI::IsMember({"geometric", "thickness", "tanh"}));
-    cmd.add_option("--sweeps", o.sweeps, "Poisson smoothing sweeps per layer (default 10)")->check(CLI::NonNegativeNumber);
+    cmd.add_option("--sweeps", o.sweeps, "Poisson smoothing sweeps per layer (default 10)")
+        ->check(CLI::NonNegativeNumber);
     cmd.add_option("--max-sweeps", o.max_sweeps, "more sweeps allowed while the update stays large (default 50)")
         ->check(CLI::NonNegativeNumber);
-    cmd.add_flag("--no-control", o.no_control, "no control functions (Phi, Psi from the wall; Theta from the distribution)");
+    cmd.add_flag("--no-control", o.no_control,
+                 "no control functions (Phi, Psi from the wall; Theta from the distribution)");
     cmd.add_flag("--no-concave", o.no_concave, "no extra smoothing in concave regions");
     cmd.add_flag("--no-hold-back", o.no_hold_back,
                  "where a layer's cells would invert, stop with an error instead of holding the layer back there");
@@ -208,8 +218,9 @@ strata::LayerParams layer_params(const LayerOptions& o) {
         d.kind = strata::Distribution::Geometric;
     if (d.kind == strata::Distribution::Geometric) {
         if (o.thickness > 0.0)
-            throw strata::InputError("--thickness with --growth over-determines the layers: give two of first height, growth "
-                                     "and thickness");
+            throw strata::InputError(
+                "--thickness with --growth over-determines the layers: give two of first height, growth "
+                "and thickness");
         d.growth = o.growth > 0.0 ? o.growth : 1.2;
     } else if (!(o.thickness > 0.0)) {
         throw strata::InputError("--distribution " + std::string(strata::to_string(d.kind)) + " needs --thickness");
@@ -271,7 +282,8 @@ int run_layers(const LayerOptions& o) {
     auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     std::printf("cells: %zu hexahedra, %zu prisms; min scaled Jacobian %.3f; volume %.6g\n", lm.mesh.hexes.size(),
                 lm.mesh.prisms.size(), v.min_scaled_jacobian, v.cell_volume);
-    std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", secs(t0, t1), secs(t1, t2), secs(t2, t3));
+    std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", secs(t0, t1), secs(t1, t2),
+                secs(t2, t3));
     std::printf("wrote %s\n", o.surface.output.c_str());
     return 0;
 }
@@ -333,13 +345,15 @@ int run_mesh(const MeshOptions& o) {
             names += (names.empty() ? "" : ", ") + mesh.boundary.patches[static_cast<std::size_t>(p)].name;
         std::printf("planes re-meshed around the layers' sides: %s\n", names.c_str());
     }
-    std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n", mesh.hexes.size(),
-                mesh.prisms.size(), mesh.pyramids.size(), mesh.tets.size(), static_cast<int>(mesh.num_cells()),
-                mesh.points.size());
-    std::printf("valid: min scaled Jacobian %.3f (%s), volume %.6g (boundary %.6g)\n", hr.validation.min_scaled_jacobian,
-                hr.validation.worst_cell.c_str(), hr.validation.cell_volume, hr.validation.boundary_volume);
-    std::printf("time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f s\n",
-                t_surface, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
+    std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n",
+                mesh.hexes.size(), mesh.prisms.size(), mesh.pyramids.size(), mesh.tets.size(),
+                static_cast<int>(mesh.num_cells()), mesh.points.size());
+    std::printf("valid: min scaled Jacobian %.3f (%s), volume %.6g (boundary %.6g)\n",
+                hr.validation.min_scaled_jacobian, hr.validation.worst_cell.c_str(), hr.validation.cell_volume,
+                hr.validation.boundary_volume);
+    std::printf(
+        "time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f s\n",
+        t_surface, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
     std::printf("wrote %s%s\n", so.output.c_str(), is_cobalt(so.output) ? (" and " + so.output + ".bc").c_str() : "");
     return 0;
 }
@@ -347,50 +361,69 @@ int run_mesh(const MeshOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Strata: near-body hybrid meshes for viscous CFD.\n"
-                 "Boundary-layer prisms and hexahedra marched from the wall, tetrahedra beyond.",
-                 "strata"};
+    CLI::App app{
+        "Strata: near-body hybrid meshes for viscous CFD.\n"
+        "Boundary-layer prisms and hexahedra marched from the wall, tetrahedra beyond.",
+        "strata"};
     app.set_version_flag("--version", std::string("strata ") + STRATA_VERSION);
     app.require_subcommand(1);
 
     SurfaceOptions so;
-    CLI::App* surface = app.add_subcommand("surface", "read CAD or a surface mesh; write the checked, oriented surface mesh with patches");
+    CLI::App* surface = app.add_subcommand(
+        "surface", "read CAD or a surface mesh; write the checked, oriented surface mesh with patches");
     add_surface_input_options(*surface, so);
-    surface->add_option("-o,--output", so.output, "output surface mesh (.msh; .vtk, .stl, ... by extension)")->required();
+    surface->add_option("-o,--output", so.output, "output surface mesh (.msh; .vtk, .stl, ... by extension)")
+        ->required();
     surface->add_option("--msh-version", so.msh_version, "MSH file version for .msh output: 4.1 (default) or 2.2");
     surface->add_flag("-q,--quiet", so.quiet, "print nothing but errors");
 
     LayerOptions lo;
-    CLI::App* layers = app.add_subcommand("layers", "extrude boundary-layer prisms and hexahedra from the walls; write the layers");
+    CLI::App* layers =
+        app.add_subcommand("layers", "extrude boundary-layer prisms and hexahedra from the walls; write the layers");
     add_surface_input_options(*layers, lo.surface);
-    layers->add_option("-o,--output", lo.surface.output, "output volume mesh (.msh; .vtk, .su2, ... by extension)")->required();
-    layers->add_option("--msh-version", lo.surface.msh_version, "MSH file version for .msh output: 4.1 (default) or 2.2");
+    layers->add_option("-o,--output", lo.surface.output, "output volume mesh (.msh; .vtk, .su2, ... by extension)")
+        ->required();
+    layers->add_option("--msh-version", lo.surface.msh_version,
+                       "MSH file version for .msh output: 4.1 (default) or 2.2");
     layers->add_flag("-q,--quiet", lo.surface.quiet, "print nothing but errors");
     add_layer_options(*layers, lo);
 
     MeshOptions mo;
-    CLI::App* meshcmd = app.add_subcommand("mesh", "the whole pipeline: surface, boundary layers, pyramids, tetrahedra; "
-                                                   "write one validated hybrid mesh");
+    CLI::App* meshcmd = app.add_subcommand("mesh",
+                                           "the whole pipeline: surface, boundary layers, pyramids, tetrahedra; "
+                                           "write one validated hybrid mesh");
     add_surface_input_options(*meshcmd, mo.layer.surface);
-    meshcmd->add_option("-o,--output", mo.layer.surface.output,
-                        "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .msh, .vtk, .su2, ...")
+    meshcmd
+        ->add_option("-o,--output", mo.layer.surface.output,
+                     "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .msh, .vtk, .su2, ...")
         ->required();
-    meshcmd->add_option("--msh-version", mo.layer.surface.msh_version, "MSH file version for .msh output: 4.1 (default) or 2.2");
+    meshcmd->add_option("--msh-version", mo.layer.surface.msh_version,
+                        "MSH file version for .msh output: 4.1 (default) or 2.2");
     meshcmd->add_flag("-q,--quiet", mo.layer.surface.quiet, "print nothing but errors");
     add_layer_options(*meshcmd, mo.layer);
-    meshcmd->add_option("--farfield", mo.farfield, "generated outer boundary when the input has no farfield patch: sphere "
-                                                   "(default) or box")
+    meshcmd
+        ->add_option("--farfield", mo.farfield,
+                     "generated outer boundary when the input has no farfield patch: sphere "
+                     "(default) or box")
         ->check(CLI::IsMember({"sphere", "box"}));
-    meshcmd->add_option("--farfield-size", mo.farfield_size, "farfield extent as a multiple of the body size (default 20)")
+    meshcmd
+        ->add_option("--farfield-size", mo.farfield_size, "farfield extent as a multiple of the body size (default 20)")
         ->check(CLI::Range(1.5, 1e4));
-    meshcmd->add_option("--pyramid-height", mo.pyramid_height, "pyramid apex height relative to the quad size (default 0.5)")
+    meshcmd
+        ->add_option("--pyramid-height", mo.pyramid_height,
+                     "pyramid apex height relative to the quad size (default 0.5)")
         ->check(CLI::Range(0.1, 2.0));
-    meshcmd->add_option("--radius-edge", mo.radius_edge, "tetrahedron quality bound, radius/edge (TetGen -q; default 1.5)")
+    meshcmd
+        ->add_option("--radius-edge", mo.radius_edge, "tetrahedron quality bound, radius/edge (TetGen -q; default 1.5)")
         ->check(CLI::Range(1.1, 10.0));
-    meshcmd->add_option("--min-dihedral", mo.min_dihedral,
-                        "smallest dihedral angle of the tetrahedra TetGen should aim for, degrees (TetGen -q R/D; 0 = TetGen's own)")
+    meshcmd
+        ->add_option("--min-dihedral", mo.min_dihedral,
+                     "smallest dihedral angle of the tetrahedra TetGen should aim for, degrees (TetGen -q R/D; 0 = "
+                     "TetGen's own)")
         ->check(CLI::Range(0.0, 30.0));
-    meshcmd->add_option("--tet-growth", mo.tet_growth, "growth of the tetrahedron size with distance from the body (default 0.3)")
+    meshcmd
+        ->add_option("--tet-growth", mo.tet_growth,
+                     "growth of the tetrahedron size with distance from the body (default 0.3)")
         ->check(CLI::NonNegativeNumber);
 
     try {

@@ -3,10 +3,10 @@
 
 #include <strata/geometry/surface_mesh.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 namespace strata::test {
 
@@ -24,8 +24,7 @@ class ScratchDir {
 public:
     explicit ScratchDir(const std::string& name) {
         // The pid keeps parallel ctest runs (-j) of the same test name apart.
-        path_ = std::filesystem::temp_directory_path() /
-                ("strata_test_" + name + "_" + std::to_string(::getpid()));
+        path_ = std::filesystem::temp_directory_path() / ("strata_test_" + name + "_" + std::to_string(::getpid()));
         std::filesystem::remove_all(path_);
         std::filesystem::create_directories(path_);
     }

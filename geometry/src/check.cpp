@@ -34,15 +34,18 @@ std::string face_text(const SurfaceMesh& mesh, Index f) {
 void check_surface(const SurfaceMesh& mesh, const std::string& source) {
     const Index nf = mesh.num_faces();
     const Index np = mesh.num_points();
-    if (nf <= 0) throw InputError(source + ": no faces; the surface mesh is empty, check that the input holds "
-                                           "triangles or quadrilaterals");
+    if (nf <= 0)
+        throw InputError(source +
+                         ": no faces; the surface mesh is empty, check that the input holds "
+                         "triangles or quadrilaterals");
 
     // The CSR arrays themselves: everything below indexes through them.
     if (mesh.face_offsets.front() != 0 || mesh.face_offsets.back() != static_cast<Index>(mesh.face_nodes.size()) ||
         mesh.face_patch.size() != static_cast<std::size_t>(nf))
         throw InputError(source + ": inconsistent face arrays (" + std::to_string(nf) + " faces, " +
                          std::to_string(mesh.face_nodes.size()) + " face nodes, " +
-                         std::to_string(mesh.face_patch.size()) + " face patches); the reader is broken, "
+                         std::to_string(mesh.face_patch.size()) +
+                         " face patches); the reader is broken, "
                          "please report it");
     for (Index f = 0; f < nf; ++f) {
         const Index s = mesh.face_size(f);

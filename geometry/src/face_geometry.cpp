@@ -10,8 +10,7 @@ namespace strata {
 
 Vec3 face_area_vector(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f) {
     const Index* v = mesh.face_begin(f);
-    if (mesh.face_size(f) == 3)
-        return 0.5 * (points[v[1]] - points[v[0]]).cross(points[v[2]] - points[v[0]]);
+    if (mesh.face_size(f) == 3) return 0.5 * (points[v[1]] - points[v[0]]).cross(points[v[2]] - points[v[0]]);
     // Quad: half the cross product of the diagonals is the exact vector area of the
     // (possibly non-planar) bilinear quad's boundary loop.
     return 0.5 * (points[v[2]] - points[v[0]]).cross(points[v[3]] - points[v[1]]);

@@ -16,10 +16,14 @@ namespace strata {
 
 std::string_view to_string(NormalMethod m) {
     switch (m) {
-        case NormalMethod::AreaWeighted: return "area";
-        case NormalMethod::AngleWeighted: return "angle";
-        case NormalMethod::MaxMinDot: return "robust";
-        case NormalMethod::Max: return "max";
+        case NormalMethod::AreaWeighted:
+            return "area";
+        case NormalMethod::AngleWeighted:
+            return "angle";
+        case NormalMethod::MaxMinDot:
+            return "robust";
+        case NormalMethod::Max:
+            return "max";
     }
     return "robust";
 }
@@ -27,8 +31,8 @@ std::string_view to_string(NormalMethod m) {
 NormalMethod parse_normal_method(std::string_view text) {
     std::string t(text);
     std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return std::tolower(c); });
-    for (NormalMethod m : {NormalMethod::AreaWeighted, NormalMethod::AngleWeighted, NormalMethod::MaxMinDot,
-                           NormalMethod::Max})
+    for (NormalMethod m :
+         {NormalMethod::AreaWeighted, NormalMethod::AngleWeighted, NormalMethod::MaxMinDot, NormalMethod::Max})
         if (t == to_string(m)) return m;
     throw InputError("unknown normal method '" + std::string(text) +
                      "': use area (area-weighted, the paper's), angle (angle-weighted), robust "
@@ -101,8 +105,7 @@ Vec3 normalised(const Vec3& sum, double magnitude_of_terms) {
     return sum / len;
 }
 
-Vec3 area_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Index* begin,
-                   const Index* end) {
+Vec3 area_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Index* begin, const Index* end) {
     Vec3 sum = Vec3::Zero();
     double total = 0.0;
     for (const Index* f = begin; f != end; ++f) {
@@ -114,8 +117,8 @@ Vec3 area_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, con
     return normalised(sum, total);
 }
 
-Vec3 angle_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node,
-                    const Index* begin, const Index* end) {
+Vec3 angle_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node, const Index* begin,
+                    const Index* end) {
     Vec3 sum = Vec3::Zero();
     double total = 0.0;
     for (const Index* f = begin; f != end; ++f) {
@@ -132,8 +135,8 @@ Vec3 angle_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, In
 // the face's edges from the node to the next and previous vertices (counter-clockwise, so
 // e1 × e2 points along the face normal). A face that lists the node more than once (pinched)
 // contributes every corner at it, as its area vector would.
-Vec3 max_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node,
-                  const Index* begin, const Index* end) {
+Vec3 max_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node, const Index* begin,
+                  const Index* end) {
     Vec3 sum = Vec3::Zero();
     double total = 0.0;
     for (const Index* f = begin; f != end; ++f) {
@@ -176,7 +179,9 @@ bool inside(const Cap& cap, const Vec3& x) {
     return cap.c.dot(x) >= cap.t - kInside || x.squaredNorm() == 0.0;
 }
 
-Cap cap_through(const Vec3& a) { return {a, 1.0}; }
+Cap cap_through(const Vec3& a) {
+    return {a, 1.0};
+}
 
 Cap cap_through(const Vec3& a, const Vec3& b) {
     const Vec3 m = a + b;
@@ -240,8 +245,8 @@ Cap smallest_cap(int n, NormalAt normal) {
     return cap;
 }
 
-Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node,
-                 const Index* begin, const Index* end) {
+Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node, const Index* begin,
+                 const Index* end) {
     // Distinct unit normals on the stack; flat regions repeat one normal many times.
     std::array<Vec3, kStackNormals> normals;
     int count = 0;
@@ -301,8 +306,8 @@ Vec3 max_min_dot_direction(const std::vector<Vec3>& directions, double* min_dot)
     return axis;
 }
 
-std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
-                               const Csr& vertex_faces, NormalMethod method) {
+std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Csr& vertex_faces,
+                               NormalMethod method) {
     const Index n = static_cast<Index>(points.size());
     if (n != mesh.num_points() || vertex_faces.rows() != n)
         throw InputError("node_normals: " + std::to_string(points.size()) + " positions and " +
@@ -317,17 +322,24 @@ std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>&
         const Index* end = vertex_faces.row_end(v);
         if (begin == end) continue;
         switch (method) {
-            case NormalMethod::AreaWeighted: normals[v] = area_weighted(mesh, points, begin, end); break;
-            case NormalMethod::AngleWeighted: normals[v] = angle_weighted(mesh, points, v, begin, end); break;
-            case NormalMethod::MaxMinDot: normals[v] = max_min_dot(mesh, points, v, begin, end); break;
-            case NormalMethod::Max: normals[v] = max_weighted(mesh, points, v, begin, end); break;
+            case NormalMethod::AreaWeighted:
+                normals[v] = area_weighted(mesh, points, begin, end);
+                break;
+            case NormalMethod::AngleWeighted:
+                normals[v] = angle_weighted(mesh, points, v, begin, end);
+                break;
+            case NormalMethod::MaxMinDot:
+                normals[v] = max_min_dot(mesh, points, v, begin, end);
+                break;
+            case NormalMethod::Max:
+                normals[v] = max_weighted(mesh, points, v, begin, end);
+                break;
         }
     }
     return normals;
 }
 
-std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
-                               NormalMethod method) {
+std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, NormalMethod method) {
     return node_normals(mesh, points, vertex_faces(mesh), method);
 }
 

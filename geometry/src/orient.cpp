@@ -110,12 +110,12 @@ SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report) {
                     flip[g] = want;
                     comp_faces.values.push_back(g);
                 } else if (flip[g] != want) {
-                    throw TopologyError("orient_surface: surface component " + std::to_string(ncomp) +
-                                        " (containing face " + std::to_string(s) +
-                                        ") is not orientable (like a Moebius strip): faces " + std::to_string(f) +
-                                        " and " + std::to_string(g) + " cannot agree on the direction of the " +
-                                        edge_text(e) + "; it has no consistent inside and outside, fix the "
-                                        "surface in the CAD tool");
+                    throw TopologyError(
+                        "orient_surface: surface component " + std::to_string(ncomp) + " (containing face " +
+                        std::to_string(s) + ") is not orientable (like a Moebius strip): faces " + std::to_string(f) +
+                        " and " + std::to_string(g) + " cannot agree on the direction of the " + edge_text(e) +
+                        "; it has no consistent inside and outside, fix the "
+                        "surface in the CAD tool");
                 }
             }
         }
@@ -196,7 +196,8 @@ SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report) {
     Index flipped = 0;
     for (Index f = 0; f < nf; ++f) {
         if (!flip[f]) continue;
-        std::reverse(out.face_nodes.begin() + out.face_offsets[f] + 1, out.face_nodes.begin() + out.face_offsets[f + 1]);
+        std::reverse(out.face_nodes.begin() + out.face_offsets[f] + 1,
+                     out.face_nodes.begin() + out.face_offsets[f + 1]);
         ++flipped;
     }
     if (report) {

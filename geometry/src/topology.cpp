@@ -27,14 +27,13 @@ void require_valid_ids(const SurfaceMesh& mesh, const char* who) {
     for (Index f = 0; f < mesh.num_faces(); ++f) {
         const Index s = mesh.face_size(f);
         if (s != 3 && s != 4)
-            throw TopologyError(std::string(who) + ": face " + std::to_string(f) + " has " +
-                                std::to_string(s) +
+            throw TopologyError(std::string(who) + ": face " + std::to_string(f) + " has " + std::to_string(s) +
                                 " nodes; only triangles and quadrilaterals are supported");
         for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v)
             if (*v < 0 || *v >= n)
-                throw TopologyError(std::string(who) + ": face " + std::to_string(f) +
-                                    " references node " + std::to_string(*v) + ", but the mesh has " +
-                                    std::to_string(n) + " nodes; the mesh is corrupt, re-export it");
+                throw TopologyError(std::string(who) + ": face " + std::to_string(f) + " references node " +
+                                    std::to_string(*v) + ", but the mesh has " + std::to_string(n) +
+                                    " nodes; the mesh is corrupt, re-export it");
     }
 }
 
@@ -53,7 +52,9 @@ struct CellHash {
     }
 };
 
-bool is_finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
+bool is_finite(const Vec3& p) {
+    return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
+}
 
 /// Does face \p f traverse the undirected edge (a, b) as a → b?
 bool traverses(const SurfaceMesh& mesh, Index f, Index a, Index b) {
@@ -351,9 +352,8 @@ NodeRings node_rings(const SurfaceMesh& mesh) {
                 const Index other = clash_next ? sectors[by_next[s.next]].face : kNone;
                 const Index m = clash_next ? s.next : s.prev;
                 reset();
-                throw TopologyError("node_rings: " + node_text(mesh, o) + ": the edge to node " +
-                                    std::to_string(m) + " is traversed in the same direction by face " +
-                                    std::to_string(s.face) +
+                throw TopologyError("node_rings: " + node_text(mesh, o) + ": the edge to node " + std::to_string(m) +
+                                    " is traversed in the same direction by face " + std::to_string(s.face) +
                                     (other != kNone ? " and face " + std::to_string(other) : std::string()) +
                                     "; orient the surface consistently (orient_surface) and check it "
                                     "is manifold (check_surface)");
@@ -398,9 +398,9 @@ NodeRings node_rings(const SurfaceMesh& mesh) {
         reset();
         if (walked != ns || open_starts > 1) {
             const Index fans = std::max<Index>(open_starts, 2);
-            throw TopologyError("node_rings: " + node_text(mesh, o) +
-                                " is a non-manifold vertex: its " + std::to_string(ns) +
-                                " faces form " + (open_starts > 1 ? std::to_string(fans) : std::string("several")) +
+            throw TopologyError("node_rings: " + node_text(mesh, o) + " is a non-manifold vertex: its " +
+                                std::to_string(ns) + " faces form " +
+                                (open_starts > 1 ? std::to_string(fans) : std::string("several")) +
                                 " separate fans touching at the node; split the node or fix the surface "
                                 "in the CAD tool");
         }

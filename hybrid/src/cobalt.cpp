@@ -24,8 +24,8 @@
 // are complete. Coordinates use the shortest decimal form that reads back to the same double
 // (std::to_chars), which round-trips exactly like %.17g but is shorter.
 
-#include <strata/format.h>
 #include <strata/error.h>
+#include <strata/format.h>
 #include <strata/geometry/atomic_file.h>
 #include <strata/hybrid/cobalt.h>
 #include <strata/module/cell_faces.h>
@@ -89,10 +89,14 @@ public:
 
     const Index* nodes(int t, std::int64_t i) const {
         switch (t) {
-            case 0: return m_.tets[i].data();
-            case 1: return m_.pyramids[i].data();
-            case 2: return m_.prisms[i].data();
-            default: return m_.hexes[i].data();
+            case 0:
+                return m_.tets[i].data();
+            case 1:
+                return m_.pyramids[i].data();
+            case 2:
+                return m_.prisms[i].data();
+            default:
+                return m_.hexes[i].data();
         }
     }
 
@@ -144,7 +148,6 @@ private:
 // Input sanity: indices in range, face sizes, finite coordinates. Matching dereferences
 // without looking afterwards.
 
-
 // ---------------------------------------------------------------------------------------
 // Face matching. A face code is a slot (< num_slots) or num_slots + boundary face index.
 
@@ -175,7 +178,6 @@ Buckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
     };
     return bucket_faces_by_key<Code>(mesh.points.size(), for_each_face);
 }
-
 
 struct Item {
     std::array<Index, 4> key;
@@ -252,8 +254,9 @@ private:
 
     std::string describe_boundary(Index f) const {
         const SurfaceMesh& b = mesh_.boundary;
-        return "boundary face " + std::to_string(f) + " " + fmt_nodes(b.face_begin(f), static_cast<int>(b.face_size(f))) +
-               " of patch '" + b.patches[b.face_patch[f]].name + "'";
+        return "boundary face " + std::to_string(f) + " " +
+               fmt_nodes(b.face_begin(f), static_cast<int>(b.face_size(f))) + " of patch '" +
+               b.patches[b.face_patch[f]].name + "'";
     }
     /// "face (a b c) of hexahedron 3 (cell 12 in the file) at (x, y, z)".
     std::string describe_face(std::uint64_t slot) const {
@@ -293,8 +296,7 @@ private:
         if (cs.size() >= 3) {
             Index fa[4];
             const int n = cells_.face_nodes(cs[0], fa);
-            std::string s = "face " + fmt_nodes(fa, n) + " is shared by " +
-                            std::to_string(cs.size()) + " cells:";
+            std::string s = "face " + fmt_nodes(fa, n) + " is shared by " + std::to_string(cs.size()) + " cells:";
             for (std::size_t k = 0; k < cs.size(); ++k) s += (k ? ", " : " ") + cells_.describe_slot(cs[k]);
             fail(s + " (a face joins at most two cells: duplicated or overlapping cells)");
         }

@@ -35,7 +35,8 @@ SurfaceMesh box(const Vec3& c, const std::array<Vec3, 3>& e, double h, int n, bo
         auto it = ids.find(key);
         if (it != ids.end()) return it->second;
         const Index id = m.num_points();
-        m.points.push_back(c + h * ((2.0 * i / n - 1.0) * e[0] + (2.0 * j / n - 1.0) * e[1] + (2.0 * k / n - 1.0) * e[2]));
+        m.points.push_back(c +
+                           h * ((2.0 * i / n - 1.0) * e[0] + (2.0 * j / n - 1.0) * e[1] + (2.0 * k / n - 1.0) * e[2]));
         ids.emplace(key, id);
         return id;
     };
@@ -74,8 +75,8 @@ SurfaceMesh sphere(const Vec3& c, double r, int n) {
     SurfaceMesh m;
     m.patches.push_back({"farfield", PatchKind::Farfield});
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<Vec3> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<Vec3> p = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
     for (Vec3& x : p) x.normalize();
     std::vector<std::array<Index, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                            {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
@@ -116,8 +117,9 @@ namespace {
 
 void check_params(const FarfieldParams& params) {
     if (!(params.size > 1.0))
-        throw InputError("--farfield-size " + std::to_string(params.size) +
-                         ": the farfield must be larger than the body (a multiple of its size > 1, typically 10 to 50)");
+        throw InputError(
+            "--farfield-size " + std::to_string(params.size) +
+            ": the farfield must be larger than the body (a multiple of its size > 1, typically 10 to 50)");
     if (params.divisions < 2) throw InputError("farfield divisions must be at least 2");
 }
 
@@ -128,8 +130,9 @@ SurfaceMesh make_farfield(const std::vector<Vec3>& body_points, const FarfieldPa
     const BoundingBox bb = bounding_box(body_points);
     const Vec3 c = 0.5 * (bb.min + bb.max);
     const double half = 0.5 * params.size * bb.diagonal();
-    return params.shape == FarfieldShape::Box ? box(c, {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()}, half, params.divisions, false)
-                                              : sphere(c, half, params.divisions);
+    return params.shape == FarfieldShape::Box
+               ? box(c, {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()}, half, params.divisions, false)
+               : sphere(c, half, params.divisions);
 }
 
 SurfaceMesh make_half_farfield(const std::vector<Vec3>& body_points, const Vec3& plane_point, const Vec3& plane_normal,
@@ -163,10 +166,11 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
     const PatchPlane pl = fit_plane(on_plane);
     const double diag = bounding_box(walls.points).diagonal();
     if (open.rows() == 0 || !(pl.deviation <= 1e-6 * diag))
-        throw InputError("the surface is open, but its open edges do not lie in one plane (they are " +
-                         std::to_string(pl.deviation) + " off their best plane, the body's size is " + std::to_string(diag) +
-                         "): only a half model cut by one symmetry plane is closed automatically; close the fluid domain "
-                         "yourself (walls plus symmetry and farfield patches) or mesh the full body");
+        throw InputError(
+            "the surface is open, but its open edges do not lie in one plane (they are " +
+            std::to_string(pl.deviation) + " off their best plane, the body's size is " + std::to_string(diag) +
+            "): only a half model cut by one symmetry plane is closed automatically; close the fluid domain "
+            "yourself (walls plus symmetry and farfield patches) or mesh the full body");
     // The plane's normal towards the body.
     double below = 0.0, above = 0.0;
     for (const Vec3& p : walls.points) {
@@ -186,7 +190,8 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
     dom.patches.push_back({"symmetry", PatchKind::Symmetry});
     dom.patches.push_back({"farfield", PatchKind::Farfield});
     dom.points = walls.points;
-    for (Index f = 0; f < walls.num_faces(); ++f) dom.add_face(walls.face_begin(f), walls.face_size(f), walls.face_patch[f]);
+    for (Index f = 0; f < walls.num_faces(); ++f)
+        dom.add_face(walls.face_begin(f), walls.face_size(f), walls.face_patch[f]);
     const SurfaceMesh ff = make_half_farfield(walls.points, pl.point, n, params);
     const Index base = dom.num_points();
     dom.points.insert(dom.points.end(), ff.points.begin(), ff.points.end());
@@ -208,11 +213,13 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
     const Csr ff_open = boundary_loops(ff);
     for (Index l = 0; l < ff_open.rows(); ++l) add_loop(ff_open.row_begin(l), ff_open.row_end(l), base, true);
     for (Index l = 0; l < open.rows(); ++l) add_loop(open.row_begin(l), open.row_end(l), 0, false);
-    const PlaneMesh pm = mesh_plane_region(dom.points, loops, pl.point, n, "meshing the symmetry plane of the half model");
+    const PlaneMesh pm =
+        mesh_plane_region(dom.points, loops, pl.point, n, "meshing the symmetry plane of the half model");
     dom.points.insert(dom.points.end(), pm.new_points.begin(), pm.new_points.end());
     for (const auto& t : pm.triangles) dom.add_face({t[0], t[1], t[2]}, sym);
     if (boundary_loops(dom).rows() != 0)
-        throw TopologyError("closing the half model: the symmetry plane does not join the walls and the farfield edge to edge");
+        throw TopologyError(
+            "closing the half model: the symmetry plane does not join the walls and the farfield edge to edge");
     return dom;
 }
 

@@ -22,7 +22,8 @@ std::vector<Vec3> points_in_layers(const LayerMesh& lm) {
     std::vector<char> open(static_cast<std::size_t>(nc), 0);
     const EdgeTable et = edge_table(lm.top);
     for (Index e = 0; e < static_cast<Index>(et.nodes.size()); ++e)
-        if (et.faces.row_size(e) == 1) open[static_cast<std::size_t>(comp[static_cast<std::size_t>(*et.faces.row_begin(e))])] = 1;
+        if (et.faces.row_size(e) == 1)
+            open[static_cast<std::size_t>(comp[static_cast<std::size_t>(*et.faces.row_begin(e))])] = 1;
     std::vector<Vec3> holes;
     std::vector<char> done(static_cast<std::size_t>(nc), 0);
     const Index nw = lm.wall_nodes;
@@ -31,7 +32,8 @@ std::vector<Vec3> points_in_layers(const LayerMesh& lm) {
         if (open[c] || done[c]) continue;
         done[c] = 1;
         Vec3 x = Vec3::Zero();
-        for (const Index* v = lm.top.face_begin(f); v != lm.top.face_end(f); ++v) x += lm.mesh.points[*v] + lm.mesh.points[nw + *v];
+        for (const Index* v = lm.top.face_begin(f); v != lm.top.face_end(f); ++v)
+            x += lm.mesh.points[*v] + lm.mesh.points[nw + *v];
         holes.push_back(x / (2.0 * static_cast<double>(lm.top.face_size(f))));
     }
     return holes;
@@ -51,9 +53,10 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     SurfaceMesh closed;
     if (boundary_loops(input).rows() > 0) {
         if (has_outer)
-            throw InputError("the fluid domain is open: its walls, symmetry, outflow and farfield patches must enclose it "
-                             "(a hole in the surface, or a patch missing from the input); close it, or run strata layers "
-                             "for the layers alone");
+            throw InputError(
+                "the fluid domain is open: its walls, symmetry, outflow and farfield patches must enclose it "
+                "(a hole in the surface, or a patch missing from the input); close it, or run strata layers "
+                "for the layers alone");
         closed = close_half_model(input, params.farfield);
         rep.closed_half_model = true;
         has_outer = true;
@@ -131,12 +134,14 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         if (i < nt) return top_base + i;
         return static_cast<Index>(lm.mesh.points.size()) + (i - nt);
     };
-    for (std::size_t i = static_cast<std::size_t>(nt); i < fill.points.size(); ++i) mesh.points.push_back(fill.points[i]);
+    for (std::size_t i = static_cast<std::size_t>(nt); i < fill.points.size(); ++i)
+        mesh.points.push_back(fill.points[i]);
     mesh.prisms = lm.mesh.prisms;
     mesh.hexes = lm.mesh.hexes;
     for (const auto& p : pyr.pyramids)
         mesh.pyramids.push_back({to_global(p[0]), to_global(p[1]), to_global(p[2]), to_global(p[3]), to_global(p[4])});
-    for (const auto& t : fill.tets) mesh.tets.push_back({to_global(t[0]), to_global(t[1]), to_global(t[2]), to_global(t[3])});
+    for (const auto& t : fill.tets)
+        mesh.tets.push_back({to_global(t[0]), to_global(t[1]), to_global(t[2]), to_global(t[3])});
     // Boundary: the walls and the side faces on planes (as the layers wrote them; their
     // patches are the input's, below layer_top's), then the outer faces of the fill.
     mesh.boundary.patches.assign(region.patches.begin(), region.patches.end() - 1);
@@ -148,9 +153,9 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     }
     for (Index f = 0; f < region.num_faces(); ++f) {
         if (region.face_patch[f] == top_patch) continue;
-        mesh.boundary.add_face({to_global(region.face_node(f, 0)), to_global(region.face_node(f, 1)),
-                                to_global(region.face_node(f, 2))},
-                               region.face_patch[f]);
+        mesh.boundary.add_face(
+            {to_global(region.face_node(f, 0)), to_global(region.face_node(f, 1)), to_global(region.face_node(f, 2))},
+            region.face_patch[f]);
     }
     rep.validation = require_valid_mesh(mesh, "hybrid mesh");
     rep.seconds_validate = seconds_since(t0);

@@ -32,7 +32,8 @@ std::vector<double> graded_cuts(double L, double ha, double hb, double hmax) {
     std::vector<double> cum(kSamples + 1, 0.0);
     for (int i = 0; i < kSamples; ++i) {
         const double s0 = L * i / kSamples, s1 = L * (i + 1) / kSamples;
-        cum[static_cast<std::size_t>(i) + 1] = cum[static_cast<std::size_t>(i)] + 0.5 * (s1 - s0) * (1.0 / h(s0) + 1.0 / h(s1));
+        cum[static_cast<std::size_t>(i) + 1] =
+            cum[static_cast<std::size_t>(i)] + 0.5 * (s1 - s0) * (1.0 / h(s0) + 1.0 / h(s1));
     }
     const int n = std::max(1, static_cast<int>(std::lround(cum.back())));
     std::vector<double> cuts;
@@ -52,12 +53,12 @@ struct Builder {
     const SurfaceMesh& surface;
     const LayerMesh& layers;
     OuterBoundary out;
-    std::vector<Index> wall_of;    ///< input node → wall node, kNone off the walls
-    std::vector<Index> input_map;  ///< input node → outer point
-    std::vector<Index> top_map;    ///< wall node → outer point (its layer-top node)
-    std::vector<double> top_size;  ///< wall node → mean length of the layer-top edges at its top node
-    std::vector<std::vector<Index>> chains;      ///< input nodes of each cut patch edge, from its start
-    std::vector<std::vector<Index>> chain_pts;   ///< outer points replacing it, from its start
+    std::vector<Index> wall_of;                 ///< input node → wall node, kNone off the walls
+    std::vector<Index> input_map;               ///< input node → outer point
+    std::vector<Index> top_map;                 ///< wall node → outer point (its layer-top node)
+    std::vector<double> top_size;               ///< wall node → mean length of the layer-top edges at its top node
+    std::vector<std::vector<Index>> chains;     ///< input nodes of each cut patch edge, from its start
+    std::vector<std::vector<Index>> chain_pts;  ///< outer points replacing it, from its start
     std::unordered_map<std::uint64_t, Index> chain_of;  ///< input edge → chain
 
     Builder(const SurfaceMesh& s, const LayerMesh& l) : surface(s), layers(l) {
@@ -122,7 +123,8 @@ struct Builder {
             if (!remesh[static_cast<std::size_t>(p0)] && !remesh[static_cast<std::size_t>(p1)]) continue;
             is_pe[static_cast<std::size_t>(e)] = 1;
             for (Index v : et.nodes[static_cast<std::size_t>(e)]) ++degree[static_cast<std::size_t>(v)];
-            edge_id.emplace(edge_key(et.nodes[static_cast<std::size_t>(e)][0], et.nodes[static_cast<std::size_t>(e)][1]), e);
+            edge_id.emplace(
+                edge_key(et.nodes[static_cast<std::size_t>(e)][0], et.nodes[static_cast<std::size_t>(e)][1]), e);
         }
         // Patch-edge neighbours per node (small: only nodes on patch edges have any).
         std::unordered_map<Index, std::vector<Index>> nbrs;
@@ -142,7 +144,8 @@ struct Builder {
             for (Index n1 : first) {
                 if (chain_of.count(edge_key(c, n1))) continue;  // walked from its other end
                 std::vector<Index> chain{c, n1};
-                while (wall_of[static_cast<std::size_t>(chain.back())] == kNone && degree[static_cast<std::size_t>(chain.back())] == 2) {
+                while (wall_of[static_cast<std::size_t>(chain.back())] == kNone &&
+                       degree[static_cast<std::size_t>(chain.back())] == 2) {
                     const auto& nb = nbrs[chain.back()];
                     const Index next = nb[0] == chain[chain.size() - 2] ? nb[1] : nb[0];
                     if (next == chain.front()) break;  // a closed curve through one wall node
@@ -180,9 +183,10 @@ struct Builder {
             // The layers must have marched along the patch edge.
             const Vec3 along = (surface.points[next] - e.base).normalized();
             if ((e.top - e.base).cross(along).norm() > 1e-3 * e.height || e.dir.dot(along) <= 0.0)
-                throw TopologyError("the layers at " + format_point(e.base) + " leave the edge between two non-wall patches "
-                                    "that they should march along (their top is at " + format_point(e.top) +
-                                    "): the patches meeting there must be planar");
+                throw TopologyError("the layers at " + format_point(e.base) +
+                                    " leave the edge between two non-wall patches "
+                                    "that they should march along (their top is at " +
+                                    format_point(e.top) + "): the patches meeting there must be planar");
             return e;
         };
         const End a = end_of(c.front(), c[1]), b = end_of(c.back(), c[k - 1]);
@@ -196,7 +200,8 @@ struct Builder {
         }
         auto too_short = [&](const End& e, const Vec3& far) {
             return TopologyError("the layers at " + format_point(e.base) + " (" + std::to_string(e.height) +
-                                 " thick) reach beyond the end of the patch edge they march along, at " + format_point(far) +
+                                 " thick) reach beyond the end of the patch edge they march along, at " +
+                                 format_point(far) +
                                  ": use thinner layers (fewer, or a smaller --first-height or --growth)");
         };
         if (kept.empty()) {
@@ -219,8 +224,7 @@ struct Builder {
             return h / n;
         };
         if (kept.empty()) {
-            if (a.wall || b.wall)
-                fill(a.top, b.top, a.wall ? a.size : spacing(0), b.wall ? b.size : spacing(k));
+            if (a.wall || b.wall) fill(a.top, b.top, a.wall ? a.size : spacing(0), b.wall ? b.size : spacing(k));
         } else {
             if (a.wall) fill(a.top, surface.points[c[kept.front()]], a.size, spacing(kept.front()));
             for (std::size_t i : kept) pts.push_back(point_of(c[i]));
@@ -256,7 +260,8 @@ struct Builder {
             for (const Index* v = loops.row_begin(l); v != loops.row_end(l); ++v)
                 loop.push_back(input_of[static_cast<std::size_t>(*v)]);
             // Start at a wall node, so that no cut patch edge is entered half way.
-            const auto w = std::find_if(loop.begin(), loop.end(), [&](Index v) { return wall_of[static_cast<std::size_t>(v)] != kNone; });
+            const auto w = std::find_if(loop.begin(), loop.end(),
+                                        [&](Index v) { return wall_of[static_cast<std::size_t>(v)] != kNone; });
             if (w != loop.end()) std::rotate(loop.begin(), w, loop.end());
             const std::size_t m = loop.size();
             std::vector<Index> pts;
@@ -275,8 +280,10 @@ struct Builder {
                 const std::size_t edges = c.size() - 1;
                 for (std::size_t j = 0; j <= edges; ++j)
                     if (loop[(i + j) % m] != (forward ? c[j] : c[edges - j]))
-                        throw TopologyError("patch '" + patch_name(patch) + "': its boundary leaves the edge it shares with "
-                                            "another patch at " + format_point(surface.points[loop[(i + j) % m]]) +
+                        throw TopologyError("patch '" + patch_name(patch) +
+                                            "': its boundary leaves the edge it shares with "
+                                            "another patch at " +
+                                            format_point(surface.points[loop[(i + j) % m]]) +
                                             " (a non-manifold patch boundary)");
                 pts.insert(pts.end(), cp.begin(), cp.end() - 1);
                 i += edges;
@@ -293,9 +300,10 @@ struct Builder {
             for (Index p : loop) {
                 const double off = std::abs((out.mesh.points[p] - pl.point).dot(pl.normal));
                 if (off > 1e-6 * pl.size)
-                    throw TopologyError(ctx + ": the point " + format_point(out.mesh.points[p]) + " of its new boundary is " +
-                                        std::to_string(off) + " off the plane" +
-                                        (out.top_node[static_cast<std::size_t>(p)] != kNone ? " (a node of the layer top)" : ""));
+                    throw TopologyError(
+                        ctx + ": the point " + format_point(out.mesh.points[p]) + " of its new boundary is " +
+                        std::to_string(off) + " off the plane" +
+                        (out.top_node[static_cast<std::size_t>(p)] != kNone ? " (a node of the layer top)" : ""));
             }
         const PlaneMesh pm = mesh_plane_region(out.mesh.points, loops, pl.point, pl.normal, ctx);
         // New points are appended in order, so their ids are the ones mesh_plane_region gave.
@@ -314,7 +322,8 @@ OuterBoundary outer_boundary(const SurfaceMesh& surface, const LayerMesh& layers
     for (Index f = 0; f < surface.num_faces(); ++f) {
         if (b.is_wall_face(f)) continue;
         for (const Index* v = surface.face_begin(f); v != surface.face_end(f); ++v)
-            if (b.wall_of[static_cast<std::size_t>(*v)] != kNone) remesh[static_cast<std::size_t>(surface.face_patch[f])] = 1;
+            if (b.wall_of[static_cast<std::size_t>(*v)] != kNone)
+                remesh[static_cast<std::size_t>(surface.face_patch[f])] = 1;
     }
     std::vector<PatchPlane> plane(surface.patches.size());
     for (Index p = 0; p < static_cast<Index>(surface.patches.size()); ++p) {
@@ -322,10 +331,12 @@ OuterBoundary outer_boundary(const SurfaceMesh& surface, const LayerMesh& layers
         plane[static_cast<std::size_t>(p)] = patch_plane(surface, p);
         const PatchPlane& pl = plane[static_cast<std::size_t>(p)];
         if (!pl.planar())
-            throw InputError("patch '" + b.patch_name(p) + "' meets the walls, so the layers end on it, but it is not planar (" +
-                             std::to_string(pl.deviation) + " off its best plane over a size of " + std::to_string(pl.size) +
-                             "): the hybrid stage re-meshes only planar symmetry, outflow or farfield patches around the "
-                             "layers; mark it as a wall (--patch " + b.patch_name(p) + "=wall) or cut the domain with a plane there");
+            throw InputError(
+                "patch '" + b.patch_name(p) + "' meets the walls, so the layers end on it, but it is not planar (" +
+                std::to_string(pl.deviation) + " off its best plane over a size of " + std::to_string(pl.size) +
+                "): the hybrid stage re-meshes only planar symmetry, outflow or farfield patches around the "
+                "layers; mark it as a wall (--patch " +
+                b.patch_name(p) + "=wall) or cut the domain with a plane there");
         b.out.remeshed.push_back(p);
     }
     b.cut_patch_edges(remesh);

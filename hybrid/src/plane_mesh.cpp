@@ -21,8 +21,9 @@ PlaneMesh mesh_plane_region(const std::vector<Vec3>& points, const std::vector<s
     const Vec3 v = n.cross(u);
     // A point's coordinates in the plane (new points: the ones Gmsh gave).
     auto uv = [&](Index p) {
-        const Vec3 d = (static_cast<std::size_t>(p) < points.size() ? points[static_cast<std::size_t>(p)]
-                                                                     : out.new_points[static_cast<std::size_t>(p) - points.size()]) -
+        const Vec3 d = (static_cast<std::size_t>(p) < points.size()
+                            ? points[static_cast<std::size_t>(p)]
+                            : out.new_points[static_cast<std::size_t>(p) - points.size()]) -
                        origin;
         return Eigen::Vector2d(d.dot(u), d.dot(v));
     };
@@ -37,7 +38,8 @@ PlaneMesh mesh_plane_region(const std::vector<Vec3>& points, const std::vector<s
         bool in = false;
         for (std::size_t i = 0, j = loop.size() - 1; i < loop.size(); j = i++) {
             const Eigen::Vector2d a = uv(loop[i]), b = uv(loop[j]);
-            if ((a.y() > x.y()) != (b.y() > x.y()) && x.x() < (b.x() - a.x()) * (x.y() - a.y()) / (b.y() - a.y()) + a.x())
+            if ((a.y() > x.y()) != (b.y() > x.y()) &&
+                x.x() < (b.x() - a.x()) * (x.y() - a.y()) / (b.y() - a.y()) + a.x())
                 in = !in;
         }
         return in;
@@ -45,7 +47,9 @@ PlaneMesh mesh_plane_region(const std::vector<Vec3>& points, const std::vector<s
     std::vector<std::vector<std::size_t>> surfaces;  // outer loop, then its holes
     for (std::size_t l = 0; l < loops.size(); ++l)
         if (area[l] > 0.0) surfaces.push_back({l});
-    if (surfaces.empty()) throw TopologyError(ctx + ": the loops enclose no region (no loop runs counter-clockwise about the plane normal)");
+    if (surfaces.empty())
+        throw TopologyError(ctx +
+                            ": the loops enclose no region (no loop runs counter-clockwise about the plane normal)");
     for (std::size_t l = 0; l < loops.size(); ++l) {
         if (area[l] > 0.0) continue;
         std::size_t best = surfaces.size();
@@ -82,8 +86,8 @@ PlaneMesh mesh_plane_region(const std::vector<Vec3>& points, const std::vector<s
                 if (point_tag.count(p))
                     throw TopologyError(ctx + ": its new boundary passes twice through " + format_point(points[p]));
                 const Vec3& x = points[p];
-                const double h = 0.5 * ((x - points[loop[(i + 1) % m]]).norm() +
-                                        (x - points[loop[(i + m - 1) % m]]).norm());
+                const double h =
+                    0.5 * ((x - points[loop[(i + 1) % m]]).norm() + (x - points[loop[(i + m - 1) % m]]).norm());
                 const Eigen::Vector2d q = uv(p);
                 point_tag[p] = gmsh::model::geo::addPoint(q.x(), q.y(), 0.0, h);
             }
@@ -150,9 +154,16 @@ PlaneMesh mesh_plane_region(const std::vector<Vec3>& points, const std::vector<s
                 if (sign < 0.0) std::swap(t[1], t[2]);  // counter-clockwise about the normal
                 const double ar = sign * area_of[e];
                 double longest = 0.0;
-                for (int i = 0; i < 3; ++i) longest = std::max(longest, (uv(t[static_cast<std::size_t>(i)]) - uv(t[static_cast<std::size_t>((i + 1) % 3)])).norm());
+                for (int i = 0; i < 3; ++i)
+                    longest = std::max(
+                        longest,
+                        (uv(t[static_cast<std::size_t>(i)]) - uv(t[static_cast<std::size_t>((i + 1) % 3)])).norm());
                 if (ar < -1e-9 * longest * longest)
-                    throw BackendError(ctx + ": Gmsh's triangles overlap near " + format_point(points.size() > static_cast<std::size_t>(t[0]) ? points[static_cast<std::size_t>(t[0])] : out.new_points[static_cast<std::size_t>(t[0]) - points.size()]));
+                    throw BackendError(
+                        ctx + ": Gmsh's triangles overlap near " +
+                        format_point(points.size() > static_cast<std::size_t>(t[0])
+                                         ? points[static_cast<std::size_t>(t[0])]
+                                         : out.new_points[static_cast<std::size_t>(t[0]) - points.size()]));
                 meshed += ar;
             }
         }
@@ -171,19 +182,23 @@ PlaneMesh mesh_plane_region(const std::vector<Vec3>& points, const std::vector<s
     for (const auto& loop : loops)
         for (std::size_t i = 0; i < loop.size(); ++i) on_loop[{loop[i], loop[(i + 1) % loop.size()]}] = 1;
     for (const auto& [e, count] : used) {
-        const bool ok = count == 1 && (on_loop.count(e) ? !used.count({e.second, e.first}) : used.count({e.second, e.first}) == 1);
+        const bool ok =
+            count == 1 && (on_loop.count(e) ? !used.count({e.second, e.first}) : used.count({e.second, e.first}) == 1);
         if (!ok) {
             const Index a = e.first;
-            const Vec3 x = static_cast<std::size_t>(a) < points.size() ? points[static_cast<std::size_t>(a)]
-                                                                        : out.new_points[static_cast<std::size_t>(a) - points.size()];
-            throw BackendError(ctx + ": Gmsh's triangles of the plane do not join edge to edge near " + format_point(x) +
+            const Vec3 x = static_cast<std::size_t>(a) < points.size()
+                               ? points[static_cast<std::size_t>(a)]
+                               : out.new_points[static_cast<std::size_t>(a) - points.size()];
+            throw BackendError(ctx + ": Gmsh's triangles of the plane do not join edge to edge near " +
+                               format_point(x) +
                                " (they fold over a nearly straight stretch of its boundary); a coarser or smoother "
                                "surface mesh there avoids it");
         }
     }
     for (const auto& [e, one] : on_loop)
         if (!used.count(e))
-            throw BackendError(ctx + ": a boundary segment at " + format_point(points[static_cast<std::size_t>(e.first)]) +
+            throw BackendError(ctx + ": a boundary segment at " +
+                               format_point(points[static_cast<std::size_t>(e.first)]) +
                                " is not an edge of Gmsh's triangles");
     return out;
 }

@@ -48,8 +48,8 @@
 // the largest clearance) stay valid throughout: O(n) checks per round after an O(n log n)
 // sort, and few rounds (each moves a pyramid down one of its few candidates).
 
-#include <strata/format.h>
 #include <strata/error.h>
+#include <strata/format.h>
 #include <strata/geometry/face_geometry.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/pyramids.h>
@@ -616,16 +616,19 @@ void Builder::fail(Index k, const Failure& why, double h) const {
             break;
         case Failure::Pyramid: {
             const Pyr& q = pyr_[static_cast<std::size_t>(why.other)];
-            reason = "it intersects or crowds the pyramid on quad " + std::to_string(q.face) + " at " + format_point(q.c);
+            reason =
+                "it intersects or crowds the pyramid on quad " + std::to_string(q.face) + " at " + format_point(q.c);
             break;
         }
         case Failure::None:
             break;
     }
-    throw TopologyError("pyramids: quad " + std::to_string(p.face) + " of the layer top (centroid " + format_point(p.c) +
-                        ", mean edge " + fmt_double(p.size) + ") cannot be capped with a pyramid: " + reason +
-                        ", even with the apex at " + fmt_double(h) + " (min_height " + fmt_double(params_.min_height) +
-                        " x shortest edge " + fmt_double(p.shortest) + "). The layer top leaves no room there: use fewer layers or a smaller total "
+    throw TopologyError("pyramids: quad " + std::to_string(p.face) + " of the layer top (centroid " +
+                        format_point(p.c) + ", mean edge " + fmt_double(p.size) +
+                        ") cannot be capped with a pyramid: " + reason + ", even with the apex at " + fmt_double(h) +
+                        " (min_height " + fmt_double(params_.min_height) + " x shortest edge " +
+                        fmt_double(p.shortest) +
+                        "). The layer top leaves no room there: use fewer layers or a smaller total "
                         "layer thickness, or a smaller pyramid min_height");
 }
 

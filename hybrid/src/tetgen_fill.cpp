@@ -83,8 +83,8 @@
 // program replaces them (as AddressSanitizer does), while tetgenio's inline destructor uses
 // the program's: run sanitizer builds with ASAN_OPTIONS=alloc_dealloc_mismatch=0.
 
-#include <strata/format.h>
 #include <strata/error.h>
+#include <strata/format.h>
 #include <strata/geometry/face_geometry.h>
 #include <strata/hybrid/tetgen_fill.h>
 
@@ -706,7 +706,7 @@ TetFill convert_and_check(const SurfaceMesh& b, const FaceIndex& face_of, const 
         if (!(vol > 0.0))
             throw BackendError(where + "TetGen's tet " + std::to_string(t) + " at " +
                                format_point(0.25 * (fill.points[tet[0]] + fill.points[tet[1]] + fill.points[tet[2]] +
-                                                 fill.points[tet[3]])) +
+                                                    fill.points[tet[3]])) +
                                " has volume " + fmt("%.3g", vol) + " (not positive)");
         tet_volume_sum += vol;
         fill.tets[t] = tet;

@@ -3,8 +3,8 @@
 // smoothing of the middle level with the Poisson equation (Eq. 3) in Knupp's local logical
 // space, level 2 regenerated after every sweep; then the middle level becomes the next wall.
 
-#include <strata/format.h>
 #include <strata/error.h>
+#include <strata/format.h>
 #include <strata/geometry/face_geometry.h>
 #include <strata/geometry/topology.h>
 #include <strata/module/cell_quality.h>
@@ -36,7 +36,9 @@ struct Wall {
 Wall extract_wall(const SurfaceMesh& in) {
     Wall w;
     w.mesh.patches = in.patches;
-    auto is_wall = [&](Index f) { return in.patches[static_cast<std::size_t>(in.face_patch[f])].kind == PatchKind::Wall; };
+    auto is_wall = [&](Index f) {
+        return in.patches[static_cast<std::size_t>(in.face_patch[f])].kind == PatchKind::Wall;
+    };
     // Wall nodes keep the input's order (identity when every face is a wall).
     std::vector<Index> map(static_cast<std::size_t>(in.num_points()), kNone);
     for (Index f = 0; f < in.num_faces(); ++f)
@@ -72,7 +74,8 @@ void boundary_planes(const SurfaceMesh& wall, const Csr& loops, const std::vecto
     for (Index l = 0; l < loops.rows(); ++l) {
         const Index* lv = loops.row_begin(l);
         const Index m = loops.row_size(l);
-        const bool any_fixed = std::any_of(lv, lv + m, [&](Index v) { return fixed[static_cast<std::size_t>(v)] != 0; });
+        const bool any_fixed =
+            std::any_of(lv, lv + m, [&](Index v) { return fixed[static_cast<std::size_t>(v)] != 0; });
         Vec3 c = Vec3::Zero();
         for (Index i = 0; i < m; ++i) c += wall.points[lv[i]];
         c /= static_cast<double>(m);
@@ -89,7 +92,8 @@ void boundary_planes(const SurfaceMesh& wall, const Csr& loops, const std::vecto
             cross = std::max(cross, std::abs(normals[lv[i]].dot(normal)));
         }
         if (!any_fixed && m >= 3 && dev <= 1e-6 * diag && cross < 0.5) {
-            for (Index i = 0; i < m; ++i) node_plane[static_cast<std::size_t>(lv[i])] = static_cast<Index>(planes.size());
+            for (Index i = 0; i < m; ++i)
+                node_plane[static_cast<std::size_t>(lv[i])] = static_cast<Index>(planes.size());
             planes.push_back({c, normal});
             continue;
         }
@@ -206,7 +210,7 @@ struct Marcher {
     Stencils st;
     std::vector<MirrorPlane> planes;
     std::vector<Index> node_plane;
-    std::vector<Vec3> node_line;  ///< zero, or the line a node marches along (two planes meet there)
+    std::vector<Vec3> node_line;   ///< zero, or the line a node marches along (two planes meet there)
     std::vector<double> phi, psi;  ///< control functions, per node, from the wall
 
     Vec3 at(const std::vector<Vec3>& r, const StencilPoint& p) const {
@@ -417,7 +421,9 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
                          std::to_string(params.max_sweeps) + ")");
     Wall w = extract_wall(surface);
     if (w.mesh.num_faces() == 0)
-        throw InputError("no wall faces to extrude: every patch is symmetry, farfield or other; mark the body with --patch NAME=wall");
+        throw InputError(
+            "no wall faces to extrude: every patch is symmetry, farfield or other; mark the body with --patch "
+            "NAME=wall");
 #ifdef _OPENMP
     const int threads = params.threads > 0 ? params.threads : omp_get_max_threads();
     // node_normals (geometry) parallelises with OpenMP's default team: make it this call's.
@@ -501,16 +507,16 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
                         // Literal reading g_m/g33 − 1, capped (ALGORITHM.md section 6); the
                         // bounded reading 1 − g33/g_m when the cap is 0.
                         const double cap = params.concave_cap;
-                        const double nu = (cap > 0.0 ? std::min(gm / g33 - 1.0, cap) : 1.0 - g33 / gm) *
-                                          concave_ramp(alpha);
+                        const double nu =
+                            (cap > 0.0 ? std::min(gm / g33 - 1.0, cap) : 1.0 - g33 / gm) * concave_ramp(alpha);
                         if (nu <= 0.0) continue;
                         const double cs = dir[0], sn = dir[1];
                         const double gperp = sn * sn * g11 - 2.0 * sn * cs * g12 + cs * cs * g22;
                         const double wt = g33 * nu * gperp;
                         L += wt * (cs * cs * g.d[Stencils::XiXi] + 2.0 * cs * sn * g.d[Stencils::XiEta] +
-                                  sn * sn * g.d[Stencils::EtaEta]);
+                                   sn * sn * g.d[Stencils::EtaEta]);
                         K += wt * (cs * cs * c[Stencils::XiXi] + 2.0 * cs * sn * c[Stencils::XiEta] +
-                                  sn * sn * c[Stencils::EtaEta]);
+                                   sn * sn * c[Stencils::EtaEta]);
                     }
                 }
                 if (!(K < 0.0)) continue;  // degenerate metrics: leave the reference position
@@ -536,11 +542,12 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         Index worst_face = kNone;
         for (Index f = 0; f < w.mesh.num_faces(); ++f) {
             const Index* v = w.mesh.face_begin(f);
-            const double j = w.mesh.face_size(f) == 3
-                                 ? prism_min_scaled_jacobian(pts, {base0 + v[0], base0 + v[1], base0 + v[2], base1 + v[0],
-                                                                   base1 + v[1], base1 + v[2]})
-                                 : hex_min_scaled_jacobian(pts, {base0 + v[0], base0 + v[1], base0 + v[2], base0 + v[3],
-                                                                 base1 + v[0], base1 + v[1], base1 + v[2], base1 + v[3]});
+            const double j =
+                w.mesh.face_size(f) == 3
+                    ? prism_min_scaled_jacobian(
+                          pts, {base0 + v[0], base0 + v[1], base0 + v[2], base1 + v[0], base1 + v[1], base1 + v[2]})
+                    : hex_min_scaled_jacobian(pts, {base0 + v[0], base0 + v[1], base0 + v[2], base0 + v[3],
+                                                    base1 + v[0], base1 + v[1], base1 + v[2], base1 + v[3]});
             if (j < jmin || worst_face == kNone) jmin = std::min(jmin, j), worst_face = j <= jmin ? f : worst_face;
             jsum += j;
         }
@@ -558,13 +565,14 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         if (jmin <= 0.0 && !params.keep_invalid) {
             const Index f = worst_face;
             const Vec3 c = face_centroid(w.mesh, r0, f);
-            throw TopologyError("layer " + std::to_string(k + 1) + " of " + std::to_string(nlayers) + ": the " +
-                                (w.mesh.face_size(f) == 3 ? "prism" : "hexahedron") + " over wall face " +
-                                std::to_string(w.input_face[static_cast<std::size_t>(f)]) + " (patch '" +
-                                w.mesh.patches[static_cast<std::size_t>(w.mesh.face_patch[f])].name + "') at " +
-                                format_point(c) + " would invert (min scaled Jacobian " + std::to_string(jmin) +
-                                "); the layers fold there: use fewer layers or a smaller total thickness, more --sweeps, "
-                                "or keep the concave modification on");
+            throw TopologyError(
+                "layer " + std::to_string(k + 1) + " of " + std::to_string(nlayers) + ": the " +
+                (w.mesh.face_size(f) == 3 ? "prism" : "hexahedron") + " over wall face " +
+                std::to_string(w.input_face[static_cast<std::size_t>(f)]) + " (patch '" +
+                w.mesh.patches[static_cast<std::size_t>(w.mesh.face_patch[f])].name + "') at " + format_point(c) +
+                " would invert (min scaled Jacobian " + std::to_string(jmin) +
+                "); the layers fold there: use fewer layers or a smaller total thickness, more --sweeps, "
+                "or keep the concave modification on");
         }
         std::swap(r0, r1);
         report(progress, "layers", static_cast<double>(k + 1) / nlayers);
@@ -612,7 +620,8 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
             for (Index i = 0; i < m; ++i) {
                 const Index a = loops.row_begin(l)[i], b = loops.row_begin(l)[(i + 1) % m];
                 Index patch = kNone;
-                const Index ia = w.input_node[static_cast<std::size_t>(a)], ib = w.input_node[static_cast<std::size_t>(b)];
+                const Index ia = w.input_node[static_cast<std::size_t>(a)],
+                            ib = w.input_node[static_cast<std::size_t>(b)];
                 const std::array<Index, 2> key{std::min(ia, ib), std::max(ia, ib)};
                 const auto it = std::lower_bound(in_edges.nodes.begin(), in_edges.nodes.end(), key);
                 if (it != in_edges.nodes.end() && *it == key) {

@@ -11,11 +11,11 @@
 // Work is cut into fixed chunks whose results are merged in chunk order, so the report
 // (problems, sums) does not depend on the number of threads.
 
-#include <strata/format.h>
 #include <strata/error.h>
+#include <strata/format.h>
 #include <strata/geometry/face_geometry.h>
-#include <strata/module/cell_quality.h>
 #include <strata/module/cell_faces.h>
+#include <strata/module/cell_quality.h>
 #include <strata/module/validate.h>
 
 #include <algorithm>
@@ -36,7 +36,6 @@ namespace {
 
 using FaceTable = CellFaceTable;  // module/cell_faces.h
 constexpr const auto& kTypes = kCellTypes;
-
 
 /// (1/3) (c − r)·A of one face, A its area vector (quads: ½ d1×d2), c the mean of its
 /// corners: the face's share of the enclosed volume. Shared by cells and the boundary.
@@ -98,18 +97,17 @@ enum Kind : int {
 
 constexpr std::size_t kMaxPerKind = 5;
 
-constexpr std::array<const char*, kNumKinds> kKindNoun{
-    "input problems",
-    "inverted or degenerate cells",
-    "misoriented interior faces",
-    "faces shared by three or more cells",
-    "quad faces against two triangles",
-    "unmatched cell faces (holes)",
-    "boundary faces that are no cell face",
-    "boundary faces on interior faces",
-    "misoriented boundary faces",
-    "duplicated boundary faces",
-    "volume mismatches"};
+constexpr std::array<const char*, kNumKinds> kKindNoun{"input problems",
+                                                       "inverted or degenerate cells",
+                                                       "misoriented interior faces",
+                                                       "faces shared by three or more cells",
+                                                       "quad faces against two triangles",
+                                                       "unmatched cell faces (holes)",
+                                                       "boundary faces that are no cell face",
+                                                       "boundary faces on interior faces",
+                                                       "misoriented boundary faces",
+                                                       "duplicated boundary faces",
+                                                       "volume mismatches"};
 
 struct Problems {
     std::array<std::vector<std::string>, kNumKinds> lines;
@@ -162,10 +160,14 @@ public:
 
     const Index* nodes(int t, std::int64_t i) const {
         switch (t) {
-            case 0: return m_.tets[i].data();
-            case 1: return m_.pyramids[i].data();
-            case 2: return m_.prisms[i].data();
-            default: return m_.hexes[i].data();
+            case 0:
+                return m_.tets[i].data();
+            case 1:
+                return m_.pyramids[i].data();
+            case 2:
+                return m_.prisms[i].data();
+            default:
+                return m_.hexes[i].data();
         }
     }
     /// Type index (0..3) and index within the type of global cell \p g.
@@ -239,8 +241,8 @@ struct FaceCodec {
         const auto f = static_cast<Index>(boundary_face(code));
         Vec3 c = Vec3::Zero();
         for (int k = 0; k < n; ++k) c += mesh.points[v[k]];
-        return "boundary face " + std::to_string(f) + " " + fmt_nodes(v, n) + " of patch " + patch_name(f) +
-               " at " + format_point(c / static_cast<double>(n));
+        return "boundary face " + std::to_string(f) + " " + fmt_nodes(v, n) + " of patch " + patch_name(f) + " at " +
+               format_point(c / static_cast<double>(n));
     }
     /// "hexahedron 3 at (x, y, z)" or "boundary face 7 of patch 'wall'".
     std::string owner(std::uint64_t code) const {
@@ -268,8 +270,8 @@ bool check_input(const VolumeMesh& mesh, const Cells& cells, Problems& problems)
                 if (v[k] < 0 || v[k] >= num_points) {
                     safe = false;
                     problems.add(kBadInput, [&] {
-                        return std::string(to_string(kTypes[t])) + " " + std::to_string(i) + " " +
-                               fmt_nodes(v, n) + " uses node " + std::to_string(v[k]) + " but the mesh has " +
+                        return std::string(to_string(kTypes[t])) + " " + std::to_string(i) + " " + fmt_nodes(v, n) +
+                               " uses node " + std::to_string(v[k]) + " but the mesh has " +
                                std::to_string(num_points) + " nodes";
                     });
                     break;
@@ -298,9 +300,9 @@ bool check_input(const VolumeMesh& mesh, const Cells& cells, Problems& problems)
             if (*v < 0 || *v >= num_points) {
                 safe = false;
                 problems.add(kBadInput, [&] {
-                    return "boundary face " + std::to_string(f) + " " + fmt_nodes(b.face_begin(f), static_cast<int>(n)) +
-                           " uses node " + std::to_string(*v) + " but the mesh has " + std::to_string(num_points) +
-                           " nodes";
+                    return "boundary face " + std::to_string(f) + " " +
+                           fmt_nodes(b.face_begin(f), static_cast<int>(n)) + " uses node " + std::to_string(*v) +
+                           " but the mesh has " + std::to_string(num_points) + " nodes";
                 });
                 break;
             }
@@ -357,10 +359,14 @@ double min_jacobian(const std::vector<Vec3>& p, const Index* v) {
 
 double cell_min_jacobian(const std::vector<Vec3>& p, const Index* v, int t) {
     switch (t) {
-        case 0: return min_jacobian<4>(p, v);
-        case 1: return min_jacobian<5>(p, v);
-        case 2: return min_jacobian<6>(p, v);
-        default: return min_jacobian<8>(p, v);
+        case 0:
+            return min_jacobian<4>(p, v);
+        case 1:
+            return min_jacobian<5>(p, v);
+        case 2:
+            return min_jacobian<6>(p, v);
+        default:
+            return min_jacobian<8>(p, v);
     }
 }
 
@@ -447,7 +453,6 @@ struct Item {
     bool operator<(const Item& o) const { return key != o.key ? key < o.key : code < o.code; }
 };
 
-
 /// Judge one group of faces with the same node set: \p cs cell faces, \p bs boundary faces.
 void judge_group(const FaceCodec& codec, const std::vector<std::uint64_t>& cs, const std::vector<std::uint64_t>& bs,
                  MatchResult& r) {
@@ -495,8 +500,8 @@ void judge_group(const FaceCodec& codec, const std::vector<std::uint64_t>& cs, c
         ++r.boundary;
         if (bs.size() >= 2) {
             r.problems.add(kBoundaryDuplicate, [&] {
-                std::string s = codec.describe(bs[0]) + " is listed " + std::to_string(bs.size()) +
-                                " times in the boundary (also";
+                std::string s =
+                    codec.describe(bs[0]) + " is listed " + std::to_string(bs.size()) + " times in the boundary (also";
                 for (std::size_t k = 1; k < bs.size(); ++k) {
                     s += k > 1 ? ", " : " ";
                     s += codec.owner(bs[k]);
@@ -744,8 +749,8 @@ ValidationReport require_valid_mesh(const VolumeMesh& mesh, const std::string& w
     std::string first;
     for (std::size_t i = 0; i < std::min<std::size_t>(3, report.problems.size()); ++i)
         first += (i ? "; " : "") + report.problems[i];
-    throw TopologyError(what + ": invalid mesh: " + std::to_string(total) + (total == 1 ? " problem: " : " problems: ") +
-                        first);
+    throw TopologyError(what + ": invalid mesh: " + std::to_string(total) +
+                        (total == 1 ? " problem: " : " problems: ") + first);
 }
 
 }  // namespace strata

@@ -8,12 +8,12 @@
 
 #include "test_support.h"
 
+#include <sys/wait.h>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <algorithm>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
 
 namespace strata {
 namespace {
@@ -37,8 +37,8 @@ std::string slurp(const std::string& path) {
 /// Run the strata program with \p args (already shell-quoted) in \p dir.
 CliResult strata_cli(const test::ScratchDir& dir, const std::string& args) {
     const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-    const std::string cmd = "cd '" + dir.path().string() + "' && '" + STRATA_CLI + "' " + args + " >'" + out +
-                            "' 2>'" + err + "' </dev/null";
+    const std::string cmd = "cd '" + dir.path().string() + "' && '" + STRATA_CLI + "' " + args + " >'" + out + "' 2>'" +
+                            err + "' </dev/null";
     const int status = std::system(cmd.c_str());
     CliResult r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -99,7 +99,8 @@ TEST(Cli, SurfaceFromStl) {
 
 TEST(Cli, SurfaceFromQuadMsh) {
     test::ScratchDir dir("cli_quads");
-    CliResult r = strata_cli(dir, "surface '" + example_data("sphere_pyhyp_quads.msh") + "' -o s.msh --msh-version 2.2");
+    CliResult r =
+        strata_cli(dir, "surface '" + example_data("sphere_pyhyp_quads.msh") + "' -o s.msh --msh-version 2.2");
     ASSERT_EQ(r.code, 0) << r.err;
     const SurfaceMesh m = read_msh(dir.file("s.msh"));
     EXPECT_EQ(m.num_quads(), 1536);
@@ -113,8 +114,8 @@ TEST(Cli, SurfaceFromMixedMshWithPatchKind) {
     const SurfaceMesh in = read_msh(example_data("onera_m6_mixed_quadtri.msh"));
     ASSERT_FALSE(in.patches.empty());
     const std::string name = in.patches.front().name;
-    CliResult r = strata_cli(dir, "surface '" + example_data("onera_m6_mixed_quadtri.msh") + "' -o m6.msh --patch '" +
-                                name + "=symmetry'");
+    CliResult r = strata_cli(
+        dir, "surface '" + example_data("onera_m6_mixed_quadtri.msh") + "' -o m6.msh --patch '" + name + "=symmetry'");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("symmetry"), std::string::npos) << r.out;
     const SurfaceMesh m = read_msh(dir.file("m6.msh"));
@@ -167,17 +168,17 @@ TEST(Cli, BadInputsFailCleanly) {
     expect_clean_failure("surface '" + test_data("cad_unit_sphere.geo") + "' -o out.xyz123", "out.xyz123", "badext");
     expect_clean_failure("surface '" + example_data("SOURCES.md") + "'" + out, "SOURCES.md", "unknowntype");
     expect_clean_failure("surface '" + example_data("sphere.stl") + "'" + out + " --quads", "sphere.stl", "quadsonstl");
-    expect_clean_failure("surface '" + example_data("sphere.stl") + "'" + out + " --patch nosuch=wall", "nosuch", "patch");
-    expect_clean_failure("surface '" + example_data("sphere.stl") + "'" + out + " --patch wall=wobbly", "wobbly", "kind");
+    expect_clean_failure("surface '" + example_data("sphere.stl") + "'" + out + " --patch nosuch=wall", "nosuch",
+                         "patch");
+    expect_clean_failure("surface '" + example_data("sphere.stl") + "'" + out + " --patch wall=wobbly", "wobbly",
+                         "kind");
     expect_clean_failure("surface '" + example_data("sphere.stl") + "' -o nodir/out.msh", "nodir", "nodir");
     expect_clean_failure("surface '" + example_data("sphere.stl") + "'", "output", "noout");
 }
 
 TEST(Cli, CorruptStepFailsCleanly) {
     test::ScratchDir src("cli_corrupt_src");
-    {
-        std::ofstream(src.file("broken.step")) << "ISO-10303-21;\nthis is not a STEP file\n";
-    }
+    { std::ofstream(src.file("broken.step")) << "ISO-10303-21;\nthis is not a STEP file\n"; }
     expect_clean_failure("surface '" + src.file("broken.step") + "' -o out.msh", "broken.step", "corrupt");
 }
 
@@ -196,7 +197,8 @@ TEST(Cli, LayersBadInputsFailCleanly) {
     expect_clean_failure(in + " --first-height 1e-3", "--layers", "nolayers");
     expect_clean_failure(in + " --layers 5", "first layer height", "noheight");
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --yplus 1 --reynolds 1e6", "--yplus", "twoheights");
-    expect_clean_failure(in + " --layers 5 --first-height 1e-3 --growth 1.2 --thickness 0.1", "--thickness", "overdetermined");
+    expect_clean_failure(in + " --layers 5 --first-height 1e-3 --growth 1.2 --thickness 0.1", "--thickness",
+                         "overdetermined");
     expect_clean_failure(in + " --layers 5 --first-height 1e-2 --thickness 0.01", "thickness", "thin");
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --normals sideways", "sideways", "normals");
     // Plain extrusion into the notched box's concave corner folds: reported, nothing written.
@@ -224,9 +226,10 @@ TEST(Cli, MeshSphereToCobaltAndMsh) {
 
 TEST(Cli, MeshBoxDomainRemeshesTheSidesTheLayersEndOn) {
     test::ScratchDir dir("cli_mesh_planes");
-    CliResult r = strata_cli(dir, "mesh '" + example_data("bl3d_5_body_fin_in_box.brep") +
-                                      "' -o box.su2 --layers 10 --first-height 5e-4 --growth 1.15 --patch surface_1=farfield "
-                                      "--patch surface_2=farfield --patch surface_4=farfield --patch surface_6=farfield");
+    CliResult r =
+        strata_cli(dir, "mesh '" + example_data("bl3d_5_body_fin_in_box.brep") +
+                            "' -o box.su2 --layers 10 --first-height 5e-4 --growth 1.15 --patch surface_1=farfield "
+                            "--patch surface_2=farfield --patch surface_4=farfield --patch surface_6=farfield");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("planes re-meshed around the layers' sides: surface_1, surface_2, surface_4, surface_6"),
               std::string::npos)
@@ -238,10 +241,12 @@ TEST(Cli, MeshBadInputsFailCleanly) {
     // Open, but not along one plane: not a half model that could be closed.
     expect_clean_failure("mesh '" + test_data("cli_open_bent.stl") + "' -o out.cgr --layers 2 --first-height 1e-3",
                          "do not lie in one plane", "notahalfmodel");
-    expect_clean_failure("mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 5 --first-height 1e-3 --farfield cone",
-                         "cone", "farfield");
-    expect_clean_failure("mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 5 --first-height 1e-3 --farfield-size 1",
-                         "farfield-size", "ffsize");
+    expect_clean_failure(
+        "mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 5 --first-height 1e-3 --farfield cone", "cone",
+        "farfield");
+    expect_clean_failure(
+        "mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 5 --first-height 1e-3 --farfield-size 1",
+        "farfield-size", "ffsize");
 }
 
 }  // namespace

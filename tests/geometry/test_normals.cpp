@@ -21,8 +21,8 @@
 namespace strata {
 namespace {
 
-constexpr NormalMethod kMethods[] = {NormalMethod::AreaWeighted, NormalMethod::AngleWeighted,
-                                     NormalMethod::MaxMinDot, NormalMethod::Max};
+constexpr NormalMethod kMethods[] = {NormalMethod::AreaWeighted, NormalMethod::AngleWeighted, NormalMethod::MaxMinDot,
+                                     NormalMethod::Max};
 // The methods that average face normals: first-order accurate on irregular smooth meshes.
 constexpr NormalMethod kFaceAverages[] = {NormalMethod::AreaWeighted, NormalMethod::AngleWeighted,
                                           NormalMethod::MaxMinDot};
@@ -73,12 +73,12 @@ private:
 SurfaceMesh box(double a, double b, double c, int n, Split split) {
     Builder B;
     const Vec3 X(a, 0, 0), Y(0, b, 0), Z(0, 0, c), O = Vec3::Zero();
-    B.grid(O, Y, X, n, n, split);      // z = 0, normal -z
-    B.grid(Z, X, Y, n, n, split);      // z = c, normal +z
-    B.grid(O, X, Z, n, n, split);      // y = 0, normal -y
-    B.grid(Y, Z, X, n, n, split);      // y = b, normal +y
-    B.grid(O, Z, Y, n, n, split);      // x = 0, normal -x
-    B.grid(X, Y, Z, n, n, split);      // x = a, normal +x
+    B.grid(O, Y, X, n, n, split);  // z = 0, normal -z
+    B.grid(Z, X, Y, n, n, split);  // z = c, normal +z
+    B.grid(O, X, Z, n, n, split);  // y = 0, normal -y
+    B.grid(Y, Z, X, n, n, split);  // y = b, normal +y
+    B.grid(O, Z, Y, n, n, split);  // x = 0, normal -x
+    B.grid(X, Y, Z, n, n, split);  // x = a, normal +x
     return B.mesh();
 }
 
@@ -163,12 +163,13 @@ double brute_force_max_min_dot(const std::vector<Vec3>& ns) {
 double max_error_to_sphere(const SurfaceMesh& m, NormalMethod method) {
     const std::vector<Vec3> normals = node_normals(m, method);
     double err = 0.0;
-    for (Index v = 0; v < m.num_points(); ++v)
-        err = std::max(err, (normals[v] - m.points[v].normalized()).norm());
+    for (Index v = 0; v < m.num_points(); ++v) err = std::max(err, (normals[v] - m.points[v].normalized()).norm());
     return err;
 }
 
-Vec3 diagonal(double sx, double sy, double sz) { return Vec3(sx, sy, sz) / std::sqrt(3.0); }
+Vec3 diagonal(double sx, double sy, double sz) {
+    return Vec3(sx, sy, sz) / std::sqrt(3.0);
+}
 
 // ---- names ---------------------------------------------------------------------------
 
@@ -210,7 +211,7 @@ TEST(NodeNormals, UnusedNodeAndNodeWithOnlyDegenerateFacesGetZero) {
     SurfaceMesh m;
     m.patches.push_back({"wall", PatchKind::Wall});
     m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(5, 5, 5),  // 3 is unused
-                Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(4, 0, 0)};                 // collinear
+                Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(4, 0, 0)};                // collinear
     m.add_face({0, 1, 2}, 0);
     m.add_face({4, 5, 6}, 0);  // zero area: nodes 4..6 have no usable face
     for (NormalMethod method : kMethods) {
@@ -274,7 +275,7 @@ TEST(NodeNormals, TriangulatedBoxCornersAndEdges) {
 TEST(NodeNormals, SharpEdgeMaxMinDotIsTheBisector) {
     Builder B;
     B.grid(Vec3::Zero(), Vec3(0, 1, 0), Vec3(-1, 0.7, 0), 3, 4, Split::Alternating);  // +z
-    B.grid(Vec3::Zero(), Vec3(0, 0, -2), Vec3(0, 1, 0), 1, 3, Split::Diagonal02);      // +x
+    B.grid(Vec3::Zero(), Vec3(0, 0, -2), Vec3(0, 1, 0), 1, 3, Split::Diagonal02);     // +x
     const SurfaceMesh& m = B.mesh();
     const Vec3 exact = Vec3(1, 0, 1).normalized();
     const auto robust = node_normals(m, NormalMethod::MaxMinDot);
@@ -324,8 +325,8 @@ TEST(NodeNormals, CubedSphereConvergesAtFirstOrder) {
             const double coarse = max_error_to_sphere(cubed_sphere(20, split), method);
             const double fine = max_error_to_sphere(cubed_sphere(40, split), method);
             std::printf("cubed sphere (%s), %s: max normal error %.3g (20×20 per side), %.3g (40×40)\n",
-                        split == Split::Quads ? "quads" : "triangles",
-                        std::string(to_string(method)).c_str(), coarse, fine);
+                        split == Split::Quads ? "quads" : "triangles", std::string(to_string(method)).c_str(), coarse,
+                        fine);
             EXPECT_LT(fine, 0.7 * coarse) << to_string(method);
             EXPECT_LT(fine, 1e-2) << to_string(method);
         }
@@ -349,7 +350,7 @@ TEST(NodeNormals, MaxIsExactOnCubedSpheres) {
             const std::vector<Vec3> normals = node_normals(m, moved, NormalMethod::Max);
             for (Index v = 0; v < m.num_points(); ++v)
                 // Rounding of coordinates ~7 at edges ~2e-4 long: relative error ~1e-12 in each term.
-            EXPECT_LT((normals[v] - m.points[v]).norm(), 1e-10) << "n " << n << " node " << v;
+                EXPECT_LT((normals[v] - m.points[v]).norm(), 1e-10) << "n " << n << " node " << v;
         }
 }
 
@@ -378,10 +379,10 @@ TEST(NodeNormals, MaxErrorOffTheSphereIsFirstOrderInTheCurvatureDifference) {
         const double umbilic_fine = max_error_on_paraboloid_fans(1.0, 1.0, h / 2);
         const double saddle = max_error_on_paraboloid_fans(1.0, -1.0, h);
         const double saddle_fine = max_error_on_paraboloid_fans(1.0, -1.0, h / 2);
-        std::printf("paraboloid fans, max, h %.3g: max normal error %.3g (k1 = k2 = 1), %.3g (k1 = 1, k2 = -1)\n",
-                    h, umbilic, saddle);
-        EXPECT_LT(umbilic_fine, 0.2 * umbilic) << "h " << h;   // third order (measured 1/8)
-        EXPECT_GT(saddle_fine, 0.45 * saddle) << "h " << h;    // first order (measured 1/2)
+        std::printf("paraboloid fans, max, h %.3g: max normal error %.3g (k1 = k2 = 1), %.3g (k1 = 1, k2 = -1)\n", h,
+                    umbilic, saddle);
+        EXPECT_LT(umbilic_fine, 0.2 * umbilic) << "h " << h;  // third order (measured 1/8)
+        EXPECT_GT(saddle_fine, 0.45 * saddle) << "h " << h;   // first order (measured 1/2)
         EXPECT_LT(saddle_fine, 0.55 * saddle) << "h " << h;
         // Same k1 - k2, different curvatures: the same leading error.
         EXPECT_NEAR(max_error_on_paraboloid_fans(2.0, 1.0, h), max_error_on_paraboloid_fans(1.0, 0.0, h),
@@ -413,8 +414,8 @@ protected:
     static void SetUpTestSuite() {
         CadParams params;
         params.size = 0.05;
-        sphere_ = new SurfaceMesh(orient_surface(
-            merge_coincident_nodes(mesh_cad(test::test_data("cad_unit_sphere.geo"), params))));
+        sphere_ = new SurfaceMesh(
+            orient_surface(merge_coincident_nodes(mesh_cad(test::test_data("cad_unit_sphere.geo"), params))));
     }
     static void TearDownTestSuite() {
         delete sphere_;
@@ -432,9 +433,9 @@ TEST_F(GmshSphere, NormalsAreCloseToExactAtSize005) {
         NormalMethod method;
         double max, mean;
     };
-    for (const Bound& b : {Bound{NormalMethod::AreaWeighted, 2e-2, 2e-3},
-                           Bound{NormalMethod::AngleWeighted, 1e-2, 1e-3},
-                           Bound{NormalMethod::MaxMinDot, 1e-2, 1e-3}}) {
+    for (const Bound& b :
+         {Bound{NormalMethod::AreaWeighted, 2e-2, 2e-3}, Bound{NormalMethod::AngleWeighted, 1e-2, 1e-3},
+          Bound{NormalMethod::MaxMinDot, 1e-2, 1e-3}}) {
         const std::vector<Vec3> normals = node_normals(m, m.points, vf, b.method);
         double max = 0.0, sum = 0.0;
         for (Index v = 0; v < m.num_points(); ++v) {
@@ -466,8 +467,8 @@ TEST_F(GmshSphere, MaxNormalsAreWithin1em3OfExactAtEveryNode) {
         EXPECT_LE(err, 1e-3) << "node " << v << " at " << m.points[v].transpose();
         max = std::max(max, err);
     }
-    std::printf("Gmsh sphere, size 0.05, %d nodes, max: max normal error %.3g\n",
-                static_cast<int>(m.num_points()), max);
+    std::printf("Gmsh sphere, size 0.05, %d nodes, max: max normal error %.3g\n", static_cast<int>(m.num_points()),
+                max);
     EXPECT_LT(max, 1e-3);
 }
 
@@ -513,8 +514,7 @@ void expect_optimal(const SurfaceMesh& m, std::mt19937_64& rng, const std::strin
         const Vec3 g(gauss(rng), gauss(rng), gauss(rng));
         EXPECT_GE(best, min_dot(g.normalized(), ns) - 1e-12) << what;
         // Directions close to the answer probe its local optimality.
-        for (double eps : {1e-3, 1e-6})
-            EXPECT_GE(best, min_dot((robust + eps * g).normalized(), ns) - 1e-12) << what;
+        for (double eps : {1e-3, 1e-6}) EXPECT_GE(best, min_dot((robust + eps * g).normalized(), ns) - 1e-12) << what;
     }
 }
 

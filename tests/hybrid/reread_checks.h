@@ -23,7 +23,8 @@ inline void expect_rereads_valid(const VolumeMesh& m, const ScratchDir& dir, con
     write_cobalt(m, dir.file(name + ".cgr"));
     const CobaltGrid g = read_cobalt(dir.file(name + ".cgr"));
     EXPECT_EQ(g.ncells, m.num_cells());
-    EXPECT_EQ(g.max_nodes_per_face, m.num_cells() == static_cast<Index>(m.tets.size()) ? 3 : 4);  // quads unless all tets
+    EXPECT_EQ(g.max_nodes_per_face,
+              m.num_cells() == static_cast<Index>(m.tets.size()) ? 3 : 4);  // quads unless all tets
     const RebuiltMesh rb = rebuild_mesh(g, read_cobalt_bc(dir.file(name + ".cgr.bc")));
     const ValidationReport rv = validate_mesh(rb.mesh);
     EXPECT_TRUE(rv.ok()) << name << ".cgr: " << (rv.problems.empty() ? "" : rv.problems.front());

@@ -272,7 +272,8 @@ TEST(GmshApi, HalfDomainWithSymmetryPlanesInAUsersModel) {
     gmsh::model::add("channel");
     gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
     gmsh::model::occ::synchronize();
-    const std::array<const char*, 6> names{"symmetry_x0", "symmetry_x1", "symmetry_y0", "symmetry_y1", "floor", "farfield_lid"};
+    const std::array<const char*, 6> names{"symmetry_x0", "symmetry_x1", "symmetry_y0",
+                                           "symmetry_y1", "floor",       "farfield_lid"};
     for (int s = 1; s <= 6; ++s) {
         gmsh::model::addPhysicalGroup(2, {s}, s);
         gmsh::model::setPhysicalName(2, s, names[static_cast<std::size_t>(s - 1)]);

@@ -37,12 +37,12 @@ std::vector<std::string> names(const SurfaceMesh& s, const std::vector<Index>& p
 void expect_valid_case(const std::string& name, const VolumeMesh& m, const HybridReport& rep) {
     ASSERT_TRUE(rep.validation.ok()) << name << ": " << rep.validation.problems.front();
     EXPECT_GT(rep.validation.min_scaled_jacobian, 0.0) << name;
-    std::printf("%s: %zu hex, %zu prisms, %zu pyramids, %zu tets; min scaled Jacobian %.2e (layers %.2e)\n", name.c_str(),
-                m.hexes.size(), m.prisms.size(), m.pyramids.size(), m.tets.size(), rep.validation.min_scaled_jacobian,
-                std::min_element(rep.layer_stats.begin(), rep.layer_stats.end(),
-                                 [](const LayerStats& a, const LayerStats& b) {
-                                     return a.min_scaled_jacobian < b.min_scaled_jacobian;
-                                 })->min_scaled_jacobian);
+    std::printf(
+        "%s: %zu hex, %zu prisms, %zu pyramids, %zu tets; min scaled Jacobian %.2e (layers %.2e)\n", name.c_str(),
+        m.hexes.size(), m.prisms.size(), m.pyramids.size(), m.tets.size(), rep.validation.min_scaled_jacobian,
+        std::min_element(rep.layer_stats.begin(), rep.layer_stats.end(), [](const LayerStats& a, const LayerStats& b) {
+            return a.min_scaled_jacobian < b.min_scaled_jacobian;
+        })->min_scaled_jacobian);
     test::ScratchDir dir("case_" + name);
     test::expect_rereads_valid(m, dir, name);
 }
@@ -63,7 +63,8 @@ TEST(HybridCases, HemisphereCylinderHalfDomainWithSymmetryAndOutflowPlanes) {
     pp.cad.size = 10.0;
     pp.cad.curvature_points = 24;
     pp.cad.size_min = 0.05;
-    pp.patch_kinds = {{"surface_1", PatchKind::Farfield}, {"surface_2", PatchKind::Symmetry}, {"surface_3", PatchKind::Other}};
+    pp.patch_kinds = {
+        {"surface_1", PatchKind::Farfield}, {"surface_2", PatchKind::Symmetry}, {"surface_3", PatchKind::Other}};
     const SurfaceMesh s = prepare_surface(example_data("hemisphere_cylinder_halfdomain.stp"), pp);
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(15, 0.002), nullptr, &rep);
@@ -84,12 +85,14 @@ TEST(HybridCases, HemisphereCylinderHalfDomainWithSymmetryAndOutflowPlanes) {
 
 TEST(HybridCases, BodyFinInABoxWhoseSidesAreFarfield) {
     PrepareParams pp;
-    for (const char* n : {"surface_1", "surface_2", "surface_4", "surface_6"}) pp.patch_kinds.emplace_back(n, PatchKind::Farfield);
+    for (const char* n : {"surface_1", "surface_2", "surface_4", "surface_6"})
+        pp.patch_kinds.emplace_back(n, PatchKind::Farfield);
     const SurfaceMesh s = prepare_surface(example_data("bl3d_5_body_fin_in_box.brep"), pp);
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(20, 5e-4, 1.15), nullptr, &rep);
     // The floor's and the ceiling's layers end on all four sides.
-    EXPECT_EQ(names(s, rep.remeshed_patches), (std::vector<std::string>{"surface_1", "surface_2", "surface_4", "surface_6"}));
+    EXPECT_EQ(names(s, rep.remeshed_patches),
+              (std::vector<std::string>{"surface_1", "surface_2", "surface_4", "surface_6"}));
     expect_valid_case("body_fin_box", m, rep);
 }
 

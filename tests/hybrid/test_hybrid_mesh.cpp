@@ -100,7 +100,8 @@ TEST(HybridMesh, QuadSphereHasEveryCellTypeButTetsAndItWritesAndRereads) {
 /// whose open edge lies in the plane z = 0.
 SurfaceMesh hemisphere_shell(const test::ScratchDir& dir) {
     const std::string geo = dir.file("hemisphere.geo");
-    std::ofstream(geo) << "SetFactory(\"OpenCASCADE\");\nSphere(1) = {0, 0, 0, 1, 0, Pi/2, 2*Pi};\nMesh.MeshSizeMax = 0.15;\n";
+    std::ofstream(geo)
+        << "SetFactory(\"OpenCASCADE\");\nSphere(1) = {0, 0, 0, 1, 0, Pi/2, 2*Pi};\nMesh.MeshSizeMax = 0.15;\n";
     const SurfaceMesh solid = prepare_surface(geo, {});
     SurfaceMesh shell;
     shell.patches = solid.patches;
@@ -160,7 +161,8 @@ TEST(HybridMesh, HalfModelGetsAHalfFarfieldAndASymmetryPlane) {
             }
         }
         if (shape == FarfieldShape::Box) {  // the half box minus the half sphere (faceted: within 1 %)
-            EXPECT_NEAR(rep.validation.cell_volume, 4.0 * h * h * h - 2.0 / 3.0 * std::numbers::pi, 0.03 * 4.0 * h * h * h);
+            EXPECT_NEAR(rep.validation.cell_volume, 4.0 * h * h * h - 2.0 / 3.0 * std::numbers::pi,
+                        0.03 * 4.0 * h * h * h);
             test::expect_rereads_valid(m, dir, "half");
         }
     }

@@ -46,7 +46,8 @@ TEST(OuterBoundary, BoxSidesAreRemeshedAroundTheLayersAndTheMeshIsValid) {
 
     // The four sides were re-meshed, the lid was not.
     std::vector<Index> sides;
-    for (const char* n : {"symmetry_x0", "symmetry_x1", "symmetry_y0", "symmetry_y1"}) sides.push_back(patch_named(s, n));
+    for (const char* n : {"symmetry_x0", "symmetry_x1", "symmetry_y0", "symmetry_y1"})
+        sides.push_back(patch_named(s, n));
     std::sort(sides.begin(), sides.end());
     EXPECT_EQ(rep.remeshed_patches, sides);
 
@@ -84,7 +85,8 @@ TEST(OuterBoundary, BoxSidesAreRemeshedAroundTheLayersAndTheMeshIsValid) {
         // The column above the corner: mesh points with the corner's x and y up to the top.
         int above = 0;
         for (const Vec3& q : m.points)
-            if (q.z() > 0.0 && q.z() < 0.0825 && std::abs(q.x() - p.x()) < 1e-12 && std::abs(q.y() - p.y()) < 1e-12) ++above;
+            if (q.z() > 0.0 && q.z() < 0.0825 && std::abs(q.x() - p.x()) < 1e-12 && std::abs(q.y() - p.y()) < 1e-12)
+                ++above;
         EXPECT_GE(above, 8) << "corner " << p.transpose();
     }
     EXPECT_EQ(corners, 4);
@@ -121,7 +123,8 @@ TEST(OuterBoundary, PatchEdgesAreCutAtTheTopOfTheLayersTheSameWayOnBothSides) {
     }
     const EdgeTable et = edge_table(all);
     for (Index e = 0; e < et.faces.rows(); ++e)
-        ASSERT_EQ(et.faces.row_size(e), 2) << "edge at " << all.points[et.nodes[static_cast<std::size_t>(e)][0]].transpose();
+        ASSERT_EQ(et.faces.row_size(e), 2)
+            << "edge at " << all.points[et.nodes[static_cast<std::size_t>(e)][0]].transpose();
     // The vertical edges were cut: no outer point below the top of the layers on them.
     for (const Vec3& p : ob.mesh.points)
         if ((p.x() == 0.0 || p.x() == 1.0) && (p.y() == 0.0 || p.y() == 1.0)) {

@@ -75,7 +75,9 @@ void expect_flat_plate_exact(const SurfaceMesh& wall, const LayerParams& p, doub
     EXPECT_TRUE(validate_mesh(lm.mesh).ok());
 }
 
-TEST(Layers, FlatPlateQuadsGeometric) { expect_flat_plate_exact(test::quad_grid(8, 6, 0.1), geometric(10, 1e-3, 1.3), 1.0); }
+TEST(Layers, FlatPlateQuadsGeometric) {
+    expect_flat_plate_exact(test::quad_grid(8, 6, 0.1), geometric(10, 1e-3, 1.3), 1.0);
+}
 
 TEST(Layers, FlatPlateTrianglesAllDistributions) {
     const SurfaceMesh wall = split_into_triangles(test::quad_grid(8, 8, 0.1));
@@ -132,7 +134,6 @@ TEST(Layers, SphereQuadsRadii) {
     EXPECT_TRUE(validate_mesh(lm.mesh).ok());
 }
 
-
 /// A box-shaped fluid domain from the Gmsh boundary-layer benchmarks: the box sides given
 /// as farfield (so the closed surface is oriented into the box), the rest walls.
 SurfaceMesh box_domain(const std::string& file, const std::vector<std::string>& farfield) {
@@ -143,7 +144,9 @@ SurfaceMesh box_domain(const std::string& file, const std::vector<std::string>& 
 
 /// 20 layers, growth 1.15, first height 1e-3 of the body size (0.5 for both bodies: the
 /// notch cube's edge, the half-cylinder's diameter), about a tenth of it in all.
-LayerParams concave_case() { return geometric(20, 5e-4, 1.15); }
+LayerParams concave_case() {
+    return geometric(20, 5e-4, 1.15);
+}
 
 double min_jacobian(const LayerMesh& lm) {
     double j = 1.0;
@@ -180,14 +183,15 @@ TEST(Layers, BodyFinJunctionsStayValid) {
     p.concave = false;
     p.keep_invalid = true;
     const LayerMesh without = extrude_layers(wall, p);
-    std::printf("body-fin: min scaled Jacobian %.3f with the concave modification, %.3f without\n",
-                min_jacobian(with), min_jacobian(without));
+    std::printf("body-fin: min scaled Jacobian %.3f with the concave modification, %.3f without\n", min_jacobian(with),
+                min_jacobian(without));
     EXPECT_LE(min_jacobian(without), 0.0);  // without it the fin's leading-edge junction folds
     // The layers end on the box sides: side faces carry the farfield patches they lie on.
     bool side_on_farfield = false;
     for (Index f = 0; f < with.mesh.boundary.num_faces(); ++f)
-        side_on_farfield |= with.mesh.boundary.patches[static_cast<std::size_t>(with.mesh.boundary.face_patch[f])].kind ==
-                            PatchKind::Farfield;
+        side_on_farfield |=
+            with.mesh.boundary.patches[static_cast<std::size_t>(with.mesh.boundary.face_patch[f])].kind ==
+            PatchKind::Farfield;
     EXPECT_TRUE(side_on_farfield);
 }
 
@@ -220,7 +224,8 @@ TEST(Layers, OneraM6RootStaysInSymmetryPlane) {
     for (Index i = 0; i < lm.wall_nodes; ++i) {
         if (wall.points[i].z() != 0.0) continue;
         ++root;
-        for (int k = 1; k <= 20; ++k) EXPECT_LE(std::abs(lm.mesh.points[static_cast<std::size_t>(k * lm.wall_nodes + i)].z()), 1e-12);
+        for (int k = 1; k <= 20; ++k)
+            EXPECT_LE(std::abs(lm.mesh.points[static_cast<std::size_t>(k * lm.wall_nodes + i)].z()), 1e-12);
     }
     EXPECT_GT(root, 100);
     EXPECT_EQ(lm.unsmoothed_nodes, 0);  // root nodes are smoothed with mirror nodes, not frozen
@@ -290,7 +295,8 @@ TEST(Layers, SameOutputForOneAndTwoThreads) {
         p.threads = 2;
         const LayerMesh b = extrude_layers(wall, p);
         ASSERT_EQ(a.mesh.points.size(), b.mesh.points.size());
-        for (std::size_t i = 0; i < a.mesh.points.size(); ++i) ASSERT_EQ(a.mesh.points[i], b.mesh.points[i]) << file << " " << i;
+        for (std::size_t i = 0; i < a.mesh.points.size(); ++i)
+            ASSERT_EQ(a.mesh.points[i], b.mesh.points[i]) << file << " " << i;
     }
 }
 

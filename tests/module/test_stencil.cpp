@@ -30,7 +30,9 @@ Vec3 point_position(const SurfaceMesh& m, const std::vector<MirrorPlane>& planes
     return p.mirror == kNone ? x : planes[static_cast<std::size_t>(p.mirror)].reflect(x);
 }
 
-std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
+std::size_t sz(Index i) {
+    return static_cast<std::size_t>(i);
+}
 
 /// The five derivatives at node o of the field f evaluated at every stencil point's position
 /// (ghost points at their mirrored position).
@@ -197,11 +199,8 @@ TEST(Stencil, StructuredGridGivesCentralDifferences) {
             ASSERT_EQ(bi, -aj) << "neighbour 1 is not neighbour 0 turned 90° counter-clockwise";
             ASSERT_EQ(bj, ai);
             auto F = [&](int p, int q) { return f[sz(id(i + p * ai + q * bi, j + p * aj + q * bj))]; };
-            const D5 want{(F(1, 0) - F(-1, 0)) / 2,
-                          (F(0, 1) - F(0, -1)) / 2,
-                          F(1, 0) - 2 * F(0, 0) + F(-1, 0),
-                          (F(1, 1) - F(-1, 1) - F(1, -1) + F(-1, -1)) / 4,
-                          F(0, 1) - 2 * F(0, 0) + F(0, -1)};
+            const D5 want{(F(1, 0) - F(-1, 0)) / 2, (F(0, 1) - F(0, -1)) / 2, F(1, 0) - 2 * F(0, 0) + F(-1, 0),
+                          (F(1, 1) - F(-1, 1) - F(1, -1) + F(-1, -1)) / 4, F(0, 1) - 2 * F(0, 0) + F(0, -1)};
             expect_d5(apply_values(s, o, f), want, 1e-14, "node (" + std::to_string(i) + "," + std::to_string(j) + ")");
 
             // 4 edge neighbours (the ring, in order) then the 4 quad diagonals (sectors in order).
@@ -237,10 +236,12 @@ TEST(Stencil, M4WeightsAreExactlyTheCentralDifferenceWeights) {
     const std::size_t b = sz(s.offsets[sz(o)]);
     ASSERT_EQ(s.offsets[sz(o) + 1] - s.offsets[sz(o)], 8);
     // Edge neighbours at θ = 0, 90, 180, 270°; diagonals at 45, 135, 225, 315°.
-    const std::array<D5, 8> want{D5{0.5, 0, 1, 0, 0}, D5{0, 0.5, 0, 0, 1},   D5{-0.5, 0, 1, 0, 0}, D5{0, -0.5, 0, 0, 1},
-                                 D5{0, 0, 0, 0.25, 0}, D5{0, 0, 0, -0.25, 0}, D5{0, 0, 0, 0.25, 0}, D5{0, 0, 0, -0.25, 0}};
+    const std::array<D5, 8> want{D5{0.5, 0, 1, 0, 0},  D5{0, 0.5, 0, 0, 1},  D5{-0.5, 0, 1, 0, 0},
+                                 D5{0, -0.5, 0, 0, 1}, D5{0, 0, 0, 0.25, 0}, D5{0, 0, 0, -0.25, 0},
+                                 D5{0, 0, 0, 0.25, 0}, D5{0, 0, 0, -0.25, 0}};
     for (std::size_t k = 0; k < 8; ++k)
-        for (std::size_t d = 0; d < 5; ++d) EXPECT_EQ(s.weights[b + k][d], want[k][d]) << "point " << k << " derivative " << d;
+        for (std::size_t d = 0; d < 5; ++d)
+            EXPECT_EQ(s.weights[b + k][d], want[k][d]) << "point " << k << " derivative " << d;
     const D5 centre{0, 0, -2, 0, -2};
     for (std::size_t d = 0; d < 5; ++d) EXPECT_EQ(s.centre[sz(o)][d], centre[d]) << "derivative " << d;
 }
@@ -279,8 +280,11 @@ TEST_P(TriangleFan, ExactForQuadratics) {
     for (Index o = 1; o < m.num_points(); ++o) EXPECT_FALSE(s.valid[sz(o)]);
 }
 
-INSTANTIATE_TEST_SUITE_P(Valence, TriangleFan, ::testing::Values(5, 6, 7, 8, 9, 10, 11, 12, 20),
-                         [](const auto& p) { std::string name = "M"; name += std::to_string(p.param); return name; });
+INSTANTIATE_TEST_SUITE_P(Valence, TriangleFan, ::testing::Values(5, 6, 7, 8, 9, 10, 11, 12, 20), [](const auto& p) {
+    std::string name = "M";
+    name += std::to_string(p.param);
+    return name;
+});
 
 TEST(Stencil, Eq8WeightsAreTheFormula) {
     // Compare the weights themselves with ALGORITHM.md Eq. 8 for M = 7.
@@ -563,8 +567,10 @@ TEST(Stencil, MixedRingM4) {
         // Diagonal k sits at logical (±1, ±1) in the quadrant of sector k.
         const Vec3 p = m.points[sz(pts[4 + k].node)];
         const double th = kPi / 4 + kPi / 2 * static_cast<double>(k);
-        EXPECT_NEAR(fr.xi(p), std::sqrt(2.0) * std::cos(th), 1e-14) << "diagonal " << k << " is node " << pts[4 + k].node;
-        EXPECT_NEAR(fr.eta(p), std::sqrt(2.0) * std::sin(th), 1e-14) << "diagonal " << k << " is node " << pts[4 + k].node;
+        EXPECT_NEAR(fr.xi(p), std::sqrt(2.0) * std::cos(th), 1e-14)
+            << "diagonal " << k << " is node " << pts[4 + k].node;
+        EXPECT_NEAR(fr.eta(p), std::sqrt(2.0) * std::sin(th), 1e-14)
+            << "diagonal " << k << " is node " << pts[4 + k].node;
     }
     bool has_se = false;
     for (const auto& p : pts) {
@@ -635,8 +641,8 @@ TEST(Stencil, GridEdgeOnSymmetryPlaneIsCompletedByMirrorImages) {
         ASSERT_EQ(pts.size(), 8u);
         // Completed ring E, N, W, N' (ghost of N) and diagonals NE, NW, NW', NE'.
         const Index E = id(i + 1, 0), N = id(i, 1), W = id(i - 1, 0), NE = id(i + 1, 1), NW = id(i - 1, 1);
-        const std::array<StencilPoint, 8> want{StencilPoint{E, kNone}, {N, kNone},  {W, kNone},  {N, 0},
-                                               StencilPoint{NE, kNone}, {NW, kNone}, {NW, 0}, {NE, 0}};
+        const std::array<StencilPoint, 8> want{StencilPoint{E, kNone},  {N, kNone},  {W, kNone}, {N, 0},
+                                               StencilPoint{NE, kNone}, {NW, kNone}, {NW, 0},    {NE, 0}};
         for (std::size_t k = 0; k < 8; ++k) {
             EXPECT_EQ(pts[k].node, want[k].node) << "node (" << i << ",0) point " << k;
             EXPECT_EQ(pts[k].mirror, want[k].mirror) << "node (" << i << ",0) point " << k;
@@ -652,7 +658,9 @@ TEST(Stencil, GridEdgeOnSymmetryPlaneIsCompletedByMirrorImages) {
         // symmetric field means): exact, and the odd derivatives vanish.
         std::uniform_real_distribution<double> u(-2.0, 2.0);
         const double a = u(rng), b = u(rng), d = u(rng), g = u(rng), h = u(rng);
-        auto f = [&](const Vec3& p) { return a + b * p.x() + d * p.x() * p.x() + g * p.y() * p.y() + h * p.x() * p.y() * p.y(); };
+        auto f = [&](const Vec3& p) {
+            return a + b * p.x() + d * p.x() * p.x() + g * p.y() * p.y() + h * p.x() * p.y() * p.y();
+        };
         std::vector<double> v(sz(m.num_points()));
         for (Index k = 0; k < m.num_points(); ++k) v[sz(k)] = f(m.points[sz(k)]);
         const D5 got = apply_values(s, o, v);
@@ -725,7 +733,8 @@ TEST(Stencil, OpenTriangleRingOnPlaneMirrorsFarVertices) {
     // open M = 3 completes to M = 4 with diagonals NE, NW and their mirror images.
     SurfaceMesh m;
     m.patches.push_back({"wall", PatchKind::Wall});
-    const std::array<Vec3, 6> p{Vec3(0., 0., 0.), Vec3(1., 0., 0.), Vec3(0., 1., 0.), Vec3(-1., 0., 0.), Vec3(1., 1., 0.), Vec3(-1., 1., 0.)};
+    const std::array<Vec3, 6> p{Vec3(0., 0., 0.),  Vec3(1., 0., 0.), Vec3(0., 1., 0.),
+                                Vec3(-1., 0., 0.), Vec3(1., 1., 0.), Vec3(-1., 1., 0.)};
     for (const Vec3& x : p) m.points.push_back(x + Vec3(3.0, 0.0, -2.0));
     m.add_face({0, 1, 2}, 0);
     m.add_face({0, 2, 3}, 0);
@@ -753,7 +762,8 @@ TEST(Stencil, OpenTriangleRingOnPlaneMirrorsFarVertices) {
 TEST(Stencil, OpenTriangleRingOnPlaneWithoutFarVerticesIsInvalid) {
     SurfaceMesh m;
     m.patches.push_back({"wall", PatchKind::Wall});
-    for (const Vec3& x : {Vec3(0., 0., 0.), Vec3(1., 0., 0.), Vec3(0., 1., 0.), Vec3(-1., 0., 0.)}) m.points.push_back(x);
+    for (const Vec3& x : {Vec3(0., 0., 0.), Vec3(1., 0., 0.), Vec3(0., 1., 0.), Vec3(-1., 0., 0.)})
+        m.points.push_back(x);
     m.add_face({0, 1, 2}, 0);
     m.add_face({0, 2, 3}, 0);
     std::vector<MirrorPlane> planes(1);

@@ -65,13 +65,12 @@ Vec3 max_min_dot_direction(const std::vector<Vec3>& directions, double* min_dot 
 /// from mesh.points: the module calls this on every layer). A node no usable face touches gets
 /// (0,0,0), as does a node whose face normals cancel (a folded surface). Nodes are independent
 /// of each other. Throws InputError if \p points does not have one entry per mesh node.
-std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
-                               NormalMethod method);
+std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, NormalMethod method);
 /// Same, with the node → face adjacency (vertex_faces(mesh)) precomputed by the caller; it
 /// allocates nothing but the result, so it suits a loop over smoothing sweeps. Throws
 /// InputError if \p vertex_faces does not have one row per node.
-std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
-                               const Csr& vertex_faces, NormalMethod method);
+std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Csr& vertex_faces,
+                               NormalMethod method);
 inline std::vector<Vec3> node_normals(const SurfaceMesh& mesh, NormalMethod method) {
     return node_normals(mesh, mesh.points, method);
 }

@@ -14,8 +14,8 @@ FarfieldShape parse_farfield_shape(std::string_view text);
 
 struct FarfieldParams {
     FarfieldShape shape = FarfieldShape::Sphere;
-    double size = 20.0;     ///< extent as a multiple of the body's bounding-box diagonal
-    int divisions = 16;     ///< triangles along a box edge / icosphere refinement level control
+    double size = 20.0;  ///< extent as a multiple of the body's bounding-box diagonal
+    int divisions = 16;  ///< triangles along a box edge / icosphere refinement level control
 };
 
 /// A closed triangulated box or sphere around \p body_points, centred on their bounding box,

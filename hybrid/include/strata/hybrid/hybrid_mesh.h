@@ -23,7 +23,8 @@ struct HybridParams {
 struct HybridReport {
     std::vector<LayerStats> layer_stats;
     Index unsmoothed_nodes = 0;
-    std::vector<Index> remeshed_patches;  ///< patches (of the result's boundary) re-meshed around the layers' side faces
+    std::vector<Index>
+        remeshed_patches;  ///< patches (of the result's boundary) re-meshed around the layers' side faces
     /// The input was a half model (walls open along one plane): a half farfield and a
     /// "symmetry" patch were generated; their patches follow the input's.
     bool closed_half_model = false;

@@ -14,13 +14,16 @@ struct PyramidParams {
     /// Apex height relative to the quad's size (mean edge length): √2/2 gives equilateral
     /// triangle sides on a square. Shortened where it would hit something.
     double height = 0.5;
-    double min_height = 0.02;  ///< lowest apex, relative to the quad's shortest edge; below it the quad cannot be covered: error
+    double min_height =
+        0.02;  ///< lowest apex, relative to the quad's shortest edge; below it the quad cannot be covered: error
 };
 
 struct PyramidLayer {
-    std::vector<Vec3> apexes;                   ///< one per pyramid
-    std::vector<std::array<Index, 5>> pyramids; ///< base = top-surface quad ids (surface node ids), apex = surface.num_points() + k; Gmsh order
-    SurfaceMesh surface;  ///< the new outer surface: the top's triangles plus 4 triangles per pyramid; points = top points + apexes
+    std::vector<Vec3> apexes;  ///< one per pyramid
+    std::vector<std::array<Index, 5>>
+        pyramids;  ///< base = top-surface quad ids (surface node ids), apex = surface.num_points() + k; Gmsh order
+    SurfaceMesh surface;  ///< the new outer surface: the top's triangles plus 4 triangles per pyramid; points = top
+                          ///< points + apexes
 };
 
 /// Cap every quad of \p top (oriented with normals pointing away from the layers, into the

@@ -11,10 +11,10 @@
 namespace strata {
 
 struct TetFillParams {
-    double radius_edge = 1.5;     ///< quality bound (TetGen -q), ≥ 1.2 recommended
-    double min_dihedral = 0.0;    ///< extra dihedral bound in degrees (-q/ratio/angle); 0 = TetGen's default
-    bool refine = true;           ///< add interior Steiner points for quality and size (never on the boundary)
-    double max_volume = 0.0;      ///< global volume bound per tetrahedron (-a); 0 = none
+    double radius_edge = 1.5;   ///< quality bound (TetGen -q), ≥ 1.2 recommended
+    double min_dihedral = 0.0;  ///< extra dihedral bound in degrees (-q/ratio/angle); 0 = TetGen's default
+    bool refine = true;         ///< add interior Steiner points for quality and size (never on the boundary)
+    double max_volume = 0.0;    ///< global volume bound per tetrahedron (-a); 0 = none
     /// Size grading: target edge length grows linearly with distance from the boundary faces
     /// whose patch is not Farfield (the layer top): h(d) = h_wall + growth × d, capped at the
     /// farfield's own edge length. 0 = no sizing field.

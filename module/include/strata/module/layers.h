@@ -15,12 +15,12 @@ namespace strata {
 
 /// Parameters of layer generation. Lengths in model units.
 struct LayerParams {
-    DistributionParams distribution;          ///< number of layers and their heights
-    int sweeps = 10;                          ///< point-Jacobi sweeps per layer (the paper's ten)
-    int max_sweeps = 50;                      ///< extra sweeps allowed while the residual is high
-    double tolerance = 1e-3;                  ///< stop extra sweeps when max update < tolerance × δ_k
-    bool control_functions = true;            ///< Φ, Ψ from the wall, Θ from the distribution
-    bool concave = true;                      ///< the concave-region modification (Eqs. 15–18)
+    DistributionParams distribution;  ///< number of layers and their heights
+    int sweeps = 10;                  ///< point-Jacobi sweeps per layer (the paper's ten)
+    int max_sweeps = 50;              ///< extra sweeps allowed while the residual is high
+    double tolerance = 1e-3;          ///< stop extra sweeps when max update < tolerance × δ_k
+    bool control_functions = true;    ///< Φ, Ψ from the wall, Θ from the distribution
+    bool concave = true;              ///< the concave-region modification (Eqs. 15–18)
     /// Cap on ν_m in the literal reading ν_m = (g_m/g33 − 1) f(α_m); 0 selects the bounded
     /// reading (1 − g33/g_m) f(α_m). Measured on the notched box and the body-fin junction
     /// (ALGORITHM.md section 6 cases): a cap of 10 keeps every cell valid where the bounded
@@ -29,14 +29,14 @@ struct LayerParams {
     /// Node normals per level. The paper's area weighting tilts at sharp edges and corners
     /// (the fin's trailing edge inverts the first layer); the max-min normal does not.
     NormalMethod normals = NormalMethod::MaxMinDot;
-    bool smoothing = true;                    ///< false: plain normal extrusion (reference mesh only)
+    bool smoothing = true;  ///< false: plain normal extrusion (reference mesh only)
     /// Where a layer's cells would still invert after smoothing, stop the layer locally instead
     /// of throwing: the nodes of those cells drop their smoothing, march along the direction
     /// that is best for their cells' corners and are lowered until the cells are valid
     /// (LayerStats::held_nodes counts them). Only where smoothing runs (smoothing, max_sweeps
     /// > 0): plain extrusion stays the bare reference mesh. Never with keep_invalid.
     bool hold_back = true;
-    int threads = 0;                          ///< OpenMP threads; 0 = OpenMP's default
+    int threads = 0;  ///< OpenMP threads; 0 = OpenMP's default
     /// Diagnostics only: return layers with inverted cells instead of throwing (the stats
     /// then show min_scaled_jacobian ≤ 0), as marched: nothing is held back. Never used for a
     /// mesh that is written.
@@ -50,15 +50,15 @@ struct LayerStats {
     double mean_scaled_jacobian = 0.0;
     double max_orthogonality_deg = 0.0;  ///< largest angle between a layer edge and the wall-side face normal
     double mean_orthogonality_deg = 0.0;
-    int sweeps = 0;                    ///< sweeps done
-    Index held_nodes = 0;              ///< nodes held back (lowered, unsmoothed) to keep the layer valid
+    int sweeps = 0;        ///< sweeps done
+    Index held_nodes = 0;  ///< nodes held back (lowered, unsmoothed) to keep the layer valid
 };
 
 /// The layers: a volume mesh of prisms (on triangles) and hexahedra (on quads), node
 /// `k * nw + i` being wall node i on level k (nw = wall node count).
 struct LayerMesh {
-    VolumeMesh mesh;            ///< boundary: wall patches, side faces on open-boundary patches, "layer_top"
-    SurfaceMesh top;            ///< outermost level as a surface (same faces as the wall), for the next stage
+    VolumeMesh mesh;                ///< boundary: wall patches, side faces on open-boundary patches, "layer_top"
+    SurfaceMesh top;                ///< outermost level as a surface (same faces as the wall), for the next stage
     std::vector<LayerStats> stats;  ///< one per layer
     Index wall_nodes = 0;
     std::vector<Index> input_node;  ///< wall node → node of the input surface
@@ -70,8 +70,8 @@ struct LayerMesh {
 /// Extrude \p wall (oriented, normals into the flow; faces on Wall patches are extruded).
 /// Open boundaries of the wall keep their nodes on the planar non-wall patches they meet (a
 /// symmetry or outflow plane, a box side; along the line where two such planes meet), or, with
-/// no such patch, in the plane of the open boundary loop if it is planar. Throws TopologyError naming the layer, face and position of the first
-/// cell that would invert.
+/// no such patch, in the plane of the open boundary loop if it is planar. Throws TopologyError naming the layer, face
+/// and position of the first cell that would invert.
 LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, Progress* progress = nullptr);
 
 }  // namespace strata
