@@ -289,6 +289,7 @@ std::string switches(const TetFillParams& p, bool sizing, bool background) {
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
     std::string s = "pYzQ";
     if (background) {
+        s += 'c';  // keep the convex hull: every walk towards a point stays inside the mesh
         s += 'q';
         s += fmt("%.17g", kBackgroundRatio);
         return s;
@@ -760,10 +761,10 @@ namespace {
 
 /// The boundary of the background mesh: \p b with its farfield 1 % larger (about the
 /// farfield's centroid). TetGen locates every point of the final mesh in the background
-/// mesh, and a point on its outer hull makes the walk leave the mesh and fall back to a search
-/// of every tet (20 s for the mixed M6's 2,500 farfield points); inside a slightly larger
-/// farfield every point is found by walking. Unchanged when the farfield shares a point with
-/// another patch (it is not a separate closed surface then).
+/// mesh by walking, and a walk that leaves the mesh falls back to a search of every tet; the
+/// background mesh is therefore the whole convex hull (switch c, no holes: the cavities are
+/// meshed too), and its farfield points lie just outside every point of the final mesh. Unchanged when the farfield
+/// shares a point with another patch (it is not a separate closed surface then).
 SurfaceMesh background_boundary(const SurfaceMesh& b) {
     std::vector<char> far(static_cast<std::size_t>(b.num_points()), 0), other(far.size(), 0);
     for (Index f = 0; f < b.num_faces(); ++f) {
@@ -813,7 +814,7 @@ TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& hol
     tetgenio background;
     {
         tetgenio bg_in;
-        set_plc(bg_in, background_boundary(boundary), holes);
+        set_plc(bg_in, background_boundary(boundary), {});  // convex, cavities included (c, no holes)
         run_tetgen(switches(params, false, true), bg_in, background, nullptr);
     }
     if (background.numberofpoints < boundary.num_points() || background.numberoftetrahedra <= 0)
