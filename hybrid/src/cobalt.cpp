@@ -87,18 +87,7 @@ public:
     std::uint64_t num_slots() const { return slot_start_[4]; }
     std::uint64_t slot_start(int t) const { return slot_start_[t]; }
 
-    const Index* nodes(int t, std::int64_t i) const {
-        switch (t) {
-            case 0:
-                return m_.tets[i].data();
-            case 1:
-                return m_.pyramids[i].data();
-            case 2:
-                return m_.prisms[i].data();
-            default:
-                return m_.hexes[i].data();
-        }
-    }
+    const Index* nodes(int t, std::int64_t i) const { return cell_nodes(m_, t, i); }
 
     struct Slot {
         int type;

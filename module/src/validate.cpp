@@ -158,18 +158,7 @@ public:
     std::int64_t start(int t) const { return start_[t]; }
     std::int64_t count(int t) const { return start_[t + 1] - start_[t]; }
 
-    const Index* nodes(int t, std::int64_t i) const {
-        switch (t) {
-            case 0:
-                return m_.tets[i].data();
-            case 1:
-                return m_.pyramids[i].data();
-            case 2:
-                return m_.prisms[i].data();
-            default:
-                return m_.hexes[i].data();
-        }
-    }
+    const Index* nodes(int t, std::int64_t i) const { return cell_nodes(m_, t, i); }
     /// Type index (0..3) and index within the type of global cell \p g.
     std::pair<int, std::int64_t> locate(std::int64_t g) const {
         int t = 0;

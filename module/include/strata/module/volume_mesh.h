@@ -6,6 +6,7 @@
 #include <strata/geometry/surface_mesh.h>
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,22 @@ struct VolumeMesh {
         return static_cast<Index>(tets.size() + pyramids.size() + prisms.size() + hexes.size());
     }
 };
+
+/// The corners of cell \p i of type \p type (0 tet, 1 pyramid, 2 prism, 3 hexahedron: the
+/// order of CellType) in \p m.
+inline const Index* cell_nodes(const VolumeMesh& m, int type, std::int64_t i) {
+    const auto k = static_cast<std::size_t>(i);
+    switch (type) {
+        case 0:
+            return m.tets[k].data();
+        case 1:
+            return m.pyramids[k].data();
+        case 2:
+            return m.prisms[k].data();
+        default:
+            return m.hexes[k].data();
+    }
+}
 
 /// Refuse a malformed mesh before a writer hands it on: no cells, a node id out of range, a
 /// non-finite coordinate, malformed boundary CSR, a boundary face that is not a triangle or a
