@@ -47,6 +47,14 @@ void expect_valid_case(const std::string& name, const VolumeMesh& m, const Hybri
     test::expect_rereads_valid(m, dir, name);
 }
 
+TEST(HybridCases, SphereStlInAGeneratedFarfield) {
+    const SurfaceMesh s = prepare_surface(example_data("sphere.stl"), {});
+    HybridReport rep;
+    const VolumeMesh m = build_hybrid_mesh(s, params(10, 1e-3), nullptr, &rep);
+    EXPECT_EQ(m.prisms.size(), 10u * static_cast<std::size_t>(s.num_faces()));
+    expect_valid_case("sphere_stl", m, rep);
+}
+
 TEST(HybridCases, OneraM6FromStep) {
     PrepareParams pp;
     pp.cad.size = 60.0;  // mm; the wing's span is 1196
