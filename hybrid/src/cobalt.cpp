@@ -141,51 +141,19 @@ private:
 // Face matching. A face code is a slot (< num_slots) or num_slots + boundary face index.
 
 template <class Code>
-using Buckets = FaceBuckets<Code>;
-
-template <class Code>
-Buckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
-    const SurfaceMesh& bnd = mesh.boundary;
-    // Two passes (count, fill) over the same traversal, visiting faces in code order, so each
-    // bucket holds its codes in ascending order.
-    auto for_each_face = [&](auto&& visit) {
-        for (int t = 0; t < 4; ++t) {
-            const FaceTable& table = cell_faces(kTypes[t]);
-            std::uint64_t slot = cells.slot_start(t);
-            for (std::int64_t i = 0; i < cells.count(t); ++i) {
-                const Index* v = cells.nodes(t, i);
-                for (int f = 0; f < table.count; ++f, ++slot) {
-                    Index m = v[table.node[f][0]];
-                    for (int k = 1; k < table.size[f]; ++k) m = std::min(m, v[table.node[f][k]]);
-                    visit(m, slot);
-                }
-            }
-        }
-        for (Index f = 0; f < bnd.num_faces(); ++f)
-            visit(*std::min_element(bnd.face_begin(f), bnd.face_end(f)),
-                  cells.num_slots() + static_cast<std::uint64_t>(f));
-    };
-    return bucket_faces_by_key<Code>(mesh.points.size(), for_each_face);
+FaceBuckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
+    // Codes in ascending order within each bucket: the slot order.
+    return bucket_faces_by_min_node<Code>(
+        mesh,
+        [&](int t, std::int64_t i, int f) {
+            return cells.slot_start(t) +
+                   static_cast<std::uint64_t>(i) * static_cast<std::uint64_t>(cell_faces(kTypes[t]).count) +
+                   static_cast<std::uint64_t>(f);
+        },
+        [&](Index f) { return cells.num_slots() + static_cast<std::uint64_t>(f); });
 }
 
-struct Item {
-    std::array<Index, 4> key;
-    std::uint64_t code;
-    bool operator<(const Item& o) const { return key != o.key ? key < o.key : code < o.code; }
-};
-
-/// Same cyclic order: +1; reversed: −1; otherwise 0.
-int relative_orientation(const Index* f, const Index* g, int n) {
-    int k = 0;
-    while (k < n && g[k] != f[0]) ++k;
-    if (k == n) return 0;
-    bool same = true, reversed = true;
-    for (int i = 0; i < n; ++i) {
-        same = same && g[(k + i) % n] == f[i];
-        reversed = reversed && g[(k - i + n) % n] == f[i];
-    }
-    return same ? 1 : reversed ? -1 : 0;
-}
+using Item = KeyedFace;  // module/cell_faces.h
 
 /// For each slot, the second cell of the face as written (1-based cell, or −patch number)
 /// when the slot's cell is the face's c1, and 0 when the face is written from the other cell.
@@ -204,7 +172,7 @@ private:
     template <class Code>
     std::vector<Index> run_with() {
         std::vector<Index> other(cells_.num_slots(), 0);
-        const Buckets<Code> buckets = bucket_faces<Code>(mesh_, cells_);
+        const FaceBuckets<Code> buckets = bucket_faces<Code>(mesh_, cells_);
         std::vector<Item> items;
         std::vector<std::uint64_t> cs, bs;
         Index v[4];

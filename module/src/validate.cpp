@@ -64,19 +64,6 @@ std::string fmt_nodes(const Index* v, int n) {
     return s;
 }
 
-/// Same cyclic order: +1; reversed: −1; same nodes in another order (or not the same): 0.
-int relative_orientation(const Index* f, const Index* g, int n) {
-    int k = 0;
-    while (k < n && g[k] != f[0]) ++k;
-    if (k == n) return 0;
-    bool same = true, reversed = true;
-    for (int i = 0; i < n; ++i) {
-        same = same && g[(k + i) % n] == f[i];
-        reversed = reversed && g[(k - i + n) % n] == f[i];
-    }
-    return same ? 1 : reversed ? -1 : 0;
-}
-
 // ---------------------------------------------------------------------------------------
 // Problems: at most kMaxPerKind lines per kind, then a count.
 
@@ -409,38 +396,16 @@ struct MatchResult {
 };
 
 template <class Code>
-using Buckets = FaceBuckets<Code>;
-
-template <class Code>
-Buckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
-    const SurfaceMesh& bnd = mesh.boundary;
-    // Two passes (count, fill) over the same traversal, visiting faces in code order.
-    auto for_each_face = [&](auto&& visit) {
-        for (int t = 0; t < 4; ++t) {
-            const FaceTable& table = cell_faces(kTypes[t]);
-            for (std::int64_t i = 0; i < cells.count(t); ++i) {
-                const Index* v = cells.nodes(t, i);
-                const auto base = static_cast<std::uint64_t>(cells.start(t) + i) << 3;
-                for (int f = 0; f < table.count; ++f) {
-                    Index m = v[table.node[f][0]];
-                    for (int k = 1; k < table.size[f]; ++k) m = std::min(m, v[table.node[f][k]]);
-                    visit(m, base | static_cast<std::uint64_t>(f));
-                }
-            }
-        }
-        for (Index f = 0; f < bnd.num_faces(); ++f) {
-            const Index m = *std::min_element(bnd.face_begin(f), bnd.face_end(f));
-            visit(m, static_cast<std::uint64_t>(cells.count() + f) << 3);
-        }
-    };
-    return bucket_faces_by_key<Code>(mesh.points.size(), for_each_face);
+FaceBuckets<Code> bucket_faces(const VolumeMesh& mesh, const Cells& cells) {
+    return bucket_faces_by_min_node<Code>(
+        mesh,
+        [&](int t, std::int64_t i, int f) {
+            return (static_cast<std::uint64_t>(cells.start(t) + i) << 3) | static_cast<std::uint64_t>(f);
+        },
+        [&](Index f) { return static_cast<std::uint64_t>(cells.count() + f) << 3; });
 }
 
-struct Item {
-    std::array<Index, 4> key;  // sorted nodes; a triangle's 4th entry is kNone
-    std::uint64_t code;
-    bool operator<(const Item& o) const { return key != o.key ? key < o.key : code < o.code; }
-};
+using Item = KeyedFace;  // module/cell_faces.h
 
 /// Judge one group of faces with the same node set: \p cs cell faces, \p bs boundary faces.
 void judge_group(const FaceCodec& codec, const std::vector<std::uint64_t>& cs, const std::vector<std::uint64_t>& bs,
@@ -526,7 +491,7 @@ constexpr std::size_t kNodeChunk = 1 << 14;
 
 template <class Code>
 MatchResult match_faces_with(const VolumeMesh& mesh, const Cells& cells) {
-    const Buckets<Code> buckets = bucket_faces<Code>(mesh, cells);
+    const FaceBuckets<Code> buckets = bucket_faces<Code>(mesh, cells);
     const FaceCodec codec{mesh, cells};
     const std::size_t num_nodes = mesh.points.size();
     const std::size_t chunks = (num_nodes + kNodeChunk - 1) / kNodeChunk;

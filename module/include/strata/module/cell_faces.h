@@ -7,6 +7,7 @@
 
 #include <strata/module/volume_mesh.h>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -21,7 +22,8 @@ struct CellFaceTable {
     std::array<std::array<int, 4>, 6> node;  ///< local corner ids per face
 };
 
-inline constexpr CellFaceTable kTetFaces{4, {3, 3, 3, 3, 0, 0}, {{{0, 2, 1, 0}, {0, 1, 3, 0}, {0, 3, 2, 0}, {3, 1, 2, 0}}}};
+inline constexpr CellFaceTable kTetFaces{
+    4, {3, 3, 3, 3, 0, 0}, {{{0, 2, 1, 0}, {0, 1, 3, 0}, {0, 3, 2, 0}, {3, 1, 2, 0}}}};
 inline constexpr CellFaceTable kPyramidFaces{
     5, {4, 3, 3, 3, 3, 0}, {{{0, 3, 2, 1}, {0, 1, 4, 0}, {3, 0, 4, 0}, {1, 2, 4, 0}, {2, 3, 4, 0}}}};
 inline constexpr CellFaceTable kPrismFaces{
@@ -34,10 +36,14 @@ inline constexpr std::array<CellType, 4> kCellTypes{CellType::Tet, CellType::Pyr
 
 inline const CellFaceTable& cell_faces(CellType t) {
     switch (t) {
-        case CellType::Tet: return kTetFaces;
-        case CellType::Pyramid: return kPyramidFaces;
-        case CellType::Prism: return kPrismFaces;
-        case CellType::Hex: return kHexFaces;
+        case CellType::Tet:
+            return kTetFaces;
+        case CellType::Pyramid:
+            return kPyramidFaces;
+        case CellType::Prism:
+            return kPrismFaces;
+        case CellType::Hex:
+            return kHexFaces;
     }
     return kTetFaces;
 }
@@ -82,8 +88,58 @@ FaceBuckets<Code> bucket_faces_by_key(std::size_t num_keys, ForEachFace&& for_ea
     for (std::size_t i = 1; i < b.offsets.size(); ++i) b.offsets[i] += b.offsets[i - 1];
     b.codes.resize(b.offsets.back());
     std::vector<std::size_t> fill(b.offsets.begin(), b.offsets.end() - 1);
-    for_each_face([&](Index key, std::uint64_t code) { b.codes[fill[static_cast<std::size_t>(key)]++] = static_cast<Code>(code); });
+    for_each_face([&](Index key, std::uint64_t code) {
+        b.codes[fill[static_cast<std::size_t>(key)]++] = static_cast<Code>(code);
+    });
     return b;
 }
+
+/// Every face of \p mesh grouped by its smallest node (bucket_faces_by_key): the faces of the
+/// cells (types in kCellTypes order, cells in order, faces in cell_faces order) with code
+/// \p cell_code(type, cell, face), then the boundary faces with code \p boundary_code(face).
+template <class Code, class CellCode, class BoundaryCode>
+FaceBuckets<Code> bucket_faces_by_min_node(const VolumeMesh& mesh, CellCode&& cell_code, BoundaryCode&& boundary_code) {
+    const SurfaceMesh& bnd = mesh.boundary;
+    const std::array<std::int64_t, 4> counts{
+        static_cast<std::int64_t>(mesh.tets.size()), static_cast<std::int64_t>(mesh.pyramids.size()),
+        static_cast<std::int64_t>(mesh.prisms.size()), static_cast<std::int64_t>(mesh.hexes.size())};
+    auto for_each_face = [&](auto&& visit) {
+        for (int t = 0; t < 4; ++t) {
+            const CellFaceTable& table = cell_faces(kCellTypes[static_cast<std::size_t>(t)]);
+            for (std::int64_t i = 0; i < counts[static_cast<std::size_t>(t)]; ++i) {
+                const Index* v = cell_nodes(mesh, t, i);
+                for (int f = 0; f < table.count; ++f) {
+                    Index m = v[table.node[f][0]];
+                    for (int k = 1; k < table.size[f]; ++k) m = std::min(m, v[table.node[f][k]]);
+                    visit(m, cell_code(t, i, f));
+                }
+            }
+        }
+        for (Index f = 0; f < bnd.num_faces(); ++f)
+            visit(*std::min_element(bnd.face_begin(f), bnd.face_end(f)), boundary_code(f));
+    };
+    return bucket_faces_by_key<Code>(mesh.points.size(), for_each_face);
+}
+
+/// Whether two faces with the same \p n nodes list them in the same cyclic order (+1),
+/// reversed (−1), or neither, or are not the same nodes (0).
+inline int relative_orientation(const Index* f, const Index* g, int n) {
+    int k = 0;
+    while (k < n && g[k] != f[0]) ++k;
+    if (k == n) return 0;
+    bool same = true, reversed = true;
+    for (int i = 0; i < n; ++i) {
+        same = same && g[(k + i) % n] == f[i];
+        reversed = reversed && g[(k - i + n) % n] == f[i];
+    }
+    return same ? 1 : reversed ? -1 : 0;
+}
+
+/// A face for sorting: its nodes sorted (a triangle's 4th entry kNone), then its code.
+struct KeyedFace {
+    std::array<Index, 4> key;
+    std::uint64_t code;
+    bool operator<(const KeyedFace& o) const { return key != o.key ? key < o.key : code < o.code; }
+};
 
 }  // namespace strata
