@@ -1,16 +1,16 @@
 // The `strata` command line: a thin front-end over the pipeline stages. Every failure is one
 // line on stderr and a non-zero exit; outputs are written atomically by the stages' writers.
 
-#include <strata/error.h>
+#include <strata/core/error.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
-#include <strata/geometry/write_surface.h>
-#include <strata/hybrid/cobalt.h>
+#include <strata/io/write_surface.h>
+#include <strata/io/cobalt.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/module/layers.h>
-#include <strata/module/validate.h>
-#include <strata/module/write_volume.h>
-#include <strata/progress.h>
+#include <strata/core/validate.h>
+#include <strata/io/write_volume.h>
+#include <strata/core/progress.h>
 
 #include <CLI/CLI.hpp>
 

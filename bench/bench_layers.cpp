@@ -7,7 +7,7 @@
 // triangles (99,372 faces). Each case runs 3 times; the table shows the best.
 //   bench_layers            (build in Release: scripts/bench.sh)
 
-#include <strata/error.h>
+#include <strata/core/error.h>
 #include <strata/geometry/topology.h>
 #include <strata/module/layers.h>
 

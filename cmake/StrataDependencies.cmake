@@ -4,11 +4,11 @@
 find_package(Eigen3 3.3 REQUIRED CONFIG)
 
 # Gmsh ships no CMake config (PLATFORM.md): header + library.
-if(NOT TARGET strata::gmsh_api)
+if(NOT TARGET strata::libgmsh)
   find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)
   find_library(GMSH_LIBRARY gmsh REQUIRED)
-  add_library(strata::gmsh_api INTERFACE IMPORTED)
-  set_target_properties(strata::gmsh_api PROPERTIES
+  add_library(strata::libgmsh INTERFACE IMPORTED)
+  set_target_properties(strata::libgmsh PROPERTIES
     INTERFACE_INCLUDE_DIRECTORIES "${GMSH_INCLUDE_DIR}"
     INTERFACE_LINK_LIBRARIES "${GMSH_LIBRARY}")
 endif()

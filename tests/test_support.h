@@ -1,7 +1,7 @@
 #pragma once
 // Helpers shared by the test suites: data paths, scratch directories, tiny meshes.
 
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 
 #include <unistd.h>
 #include <filesystem>

@@ -5,7 +5,7 @@
 /// x axis, meshed with 1580 structured quadrilaterals and 20 triangles around a 20-valent
 /// nose node, open at the nozzle exit lip.
 
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 #include <strata/module/layers.h>
 
 namespace strata {

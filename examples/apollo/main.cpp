@@ -6,12 +6,12 @@
 
 #include "apollo/apollo_surface.h"
 
-#include <strata/error.h>
+#include <strata/core/error.h>
 #include <strata/geometry/topology.h>
-#include <strata/module/cell_quality.h>
+#include <strata/core/cell_quality.h>
 #include <strata/module/layers.h>
-#include <strata/module/validate.h>
-#include <strata/module/write_volume.h>
+#include <strata/core/validate.h>
+#include <strata/io/write_volume.h>
 
 #include <algorithm>
 #include <cmath>

@@ -3,8 +3,8 @@
 // sphere, pyramids where needed, tetrahedra out to a generated spherical farfield), write it
 // with Gmsh. Usage: gmsh_api_example [output.msh]   (default sphere_hybrid.msh)
 
-#include <strata/error.h>
-#include <strata/hybrid/gmsh_api.h>
+#include <strata/core/error.h>
+#include <strata/gmsh_api/gmsh_api.h>
 
 #include <gmsh.h>
 

@@ -2,8 +2,8 @@
 // 1-based size_t node tags and int entity tags stay in here; the caller gets a SurfaceMesh.
 #include <strata/geometry/cad.h>
 
-#include <strata/error.h>
-#include <strata/geometry/gmsh_session.h>
+#include <strata/core/error.h>
+#include <strata/io/gmsh_session.h>
 
 #include <algorithm>
 #include <array>

@@ -1,5 +1,5 @@
-#include <strata/error.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/normals.h>
 #include <strata/geometry/topology.h>
 

@@ -1,8 +1,8 @@
-#include <strata/error.h>
+#include <strata/core/error.h>
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/prepare.h>
-#include <strata/geometry/read_surface.h>
+#include <strata/io/read_surface.h>
 #include <strata/geometry/topology.h>
 
 #include <algorithm>

@@ -1,8 +1,8 @@
-#include <strata/format.h>
+#include <strata/core/format.h>
 #include <strata/geometry/topology.h>
 
-#include <strata/error.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 
 #include <algorithm>
 #include <cmath>

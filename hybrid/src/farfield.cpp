@@ -1,5 +1,5 @@
-#include <strata/error.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/farfield.h>
 #include <strata/hybrid/plane_mesh.h>

@@ -1,8 +1,8 @@
 // Planar regions meshed with Gmsh's 2D mesher: plane_mesh.h.
 
-#include <strata/error.h>
-#include <strata/format.h>
-#include <strata/geometry/gmsh_session.h>
+#include <strata/core/error.h>
+#include <strata/core/format.h>
+#include <strata/io/gmsh_session.h>
 #include <strata/hybrid/plane_mesh.h>
 
 #include <algorithm>

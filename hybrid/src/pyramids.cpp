@@ -48,12 +48,12 @@
 // the largest clearance) stay valid throughout: O(n) checks per round after an O(n log n)
 // sort, and few rounds (each moves a pyramid down one of its few candidates).
 
-#include <strata/error.h>
-#include <strata/format.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/error.h>
+#include <strata/core/format.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/pyramids.h>
-#include <strata/module/cell_quality.h>
+#include <strata/core/cell_quality.h>
 
 #include <algorithm>
 #include <array>

@@ -83,9 +83,9 @@
 // program replaces them (as AddressSanitizer does), while tetgenio's inline destructor uses
 // the program's: run sanitizer builds with ASAN_OPTIONS=alloc_dealloc_mismatch=0.
 
-#include <strata/error.h>
-#include <strata/format.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/error.h>
+#include <strata/core/format.h>
+#include <strata/core/face_geometry.h>
 #include <strata/hybrid/tetgen_fill.h>
 
 // TETLIBRARY: TetGen's library interface (hybrid/CMakeLists.txt does not link strata::tetgen,

@@ -1,4 +1,4 @@
-#include <strata/error.h>
+#include <strata/core/error.h>
 #include <strata/module/distribution.h>
 
 #include <cmath>

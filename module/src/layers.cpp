@@ -3,11 +3,11 @@
 // smoothing of the middle level with the Poisson equation (Eq. 3) in Knupp's local logical
 // space, level 2 regenerated after every sweep; then the middle level becomes the next wall.
 
-#include <strata/error.h>
-#include <strata/format.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/error.h>
+#include <strata/core/format.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
-#include <strata/module/cell_quality.h>
+#include <strata/core/cell_quality.h>
 #include <strata/module/layers.h>
 #include <strata/module/stencil.h>
 

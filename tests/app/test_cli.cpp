@@ -1,7 +1,7 @@
 // End-to-end tests of the `strata` program: real inputs succeed and write what they claim;
 // every bad input gives one line on stderr, a non-zero exit and no output file.
 
-#include <strata/geometry/read_surface.h>
+#include <strata/io/read_surface.h>
 #include <strata/geometry/topology.h>
 
 #include <gtest/gtest.h>

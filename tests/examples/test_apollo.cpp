@@ -7,9 +7,9 @@
 
 #include <strata/geometry/check.h>
 #include <strata/geometry/topology.h>
-#include <strata/module/cell_quality.h>
+#include <strata/core/cell_quality.h>
 #include <strata/module/layers.h>
-#include <strata/module/validate.h>
+#include <strata/core/validate.h>
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // CAD input and surface meshing (cad.h) on the real geometries of examples/data and small
 // files of tests/data. Closedness is computed here from edge use counts, independently of
 // topology.h, so these tests do not lean on another unit's code.
-#include <strata/error.h>
+#include <strata/core/error.h>
 #include <strata/geometry/cad.h>
-#include <strata/geometry/gmsh_session.h>
+#include <strata/io/gmsh_session.h>
 
 #include "test_support.h"
 

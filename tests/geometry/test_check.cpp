@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include <strata/error.h>
+#include <strata/core/error.h>
 #include <strata/geometry/check.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
 
 #include "test_support.h"

@@ -1,9 +1,9 @@
 // The geometry stage as one call: dispatch by file type, patch kinds, merge, check, orient.
 
-#include <strata/error.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/prepare.h>
-#include <strata/geometry/read_surface.h>
+#include <strata/io/read_surface.h>
 
 #include <gtest/gtest.h>
 

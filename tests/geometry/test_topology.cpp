@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include <strata/error.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
 
 #include "test_support.h"

@@ -3,13 +3,13 @@
 // the tests, Gmsh's API) and validate what was read: the round trip every test of a finished
 // mesh ends with.
 
-#include <strata/hybrid/cobalt.h>
-#include <strata/module/validate.h>
-#include <strata/module/write_volume.h>
+#include <strata/io/cobalt.h>
+#include <strata/core/validate.h>
+#include <strata/io/write_volume.h>
 
 #include <gtest/gtest.h>
 
-#include "hybrid/cobalt_reader.h"
+#include "io/cobalt_reader.h"
 #include "test_support.h"
 
 #include <algorithm>

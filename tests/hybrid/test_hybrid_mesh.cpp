@@ -2,8 +2,8 @@
 // mesh, re-read from what was written (Cobalt60 through the test reader, .msh through Gmsh)
 // and validated again.
 
-#include <strata/error.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>

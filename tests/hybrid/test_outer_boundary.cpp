@@ -1,7 +1,7 @@
 // Planes the layers end on: re-meshed around the layers' side faces, conforming, with the
 // layers' corners on the planes' common edges; the inputs that cannot work are refused.
 
-#include <strata/error.h>
+#include <strata/core/error.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>

@@ -6,14 +6,14 @@
 // closed capped surface, validate_mesh on the shell of pyramids, and a brute-force
 // triangle–triangle crossing test with orientation predicates (no distances).
 
-#include <strata/error.h>
-#include <strata/geometry/face_geometry.h>
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/pyramids.h>
-#include <strata/module/cell_quality.h>
-#include <strata/module/validate.h>
+#include <strata/core/cell_quality.h>
+#include <strata/core/validate.h>
 
-#include "module/box_mesh.h"
+#include "core/box_mesh.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

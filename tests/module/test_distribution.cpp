@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include <strata/error.h>
+#include <strata/core/error.h>
 #include <strata/module/distribution.h>
 
 #include <cmath>

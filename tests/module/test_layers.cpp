@@ -1,11 +1,11 @@
 // The boundary-layer module end to end: exact heights and orthogonality on a flat plate,
 // radii on spheres, validity on concave corners, open edges held in their plane.
 
-#include <strata/error.h>
+#include <strata/core/error.h>
 #include <strata/geometry/prepare.h>
-#include <strata/geometry/read_surface.h>
+#include <strata/io/read_surface.h>
 #include <strata/module/layers.h>
-#include <strata/module/validate.h>
+#include <strata/core/validate.h>
 
 #include <gtest/gtest.h>
 

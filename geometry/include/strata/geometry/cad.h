@@ -3,7 +3,7 @@
 /// CAD input (STEP, IGES, BREP through Gmsh's OpenCASCADE kernel, and Gmsh .geo scripts),
 /// surface-meshed with Gmsh.
 
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 
 #include <string>
 #include <vector>

@@ -3,7 +3,7 @@
 /// Validity checks on a surface mesh and its orientation. Each failure throws a
 /// strata::Error whose one-line message names the source, the face/edge/node and where it is.
 
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 
 #include <string>
 

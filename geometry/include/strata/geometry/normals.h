@@ -2,8 +2,8 @@
 /// \file
 /// Unit node normals of a surface mesh.
 
-#include <strata/geometry/surface_mesh.h>
-#include <strata/types.h>
+#include <strata/core/surface_mesh.h>
+#include <strata/core/types.h>
 
 #include <string_view>
 

@@ -5,7 +5,7 @@
 
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 
 #include <string>
 #include <utility>

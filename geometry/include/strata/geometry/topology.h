@@ -2,7 +2,7 @@
 /// \file
 /// Derived connectivity of a surface mesh: pure functions, nothing stored by hand.
 
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 
 #include <array>
 

@@ -2,7 +2,7 @@
 /// \file
 /// A generated outer boundary for a body that comes without one.
 
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 
 #include <string_view>
 

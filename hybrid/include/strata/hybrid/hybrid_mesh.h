@@ -7,8 +7,8 @@
 #include <strata/hybrid/pyramids.h>
 #include <strata/hybrid/tetgen_fill.h>
 #include <strata/module/layers.h>
-#include <strata/module/validate.h>
-#include <strata/progress.h>
+#include <strata/core/validate.h>
+#include <strata/core/progress.h>
 
 namespace strata {
 

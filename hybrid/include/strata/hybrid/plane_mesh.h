@@ -3,7 +3,7 @@
 /// Triangles filling a planar region bounded by polygons (a symmetry or outflow plane around
 /// the layers, a half model's symmetry plane), through Gmsh's 2D mesher.
 
-#include <strata/types.h>
+#include <strata/core/types.h>
 
 #include <array>
 #include <string>

@@ -3,7 +3,7 @@
 /// The pyramid transition: over every quad of the outermost layer, a pyramid whose apex
 /// sits along the quad's normal, so the tetrahedral region sees triangles only.
 
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 
 #include <array>
 #include <vector>

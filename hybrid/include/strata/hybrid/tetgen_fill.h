@@ -3,7 +3,7 @@
 /// The tetrahedral fill through TetGen (libtet, linked as a library): the region enclosed by a
 /// closed triangulated boundary is meshed with tetrahedra, the boundary preserved exactly.
 
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 
 #include <array>
 #include <vector>

@@ -4,10 +4,10 @@
 /// (Thompson, Chalasani & Soni; ALGORITHM.md).
 
 #include <strata/geometry/normals.h>
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 #include <strata/module/distribution.h>
-#include <strata/module/volume_mesh.h>
-#include <strata/progress.h>
+#include <strata/core/volume_mesh.h>
+#include <strata/core/progress.h>
 
 #include <vector>
 

@@ -3,7 +3,7 @@
 /// ξ, η derivatives on an unstructured surface in Knupp's local logical space
 /// (ALGORITHM.md section 3), as fixed linear weights per node.
 
-#include <strata/geometry/surface_mesh.h>
+#include <strata/core/surface_mesh.h>
 #include <strata/geometry/topology.h>
 
 #include <array>

@@ -1,0 +1,22 @@
+#pragma once
+/// \file
+/// Scaled Jacobians of cells in Gmsh node order: at each corner, det(e1, e2, e3) /
+/// (|e1| |e2| |e3|) with e1, e2, e3 the corner's three edges in right-handed order; 1 for a
+/// right-angled corner, ≤ 0 for an inverted one. The cell's value is its minimum over corners.
+
+#include <strata/core/types.h>
+
+#include <array>
+#include <vector>
+
+namespace strata {
+
+/// Scaled Jacobian of the corner at \p o with edges to \p a, \p b, \p c (right-handed).
+double corner_scaled_jacobian(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c);
+
+double tet_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 4>& v);
+double pyramid_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 5>& v);
+double prism_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 6>& v);
+double hex_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 8>& v);
+
+}  // namespace strata

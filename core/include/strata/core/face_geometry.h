@@ -1,0 +1,42 @@
+#pragma once
+/// \file
+/// Geometry of single faces: area vector, unit normal, centroid. Quads use the
+/// cross product of their diagonals (exact vector area of a non-planar quad).
+
+#include <strata/core/surface_mesh.h>
+
+namespace strata {
+
+/// Vector area of face \p f with node positions \p points (#nodes): |a| = area,
+/// direction = right-hand normal of the node order.
+Vec3 face_area_vector(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f);
+inline Vec3 face_area_vector(const SurfaceMesh& mesh, Index f) {
+    return face_area_vector(mesh, mesh.points, f);
+}
+/// Centroid (mean of the corners) of face \p f.
+Vec3 face_centroid(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f);
+
+/// Axis-aligned bounding box of \p points; diagonal() of an empty set is 0.
+struct BoundingBox {
+    Vec3 min = Vec3::Constant(0.0), max = Vec3::Constant(0.0);
+    double diagonal() const { return (max - min).norm(); }
+};
+BoundingBox bounding_box(const std::vector<Vec3>& points);
+
+/// Least-squares plane through the nodes of the faces of one patch.
+struct PatchPlane {
+    Vec3 point = Vec3::Zero();    ///< centroid of the patch's nodes
+    Vec3 normal = Vec3::UnitZ();  ///< unit, on the side the faces' normals point to
+    double deviation = 0.0;       ///< largest distance of a node from the plane
+    double size = 0.0;            ///< bounding-box diagonal of the patch's nodes
+    /// Flat to within \p rel_tol of the patch's size (CAD planes and STL planes are flat to
+    /// round-off).
+    bool planar(double rel_tol = 1e-6) const { return deviation <= rel_tol * size; }
+};
+/// The plane of the faces of \p mesh on patch \p patch (no faces: size 0, not planar).
+PatchPlane patch_plane(const SurfaceMesh& mesh, Index patch);
+/// The least-squares plane through \p points (fewer than 3: not planar); the normal's sign is
+/// arbitrary.
+PatchPlane fit_plane(const std::vector<Vec3>& points);
+
+}  // namespace strata

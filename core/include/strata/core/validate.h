@@ -1,0 +1,39 @@
+#pragma once
+/// \file
+/// The validator every written volume mesh passes first: positive scaled Jacobian at every
+/// corner of every cell, every interior face shared by exactly two cells with matching node
+/// sets, boundary faces exactly the patch faces (and pointing out), and cell volumes summing
+/// to the volume enclosed by the boundary (divergence theorem).
+
+#include <strata/core/volume_mesh.h>
+
+#include <string>
+#include <vector>
+
+namespace strata {
+
+struct ValidationReport {
+    Index cells = 0;
+    double min_scaled_jacobian = 1.0;  ///< over all corners of all cells
+    std::string worst_cell;            ///< the cell that has it: "prism 12 at (x, y, z)"; empty for no cells
+    double cell_volume = 0.0;          ///< Σ cell volumes
+    double boundary_volume = 0.0;      ///< volume enclosed by the boundary faces
+    Index interior_faces = 0;
+    Index boundary_faces = 0;
+    /// One line per problem found (at most a few per kind, then a count), each naming the
+    /// cells or faces and where they are. Empty when the mesh is valid.
+    std::vector<std::string> problems;
+    bool ok() const { return problems.empty(); }
+};
+
+/// Check \p mesh. \p volume_tolerance is relative to the boundary volume.
+ValidationReport validate_mesh(const VolumeMesh& mesh, double volume_tolerance = 1e-9);
+
+/// validate_mesh, and throw TopologyError "<what>: <n> problems: <first problems>" unless ok.
+ValidationReport require_valid_mesh(const VolumeMesh& mesh, const std::string& what);
+
+/// Signed volume of each cell type (Gmsh order), by the divergence theorem over its faces
+/// (quads through their diagonal cross product), consistent with the boundary volume.
+double cell_volume(const std::vector<Vec3>& p, const Index* cell, CellType type);
+
+}  // namespace strata

@@ -1,0 +1,53 @@
+#include <strata/core/cell_quality.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace strata {
+
+double corner_scaled_jacobian(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 e1 = a - o, e2 = b - o, e3 = c - o;
+    const double l = e1.norm() * e2.norm() * e3.norm();
+    if (!(l > 0.0)) return 0.0;  // a collapsed edge is as bad as an inverted corner
+    return e1.cross(e2).dot(e3) / l;
+}
+
+double tet_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 4>& v) {
+    // Every corner of a tetrahedron sees the same signed volume; only the scaling differs.
+    const Vec3 &a = p[v[0]], &b = p[v[1]], &c = p[v[2]], &d = p[v[3]];
+    return std::min({corner_scaled_jacobian(a, b, c, d), corner_scaled_jacobian(b, c, a, d),
+                     corner_scaled_jacobian(c, a, b, d), corner_scaled_jacobian(d, a, c, b)});
+}
+
+double pyramid_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 5>& v) {
+    // Base corners: next base node, previous base node, apex. The apex has four edges; it is
+    // measured once per base corner i with its edges to i+1, i and i−1.
+    double j = 1.0;
+    for (int i = 0; i < 4; ++i)
+        j = std::min(j, corner_scaled_jacobian(p[v[i]], p[v[(i + 1) % 4]], p[v[(i + 3) % 4]], p[v[4]]));
+    for (int i = 0; i < 4; ++i)
+        j = std::min(j, corner_scaled_jacobian(p[v[4]], p[v[(i + 1) % 4]], p[v[i]], p[v[(i + 3) % 4]]));
+    return j;
+}
+
+double prism_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 6>& v) {
+    double j = 1.0;
+    for (int i = 0; i < 3; ++i) {
+        const int n = (i + 1) % 3, q = (i + 2) % 3;
+        j = std::min(j, corner_scaled_jacobian(p[v[i]], p[v[n]], p[v[q]], p[v[i + 3]]));
+        j = std::min(j, corner_scaled_jacobian(p[v[i + 3]], p[v[q + 3]], p[v[n + 3]], p[v[i]]));
+    }
+    return j;
+}
+
+double hex_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 8>& v) {
+    double j = 1.0;
+    for (int i = 0; i < 4; ++i) {
+        const int n = (i + 1) % 4, q = (i + 3) % 4;
+        j = std::min(j, corner_scaled_jacobian(p[v[i]], p[v[n]], p[v[q]], p[v[i + 4]]));
+        j = std::min(j, corner_scaled_jacobian(p[v[i + 4]], p[v[q + 4]], p[v[n + 4]], p[v[i]]));
+    }
+    return j;
+}
+
+}  // namespace strata

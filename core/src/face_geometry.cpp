@@ -1,0 +1,71 @@
+#include <strata/core/face_geometry.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace strata {
+
+Vec3 face_area_vector(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f) {
+    const Index* v = mesh.face_begin(f);
+    if (mesh.face_size(f) == 3) return 0.5 * (points[v[1]] - points[v[0]]).cross(points[v[2]] - points[v[0]]);
+    // Quad: half the cross product of the diagonals is the exact vector area of the
+    // (possibly non-planar) bilinear quad's boundary loop.
+    return 0.5 * (points[v[2]] - points[v[0]]).cross(points[v[3]] - points[v[1]]);
+}
+
+Vec3 face_centroid(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f) {
+    Vec3 c = Vec3::Zero();
+    for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v) c += points[*v];
+    return c / static_cast<double>(mesh.face_size(f));
+}
+
+BoundingBox bounding_box(const std::vector<Vec3>& points) {
+    BoundingBox b;
+    if (points.empty()) return b;
+    b.min = b.max = points.front();
+    for (const Vec3& p : points) {
+        b.min = b.min.cwiseMin(p);
+        b.max = b.max.cwiseMax(p);
+    }
+    return b;
+}
+
+PatchPlane fit_plane(const std::vector<Vec3>& pts) {
+    PatchPlane pl;
+    if (pts.size() < 3) {
+        pl.deviation = std::numeric_limits<double>::infinity();
+        return pl;
+    }
+    for (const Vec3& p : pts) pl.point += p;
+    pl.point /= static_cast<double>(pts.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Vec3& p : pts) cov += (p - pl.point) * (p - pl.point).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+    pl.normal = es.eigenvectors().col(0).normalized();
+    for (const Vec3& p : pts) pl.deviation = std::max(pl.deviation, std::abs((p - pl.point).dot(pl.normal)));
+    pl.size = bounding_box(pts).diagonal();
+    return pl;
+}
+
+PatchPlane patch_plane(const SurfaceMesh& mesh, Index patch) {
+    std::vector<char> used(static_cast<std::size_t>(mesh.num_points()), 0);
+    std::vector<Vec3> pts;
+    Vec3 area = Vec3::Zero();
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        if (mesh.face_patch[f] != patch) continue;
+        area += face_area_vector(mesh, f);
+        for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v)
+            if (!used[static_cast<std::size_t>(*v)]) {
+                used[static_cast<std::size_t>(*v)] = 1;
+                pts.push_back(mesh.points[*v]);
+            }
+    }
+    PatchPlane pl = fit_plane(pts);
+    if (pl.normal.dot(area) < 0.0) pl.normal = -pl.normal;
+    return pl;
+}
+
+}  // namespace strata

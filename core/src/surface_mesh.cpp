@@ -1,0 +1,56 @@
+#include <strata/core/error.h>
+#include <strata/core/surface_mesh.h>
+
+#include <algorithm>
+#include <cctype>
+
+namespace strata {
+
+std::string_view to_string(PatchKind kind) {
+    switch (kind) {
+        case PatchKind::Wall: return "wall";
+        case PatchKind::Symmetry: return "symmetry";
+        case PatchKind::Farfield: return "farfield";
+        case PatchKind::Other: return "other";
+    }
+    return "other";
+}
+
+PatchKind parse_patch_kind(std::string_view text) {
+    std::string t(text);
+    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return std::tolower(c); });
+    for (PatchKind k : {PatchKind::Wall, PatchKind::Symmetry, PatchKind::Farfield, PatchKind::Other})
+        if (t == to_string(k)) return k;
+    throw InputError("unknown patch kind '" + std::string(text) +
+                     "': use wall, symmetry, farfield or other");
+}
+
+void SurfaceMesh::add_face(const Index* nodes, Index n, Index patch) {
+    face_nodes.insert(face_nodes.end(), nodes, nodes + n);
+    face_offsets.push_back(static_cast<Index>(face_nodes.size()));
+    face_patch.push_back(patch);
+}
+
+void SurfaceMesh::add_face(std::initializer_list<Index> nodes, Index patch) {
+    add_face(nodes.begin(), static_cast<Index>(nodes.size()), patch);
+}
+
+Index SurfaceMesh::num_triangles() const {
+    Index n = 0;
+    for (Index f = 0; f < num_faces(); ++f) n += face_size(f) == 3;
+    return n;
+}
+
+Index SurfaceMesh::num_quads() const {
+    Index n = 0;
+    for (Index f = 0; f < num_faces(); ++f) n += face_size(f) == 4;
+    return n;
+}
+
+Index find_patch(const SurfaceMesh& mesh, std::string_view name) {
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i)
+        if (mesh.patches[i].name == name) return static_cast<Index>(i);
+    return kNone;
+}
+
+}  // namespace strata

@@ -1,0 +1,43 @@
+#pragma once
+/// \file
+/// The Gmsh-API entry point: hybrid-mesh the current Gmsh model in place, between a Gmsh
+/// user's `gmsh::model::mesh::generate(2)` and `gmsh::write(...)`.
+///
+///     gmsh::initialize();
+///     gmsh::model::occ::addSphere(0, 0, 0, 1);
+///     gmsh::model::occ::synchronize();
+///     gmsh::model::mesh::generate(2);
+///     strata::HybridParams params;
+///     params.layers.distribution.layers = 10;
+///     strata::mesh_current_gmsh_model(params);
+///     gmsh::write("sphere_hybrid.msh");
+
+#include <strata/geometry/prepare.h>
+#include <strata/hybrid/hybrid_mesh.h>
+#include <strata/core/progress.h>
+
+namespace strata {
+
+/// Replace the current Gmsh model's surface mesh by a hybrid volume mesh built on it.
+///
+/// Reads the model's 3-node triangles and 4-node quadrangles with one patch per 2D physical
+/// group (surface_from_gmsh_model: a surface in no group gets "surface_<tag>"), assigns patch
+/// kinds (a name containing "farfield" or "symmetry" gets that kind, every other patch is a
+/// wall; \p prepare.patch_kinds overrides), merges coincident nodes, checks and orients the
+/// surface (prepare_mesh), and runs build_hybrid_mesh with \p params (a surface without a
+/// farfield patch gets a generated one, \p params.farfield). Then the model's mesh is replaced:
+/// all of its mesh (every dimension) and all of its physical groups are removed, and the
+/// hybrid mesh is added as add_volume_to_gmsh_model does: one discrete volume with a 3D
+/// physical group "fluid", one discrete surface and one named 2D physical group per patch
+/// (the input's patch names, plus "farfield" if generated). The model's geometric entities
+/// (CAD, if any) are kept, without mesh.
+///
+/// Gmsh must be initialised by the caller: InputError "Gmsh is not initialised: call
+/// gmsh::initialize() first" otherwise. Gmsh's lock is held throughout, so other Strata calls
+/// on other threads wait. If reading or meshing fails (InputError, TopologyError, BackendError
+/// naming the model), the model is left as it was; only a Gmsh failure while adding the new
+/// mesh can leave it partly replaced. \p progress as for build_hybrid_mesh.
+HybridReport mesh_current_gmsh_model(const HybridParams& params, const PrepareParams& prepare = {},
+                                     Progress* progress = nullptr);
+
+}  // namespace strata

@@ -1,0 +1,102 @@
+#pragma once
+/// \file
+/// The one adapter between Strata and Gmsh's global state. Gmsh is a process-wide singleton
+/// and not thread-safe, so every use goes through a GmshSession (a lock, initialisation if
+/// nobody else did it, a scratch model removed at the end) and gmsh_call (Gmsh's failures
+/// re-thrown as BackendError with context and Gmsh's last logged error).
+
+#include <strata/core/error.h>
+
+#include <gmsh.h>
+
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace strata {
+
+class GmshSession {
+public:
+    /// Lock Gmsh for this thread; initialise it (quiet) unless a GmshSession or the user
+    /// already did; start a fresh model named \p model_name and make it current.
+    explicit GmshSession(const std::string& model_name = "strata");
+    /// Remove the scratch model, restore the previously current model, finalise Gmsh if this
+    /// session initialised it.
+    ~GmshSession();
+    GmshSession(const GmshSession&) = delete;
+    GmshSession& operator=(const GmshSession&) = delete;
+
+    /// Gmsh's most recent error message ("" if none).
+    static std::string last_error();
+
+private:
+    std::unique_lock<std::recursive_mutex> lock_;
+    std::string model_;
+    std::string previous_model_;
+    bool initialised_here_ = false;
+};
+
+/// Gmsh's lock alone, for functions that work on the caller's CURRENT model (the Gmsh-API
+/// entry points, surface_from_gmsh_model, add_volume_to_gmsh_model) rather than a scratch
+/// model. Gmsh must already be initialised, by the user or by an enclosing GmshSession;
+/// otherwise InputError "<context>: Gmsh is not initialised: call gmsh::initialize() first".
+/// When no GmshSession is open, the initialisation is the user's: that is recorded, so a later
+/// GmshSession neither initialises Gmsh again (nor resets its options) nor finalises it.
+class GmshLock {
+public:
+    explicit GmshLock(const std::string& context);
+    GmshLock(const GmshLock&) = delete;
+    GmshLock& operator=(const GmshLock&) = delete;
+
+private:
+    std::unique_lock<std::recursive_mutex> lock_;
+};
+
+/// Gmsh options are process-wide: a scope sets Strata's for one operation and puts the
+/// caller's values back when it ends, so a Gmsh user embedding Strata keeps their settings.
+class GmshOptionScope {
+public:
+    GmshOptionScope() = default;
+    GmshOptionScope(const GmshOptionScope&) = delete;
+    GmshOptionScope& operator=(const GmshOptionScope&) = delete;
+    ~GmshOptionScope() {
+        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
+            try {
+                gmsh::option::setNumber(it->first, it->second);
+            } catch (...) {
+            }
+        }
+    }
+    /// Remember the current value of numeric option \p name and set it to \p value.
+    void set(const std::string& name, double value) {
+        double old = 0.0;
+        gmsh::option::getNumber(name, old);
+        saved_.emplace_back(name, old);
+        gmsh::option::setNumber(name, value);
+    }
+
+private:
+    std::vector<std::pair<std::string, double>> saved_;
+};
+
+/// Run \p f (calls into gmsh::), turning any exception Gmsh throws into a BackendError
+/// "<context>: <Gmsh's message>". strata::Error passes through unchanged.
+template <class F>
+auto gmsh_call(const std::string& context, F&& f) -> decltype(f()) {
+    try {
+        return std::forward<F>(f)();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        std::string last = GmshSession::last_error();
+        throw BackendError(context + ": " + (last.empty() ? std::string(e.what()) : last));
+    } catch (...) {
+        std::string last = GmshSession::last_error();
+        throw BackendError(context + ": " + (last.empty() ? std::string("Gmsh failed") : last));
+    }
+}
+
+}  // namespace strata

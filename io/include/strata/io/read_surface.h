@@ -1,0 +1,25 @@
+#pragma once
+/// \file
+/// Surface-mesh readers: STL (ASCII and binary) and Gmsh .msh (2.2 and 4.1, via the Gmsh API).
+/// They return the mesh as stored (no merging, no orientation): see prepare.h for that.
+
+#include <strata/core/surface_mesh.h>
+
+#include <string>
+
+namespace strata {
+
+/// STL, ASCII or binary (detected from the content, not the header word). One patch per
+/// ASCII `solid NAME` block (name "wall" if empty); binary: one patch named after the file
+/// stem. Nodes are not merged (3 per facet). Throws InputError naming the file and line
+/// (ASCII) or facet (binary) on a malformed or truncated file.
+SurfaceMesh read_stl(const std::string& path);
+
+/// Gmsh .msh 2.2 or 4.1 with 3-node triangles and 4-node quadrangles (higher-order or other
+/// 2D types are an error; points, lines and volume elements are ignored). One patch per 2D
+/// physical group (its name, or "physical_<tag>" if unnamed); a surface in no physical
+/// group gets a patch "surface_<tag>"; with no physical groups at all, one patch per surface
+/// entity. Throws InputError naming the file if it holds no triangles or quads.
+SurfaceMesh read_msh(const std::string& path);
+
+}  // namespace strata

@@ -1,0 +1,99 @@
+#include <strata/io/gmsh_session.h>
+
+#include <cmath>
+#include <limits>
+
+namespace strata {
+namespace {
+
+// Gmsh keeps one global state per process; Strata serialises access to it. The mutex is
+// recursive so a stage that holds a session may call a helper that opens another.
+std::recursive_mutex& gmsh_mutex() {
+    static std::recursive_mutex m;
+    return m;
+}
+int& strata_sessions() {  // sessions currently open that Strata initialised Gmsh for
+    static int n = 0;
+    return n;
+}
+bool& user_initialised() {  // a GmshLock found Gmsh initialised by the user
+    static bool b = false;
+    return b;
+}
+
+/// Gmsh 4.8 has no isInitialized(). Its API functions check a flag themselves: before the first
+/// gmsh::initialize() they log an error and return without touching their outputs; after a
+/// gmsh::finalize() they throw. So: a numeric option that always exists, read into a NaN.
+/// Not called on Strata's usual path (it would print Gmsh's "not initialized" error after a
+/// finalize): only from GmshLock and to re-check a user initialisation GmshLock recorded.
+bool gmsh_is_initialised() {
+    double value = std::numeric_limits<double>::quiet_NaN();
+    try {
+        gmsh::option::getNumber("General.Verbosity", value);
+    } catch (...) {
+        return false;
+    }
+    return !std::isnan(value);
+}
+
+}  // namespace
+
+GmshLock::GmshLock(const std::string& context) : lock_(gmsh_mutex()) {
+    // Inside a GmshSession (this thread: the mutex is recursive) Gmsh is initialised.
+    if (strata_sessions() > 0) return;
+    if (!gmsh_is_initialised()) {
+        user_initialised() = false;
+        throw InputError(context + ": Gmsh is not initialised: call gmsh::initialize() first");
+    }
+    user_initialised() = true;
+}
+
+GmshSession::GmshSession(const std::string& model_name) : lock_(gmsh_mutex()) {
+    // A user initialisation recorded by GmshLock is checked again: the user may have finalised
+    // Gmsh since.
+    if (strata_sessions() == 0 && user_initialised() && !gmsh_is_initialised()) user_initialised() = false;
+    if (strata_sessions() == 0 && !user_initialised()) {
+        // Gmsh 4.8 has no isInitialized(); Strata's own entry points decide. The Gmsh-API
+        // entry points (user already initialised) mark that through GmshLock.
+        gmsh::initialize();
+        initialised_here_ = true;
+        gmsh::option::setNumber("General.Terminal", 0);
+        gmsh::option::setNumber("General.Verbosity", 2);
+    }
+    ++strata_sessions();
+    // Keep Gmsh's messages so failures can be reported with its own words.
+    gmsh_call("starting Gmsh", [] { gmsh::logger::start(); });
+    gmsh::model::getCurrent(previous_model_);
+    model_ = model_name + "_" + std::to_string(strata_sessions());
+    gmsh::model::add(model_);
+    gmsh::model::setCurrent(model_);
+}
+
+GmshSession::~GmshSession() {
+    try {
+        gmsh::model::setCurrent(model_);
+        gmsh::model::remove();
+        if (!previous_model_.empty()) gmsh::model::setCurrent(previous_model_);
+        gmsh::logger::stop();
+    } catch (...) {
+        // Cleanup must not throw; Gmsh's state is reset by finalize below if we own it.
+    }
+    --strata_sessions();
+    if (initialised_here_) {
+        try {
+            gmsh::finalize();
+        } catch (...) {
+        }
+    }
+}
+
+std::string GmshSession::last_error() {
+    std::string e;
+    try {
+        gmsh::logger::getLastError(e);
+    } catch (...) {
+    }
+    return e;
+}
+
+}  // namespace strata
