@@ -50,4 +50,29 @@ double hex_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Inde
     return j;
 }
 
+namespace {
+
+template <std::size_t N, class F>
+double on_array(const std::vector<Vec3>& p, const Index* v, F&& f) {
+    std::array<Index, N> a;
+    std::copy(v, v + N, a.begin());
+    return f(p, a);
+}
+
+}  // namespace
+
+double min_scaled_jacobian(const std::vector<Vec3>& p, const Index* v, CellType t) {
+    switch (t) {
+        case CellType::Tet:
+            return on_array<4>(p, v, tet_min_scaled_jacobian);
+        case CellType::Pyramid:
+            return on_array<5>(p, v, pyramid_min_scaled_jacobian);
+        case CellType::Prism:
+            return on_array<6>(p, v, prism_min_scaled_jacobian);
+        case CellType::Hex:
+            return on_array<8>(p, v, hex_min_scaled_jacobian);
+    }
+    return 0.0;
+}
+
 }  // namespace strata

@@ -3,6 +3,7 @@
 #include <strata/geometry/cad.h>
 
 #include <strata/core/error.h>
+#include <strata/core/format.h>
 #include <strata/io/gmsh_session.h>
 
 #include <algorithm>
@@ -15,7 +16,6 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -52,13 +52,6 @@ const char* format_name(CadFormat f) {
     return "CAD";
 }
 
-std::string fmt(double v) {
-    std::ostringstream s;
-    s.precision(6);
-    s << v;
-    return s.str();
-}
-
 // "1-11, 14, 20-22": the valid tags of a model with many surfaces stay one readable line.
 std::string format_tags(std::vector<int> tags) {
     std::sort(tags.begin(), tags.end());
@@ -77,14 +70,14 @@ std::string format_tags(std::vector<int> tags) {
 void validate(const CadParams& p) {
     if (!(p.size >= 0.0) || !std::isfinite(p.size))
         throw InputError("CAD meshing: size must be a finite number >= 0 (0 = automatic), got " +
-                         fmt(p.size));
+                         format_number(p.size));
     if (!(p.size_min >= 0.0) || !std::isfinite(p.size_min))
         throw InputError(
             "CAD meshing: size_min must be a finite number >= 0 (0 = automatic), got " +
-            fmt(p.size_min));
+            format_number(p.size_min));
     if (p.size > 0.0 && p.size_min > p.size)
-        throw InputError("CAD meshing: size_min (" + fmt(p.size_min) + ") is larger than size (" +
-                         fmt(p.size) + "); give a smaller size_min");
+        throw InputError("CAD meshing: size_min (" + format_number(p.size_min) + ") is larger than size (" +
+                         format_number(p.size) + "); give a smaller size_min");
     if (p.curvature_points < 0)
         throw InputError("CAD meshing: curvature_points must be >= 0 (0 = off), got " +
                          std::to_string(p.curvature_points));
@@ -479,7 +472,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params) {
                   (zmax - zmin) * (zmax - zmin));
     if (!(diagonal > 0.0) || !std::isfinite(diagonal))
         throw InputError(path + ": the model has no extent (bounding-box diagonal " +
-                         fmt(diagonal) + "); check the file's geometry");
+                         format_number(diagonal) + "); check the file's geometry");
 
     if (params.size > 0.0)
         set_number("Mesh.MeshSizeMax", params.size);
@@ -542,7 +535,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params) {
 
     if (script) clear_script_mesh(path);
 
-    gmsh_call(path + ": Gmsh failed to mesh the surfaces (maximum size " + fmt(size) +
+    gmsh_call(path + ": Gmsh failed to mesh the surfaces (maximum size " + format_number(size) +
                   "); try a smaller size, another algorithm, or repair the CAD",
               [] { gmsh::model::mesh::generate(2); });
 

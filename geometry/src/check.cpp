@@ -1,4 +1,5 @@
 #include <strata/core/format.h>
+#include <strata/core/mesh_check.h>
 #include <strata/geometry/check.h>
 
 #include <strata/core/error.h>
@@ -6,17 +7,10 @@
 #include <strata/geometry/topology.h>
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 namespace strata {
 namespace {
-
-std::string format_number(double x) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.3g", x);
-    return buf;
-}
 
 std::string patch_name(const SurfaceMesh& mesh, Index f) {
     const Index p = mesh.face_patch[f];
@@ -32,49 +26,9 @@ std::string face_text(const SurfaceMesh& mesh, Index f) {
 }  // namespace
 
 void check_surface(const SurfaceMesh& mesh, const std::string& source) {
+    // The arrays first (one check for every stage): everything below indexes through them.
+    require_sound(check_surface_arrays(mesh), source + ": ");
     const Index nf = mesh.num_faces();
-    const Index np = mesh.num_points();
-    if (nf <= 0)
-        throw InputError(source +
-                         ": no faces; the surface mesh is empty, check that the input holds "
-                         "triangles or quadrilaterals");
-
-    // The CSR arrays themselves: everything below indexes through them.
-    if (mesh.face_offsets.front() != 0 || mesh.face_offsets.back() != static_cast<Index>(mesh.face_nodes.size()) ||
-        mesh.face_patch.size() != static_cast<std::size_t>(nf))
-        throw InputError(source + ": inconsistent face arrays (" + std::to_string(nf) + " faces, " +
-                         std::to_string(mesh.face_nodes.size()) + " face nodes, " +
-                         std::to_string(mesh.face_patch.size()) +
-                         " face patches); the reader is broken, "
-                         "please report it");
-    for (Index f = 0; f < nf; ++f) {
-        const Index s = mesh.face_size(f);
-        if (s != 3 && s != 4)
-            throw TopologyError(source + ": face " + std::to_string(f) + " has " + std::to_string(s) +
-                                " nodes; only triangles and quadrilaterals are supported, remesh the surface");
-        const Index p = mesh.face_patch[f];
-        if (p < 0 || p >= static_cast<Index>(mesh.patches.size()))
-            throw InputError(source + ": face " + std::to_string(f) + " is on patch " + std::to_string(p) +
-                             ", but there are " + std::to_string(mesh.patches.size()) +
-                             " patches; the reader is broken, please report it");
-    }
-
-    for (Index v = 0; v < np; ++v) {
-        const Vec3& x = mesh.points[v];
-        if (!std::isfinite(x.x()) || !std::isfinite(x.y()) || !std::isfinite(x.z()))
-            throw InputError(source + ": node " + std::to_string(v) + " has a non-finite coordinate " +
-                             format_point(x, 9) + "; fix the export of the surface mesh");
-    }
-
-    for (Index f = 0; f < nf; ++f) {
-        const Index* v = mesh.face_begin(f);
-        const Index s = mesh.face_size(f);
-        for (Index i = 0; i < s; ++i)
-            if (v[i] < 0 || v[i] >= np)
-                throw TopologyError(source + ": face " + std::to_string(f) + " (patch " + patch_name(mesh, f) +
-                                    ") references node " + std::to_string(v[i]) + ", but the mesh has " +
-                                    std::to_string(np) + " nodes; the file is corrupt, re-export it");
-    }
 
     for (Index f = 0; f < nf; ++f) {
         const Index* v = mesh.face_begin(f);
@@ -93,7 +47,7 @@ void check_surface(const SurfaceMesh& mesh, const std::string& source) {
     for (Index f = 0; f < nf; ++f) {
         const double a = face_area_vector(mesh, f).norm();
         if (!(a > min_area))  // also catches a == 0 on a zero-size model
-            throw TopologyError(source + ": " + face_text(mesh, f) + " has (near) zero area " + format_number(a) +
+            throw TopologyError(source + ": " + face_text(mesh, f) + " has (near) zero area " + format_number(a, 3) +
                                 " (its corners are collinear or coincident); remove the face or remesh "
                                 "that region");
     }

@@ -1,4 +1,5 @@
 #include <strata/core/format.h>
+#include <strata/core/mesh_check.h>
 #include <strata/geometry/topology.h>
 
 #include <strata/core/error.h>
@@ -21,20 +22,11 @@ std::string node_text(const SurfaceMesh& mesh, Index v) {
 }
 
 /// Every function here indexes points by face node ids; a corrupt id would be undefined
-/// behaviour rather than an error, so refuse it up front (O(#face nodes)).
+/// behaviour rather than an error, so refuse it up front (O(#face nodes)). Coordinates and
+/// patches are not looked at: connectivity does not need them (check_surface names NaNs).
 void require_valid_ids(const SurfaceMesh& mesh, const char* who) {
-    const Index n = mesh.num_points();
-    for (Index f = 0; f < mesh.num_faces(); ++f) {
-        const Index s = mesh.face_size(f);
-        if (s != 3 && s != 4)
-            throw TopologyError(std::string(who) + ": face " + std::to_string(f) + " has " + std::to_string(s) +
-                                " nodes; only triangles and quadrilaterals are supported");
-        for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v)
-            if (*v < 0 || *v >= n)
-                throw TopologyError(std::string(who) + ": face " + std::to_string(f) + " references node " +
-                                    std::to_string(*v) + ", but the mesh has " + std::to_string(n) +
-                                    " nodes; the mesh is corrupt, re-export it");
-    }
+    require_sound(check_surface_arrays(mesh, {.require_faces = false, .coordinates = false, .patches = false}),
+                  std::string(who) + ": ");
 }
 
 /// Integer cell of the merge hash grid.

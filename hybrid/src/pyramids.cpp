@@ -231,12 +231,6 @@ bool triangles_meet(const Tri& s, const Tri& t, double tol) {
 
 // ---------------------------------------------------------------------------------------
 
-std::string fmt_double(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return buf;
-}
-
 /// Why a pyramid cannot take a height.
 struct Failure {
     enum Kind { None, Inverted, Fold, FaceClearance, FaceCrossing, Pyramid } kind = None;
@@ -354,10 +348,10 @@ private:
 void Builder::setup() {
     if (!(params_.height > 0.0) || !std::isfinite(params_.height))
         throw InputError("pyramids: height must be a positive number (relative to the quad's mean edge), got " +
-                         fmt_double(params_.height));
+                         format_number(params_.height));
     if (!(params_.min_height > 0.0) || !(params_.min_height <= params_.height))
-        throw InputError("pyramids: min_height must be positive and at most height (" + fmt_double(params_.height) +
-                         "), got " + fmt_double(params_.min_height));
+        throw InputError("pyramids: min_height must be positive and at most height (" + format_number(params_.height) +
+                         "), got " + format_number(params_.min_height));
     const Index nf = top_.num_faces();
     pyr_of_face_.assign(static_cast<std::size_t>(nf), kNone);
     face_centroid_.resize(static_cast<std::size_t>(nf));
@@ -609,7 +603,7 @@ void Builder::fail(Index k, const Failure& why, double h) const {
             break;
         case Failure::FaceClearance:
             reason =
-                "its apex comes closer than " + fmt_double(kFaceClearance) + " x its height to " + face_at(why.other);
+                "its apex comes closer than " + format_number(kFaceClearance) + " x its height to " + face_at(why.other);
             break;
         case Failure::FaceCrossing:
             reason = "its side crosses " + face_at(why.other);
@@ -624,10 +618,10 @@ void Builder::fail(Index k, const Failure& why, double h) const {
             break;
     }
     throw TopologyError("pyramids: quad " + std::to_string(p.face) + " of the layer top (centroid " +
-                        format_point(p.c) + ", mean edge " + fmt_double(p.size) +
-                        ") cannot be capped with a pyramid: " + reason + ", even with the apex at " + fmt_double(h) +
-                        " (min_height " + fmt_double(params_.min_height) + " x shortest edge " +
-                        fmt_double(p.shortest) +
+                        format_point(p.c) + ", mean edge " + format_number(p.size) +
+                        ") cannot be capped with a pyramid: " + reason + ", even with the apex at " + format_number(h) +
+                        " (min_height " + format_number(params_.min_height) + " x shortest edge " +
+                        format_number(p.shortest) +
                         "). The layer top leaves no room there: use fewer layers or a smaller total "
                         "layer thickness, or a smaller pyramid min_height");
 }

@@ -85,6 +85,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
+#include <strata/core/mesh_check.h>
 #include <strata/core/face_geometry.h>
 #include <strata/hybrid/tetgen_fill.h>
 
@@ -133,12 +134,6 @@ std::mutex& tetgen_mutex() {
     return m;
 }
 
-std::string fmt(const char* format, double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, format, v);
-    return buf;
-}
-
 std::string face_name(const SurfaceMesh& b, Index f) {
     std::string s = "boundary triangle " + std::to_string(f);
     const Index p = b.face_patch[f];
@@ -163,47 +158,28 @@ double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 
 void check_input(const SurfaceMesh& b, const std::vector<Vec3>& holes, const TetFillParams& p) {
     const std::string where = "fill_with_tets: ";
-    if (b.num_faces() == 0) throw InputError(where + "the boundary has no faces; nothing to fill");
-    if (static_cast<Index>(b.face_patch.size()) != b.num_faces())
-        throw InputError(where + "the boundary has " + std::to_string(b.num_faces()) + " faces but " +
-                         std::to_string(b.face_patch.size()) + " patch ids; give one patch per face");
+    // One check for every stage; TetGen fills a triangulated boundary (quads are split first,
+    // by pyramids on the layer top). A non-finite coordinate is the caller's input here too.
+    const MeshProblems arrays = check_surface_arrays(b, {.triangles_only = true, .word = "boundary face"});
+    if (!arrays.ok()) throw InputError(where + arrays.lines.front());
     if (b.points.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / 3) ||
         b.face_nodes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
         throw InputError(where + "the boundary is too large for TetGen's 32-bit ints");
-    for (Index i = 0; i < b.num_points(); ++i)
-        if (!b.points[i].allFinite())
-            throw InputError(where + "boundary node " + std::to_string(i) + " has a non-finite coordinate");
-    for (Index f = 0; f < b.num_faces(); ++f) {
-        if (b.face_size(f) != 3)
-            throw InputError(where + "boundary face " + std::to_string(f) + " has " + std::to_string(b.face_size(f)) +
-                             " nodes; TetGen fills a triangulated boundary (split the quads first, e.g. "
-                             "by pyramids on the layer top)");
-        for (int i = 0; i < 3; ++i) {
-            const Index v = b.face_node(f, i);
-            if (v < 0 || v >= b.num_points())
-                throw InputError(where + "boundary face " + std::to_string(f) + " uses node " + std::to_string(v) +
-                                 ", outside 0.." + std::to_string(b.num_points() - 1));
-        }
-        const Index pa = b.face_patch[f];
-        if (pa < 0 || pa >= static_cast<Index>(b.patches.size()))
-            throw InputError(where + "boundary face " + std::to_string(f) + " has patch id " + std::to_string(pa) +
-                             " but there are " + std::to_string(b.patches.size()) + " patches");
-    }
     for (std::size_t h = 0; h < holes.size(); ++h)
         if (!holes[h].allFinite())
             throw InputError(where + "hole point " + std::to_string(h) + " has a non-finite coordinate");
 
     if (p.refine) {
         if (!(p.radius_edge >= 1.0) || !std::isfinite(p.radius_edge))
-            throw InputError(where + "radius_edge = " + fmt("%g", p.radius_edge) +
+            throw InputError(where + "radius_edge = " + format_number(p.radius_edge) +
                              " is below 1: TetGen would refine without end; use 1.2 or more");
         if (!(p.min_dihedral >= 0.0 && p.min_dihedral < 70.0))
-            throw InputError(where + "min_dihedral = " + fmt("%g", p.min_dihedral) +
+            throw InputError(where + "min_dihedral = " + format_number(p.min_dihedral) +
                              " degrees is outside [0, 70); TetGen reaches about 15-18 in practice");
         if (!(p.max_volume >= 0.0) || !std::isfinite(p.max_volume))
-            throw InputError(where + "max_volume = " + fmt("%g", p.max_volume) + " must be 0 (no bound) or positive");
+            throw InputError(where + "max_volume = " + format_number(p.max_volume) + " must be 0 (no bound) or positive");
         if (!(p.growth >= 0.0) || !std::isfinite(p.growth))
-            throw InputError(where + "growth = " + fmt("%g", p.growth) + " must be 0 (no sizing) or positive");
+            throw InputError(where + "growth = " + format_number(p.growth) + " must be 0 (no sizing) or positive");
     }
 }
 
@@ -291,19 +267,19 @@ std::string switches(const TetFillParams& p, bool sizing, bool background) {
     if (background) {
         s += 'c';  // keep the convex hull: every walk towards a point stays inside the mesh
         s += 'q';
-        s += fmt("%.17g", kBackgroundRatio);
+        s += format_number(kBackgroundRatio, 17);
         return s;
     }
     if (!p.refine) return s;
     s += 'q';
-    s += fmt("%.17g", p.radius_edge);
+    s += format_number(p.radius_edge, 17);
     if (p.min_dihedral > 0.0) {
         s += '/';
-        s += fmt("%.17g", p.min_dihedral);
+        s += format_number(p.min_dihedral, 17);
     }
     if (p.max_volume > 0.0) {
         s += 'a';
-        s += fmt("%.17g", p.max_volume);
+        s += format_number(p.max_volume, 17);
     }
     if (sizing) s += 'm';
     return s;
@@ -708,7 +684,7 @@ TetFill convert_and_check(const SurfaceMesh& b, const FaceIndex& face_of, const 
             throw BackendError(where + "TetGen's tet " + std::to_string(t) + " at " +
                                format_point(0.25 * (fill.points[tet[0]] + fill.points[tet[1]] + fill.points[tet[2]] +
                                                     fill.points[tet[3]])) +
-                               " has volume " + fmt("%.3g", vol) + " (not positive)");
+                               " has volume " + format_number(vol, 3) + " (not positive)");
         tet_volume_sum += vol;
         fill.tets[t] = tet;
     }
@@ -749,8 +725,8 @@ TetFill convert_and_check(const SurfaceMesh& b, const FaceIndex& face_of, const 
     // The tets fill exactly the enclosed region: no overlap, no gap.
     const double scale = std::max(std::abs(boundary_volume), std::numeric_limits<double>::min());
     if (std::abs(tet_volume_sum - boundary_volume) > 1e-9 * scale)
-        throw BackendError(where + "the tets' volume " + fmt("%.12g", tet_volume_sum) +
-                           " differs from the volume the boundary encloses " + fmt("%.12g", boundary_volume) +
+        throw BackendError(where + "the tets' volume " + format_number(tet_volume_sum, 12) +
+                           " differs from the volume the boundary encloses " + format_number(boundary_volume, 12) +
                            ": TetGen's mesh overlaps or leaves gaps (a missing hole point?)");
     return fill;
 }
@@ -792,7 +768,7 @@ TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& hol
     check_input(boundary, holes, params);
     const double volume = enclosed_volume(boundary);
     if (!(volume > 0.0))
-        throw InputError("fill_with_tets: the boundary encloses a volume of " + fmt("%.6g", volume) +
+        throw InputError("fill_with_tets: the boundary encloses a volume of " + format_number(volume, 6) +
                          " (not positive): its normals point into the region to fill; orient it with normals "
                          "out of the region (outer boundary outward, cavity walls into the cavity)");
     const FaceIndex face_of = index_faces(boundary);

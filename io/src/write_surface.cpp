@@ -3,6 +3,7 @@
 // so the output is deterministic and read_msh gives the patches back by name.
 
 #include <strata/core/error.h>
+#include <strata/core/mesh_check.h>
 #include <strata/io/atomic_file.h>
 #include <strata/io/gmsh_session.h>
 #include <strata/io/write_surface.h>
@@ -49,30 +50,6 @@ void check_msh_version(const std::string& path, double version) {
                      " does not exist; use 4.1 (default) or 2.2");
 }
 
-/// Catch a malformed mesh here, with the face named, rather than as an obscure Gmsh error.
-void check_mesh(const SurfaceMesh& mesh, const std::string& path) {
-    const std::string where = "cannot write '" + path + "': ";
-    if (mesh.num_faces() == 0) throw InputError(where + "the mesh has no faces");
-    if (mesh.face_patch.size() != static_cast<std::size_t>(mesh.num_faces()))
-        throw InputError(where + "face_patch has " + std::to_string(mesh.face_patch.size()) +
-                         " entries for " + std::to_string(mesh.num_faces()) + " faces");
-    const Index num_patches = static_cast<Index>(mesh.patches.size());
-    for (Index f = 0; f < mesh.num_faces(); ++f) {
-        const Index n = mesh.face_size(f);
-        if (n != 3 && n != 4)
-            throw InputError(where + "face " + std::to_string(f) + " has " + std::to_string(n) +
-                             " nodes; only triangles and quadrangles can be written");
-        for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v)
-            if (*v < 0 || *v >= mesh.num_points())
-                throw InputError(where + "face " + std::to_string(f) + " uses node " + std::to_string(*v) +
-                                 " but the mesh has " + std::to_string(mesh.num_points()) + " nodes");
-        const Index p = mesh.face_patch[f];
-        if (p < 0 || p >= num_patches)
-            throw InputError(where + "face " + std::to_string(f) + " is on patch " + std::to_string(p) +
-                             " but the mesh has " + std::to_string(num_patches) + " patches");
-    }
-}
-
 /// Row p lists, ascending, the ids i with key[i] == p (keys kNone are left out).
 Csr bucket(const std::vector<Index>& key, std::size_t rows) {
     Csr out;
@@ -93,7 +70,7 @@ void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_
     check_extension(path);
     const bool is_msh = lower(std::filesystem::path(path).extension().string()) == ".msh";
     if (is_msh) check_msh_version(path, msh_version);
-    check_mesh(mesh, path);
+    require_sound(check_surface_arrays(mesh), "cannot write '" + path + "': ");
 
     const std::size_t num_patches = mesh.patches.size();
     const Index num_faces = mesh.num_faces();

@@ -9,6 +9,7 @@
 // gmsh_model.cpp, whose surface reading read_volume_msh shares.
 
 #include <strata/core/error.h>
+#include <strata/core/mesh_check.h>
 #include <strata/io/atomic_file.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
@@ -281,14 +282,14 @@ std::vector<std::array<Index, N>> to_cells(const RawBlock& block, const GmshNode
 void add_volume_to_gmsh_model(const VolumeMesh& mesh) {
     const std::string context = "adding the volume mesh to the current Gmsh model";
     GmshLock lock(context);
-    check_volume_mesh(mesh, "cannot add the volume mesh to the current Gmsh model: ");
+    require_sound(check_volume_arrays(mesh), "cannot add the volume mesh to the current Gmsh model: ");
     gmsh_call(context, [&] { add_volume(mesh); });
 }
 
 void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version) {
     check_extension(path);
     if (extension_of(path) == ".msh") check_msh_version(path, msh_version);
-    check_volume_mesh(mesh, "cannot write '" + path + "': ");
+    require_sound(check_volume_arrays(mesh), "cannot write '" + path + "': ");
 
     AtomicFile out(path);  // InputError now if the directory does not exist
     GmshSession session("write_volume");

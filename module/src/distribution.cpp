@@ -1,19 +1,13 @@
 #include <strata/core/error.h>
+#include <strata/core/format.h>
 #include <strata/module/distribution.h>
 
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <string>
 
 namespace strata {
 namespace {
-
-std::string num(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%g", v);
-    return b;
-}
 
 /// Bisection for a monotone function on [lo, hi] (f(lo), f(hi) of opposite signs).
 template <class F>
@@ -42,7 +36,7 @@ std::string_view to_string(Distribution d) {
 
 double first_height_from_yplus(double yplus, double re, double length) {
     if (!(yplus > 0.0) || !(re > 0.0) || !(length > 0.0))
-        throw InputError("y+ " + num(yplus) + ", Reynolds number " + num(re) + ", reference length " + num(length) +
+        throw InputError("y+ " + format_number(yplus) + ", Reynolds number " + format_number(re) + ", reference length " + format_number(length) +
                          ": all three must be positive to derive the first layer height");
     // White's flat-plate turbulent skin friction; u_tau = U sqrt(Cf/2); y = y+ nu / u_tau.
     const double cf = 0.026 / std::pow(re, 1.0 / 7.0);
@@ -57,25 +51,25 @@ std::vector<double> layer_heights(const DistributionParams& p) {
     if (h1 == 0.0 && p.yplus > 0.0)
         h1 = first_height_from_yplus(p.yplus, p.reynolds, p.reference_length);
     else if (!(h1 > 0.0) || !std::isfinite(h1))
-        throw InputError("first layer height " + num(h1) + ": give a positive --first-height, or --yplus with --reynolds");
+        throw InputError("first layer height " + format_number(h1) + ": give a positive --first-height, or --yplus with --reynolds");
     std::vector<double> d(static_cast<std::size_t>(n) + 1);
     auto at = [&d](int k) -> double& { return d[static_cast<std::size_t>(k)]; };
     switch (p.kind) {
         case Distribution::Geometric: {
             if (!(p.growth >= 1.0) || !std::isfinite(p.growth))
-                throw InputError("--growth " + num(p.growth) + ": the growth ratio must be ≥ 1");
+                throw InputError("--growth " + format_number(p.growth) + ": the growth ratio must be ≥ 1");
             for (int k = 0; k <= n; ++k) at(k) = h1 * std::pow(p.growth, k);
             return d;
         }
         case Distribution::Thickness: {
             const double t = p.thickness;
             if (!(t >= n * h1 * (1.0 - 1e-12)))
-                throw InputError("--thickness " + num(t) + " is less than " + std::to_string(n) + " layers × first height " +
-                                 num(h1) + ": increase the thickness or reduce the layers or the first height");
-            if (!std::isfinite(t)) throw InputError("--thickness " + num(t) + ": the total thickness must be finite");
+                throw InputError("--thickness " + format_number(t) + " is less than " + std::to_string(n) + " layers × first height " +
+                                 format_number(h1) + ": increase the thickness or reduce the layers or the first height");
+            if (!std::isfinite(t)) throw InputError("--thickness " + format_number(t) + ": the total thickness must be finite");
             // One layer has no ratio to solve for: its height is the thickness.
             if (n == 1 && !(t <= h1 * (1.0 + 1e-12)))
-                throw InputError("--layers 1 with --thickness " + num(t) + " and first height " + num(h1) +
+                throw InputError("--layers 1 with --thickness " + format_number(t) + " and first height " + format_number(h1) +
                                  ": one layer is the whole thickness; give more layers or thickness = first height");
             // Σ_{k<n} h1 q^k = t, monotone in q. Solved for the excess x = q − 1 with expm1/log1p:
             // h1 (q^n − 1)/(q − 1) cancels catastrophically when t is close to n h1 (q near 1).
@@ -90,12 +84,12 @@ std::vector<double> layer_heights(const DistributionParams& p) {
         case Distribution::Tanh: {
             const double t = p.thickness;
             if (!(t > 0.0) || !std::isfinite(t))
-                throw InputError("--thickness " + num(t) + ": the tanh distribution needs a positive total thickness");
+                throw InputError("--thickness " + format_number(t) + ": the tanh distribution needs a positive total thickness");
             if (n < 2)
-                throw InputError("--layers 1: one tanh layer is the whole thickness " + num(t) +
+                throw InputError("--layers 1: one tanh layer is the whole thickness " + format_number(t) +
                                  ", so a first height cannot be honoured; use at least 2 layers");
             if (!(h1 < t / n))
-                throw InputError("first height " + num(h1) + " ≥ thickness/layers " + num(t / n) +
+                throw InputError("first height " + format_number(h1) + " ≥ thickness/layers " + format_number(t / n) +
                                  ": the tanh distribution clusters towards the wall; lower the first height");
             // One-sided tanh stretching x(s) = t (1 + tanh(β (s − 1)) / tanh β), s = k / n; the first
             // spacing falls from t/n (β → 0) as β grows. Evaluated as the equal
@@ -105,7 +99,7 @@ std::vector<double> layer_heights(const DistributionParams& p) {
             const double s1 = 1.0 / n;
             const double beta = bisect([&](double b) { return x(b, s1) - h1; }, 1e-6, 100.0);
             if (!(std::abs(x(beta, s1) - h1) <= 1e-9 * h1))
-                throw InputError("first height " + num(h1) + " is too small for the tanh distribution over " + num(t) +
+                throw InputError("first height " + format_number(h1) + " is too small for the tanh distribution over " + format_number(t) +
                                  " with " + std::to_string(n) + " layers; raise it or use more layers");
             for (int k = 0; k < n; ++k) at(k) = x(beta, (k + 1.0) / n) - x(beta, static_cast<double>(k) / n);
             // Level 2 of the last layer continues the last ratio.

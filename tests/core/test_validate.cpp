@@ -324,10 +324,10 @@ TEST(ValidateMesh, VolumeToleranceIsRelative) {
     for (Index f = 1; f < m.boundary.num_faces(); ++f)
         b.add_face(m.boundary.face_begin(f), m.boundary.face_size(f), m.boundary.face_patch[f]);
     m.boundary = b;
-    const ValidationReport tight = validate_mesh(m, 1e-9);
+    const ValidationReport tight = validate_mesh(m, {.volume_tolerance = 1e-9});
     EXPECT_EQ(count_problems(tight, "volumes sum to 8 but the boundary encloses"), 1) << all_problems(tight);
     EXPECT_EQ(count_problems(tight, "has no neighbouring cell"), 1) << all_problems(tight);
-    const ValidationReport loose = validate_mesh(m, 0.5);
+    const ValidationReport loose = validate_mesh(m, {.volume_tolerance = 0.5});
     EXPECT_EQ(count_problems(loose, "volumes sum to"), 0) << all_problems(loose);
     EXPECT_EQ(count_problems(loose, "has no neighbouring cell"), 1) << all_problems(loose);
 }

@@ -132,21 +132,21 @@ TEST(CheckSurface, EmptyMeshIsAnInputError) {
 TEST(CheckSurface, NonFiniteCoordinateNamesTheNode) {
     SurfaceMesh m = quad_grid(2, 2);
     m.points[4].y() = std::numeric_limits<double>::quiet_NaN();
-    std::string msg = message_of<InputError>([&] { check_surface(m, "body.msh"); });
+    std::string msg = message_of<TopologyError>([&] { check_surface(m, "body.msh"); });
     EXPECT_EQ(msg.rfind("body.msh: ", 0), 0u) << msg;
     EXPECT_TRUE(contains(msg, "node 4 ")) << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos);
 
     m.points[4].y() = 1.0;
     m.points[7].z() = std::numeric_limits<double>::infinity();
-    msg = message_of<InputError>([&] { check_surface(m, "body.msh"); });
+    msg = message_of<TopologyError>([&] { check_surface(m, "body.msh"); });
     EXPECT_TRUE(contains(msg, "node 7 ")) << msg;
 }
 
 TEST(CheckSurface, OutOfRangeNodeId) {
     SurfaceMesh m = quad_grid(1, 1);
     m.add_face({0, 2, 99}, 0);
-    const std::string msg = message_of<TopologyError>([&] { check_surface(m, "in.stl"); });
+    const std::string msg = message_of<InputError>([&] { check_surface(m, "in.stl"); });
     EXPECT_TRUE(contains(msg, "face 1 ")) << msg;
     EXPECT_TRUE(contains(msg, "node 99")) << msg;
 }

@@ -5,6 +5,7 @@
 /// right-angled corner, ≤ 0 for an inverted one. The cell's value is its minimum over corners.
 
 #include <strata/core/types.h>
+#include <strata/core/volume_mesh.h>
 
 #include <array>
 #include <vector>
@@ -18,5 +19,7 @@ double tet_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Inde
 double pyramid_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 5>& v);
 double prism_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 6>& v);
 double hex_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 8>& v);
+/// The cell's value for a cell of type \p t with corners \p v (cell_corners(t) of them).
+double min_scaled_jacobian(const std::vector<Vec3>& p, const Index* v, CellType t);
 
 }  // namespace strata

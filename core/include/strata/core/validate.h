@@ -26,11 +26,19 @@ struct ValidationReport {
     bool ok() const { return problems.empty(); }
 };
 
-/// Check \p mesh. \p volume_tolerance is relative to the boundary volume.
-ValidationReport validate_mesh(const VolumeMesh& mesh, double volume_tolerance = 1e-9);
+struct ValidateParams {
+    double volume_tolerance = 1e-9;  ///< allowed |Σ cell volumes − boundary volume|, relative to the latter
+    int threads = 0;                 ///< 0: OpenMP's default; the report is the same for any count
+};
+
+/// Check \p mesh: its arrays (check_volume_arrays; with an id out of range nothing else is
+/// checked), every corner's scaled Jacobian and every cell's volume, the faces (match_faces:
+/// every problem it finds is one), the volume closure. Works in fixed chunks merged in order,
+/// so the report does not depend on the thread count.
+ValidationReport validate_mesh(const VolumeMesh& mesh, const ValidateParams& params = {});
 
 /// validate_mesh, and throw TopologyError "<what>: <n> problems: <first problems>" unless ok.
-ValidationReport require_valid_mesh(const VolumeMesh& mesh, const std::string& what);
+ValidationReport require_valid_mesh(const VolumeMesh& mesh, const std::string& what, const ValidateParams& params = {});
 
 /// Signed volume of each cell type (Gmsh order), by the divergence theorem over its faces
 /// (quads through their diagonal cross product), consistent with the boundary volume.

@@ -6,15 +6,35 @@
 #include <strata/core/surface_mesh.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace strata {
 
 enum class CellType { Tet, Pyramid, Prism, Hex };
+
+/// The cell types in the order every stage numbers cells (CellNumbering): tetrahedra,
+/// pyramids, prisms, hexahedra.
+inline constexpr std::array<CellType, 4> kCellTypes{CellType::Tet, CellType::Pyramid, CellType::Prism, CellType::Hex};
+
 /// Corners per cell type: 4, 5, 6, 8.
-int cell_corners(CellType t);
+constexpr int cell_corners(CellType t) {
+    switch (t) {
+        case CellType::Tet:
+            return 4;
+        case CellType::Pyramid:
+            return 5;
+        case CellType::Prism:
+            return 6;
+        case CellType::Hex:
+            return 8;
+    }
+    return 0;
+}
+/// "tetrahedron", "pyramid", "prism", "hexahedron".
 std::string_view to_string(CellType t);
 
 struct VolumeMesh {
@@ -30,28 +50,49 @@ struct VolumeMesh {
     Index num_cells() const {
         return static_cast<Index>(tets.size() + pyramids.size() + prisms.size() + hexes.size());
     }
+    /// Cells of type \p t.
+    std::size_t num_cells(CellType t) const;
+    /// The cell_corners(t) corners of cell \p i of type \p t.
+    const Index* cell(CellType t, std::size_t i) const;
 };
 
-/// The corners of cell \p i of type \p type (0 tet, 1 pyramid, 2 prism, 3 hexahedron: the
-/// order of CellType) in \p m.
-inline const Index* cell_nodes(const VolumeMesh& m, int type, std::int64_t i) {
-    const auto k = static_cast<std::size_t>(i);
-    switch (type) {
-        case 0:
-            return m.tets[k].data();
-        case 1:
-            return m.pyramids[k].data();
-        case 2:
-            return m.prisms[k].data();
-        default:
-            return m.hexes[k].data();
+/// Global cell numbers, one order for every stage and writer: tetrahedra first, then
+/// pyramids, prisms, hexahedra (kCellTypes), each block in VolumeMesh order.
+class CellNumbering {
+public:
+    explicit CellNumbering(const VolumeMesh& mesh);
+    std::int64_t count() const { return start_[4]; }
+    std::int64_t count(CellType t) const { return start(next(t)) - start(t); }
+    /// Global number of the first cell of type \p t.
+    std::int64_t start(CellType t) const { return start_[static_cast<std::size_t>(t)]; }
+
+    struct Cell {
+        CellType type;
+        std::int64_t index;  ///< within the type
+    };
+    /// The type and index within the type of global cell \p g (0 ≤ g < count()).
+    Cell locate(std::int64_t g) const;
+
+private:
+    static std::size_t next(CellType t) { return static_cast<std::size_t>(t) + 1; }
+    std::int64_t start(std::size_t k) const { return start_[k]; }
+    std::array<std::int64_t, 5> start_{};
+};
+
+/// "prism 12 at (x, y, z)" (the centroid): how messages name a cell.
+std::string describe_cell(const VolumeMesh& mesh, CellType t, std::int64_t i);
+
+/// Append \p from to \p to with every node id mapped through \p map (a callable Index → Index):
+/// how assembly moves one stage's cells into the numbering of the whole mesh.
+template <std::size_t N, class NodeMap>
+void append_cells(std::vector<std::array<Index, N>>& to, const std::vector<std::array<Index, N>>& from,
+                  NodeMap&& map) {
+    to.reserve(to.size() + from.size());
+    for (const std::array<Index, N>& c : from) {
+        std::array<Index, N> m;
+        for (std::size_t k = 0; k < N; ++k) m[k] = map(c[k]);
+        to.push_back(m);
     }
 }
-
-/// Refuse a malformed mesh before a writer hands it on: no cells, a node id out of range, a
-/// non-finite coordinate, malformed boundary CSR, a boundary face that is not a triangle or a
-/// quad, a patch id out of range. \p where prefixes every message ("cannot write 'm.msh': ").
-/// Throws InputError (TopologyError for a non-finite coordinate).
-void check_volume_mesh(const VolumeMesh& mesh, const std::string& where);
 
 }  // namespace strata

@@ -9,10 +9,11 @@
 
 namespace strata {
 
-/// Throws InputError for an empty mesh or NaN/infinite coordinates (naming the node),
-/// TopologyError for a face with a repeated node or (near) zero area (relative to the
-/// bounding box), for an out-of-range node id, and for an edge shared by more than two
-/// faces (naming the edge's nodes, coordinates and faces). \p source names the input.
+/// First the arrays (check_surface_arrays, require_sound): InputError for an empty mesh, a face
+/// that is not a triangle or quadrilateral, a node or patch id out of range; TopologyError for
+/// a NaN or infinite coordinate (naming the node). Then TopologyError for a face with a repeated
+/// node or (near) zero area (relative to the bounding box), and for an edge shared by more than
+/// two faces (naming the edge's nodes, coordinates and faces). \p source names the input.
 void check_surface(const SurfaceMesh& mesh, const std::string& source);
 
 /// What orient_surface did.
