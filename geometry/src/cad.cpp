@@ -4,20 +4,15 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
+#include <strata/io/files.h>
+#include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
-#include <cstddef>
-#include <filesystem>
-#include <fstream>
-#include <limits>
-#include <map>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -25,13 +20,6 @@ namespace strata {
 namespace {
 
 enum class CadFormat { Step, Iges, Brep, Geo };
-
-std::string lower_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
 
 std::optional<CadFormat> format_of(const std::string& path) {
     const std::string ext = lower_extension(path);
@@ -100,105 +88,38 @@ void validate(const CadParams& p) {
     }
 }
 
-// Gmsh would happily "read" a missing file: gmsh::merge/open create an empty model,
-// and the user would be told the model has no surfaces instead of that the path is wrong.
-void check_readable(const std::string& path) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::file_status st = fs::status(path, ec);
-    if (!fs::exists(st)) throw InputError(path + ": no such file; check the path");
-    if (fs::is_directory(st))
-        throw InputError(path + ": is a directory, not a CAD file; give the file itself");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot be opened for reading; check its permissions");
-}
-
 // Gmsh's options are process-wide. One mesh_cad call must not leave its sizes (or whatever a
 // .geo script set) to the next call, nor to a user who initialised Gmsh for their own work:
 // the options this file sets, and those scripts commonly set, are saved and put back.
-class OptionSnapshot {
-public:
-    OptionSnapshot() {
-        static constexpr const char* kNumbers[] = {
-            "Mesh.MeshSizeMax",
-            "Mesh.MeshSizeMin",
-            "Mesh.MeshSizeFromCurvature",
-            "Mesh.MeshSizeExtendFromBoundary",
-            "Mesh.MeshSizeFromPoints",
-            "Mesh.MeshSizeFactor",
-            "Mesh.Algorithm",
-            "Mesh.Algorithm3D",
-            "Mesh.RecombineAll",
-            "Mesh.RecombinationAlgorithm",
-            "Mesh.ElementOrder",
-            "Mesh.SubdivisionAlgorithm",
-            "Mesh.Smoothing",
-            "Mesh.MinimumCirclePoints",
-            "Mesh.MinimumCurvePoints",
-            "Mesh.Optimize",
-            "Mesh.SaveAll",
-            "Geometry.Tolerance",
-            "Geometry.ToleranceBoolean",
-            "Geometry.OCCFixDegenerated",
-            "Geometry.OCCFixSmallEdges",
-            "Geometry.OCCFixSmallFaces",
-            "Geometry.OCCSewFaces",
-            "Geometry.OCCMakeSolids",
-            "Geometry.OCCScaling",
-            "General.Terminal",
-            "General.Verbosity",
-            "General.NumThreads",
-        };
-        for (const char* name : kNumbers) {
-            double v = 0.0;
-            try {
-                gmsh::option::getNumber(name, v);
-                numbers_.emplace_back(name, v);
-            } catch (...) {
-                // Not an option of this Gmsh version: nothing to save.
-            }
-        }
-        try {
-            std::string unit;
-            gmsh::option::getString("Geometry.OCCTargetUnit", unit);
-            strings_.emplace_back("Geometry.OCCTargetUnit", unit);
-        } catch (...) {
-        }
-    }
-    ~OptionSnapshot() {
-        for (const auto& [name, v] : numbers_) {
-            try {
-                gmsh::option::setNumber(name, v);
-            } catch (...) {
-            }
-        }
-        for (const auto& [name, v] : strings_) {
-            try {
-                gmsh::option::setString(name, v);
-            } catch (...) {
-            }
-        }
-    }
-    OptionSnapshot(const OptionSnapshot&) = delete;
-    OptionSnapshot& operator=(const OptionSnapshot&) = delete;
-
-    /// True if \p name now differs from its value when the snapshot was taken.
-    bool changed(const std::string& name) const {
-        for (const auto& [n, v] : numbers_) {
-            if (n != name) continue;
-            double now = v;
-            try {
-                gmsh::option::getNumber(name, now);
-            } catch (...) {
-            }
-            return now != v;
-        }
-        return false;
-    }
-
-private:
-    std::vector<std::pair<std::string, double>> numbers_;
-    std::vector<std::pair<std::string, std::string>> strings_;
+const std::vector<std::string> kSavedOptions = {
+    "Mesh.MeshSizeMax",
+    "Mesh.MeshSizeMin",
+    "Mesh.MeshSizeFromCurvature",
+    "Mesh.MeshSizeExtendFromBoundary",
+    "Mesh.MeshSizeFromPoints",
+    "Mesh.MeshSizeFactor",
+    "Mesh.Algorithm",
+    "Mesh.Algorithm3D",
+    "Mesh.RecombineAll",
+    "Mesh.RecombinationAlgorithm",
+    "Mesh.ElementOrder",
+    "Mesh.SubdivisionAlgorithm",
+    "Mesh.Smoothing",
+    "Mesh.MinimumCirclePoints",
+    "Mesh.MinimumCurvePoints",
+    "Mesh.Optimize",
+    "Mesh.SaveAll",
+    "Geometry.Tolerance",
+    "Geometry.ToleranceBoolean",
+    "Geometry.OCCFixDegenerated",
+    "Geometry.OCCFixSmallEdges",
+    "Geometry.OCCFixSmallFaces",
+    "Geometry.OCCSewFaces",
+    "Geometry.OCCMakeSolids",
+    "Geometry.OCCScaling",
+    "General.Terminal",
+    "General.Verbosity",
+    "General.NumThreads",
 };
 
 double get_number(const std::string& name) {
@@ -300,134 +221,19 @@ void clear_script_mesh(const std::string& path) {
     });
 }
 
-// One patch per 2D physical group (in group-tag order), then one per surface in no group
-// (surface-tag order). A surface in several groups goes to the first. Groups that hold no
-// existing surface (stale after a Boolean, or empty) make no patch.
-struct PatchPlan {
-    std::vector<Patch> patches;
-    std::map<int, Index> patch_of_surface;
-};
-
-PatchPlan plan_patches(const std::vector<int>& surfaces) {
-    PatchPlan plan;
-    gmsh::vectorpair groups;
-    gmsh::model::getPhysicalGroups(groups, 2);
-    std::sort(groups.begin(), groups.end());
-    const std::vector<int>& sorted = surfaces;  // sorted by entity_tags
-    for (const auto& [dim, group] : groups) {
-        std::vector<int> members;
-        gmsh::model::getEntitiesForPhysicalGroup(dim, group, members);
-        std::sort(members.begin(), members.end());
-        Index patch = kNone;
-        for (int s : members) {
-            if (!std::binary_search(sorted.begin(), sorted.end(), s)) continue;
-            if (plan.patch_of_surface.count(s)) continue;
-            if (patch == kNone) {
-                std::string name;
-                gmsh::model::getPhysicalName(dim, group, name);
-                if (name.empty()) name = "physical_" + std::to_string(group);
-                patch = static_cast<Index>(plan.patches.size());
-                plan.patches.push_back({name, PatchKind::Wall});
-            }
-            plan.patch_of_surface.emplace(s, patch);
-        }
-    }
-    for (int s : surfaces) {
-        if (plan.patch_of_surface.count(s)) continue;
-        plan.patch_of_surface.emplace(s, static_cast<Index>(plan.patches.size()));
-        plan.patches.push_back({"surface_" + std::to_string(s), PatchKind::Wall});
-    }
-    return plan;
-}
-
+/// The meshed surfaces as one SurfaceMesh, by the one conversion of the Gmsh adapter (patches
+/// from the physical groups, gmsh_model.h), nodes numbered as the faces use them. Every surface
+/// must have got elements: one without would leave a hole.
 SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces) {
-    SurfaceMesh mesh;
-    PatchPlan plan =
-        gmsh_call(path + ": reading the physical groups", [&] { return plan_patches(surfaces); });
-    mesh.patches = std::move(plan.patches);
-
-    std::vector<std::size_t> node_tags;
-    std::vector<double> coords, parametric;
-    gmsh_call(path + ": reading the mesh nodes", [&] {
-        gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, false, false);
-    });
-    // Gmsh node tags are global across entities on a conforming mesh, so one map from tag
-    // to slot makes nodes shared between surfaces appear once.
-    std::unordered_map<std::size_t, std::size_t> slot_of;
-    slot_of.reserve(node_tags.size());
-    for (std::size_t i = 0; i < node_tags.size(); ++i) slot_of.emplace(node_tags[i], i);
-    std::vector<Index> index_of(node_tags.size(), kNone);
-    constexpr auto kMaxIndex = static_cast<std::size_t>(std::numeric_limits<Index>::max());
-
-    auto node_index = [&](std::size_t tag, int surface) {
-        auto it = slot_of.find(tag);
-        if (it == slot_of.end())
-            throw BackendError(path + ": surface " + std::to_string(surface) +
-                               ": Gmsh returned an element with unknown node " +
-                               std::to_string(tag));
-        Index& id = index_of[it->second];
-        if (id == kNone) {
-            if (mesh.points.size() >= kMaxIndex)
-                throw InputError(path +
-                                 ": the mesh has more nodes than 32-bit indices hold; "
-                                 "use a larger size or build with STRATA_INDEX64");
-            id = static_cast<Index>(mesh.points.size());
-            const double* c = coords.data() + 3 * it->second;
-            mesh.points.emplace_back(c[0], c[1], c[2]);
-        }
-        return id;
-    };
-
-    for (int s : surfaces) {
-        std::vector<int> types;
-        std::vector<std::vector<std::size_t>> element_tags, element_nodes;
-        gmsh_call(path + ": reading the elements of surface " + std::to_string(s), [&] {
-            gmsh::model::mesh::getElements(types, element_tags, element_nodes, 2, s);
-        });
-        const Index patch = plan.patch_of_surface.at(s);
-        std::size_t count = 0;
-        for (std::size_t t = 0; t < types.size(); ++t) {
-            int nodes_per_face = 0;
-            if (types[t] == 2)
-                nodes_per_face = 3;  // 3-node triangle
-            else if (types[t] == 3)
-                nodes_per_face = 4;  // 4-node quadrangle
-            else {
-                std::string name = "type " + std::to_string(types[t]);
-                try {
-                    int dim = 0, order = 0, num_nodes = 0, num_primary = 0;
-                    std::vector<double> local;
-                    gmsh::model::mesh::getElementProperties(types[t], name, dim, order, num_nodes,
-                                                            local, num_primary);
-                } catch (...) {
-                }
-                throw BackendError(path + ": surface " + std::to_string(s) + ": Gmsh made '" +
-                                   name +
-                                   "' elements; Strata takes only 3-node triangles and "
-                                   "4-node quadrangles (remove Mesh.ElementOrder or other "
-                                   "element settings from the script)");
-            }
-            const std::vector<std::size_t>& nodes = element_nodes[t];
-            std::array<Index, 4> face{};
-            for (std::size_t e = 0; e + static_cast<std::size_t>(nodes_per_face) <= nodes.size();
-                 e += static_cast<std::size_t>(nodes_per_face)) {
-                for (int k = 0; k < nodes_per_face; ++k)
-                    face[static_cast<std::size_t>(k)] =
-                        node_index(nodes[e + static_cast<std::size_t>(k)], s);
-                mesh.add_face(face.data(), nodes_per_face, patch);
-                ++count;
-            }
-        }
-        if (count == 0)
+    std::vector<int> face_surface;
+    SurfaceMesh mesh = surface_from_gmsh_model(path, NodeOrder::FirstUse, &face_surface);
+    std::sort(face_surface.begin(), face_surface.end());
+    for (int s : surfaces)
+        if (!std::binary_search(face_surface.begin(), face_surface.end(), s))
             throw BackendError(path + ": surface " + std::to_string(s) +
                                " got no elements from Gmsh, which would leave a hole; the "
                                "surface may be degenerate or too small for the element size: "
                                "try a smaller size or another algorithm, or repair the CAD");
-    }
-    if (mesh.face_nodes.size() >= kMaxIndex)
-        throw InputError(path +
-                         ": the mesh is too large for 32-bit indices; use a larger size "
-                         "or build with STRATA_INDEX64");
     return mesh;
 }
 
@@ -442,11 +248,13 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params) {
                          ": not a CAD file Strata reads; use .step/.stp, .iges/.igs, "
                          ".brep/.brp or a Gmsh .geo script");
     validate(params);
-    check_readable(path);
+    check_input_file(path);
     const bool script = *format == CadFormat::Geo;
 
     GmshSession session("strata_cad");
-    OptionSnapshot options;  // declared after the session: restored while Gmsh is still locked
+    GmshOptionScope options;  // declared after the session: restored while Gmsh is still locked
+    options.save(kSavedOptions);
+    options.save_string("Geometry.OCCTargetUnit");
 
     load(path, *format);
 

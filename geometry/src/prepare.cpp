@@ -2,13 +2,12 @@
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/prepare.h>
+#include <strata/io/files.h>
 #include <strata/io/read_surface.h>
 #include <strata/geometry/topology.h>
 
 #include <algorithm>
 #include <cctype>
-#include <filesystem>
-#include <fstream>
 
 namespace strata {
 namespace {
@@ -18,17 +17,11 @@ std::string lower(std::string s) {
     return s;
 }
 
+/// The reader for \p path's extension: CAD through Gmsh (mesh_cad), STL and MSH through io/.
 SurfaceMesh read_any(const std::string& path, const CadParams& cad) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    if (!fs::exists(path, ec))
-        throw InputError("cannot open '" + path + "': no such file; check the path");
-    if (fs::is_directory(path, ec))
-        throw InputError("cannot open '" + path + "': it is a directory, not a geometry file");
-    if (!std::ifstream(path))
-        throw InputError("cannot open '" + path + "': permission denied or unreadable");
-    const std::string ext = lower(fs::path(path).extension().string());
+    check_input_file(path);
     if (is_cad_file(path)) return mesh_cad(path, cad);
+    const std::string ext = lower_extension(path);
     if (ext == ".stl") return read_stl(path);
     if (ext == ".msh") return read_msh(path);
     throw InputError("'" + path + "': unknown file type '" + ext +

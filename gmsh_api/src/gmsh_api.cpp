@@ -5,7 +5,6 @@
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
 #include <strata/gmsh_api/gmsh_api.h>
-#include <strata/io/write_volume.h>
 
 #include <set>
 #include <string>

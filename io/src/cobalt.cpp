@@ -21,7 +21,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
-#include <strata/io/atomic_file.h>
+#include <strata/io/files.h>
 #include <strata/io/cobalt.h>
 #include <strata/core/cell_faces.h>
 #include <strata/core/face_match.h>
@@ -130,11 +130,6 @@ std::string bc_name(const std::string& name, Index number) {
     return s.substr(b, e - b + 1);
 }
 
-void check_not_directory(const std::string& target) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(target, ec))
-        throw InputError("cannot write '" + target + "': it is a directory; choose a file name");
-}
 
 /// The second cell of every face as written, per slot: the 1-based cell across an interior
 /// face when the slot's cell is the lower-numbered one (c1), −patch number on a boundary face,
@@ -240,8 +235,6 @@ void write_cobalt(const VolumeMesh& mesh, const std::string& path) {
     // Targets: checked before anything is written, then both files complete before either is
     // renamed into place.
     const std::string bc_path = path + ".bc";
-    check_not_directory(path);
-    check_not_directory(bc_path);
     AtomicFile grid_file(path);
     AtomicFile bc_file(bc_path);
     {

@@ -1,5 +1,6 @@
 #include <strata/io/gmsh_session.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -85,6 +86,61 @@ GmshSession::~GmshSession() {
         } catch (...) {
         }
     }
+}
+
+GmshOptionScope::~GmshOptionScope() {
+    for (auto it = numbers_.rbegin(); it != numbers_.rend(); ++it) {
+        try {
+            gmsh::option::setNumber(it->first, it->second);
+        } catch (...) {
+        }
+    }
+    for (auto it = strings_.rbegin(); it != strings_.rend(); ++it) {
+        try {
+            gmsh::option::setString(it->first, it->second);
+        } catch (...) {
+        }
+    }
+}
+
+void GmshOptionScope::save(const std::vector<std::string>& names) {
+    for (const std::string& name : names) {
+        if (std::any_of(numbers_.begin(), numbers_.end(), [&](const auto& nv) { return nv.first == name; })) continue;
+        double v = 0.0;
+        try {
+            gmsh::option::getNumber(name, v);
+            numbers_.emplace_back(name, v);
+        } catch (...) {
+            // Not an option of this Gmsh version: nothing to save.
+        }
+    }
+}
+
+void GmshOptionScope::save_string(const std::string& name) {
+    try {
+        std::string v;
+        gmsh::option::getString(name, v);
+        strings_.emplace_back(name, v);
+    } catch (...) {
+    }
+}
+
+void GmshOptionScope::set(const std::string& name, double value) {
+    save({name});
+    gmsh::option::setNumber(name, value);
+}
+
+bool GmshOptionScope::changed(const std::string& name) const {
+    for (const auto& [n, v] : numbers_) {
+        if (n != name) continue;
+        double now = v;
+        try {
+            gmsh::option::getNumber(name, now);
+        } catch (...) {
+        }
+        return now != v;
+    }
+    return false;
 }
 
 std::string GmshSession::last_error() {

@@ -3,6 +3,7 @@
 // most of it reading and scanning the text; binary is a straight copy.
 
 #include <strata/core/error.h>
+#include <strata/io/files.h>
 #include <strata/io/read_surface.h>
 
 #include <bit>
@@ -26,9 +27,8 @@ constexpr std::size_t kBinaryFacet = 50;   // normal + 3 vertices (12 float32) +
 
 /// The whole file as bytes; InputError "cannot open 'X': <reason>" otherwise.
 std::string slurp(const std::string& path) {
+    check_input_file(path);
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw InputError("cannot open '" + path + "': it is a directory, not an STL file");
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!f) throw InputError("cannot open '" + path + "': " + std::strerror(errno));
     // One read of the known size (no regrowth of a 100+ MB buffer); the loop also covers

@@ -314,6 +314,21 @@ TEST(MeshCad, GeoPhysicalGroupsBecomePatches) {
     EXPECT_TRUE(closed(m));
 }
 
+TEST(MeshCad, NodesAreNumberedInOrderOfFirstUse) {
+    // Gmsh numbers a fresh mesh's nodes points, curves, then surfaces; the CAD import renumbers
+    // them as the faces use them (NodeOrder::FirstUse), so each surface's nodes are together.
+    const SurfaceMesh m = mesh_cad(test_data("cad_box_groups.geo"), {});
+    Index next = 0;
+    std::vector<char> seen(static_cast<std::size_t>(m.num_points()), 0);
+    for (Index v : m.face_nodes) {
+        if (seen[static_cast<std::size_t>(v)]) continue;
+        seen[static_cast<std::size_t>(v)] = 1;
+        ASSERT_EQ(v, next) << "node " << v << " first used after node " << next - 1;
+        ++next;
+    }
+    EXPECT_EQ(next, m.num_points());
+}
+
 TEST(MeshCad, IgesMeshes) {
     const SurfaceMesh m = mesh_cad(test_data("cad_box_with_hole.igs"), {});
     expect_well_formed(m);

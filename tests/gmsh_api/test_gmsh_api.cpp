@@ -9,6 +9,7 @@
 #include <strata/core/error.h>
 #include <strata/gmsh_api/gmsh_api.h>
 #include <strata/core/validate.h>
+#include <strata/io/gmsh_model.h>
 #include <strata/io/write_volume.h>
 
 #include <gmsh.h>

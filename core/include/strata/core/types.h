@@ -33,4 +33,19 @@ struct Csr {
     const Index* row_end(Index i) const { return values.data() + offsets[i + 1]; }
 };
 
+/// Row r lists, ascending, the ids i with key[i] == r (a counting sort; keys kNone are left
+/// out): faces by patch, nodes by owner, ... \p rows is the number of distinct keys.
+inline Csr group_by_key(const std::vector<Index>& key, std::size_t rows) {
+    Csr out;
+    out.offsets.assign(rows + 1, 0);
+    for (Index k : key)
+        if (k != kNone) ++out.offsets[static_cast<std::size_t>(k) + 1];
+    for (std::size_t r = 0; r < rows; ++r) out.offsets[r + 1] += out.offsets[r];
+    out.values.resize(static_cast<std::size_t>(out.offsets.back()));
+    std::vector<Index> fill(out.offsets.begin(), out.offsets.end() - 1);
+    for (std::size_t i = 0; i < key.size(); ++i)
+        if (key[i] != kNone) out.values[static_cast<std::size_t>(fill[static_cast<std::size_t>(key[i])]++)] = static_cast<Index>(i);
+    return out;
+}
+
 }  // namespace strata

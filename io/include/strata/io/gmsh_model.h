@@ -1,15 +1,24 @@
 #pragma once
 /// \file
-/// The current Gmsh model as Strata meshes: the model side of the Gmsh adapter (gmsh_session.h
-/// is its lock and error side). Gmsh's 1-based size_t tags appear here and in the few .cpp
-/// files that call Gmsh; what leaves these functions is 0-based strata::Index.
+/// The current Gmsh model ↔ Strata's meshes: the one place that turns Gmsh's elements and
+/// physical groups into patches and back (gmsh_session.h is the lock and error side of the
+/// adapter). Gmsh's 1-based size_t tags appear here and in the few .cpp files that call Gmsh;
+/// what leaves these functions is 0-based strata::Index.
 ///
 /// Every function works on the CURRENT model and takes Gmsh's lock (GmshLock): call it inside
-/// a GmshSession (Strata's readers), or with Gmsh initialised by the user (the Gmsh-API entry
-/// point); InputError otherwise.
+/// a GmshSession (Strata's readers, writers and CAD import), or with Gmsh initialised by the
+/// user (the Gmsh-API entry point); InputError otherwise.
+///
+/// Patches, one rule for every reader (a .msh file, a CAD model Gmsh meshed, a user's model):
+/// one patch per 2D physical group that holds faces, in group-tag order, named after the group
+/// ("physical_<tag>" if unnamed; groups of the same name share one patch); a surface in several
+/// groups belongs to the lowest-tagged one; then one patch "surface_<tag>" per surface with
+/// faces in no group, in surface-tag order. So a model without physical groups gives one patch
+/// per surface entity.
 
 #include <strata/core/error.h>
 #include <strata/core/surface_mesh.h>
+#include <strata/core/volume_mesh.h>
 
 #include <cstddef>
 #include <string>
@@ -40,32 +49,52 @@ private:
     std::vector<Index> dense_;       // tag -> position, when dense
 };
 
-/// The current model's 2D elements with every node numbered as in \p nodes (so points stay
-/// empty and faces index nodes.points()): how a volume reader gets its boundary faces.
-/// Patches and checks as surface_from_gmsh_model, except that a model without triangles or
-/// quadrangles gives an empty mesh instead of an error.
-SurfaceMesh surface_faces_from_gmsh_model(const std::string& context, const GmshNodes& nodes);
+/// How surface_from_gmsh_model numbers the nodes its faces use.
+enum class NodeOrder {
+    Tags,      ///< ascending Gmsh tag: a file's or a user's own numbering is kept
+    FirstUse,  ///< in order of first use by the faces: a mesh Gmsh has just made from CAD, whose
+               ///< tags follow its meshing order (points, curves, surfaces), gets nodes numbered
+               ///< surface by surface
+};
 
 /// The current model's surface mesh: its 3-node triangles and 4-node quadrangles (higher-order
 /// or other 2D types are an InputError naming the surface; points, lines and volume elements
-/// are ignored). One patch per 2D physical group in tag order, named after it ("physical_<tag>"
-/// if unnamed; groups of the same name share a patch); a surface in several groups goes to the
-/// lowest-tagged one; a surface in no group gets a patch "surface_<tag>"; so with no physical
-/// groups at all, one patch per surface entity. Faces in Gmsh element-tag order; nodes in tag
-/// order, only those the faces use. As stored: no merging, no orientation (prepare.h).
-/// \p context names the model in errors ("'wing.msh'", "Gmsh model 'sphere'"); InputError
+/// are ignored), patches as the file comment says, faces in Gmsh element-tag order, only the
+/// nodes the faces use, numbered as \p order says. As stored: no merging, no orientation
+/// (geometry/prepare.h). \p face_surface, if given, receives the Gmsh surface entity of each
+/// face. \p context names the model in errors ("'wing.msh'", "Gmsh model 'sphere'"); InputError
 /// "<context> holds no triangles or quadrangles: ..." if it has none.
-SurfaceMesh surface_from_gmsh_model(const std::string& context);
+SurfaceMesh surface_from_gmsh_model(const std::string& context, NodeOrder order = NodeOrder::Tags,
+                                    std::vector<int>* face_surface = nullptr);
+
+/// The current model's volume mesh: its 4-node tetrahedra, 5-node pyramids, 6-node prisms and
+/// 8-node hexahedra (other 3D types: InputError naming the volume), each type in element-tag
+/// order, every node of the model in tag order, and its 2D elements as the boundary with
+/// patches as the file comment says (what add_volume_to_gmsh_model put there comes back in the
+/// same order). InputError if the model has no cells.
+VolumeMesh volume_from_gmsh_model(const std::string& context);
+
+/// Add \p mesh to the CURRENT Gmsh model: one discrete surface and one 2D physical group per
+/// patch with faces (tag = patch index + 1, named after the patch), element tag = face index + 1
+/// (so surface_from_gmsh_model restores the face order), node tag = node index + 1, each node
+/// on the lowest-numbered patch that uses it; unused nodes are left out. For an empty model
+/// (write_surface's scratch model). No checks: check_surface_arrays first.
+void add_surface_to_gmsh_model(const SurfaceMesh& mesh);
+
+/// Add \p mesh to the CURRENT Gmsh model: one discrete volume holding every node and cell with
+/// a 3D physical group "fluid", one discrete surface and one 2D physical group per non-empty
+/// boundary patch, named after the patch. Entity, physical-group, node and element tags start
+/// past the largest in use (in an empty model: volume 1, surface = patch index + 1, nodes =
+/// index + 1, elements = cell index + 1 in CellNumbering order, then #cells + boundary face
+/// index + 1). For a Gmsh user: Gmsh must be initialised (InputError otherwise); a malformed mesh
+/// is an InputError naming the cell or face, a patch whose name is a group the model already
+/// has an InputError, Gmsh's failures a BackendError. Does not validate: callers run
+/// require_valid_mesh first.
+void add_volume_to_gmsh_model(const VolumeMesh& mesh);
 
 /// Merge the .msh file \p path into the current model (gmsh::merge, not gmsh::open, which may
 /// replace the current model). InputError for a missing or unreadable file and for a file Gmsh
 /// cannot parse (with Gmsh's reason).
 void merge_msh_file(const std::string& path);
-
-/// The error for an element type a reader does not take: "<context>: volume 3 holds 'Tetrahedron
-/// 10' elements (Gmsh type 11, 10 nodes): only <supported> are supported; convert the mesh to
-/// first order ...". \p dim is the entity's dimension (2 or 3). Call with Gmsh's lock held.
-InputError unsupported_gmsh_element(const std::string& context, int dim, int entity, int type,
-                                    const std::string& supported);
 
 }  // namespace strata

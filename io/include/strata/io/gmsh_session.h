@@ -56,30 +56,31 @@ private:
 };
 
 /// Gmsh options are process-wide: a scope sets Strata's for one operation and puts the
-/// caller's values back when it ends, so a Gmsh user embedding Strata keeps their settings.
+/// caller's values back when it ends, so one call does not leave its sizes to the next and a Gmsh
+/// user embedding Strata keeps their settings. Declare it after the GmshSession (or GmshLock) so
+/// it is restored while Gmsh is still locked.
 class GmshOptionScope {
 public:
     GmshOptionScope() = default;
     GmshOptionScope(const GmshOptionScope&) = delete;
     GmshOptionScope& operator=(const GmshOptionScope&) = delete;
-    ~GmshOptionScope() {
-        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
-            try {
-                gmsh::option::setNumber(it->first, it->second);
-            } catch (...) {
-            }
-        }
-    }
-    /// Remember the current value of numeric option \p name and set it to \p value.
-    void set(const std::string& name, double value) {
-        double old = 0.0;
-        gmsh::option::getNumber(name, old);
-        saved_.emplace_back(name, old);
-        gmsh::option::setNumber(name, value);
-    }
+    ~GmshOptionScope();
+
+    /// Remember the current values of the numeric options \p names (names this Gmsh version
+    /// does not know are skipped), to be restored at the end even if something else (a .geo
+    /// script) changes them meanwhile.
+    void save(const std::vector<std::string>& names);
+    /// Remember the current value of the string option \p name.
+    void save_string(const std::string& name);
+    /// Remember the current value of numeric option \p name (once) and set it to \p value.
+    void set(const std::string& name, double value);
+    /// True if the saved numeric option \p name now differs from its saved value (false if it
+    /// was not saved).
+    bool changed(const std::string& name) const;
 
 private:
-    std::vector<std::pair<std::string, double>> saved_;
+    std::vector<std::pair<std::string, double>> numbers_;
+    std::vector<std::pair<std::string, std::string>> strings_;
 };
 
 /// Run \p f (calls into gmsh::), turning any exception Gmsh throws into a BackendError

@@ -16,10 +16,10 @@ namespace strata {
 SurfaceMesh read_stl(const std::string& path);
 
 /// Gmsh .msh 2.2 or 4.1 with 3-node triangles and 4-node quadrangles (higher-order or other
-/// 2D types are an error; points, lines and volume elements are ignored). One patch per 2D
-/// physical group (its name, or "physical_<tag>" if unnamed); a surface in no physical
-/// group gets a patch "surface_<tag>"; with no physical groups at all, one patch per surface
-/// entity. Throws InputError naming the file if it holds no triangles or quads.
+/// 2D types are an error; points, lines and volume elements are ignored), read by Gmsh into a
+/// scratch model and converted by surface_from_gmsh_model: patches by its rule (one per 2D
+/// physical group with faces, one per surface in no group), nodes in the file's order. Throws
+/// InputError naming the file if it is missing or unreadable, or holds no triangles or quads.
 SurfaceMesh read_msh(const std::string& path);
 
 }  // namespace strata

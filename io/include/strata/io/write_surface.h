@@ -9,9 +9,11 @@
 
 namespace strata {
 
-/// Write \p mesh to \p path (.msh = MSH 4.1; .msh22 is not an extension: pass \p msh_version 2.2
-/// for MSH 2.2; .vtk, .stl, .su2, ... by extension). Atomic: written to a temporary name and
-/// renamed. Throws InputError if the directory is not writable, BackendError if Gmsh fails.
+/// Write \p mesh to \p path (.msh as MSH \p msh_version 4.1 or 2.2; .vtk, .stl, .su2, ... by
+/// extension, formats.h) as add_surface_to_gmsh_model lays it out, so read_msh gives the nodes,
+/// faces and patches back in order. Atomic: written to a temporary name and renamed. Throws
+/// InputError for an unknown extension, a missing directory or malformed arrays, BackendError if
+/// Gmsh fails.
 void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_version = 4.1);
 
 }  // namespace strata

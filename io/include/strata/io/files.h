@@ -1,0 +1,40 @@
+#pragma once
+/// \file
+/// Paths and files, the same way for every reader and writer: the check that an input file
+/// can be read, write-then-rename for outputs, extensions.
+
+#include <string>
+
+namespace strata {
+
+/// Refuse \p path before any reader opens it: InputError "cannot open '<path>': no such file;
+/// check the path" (or: it is a directory, or the system's reason it cannot be read).
+void check_input_file(const std::string& path);
+
+/// The extension of \p path in lower case, with its dot (".step"); "" if it has none.
+std::string lower_extension(const std::string& path);
+
+/// Write-then-rename, so a failed or interrupted write never leaves a partial output file:
+/// a temporary path next to \p target with the same extension (writers such as Gmsh pick the
+/// format from it). commit() renames it onto the target; destruction without commit() removes
+/// it.
+class AtomicFile {
+public:
+    /// InputError naming the directory if it does not exist, or if \p target is a directory.
+    explicit AtomicFile(std::string target);
+    ~AtomicFile();
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    const std::string& temp_path() const { return temp_; }
+    const std::string& target() const { return target_; }
+    /// Rename the temporary file onto the target; throws InputError naming both on failure.
+    void commit();
+
+private:
+    std::string target_;
+    std::string temp_;
+    bool committed_ = false;
+};
+
+}  // namespace strata

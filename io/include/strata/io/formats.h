@@ -1,0 +1,31 @@
+#pragma once
+/// \file
+/// Output formats, decided by a path's extension, and checked before the work that produces
+/// the mesh starts (a typo in the output name should not cost a meshing run).
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace strata {
+
+/// The MSH versions the writers produce, "4.1" (default) or "2.2"; InputError naming \p text
+/// otherwise.
+double parse_msh_version(std::string_view text);
+
+/// A surface output Gmsh writes (.msh, .vtk, .stl, .su2, ...; \p msh_version 4.1 or 2.2 for
+/// .msh) in a directory that exists: InputError naming the path and the choices otherwise.
+void check_surface_output(const std::string& path, double msh_version = 4.1);
+
+/// A volume output: Cobalt60 (.cgr, .cog, .grd, with its .bc patch map) or a format Gmsh writes
+/// volume meshes to (.msh, .vtk, .su2, .unv, ...; \p msh_version 4.1 or 2.2 for .msh), in a
+/// directory that exists: InputError naming the path and the choices otherwise.
+void check_volume_output(const std::string& path, double msh_version = 4.1);
+
+/// Cobalt60 grid extensions: .cgr, .cog, .grd (any case).
+bool is_cobalt_path(const std::string& path);
+
+/// The files write_volume writes for \p path: the grid and, for Cobalt60, "<path>.bc".
+std::vector<std::string> volume_output_files(const std::string& path);
+
+}  // namespace strata
