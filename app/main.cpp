@@ -1,25 +1,33 @@
-// The `strata` command line: a thin front-end over the pipeline stages. Every failure is one
-// line on stderr and a non-zero exit; outputs are written atomically by the stages' writers.
+// The `strata` command line: a thin front-end over the pipeline stages. Options are bound to
+// the library's Params structs, so every default and every inference is the library's own (the
+// Gmsh-API entry point and the Python package get the same mesh for the same values); library
+// messages name parameters ("LayerParams::sweeps") and are shown here with the flag instead.
+// Every failure is one line on stderr and a non-zero exit; outputs are written atomically by
+// the writers; Ctrl-C cancels at the next check of the running stage (exit 130, nothing
+// written), a second Ctrl-C ends the program at once.
 
 #include <strata/core/error.h>
+#include <strata/core/progress.h>
+#include <strata/core/validate.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
-#include <strata/io/write_surface.h>
-#include <strata/io/cobalt.h>
 #include <strata/hybrid/hybrid_mesh.h>
-#include <strata/module/layers.h>
-#include <strata/core/validate.h>
+#include <strata/io/formats.h>
+#include <strata/io/write_surface.h>
 #include <strata/io/write_volume.h>
-#include <strata/core/progress.h>
+#include <strata/module/layers.h>
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <cctype>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -27,6 +35,129 @@
 namespace {
 
 using strata::PatchKind;
+
+// ---------------------------------------------------------------------------------------
+// Ctrl-C: the handler only sets a flag (all a signal handler may do); the stages poll it through
+// Progress::cancelled(). It also restores the default action, so a second Ctrl-C ends the
+// program even while a stage that cannot poll (Gmsh's or TetGen's meshing) is running.
+
+std::atomic<bool> g_interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT flag must be lock-free to be set in a handler");
+
+extern "C" void on_sigint(int) {
+    g_interrupted.store(true);
+    std::signal(SIGINT, SIG_DFL);
+}
+
+/// One-line progress bar on stderr when it is a terminal; cancelled once Ctrl-C was pressed.
+class Terminal : public strata::Progress {
+public:
+    explicit Terminal(bool quiet) : draw_(!quiet && isatty(2)) {}
+    void report(std::string_view stage, double fraction) override {
+        if (!draw_) return;
+        const int w = 30, n = static_cast<int>(fraction * w + 0.5);
+        std::fprintf(stderr, "\r%-10.*s [%-*s] %3d%%", static_cast<int>(stage.size()), stage.data(), w,
+                     std::string(static_cast<std::size_t>(n), '#').c_str(), static_cast<int>(fraction * 100 + 0.5));
+        if (fraction >= 1.0) std::fprintf(stderr, "\n");
+    }
+    bool cancelled() const override { return g_interrupted.load(); }
+
+private:
+    bool draw_;
+};
+
+// ---------------------------------------------------------------------------------------
+// Library messages name parameters; the user of this program knows the flags.
+
+const std::vector<std::pair<std::string, std::string>> kFlagOfParameter = {
+    {"PrepareParams::patch_kinds", "--patch"},
+    {"CadParams::size", "--size"},
+    {"CadParams::size_min", "--size-min"},
+    {"CadParams::curvature_points", "--curvature"},
+    {"CadParams::elements", "--quads/--mixed"},
+    {"CadParams::quad_surfaces", "--mixed"},
+    {"CadParams::fuse", "--fuse"},
+    {"DistributionParams::layers", "--layers"},
+    {"DistributionParams::kind", "--distribution"},
+    {"DistributionParams::first_height", "--first-height"},
+    {"DistributionParams::growth", "--growth"},
+    {"DistributionParams::thickness", "--thickness"},
+    {"DistributionParams::yplus", "--yplus"},
+    {"DistributionParams::reynolds", "--reynolds"},
+    {"DistributionParams::reference_length", "--ref-length"},
+    {"LayerParams::sweeps", "--sweeps"},
+    {"LayerParams::max_sweeps", "--max-sweeps"},
+    {"LayerParams::control_functions", "--no-control"},
+    {"LayerParams::concave", "--no-concave"},
+    {"LayerParams::hold_back", "--no-hold-back"},
+    {"LayerParams::normals", "--normals"},
+    {"LayerParams::threads", "--threads"},
+    {"HybridParams::threads", "--threads"},
+    {"FarfieldParams::shape", "--farfield"},
+    {"FarfieldParams::size", "--farfield-size"},
+    {"PyramidParams::height", "--pyramid-height"},
+    {"TetFillParams::radius_edge", "--radius-edge"},
+    {"TetFillParams::min_dihedral", "--min-dihedral"},
+    {"TetFillParams::growth", "--tet-growth"},
+};
+
+/// \p message with every parameter name replaced by its flag ("LayerParams::sweeps" ->
+/// "--sweeps"); a name followed by more identifier characters (CadParams::size_min) is not
+/// taken for a shorter one (CadParams::size).
+std::string in_flags(std::string message) {
+    auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (const auto& [param, flag] : kFlagOfParameter) {
+        for (std::size_t at = message.find(param); at != std::string::npos; at = message.find(param, at)) {
+            const std::size_t end = at + param.size();
+            if (end < message.size() && ident(message[end])) {
+                at = end;
+                continue;
+            }
+            message.replace(at, param.size(), flag);
+            at += flag.size();
+        }
+    }
+    return message;
+}
+
+// ---------------------------------------------------------------------------------------
+// Options, bound to the Params structs (their defaults are the library's).
+
+/// What every subcommand takes: the input, the output and how the surface is made.
+struct Common {
+    std::string input, output, msh_version = "4.1";
+    bool quiet = false, quads = false;
+    std::vector<int> mixed;
+    std::vector<std::string> patches;
+    strata::PrepareParams prepare;
+};
+
+void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help) {
+    strata::CadParams& cad = c.prepare.cad;
+    cmd.add_option("INPUT", c.input, "CAD (.step .stp .iges .igs .brep .brp .geo) or surface mesh (.stl .msh)")
+        ->required();
+    cmd.add_option("-o,--output", c.output, output_help)->required();
+    cmd.add_option("--msh-version", c.msh_version, "MSH file version for .msh output: 4.1 or 2.2")
+        ->capture_default_str();
+    cmd.add_flag("-q,--quiet", c.quiet, "print nothing but errors");
+    cmd.add_option("--size", cad.size,
+                   "target surface element size, model units (CAD only; 0: 1/20 of the bounding-box diagonal)")
+        ->capture_default_str();
+    cmd.add_option("--size-min", cad.size_min,
+                   "smallest element size under curvature refinement (CAD only; 0: size/20)")
+        ->capture_default_str();
+    cmd.add_option("--curvature", cad.curvature_points,
+                   "refine by curvature: elements per 2*pi of radius (CAD only; 0: off)")
+        ->capture_default_str();
+    auto* q = cmd.add_flag("--quads", c.quads, "recombine the surface mesh into quadrilaterals (CAD only)");
+    auto* m = cmd.add_option("--mixed", c.mixed, "quadrilaterals on these CAD surface tags, triangles elsewhere (CAD only)")
+                  ->delimiter(',')
+                  ->expected(1, -1);
+    q->excludes(m);
+    cmd.add_flag("--fuse", cad.fuse, "fuse all solids into one body before meshing (CAD only)");
+    cmd.add_option("--patch", c.patches,
+                   "set a patch's kind, NAME=KIND with KIND wall|symmetry|farfield|other (repeatable)");
+}
 
 /// Parse repeated `--patch NAME=KIND` values.
 std::vector<std::pair<std::string, PatchKind>> parse_patch_options(const std::vector<std::string>& items) {
@@ -40,60 +171,102 @@ std::vector<std::pair<std::string, PatchKind>> parse_patch_options(const std::ve
     return out;
 }
 
-struct SurfaceOptions {
-    std::string input;
-    std::string output;
-    double size = 0.0;
-    double size_min = 0.0;
-    int curvature = 0;
-    bool quads = false;
-    std::vector<int> mixed;
-    bool fuse = false;
-    std::vector<std::string> patches;
-    std::string msh_version = "4.1";
-    bool quiet = false;
-};
-
-void add_surface_input_options(CLI::App& cmd, SurfaceOptions& o) {
-    cmd.add_option("INPUT", o.input, "CAD (.step .stp .iges .igs .brep .brp .geo) or surface mesh (.stl .msh)")
-        ->required();
-    cmd.add_option("--size", o.size,
-                   "target surface element size, model units (CAD only; default: 1/20 of the bounding-box diagonal)")
-        ->check(CLI::NonNegativeNumber);
-    cmd.add_option("--size-min", o.size_min,
-                   "smallest element size under curvature refinement (CAD only; default: size/20)")
-        ->check(CLI::NonNegativeNumber);
-    cmd.add_option("--curvature", o.curvature, "refine by curvature: elements per 2*pi of radius (CAD only; 0 = off)")
-        ->check(CLI::NonNegativeNumber);
-    auto* q = cmd.add_flag("--quads", o.quads, "recombine the surface mesh into quadrilaterals (CAD only)");
-    auto* m =
-        cmd.add_option("--mixed", o.mixed, "quadrilaterals on these CAD surface tags, triangles elsewhere (CAD only)")
-            ->delimiter(',')
-            ->expected(1, -1);
-    q->excludes(m);
-    cmd.add_flag("--fuse", o.fuse, "fuse all solids into one body before meshing (CAD only)");
-    cmd.add_option("--patch", o.patches,
-                   "set a patch's kind, NAME=KIND with KIND wall|symmetry|farfield|other (repeatable)");
-}
-
-strata::PrepareParams prepare_params(const SurfaceOptions& o) {
-    strata::PrepareParams p;
-    p.cad.size = o.size;
-    p.cad.size_min = o.size_min;
-    p.cad.curvature_points = o.curvature;
-    p.cad.fuse = o.fuse;
-    if (o.quads) p.cad.elements = strata::SurfaceElements::Quads;
-    if (!o.mixed.empty()) {
+/// The surface parameters from the options; surface-meshing options on a surface mesh are refused.
+strata::PrepareParams prepare_params(const Common& c) {
+    strata::PrepareParams p = c.prepare;
+    if (c.quads) p.cad.elements = strata::SurfaceElements::Quads;
+    if (!c.mixed.empty()) {
         p.cad.elements = strata::SurfaceElements::Mixed;
-        p.cad.quad_surfaces = o.mixed;
+        p.cad.quad_surfaces = c.mixed;
     }
-    const bool cad = strata::is_cad_file(o.input);
-    if (!cad && (o.quads || !o.mixed.empty() || o.fuse || o.size > 0 || o.curvature > 0 || o.size_min > 0))
-        throw strata::InputError("'" + o.input +
+    const strata::CadParams none;
+    const bool cad_options = c.quads || !c.mixed.empty() || p.cad.fuse || p.cad.size != none.size ||
+                             p.cad.curvature_points != none.curvature_points || p.cad.size_min != none.size_min;
+    if (!strata::is_cad_file(c.input) && cad_options)
+        throw strata::InputError("'" + c.input +
                                  "' is already a surface mesh: --size, --size-min, --curvature, --quads, --mixed and "
                                  "--fuse apply to CAD input only; remove them");
-    p.patch_kinds = parse_patch_options(o.patches);
+    p.patch_kinds = parse_patch_options(c.patches);
     return p;
+}
+
+/// Layer options: the LayerParams fields, plus the enums and switches as the command line spells them.
+struct LayerOptions {
+    strata::LayerParams params;
+    std::string distribution{strata::to_string(strata::Distribution::Auto)};
+    std::string normals{strata::to_string(strata::LayerParams{}.normals)};
+    bool no_control = false, no_concave = false, no_hold_back = false;
+};
+
+void add_layer_options(CLI::App& cmd, LayerOptions& o) {
+    strata::LayerParams& p = o.params;
+    strata::DistributionParams& d = p.distribution;
+    cmd.add_option("--layers", d.layers, "number of layers")->required();
+    cmd.add_option("--first-height", d.first_height, "height of the first layer, model units (or --yplus)");
+    cmd.add_option("--growth", d.growth, "growth ratio of geometric layers (0: 1.2)")->capture_default_str();
+    cmd.add_option("--thickness", d.thickness, "total thickness of the layers, model units");
+    cmd.add_option("--yplus", d.yplus, "first height from this target y+ (with --reynolds, --ref-length)");
+    cmd.add_option("--reynolds", d.reynolds, "Reynolds number for --yplus");
+    cmd.add_option("--ref-length", d.reference_length, "reference length of the Reynolds number, model units")
+        ->capture_default_str();
+    cmd.add_option("--distribution", o.distribution,
+                   "auto (thickness if --thickness is given without --growth, else geometric), geometric (first "
+                   "height + growth), thickness (first height + thickness: growth solved) or tanh (the paper's; "
+                   "first height + thickness)")
+        ->capture_default_str();
+    cmd.add_option("--sweeps", p.sweeps, "Poisson smoothing sweeps per layer")->capture_default_str();
+    cmd.add_option("--max-sweeps", p.max_sweeps, "more sweeps allowed while the update stays large")
+        ->capture_default_str();
+    cmd.add_flag("--no-control", o.no_control,
+                 "no control functions (Phi, Psi from the wall; Theta from the distribution)");
+    cmd.add_flag("--no-concave", o.no_concave, "no extra smoothing in concave regions");
+    cmd.add_flag("--no-hold-back", o.no_hold_back,
+                 "where a layer's cells would invert, stop with an error instead of holding the layer back there");
+    cmd.add_option("--normals", o.normals, "node normals: robust, area (the paper's), angle, max")
+        ->capture_default_str();
+    cmd.add_option("--threads", p.threads, "threads (0: all cores); the output is the same for any count")
+        ->capture_default_str();
+}
+
+strata::LayerParams layer_params(const LayerOptions& o) {
+    strata::LayerParams p = o.params;
+    p.distribution.kind = strata::parse_distribution(o.distribution);
+    p.normals = strata::parse_normal_method(o.normals);
+    p.control_functions = p.control_functions && !o.no_control;
+    p.concave = p.concave && !o.no_concave;
+    p.hold_back = p.hold_back && !o.no_hold_back;
+    return p;
+}
+
+/// Hybrid options: the HybridParams fields beyond the layers.
+struct MeshOptions {
+    strata::HybridParams params;
+    std::string farfield{strata::to_string(strata::FarfieldParams{}.shape)};
+};
+
+void add_mesh_options(CLI::App& cmd, MeshOptions& o) {
+    strata::HybridParams& p = o.params;
+    cmd.add_option("--farfield", o.farfield, "generated outer boundary when the input has no farfield patch: sphere or box")
+        ->capture_default_str();
+    cmd.add_option("--farfield-size", p.farfield.size, "farfield extent as a multiple of the body size")
+        ->capture_default_str();
+    cmd.add_option("--pyramid-height", p.pyramids.height, "pyramid apex height relative to the quad size")
+        ->capture_default_str();
+    cmd.add_option("--radius-edge", p.tets.radius_edge, "tetrahedron quality bound, radius/edge (TetGen -q)")
+        ->capture_default_str();
+    cmd.add_option("--min-dihedral", p.tets.min_dihedral,
+                   "smallest dihedral angle of the tetrahedra TetGen should aim for, degrees (TetGen -q R/D; 0: "
+                   "TetGen's own)")
+        ->capture_default_str();
+    cmd.add_option("--tet-growth", p.tets.growth, "growth of the tetrahedron size with distance from the body")
+        ->capture_default_str();
+}
+
+// ---------------------------------------------------------------------------------------
+// Summaries.
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep) {
@@ -128,145 +301,7 @@ void print_held_back(const std::vector<strata::LayerStats>& stats) {
             first, layers, most);
 }
 
-int run_surface(const SurfaceOptions& o) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const strata::PrepareParams params = prepare_params(o);
-    double version = 4.1;
-    if (o.msh_version == "2.2")
-        version = 2.2;
-    else if (o.msh_version != "4.1")
-        throw strata::InputError("--msh-version " + o.msh_version + ": use 4.1 or 2.2");
-    strata::PrepareReport rep;
-    const strata::SurfaceMesh mesh = strata::prepare_surface(o.input, params, &rep);
-    strata::write_surface(mesh, o.output, version);
-    if (!o.quiet) {
-        print_surface_summary(mesh, rep);
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::printf("wrote %s (%.2f s)\n", o.output.c_str(), s);
-    }
-    return 0;
-}
-
-struct LayerOptions {
-    SurfaceOptions surface;
-    int layers = 0;
-    double first_height = 0.0;
-    double growth = 0.0;
-    double thickness = 0.0;
-    double yplus = 0.0;
-    double reynolds = 0.0;
-    double ref_length = 1.0;
-    std::string distribution;
-    int sweeps = 10;
-    int max_sweeps = 50;
-    bool no_control = false;
-    bool no_concave = false;
-    bool no_hold_back = false;
-    std::string normals = "robust";
-    int threads = 0;
-};
-
-void add_layer_options(CLI::App& cmd, LayerOptions& o) {
-    cmd.add_option("--layers", o.layers, "number of layers")->required()->check(CLI::PositiveNumber);
-    cmd.add_option("--first-height", o.first_height, "height of the first layer, model units")
-        ->check(CLI::PositiveNumber);
-    cmd.add_option("--growth", o.growth, "growth ratio of geometric layers (default 1.2)")
-        ->check(CLI::Range(1.0, 10.0));
-    cmd.add_option("--thickness", o.thickness, "total thickness of the layers, model units")
-        ->check(CLI::PositiveNumber);
-    cmd.add_option("--yplus", o.yplus, "first height from this target y+ (with --reynolds, --ref-length)")
-        ->check(CLI::PositiveNumber);
-    cmd.add_option("--reynolds", o.reynolds, "Reynolds number for --yplus")->check(CLI::PositiveNumber);
-    cmd.add_option("--ref-length", o.ref_length, "reference length of the Reynolds number, model units (default 1)")
-        ->check(CLI::PositiveNumber);
-    cmd.add_option("--distribution", o.distribution,
-                   "geometric (first height + growth), thickness (first height + thickness: growth solved) or tanh "
-                   "(the paper's; first height + thickness); default from the options given")
-        ->check(CLI::IsMember({"geometric", "thickness", "tanh"}));
-    cmd.add_option("--sweeps", o.sweeps, "Poisson smoothing sweeps per layer (default 10)")
-        ->check(CLI::NonNegativeNumber);
-    cmd.add_option("--max-sweeps", o.max_sweeps, "more sweeps allowed while the update stays large (default 50)")
-        ->check(CLI::NonNegativeNumber);
-    cmd.add_flag("--no-control", o.no_control,
-                 "no control functions (Phi, Psi from the wall; Theta from the distribution)");
-    cmd.add_flag("--no-concave", o.no_concave, "no extra smoothing in concave regions");
-    cmd.add_flag("--no-hold-back", o.no_hold_back,
-                 "where a layer's cells would invert, stop with an error instead of holding the layer back there");
-    cmd.add_option("--normals", o.normals, "node normals: robust (default), area (the paper's), angle, max")
-        ->check(CLI::IsMember({"robust", "area", "angle", "max"}));
-    cmd.add_option("--threads", o.threads, "threads for smoothing (default: all cores)")->check(CLI::NonNegativeNumber);
-}
-
-strata::LayerParams layer_params(const LayerOptions& o) {
-    strata::LayerParams p;
-    strata::DistributionParams& d = p.distribution;
-    d.layers = o.layers;
-    d.first_height = o.first_height;
-    d.thickness = o.thickness;
-    d.yplus = o.yplus;
-    d.reynolds = o.reynolds;
-    d.reference_length = o.ref_length;
-    if (o.first_height > 0.0 && o.yplus > 0.0)
-        throw strata::InputError("--first-height and --yplus both set the first layer height: give one of them");
-    if (!(o.first_height > 0.0) && !(o.yplus > 0.0))
-        throw strata::InputError("the first layer height is missing: give --first-height H or --yplus Y --reynolds RE");
-    if (o.distribution == "tanh")
-        d.kind = strata::Distribution::Tanh;
-    else if (o.distribution == "thickness" || (o.distribution.empty() && o.thickness > 0.0 && o.growth == 0.0))
-        d.kind = strata::Distribution::Thickness;
-    else
-        d.kind = strata::Distribution::Geometric;
-    if (d.kind == strata::Distribution::Geometric) {
-        if (o.thickness > 0.0)
-            throw strata::InputError(
-                "--thickness with --growth over-determines the layers: give two of first height, growth "
-                "and thickness");
-        d.growth = o.growth > 0.0 ? o.growth : 1.2;
-    } else if (!(o.thickness > 0.0)) {
-        throw strata::InputError("--distribution " + std::string(strata::to_string(d.kind)) + " needs --thickness");
-    }
-    p.sweeps = o.sweeps;
-    p.max_sweeps = std::max(o.max_sweeps, o.sweeps);
-    p.control_functions = !o.no_control;
-    p.concave = !o.no_concave;
-    p.hold_back = !o.no_hold_back;
-    p.normals = strata::parse_normal_method(o.normals);
-    p.threads = o.threads;
-    return p;
-}
-
-/// One-line progress bar on stderr when it is a terminal.
-class BarProgress : public strata::Progress {
-public:
-    void report(std::string_view stage, double fraction) override {
-        if (!isatty(2)) return;
-        const int w = 30, n = static_cast<int>(fraction * w + 0.5);
-        std::fprintf(stderr, "\r%-8.*s [%-*s] %3d%%", static_cast<int>(stage.size()), stage.data(), w,
-                     std::string(static_cast<std::size_t>(n), '#').c_str(), static_cast<int>(fraction * 100 + 0.5));
-        if (fraction >= 1.0) std::fprintf(stderr, "\n");
-    }
-};
-
-int run_layers(const LayerOptions& o) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const strata::PrepareParams pp = prepare_params(o.surface);
-    const strata::LayerParams lp = layer_params(o);
-    double version = 4.1;
-    if (o.surface.msh_version == "2.2")
-        version = 2.2;
-    else if (o.surface.msh_version != "4.1")
-        throw strata::InputError("--msh-version " + o.surface.msh_version + ": use 4.1 or 2.2");
-    strata::PrepareReport rep;
-    const strata::SurfaceMesh wall = strata::prepare_surface(o.surface.input, pp, &rep);
-    const auto t1 = std::chrono::steady_clock::now();
-    BarProgress bar;
-    const strata::LayerMesh lm = strata::extrude_layers(wall, lp, o.surface.quiet ? nullptr : &bar);
-    const auto t2 = std::chrono::steady_clock::now();
-    const strata::ValidationReport v = strata::require_valid_mesh(lm.mesh, o.surface.input);
-    strata::write_volume(lm.mesh, o.surface.output, version);
-    const auto t3 = std::chrono::steady_clock::now();
-    if (o.surface.quiet) return 0;
-    print_surface_summary(wall, rep);
+void print_layer_table(const strata::LayerMesh& lm) {
     std::printf("layer  height       min SJ  mean SJ  max orth  mean orth  sweeps\n");
     for (std::size_t k = 0; k < lm.stats.size(); ++k) {
         const strata::LayerStats& s = lm.stats[k];
@@ -279,62 +314,9 @@ int run_layers(const LayerOptions& o) {
             "their normal without smoothing\n",
             static_cast<int>(lm.unsmoothed_nodes));
     print_held_back(lm.stats);
-    auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
-    std::printf("cells: %zu hexahedra, %zu prisms; min scaled Jacobian %.3f; volume %.6g\n", lm.mesh.hexes.size(),
-                lm.mesh.prisms.size(), v.min_scaled_jacobian, v.cell_volume);
-    std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", secs(t0, t1), secs(t1, t2),
-                secs(t2, t3));
-    std::printf("wrote %s\n", o.surface.output.c_str());
-    return 0;
 }
 
-struct MeshOptions {
-    LayerOptions layer;
-    std::string farfield = "sphere";
-    double farfield_size = 20.0;
-    double pyramid_height = 0.5;
-    double radius_edge = 1.5;
-    double min_dihedral = 0.0;
-    double tet_growth = 0.3;
-};
-
-bool is_cobalt(const std::string& path) {
-    const auto dot = path.rfind('.');
-    const std::string ext = dot == std::string::npos ? "" : path.substr(dot);
-    return ext == ".cgr" || ext == ".cog" || ext == ".grd";
-}
-
-int run_mesh(const MeshOptions& o) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const SurfaceOptions& so = o.layer.surface;
-    const strata::PrepareParams pp = prepare_params(so);
-    strata::HybridParams hp;
-    hp.layers = layer_params(o.layer);
-    hp.farfield.shape = strata::parse_farfield_shape(o.farfield);
-    hp.farfield.size = o.farfield_size;
-    hp.pyramids.height = o.pyramid_height;
-    hp.tets.radius_edge = o.radius_edge;
-    hp.tets.min_dihedral = o.min_dihedral;
-    hp.tets.growth = o.tet_growth;
-    double version = 4.1;
-    if (so.msh_version == "2.2")
-        version = 2.2;
-    else if (so.msh_version != "4.1")
-        throw strata::InputError("--msh-version " + so.msh_version + ": use 4.1 or 2.2");
-    strata::PrepareReport rep;
-    const strata::SurfaceMesh surface = strata::prepare_surface(so.input, pp, &rep);
-    const double t_surface = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    BarProgress bar;
-    strata::HybridReport hr;
-    const strata::VolumeMesh mesh = strata::build_hybrid_mesh(surface, hp, so.quiet ? nullptr : &bar, &hr);
-    const auto t1 = std::chrono::steady_clock::now();
-    if (is_cobalt(so.output))
-        strata::write_cobalt(mesh, so.output);
-    else
-        strata::write_volume(mesh, so.output, version);
-    const double t_write = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-    if (so.quiet) return 0;
-    print_surface_summary(surface, rep);
+void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridReport& hr) {
     double jmin = 1.0;
     for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
     std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
@@ -351,16 +333,90 @@ int run_mesh(const MeshOptions& o) {
     std::printf("valid: min scaled Jacobian %.3f (%s), volume %.6g (boundary %.6g)\n",
                 hr.validation.min_scaled_jacobian, hr.validation.worst_cell.c_str(), hr.validation.cell_volume,
                 hr.validation.boundary_volume);
+}
+
+void print_written(const std::vector<std::string>& files) {
+    std::string list;
+    for (std::size_t i = 0; i < files.size(); ++i) list += (i == 0 ? "" : " and ") + files[i];
+    std::printf("wrote %s\n", list.c_str());
+}
+
+// ---------------------------------------------------------------------------------------
+// The subcommands.
+
+int run_surface(const Common& c) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const strata::PrepareParams params = prepare_params(c);
+    const double version = strata::parse_msh_version(c.msh_version);
+    strata::check_surface_output(c.output, version);
+    Terminal terminal(c.quiet);
+    strata::PrepareReport rep;
+    const strata::SurfaceMesh mesh = strata::prepare_surface(c.input, params, &rep, &terminal);
+    strata::write_surface(mesh, c.output, version, &terminal);
+    if (c.quiet) return 0;
+    print_surface_summary(mesh, rep);
+    std::printf("wrote %s (%.2f s)\n", c.output.c_str(), seconds_since(t0));
+    return 0;
+}
+
+int run_layers(const Common& c, const LayerOptions& o) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const strata::PrepareParams pp = prepare_params(c);
+    const strata::LayerParams lp = layer_params(o);
+    const double version = strata::parse_msh_version(c.msh_version);
+    strata::check_volume_output(c.output, version);
+    Terminal terminal(c.quiet);
+    strata::PrepareReport rep;
+    const strata::SurfaceMesh wall = strata::prepare_surface(c.input, pp, &rep, &terminal);
+    const auto t1 = std::chrono::steady_clock::now();
+    const strata::LayerMesh lm = strata::extrude_layers(wall, lp, &terminal);
+    const auto t2 = std::chrono::steady_clock::now();
+    const strata::ValidationReport v =
+        strata::require_valid_mesh(lm.mesh, c.input, {.threads = lp.threads, .progress = &terminal});
+    strata::write_volume(lm.mesh, c.output, version, &terminal);
+    if (c.quiet) return 0;
+    print_surface_summary(wall, rep);
+    print_layer_table(lm);
+    std::printf("cells: %zu hexahedra, %zu prisms; min scaled Jacobian %.3f; volume %.6g\n", lm.mesh.hexes.size(),
+                lm.mesh.prisms.size(), v.min_scaled_jacobian, v.cell_volume);
+    auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+    std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", secs(t0, t1), secs(t1, t2),
+                seconds_since(t2));
+    print_written(strata::volume_output_files(c.output));
+    return 0;
+}
+
+int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const strata::PrepareParams pp = prepare_params(c);
+    strata::HybridParams hp = mo.params;
+    hp.layers = layer_params(lo);
+    hp.farfield.shape = strata::parse_farfield_shape(mo.farfield);
+    const double version = strata::parse_msh_version(c.msh_version);
+    strata::check_volume_output(c.output, version);
+    Terminal terminal(c.quiet);
+    strata::PrepareReport rep;
+    const strata::SurfaceMesh surface = strata::prepare_surface(c.input, pp, &rep, &terminal);
+    const double t_surface = seconds_since(t0);
+    strata::HybridReport hr;
+    const strata::VolumeMesh mesh = strata::build_hybrid_mesh(surface, hp, &terminal, &hr);
+    const auto t1 = std::chrono::steady_clock::now();
+    strata::write_volume(mesh, c.output, version, &terminal);
+    const double t_write = seconds_since(t1);
+    if (c.quiet) return 0;
+    print_surface_summary(surface, rep);
+    print_hybrid_summary(mesh, hr);
     std::printf(
         "time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f s\n",
         t_surface, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
-    std::printf("wrote %s%s\n", so.output.c_str(), is_cobalt(so.output) ? (" and " + so.output + ".bc").c_str() : "");
+    print_written(strata::volume_output_files(c.output));
     return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    std::signal(SIGINT, on_sigint);
     CLI::App app{
         "Strata: near-body hybrid meshes for viscous CFD.\n"
         "Boundary-layer prisms and hexahedra marched from the wall, tetrahedra beyond.",
@@ -368,63 +424,28 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string("strata ") + STRATA_VERSION);
     app.require_subcommand(1);
 
-    SurfaceOptions so;
+    Common sc;
     CLI::App* surface = app.add_subcommand(
         "surface", "read CAD or a surface mesh; write the checked, oriented surface mesh with patches");
-    add_surface_input_options(*surface, so);
-    surface->add_option("-o,--output", so.output, "output surface mesh (.msh; .vtk, .stl, ... by extension)")
-        ->required();
-    surface->add_option("--msh-version", so.msh_version, "MSH file version for .msh output: 4.1 (default) or 2.2");
-    surface->add_flag("-q,--quiet", so.quiet, "print nothing but errors");
+    add_common_options(*surface, sc, "output surface mesh (.msh; .vtk, .stl, ... by extension)");
 
+    Common lc;
     LayerOptions lo;
     CLI::App* layers =
         app.add_subcommand("layers", "extrude boundary-layer prisms and hexahedra from the walls; write the layers");
-    add_surface_input_options(*layers, lo.surface);
-    layers->add_option("-o,--output", lo.surface.output, "output volume mesh (.msh; .vtk, .su2, ... by extension)")
-        ->required();
-    layers->add_option("--msh-version", lo.surface.msh_version,
-                       "MSH file version for .msh output: 4.1 (default) or 2.2");
-    layers->add_flag("-q,--quiet", lo.surface.quiet, "print nothing but errors");
+    add_common_options(*layers, lc, "output volume mesh (.msh; .cgr, .vtk, .su2, ... by extension)");
     add_layer_options(*layers, lo);
 
+    Common mc;
+    LayerOptions mlo;
     MeshOptions mo;
     CLI::App* meshcmd = app.add_subcommand("mesh",
                                            "the whole pipeline: surface, boundary layers, pyramids, tetrahedra; "
                                            "write one validated hybrid mesh");
-    add_surface_input_options(*meshcmd, mo.layer.surface);
-    meshcmd
-        ->add_option("-o,--output", mo.layer.surface.output,
-                     "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .msh, .vtk, .su2, ...")
-        ->required();
-    meshcmd->add_option("--msh-version", mo.layer.surface.msh_version,
-                        "MSH file version for .msh output: 4.1 (default) or 2.2");
-    meshcmd->add_flag("-q,--quiet", mo.layer.surface.quiet, "print nothing but errors");
-    add_layer_options(*meshcmd, mo.layer);
-    meshcmd
-        ->add_option("--farfield", mo.farfield,
-                     "generated outer boundary when the input has no farfield patch: sphere "
-                     "(default) or box")
-        ->check(CLI::IsMember({"sphere", "box"}));
-    meshcmd
-        ->add_option("--farfield-size", mo.farfield_size, "farfield extent as a multiple of the body size (default 20)")
-        ->check(CLI::Range(1.5, 1e4));
-    meshcmd
-        ->add_option("--pyramid-height", mo.pyramid_height,
-                     "pyramid apex height relative to the quad size (default 0.5)")
-        ->check(CLI::Range(0.1, 2.0));
-    meshcmd
-        ->add_option("--radius-edge", mo.radius_edge, "tetrahedron quality bound, radius/edge (TetGen -q; default 1.5)")
-        ->check(CLI::Range(1.1, 10.0));
-    meshcmd
-        ->add_option("--min-dihedral", mo.min_dihedral,
-                     "smallest dihedral angle of the tetrahedra TetGen should aim for, degrees (TetGen -q R/D; 0 = "
-                     "TetGen's own)")
-        ->check(CLI::Range(0.0, 30.0));
-    meshcmd
-        ->add_option("--tet-growth", mo.tet_growth,
-                     "growth of the tetrahedron size with distance from the body (default 0.3)")
-        ->check(CLI::NonNegativeNumber);
+    add_common_options(*meshcmd, mc,
+                       "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .msh, .vtk, .su2, ...");
+    add_layer_options(*meshcmd, mlo);
+    add_mesh_options(*meshcmd, mo);
 
     try {
         app.parse(argc, argv);
@@ -435,22 +456,21 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::string msg = e.what();
-        std::cerr << "strata: error: " << msg << " (see strata --help)\n";
+        std::cerr << "strata: error: " << e.what() << " (see strata --help)\n";
         return 2;
     }
 
     try {
-        if (*surface) return run_surface(so);
-        if (*layers) return run_layers(lo);
-        if (*meshcmd) return run_mesh(mo);
+        if (*surface) return run_surface(sc);
+        if (*layers) return run_layers(lc, lo);
+        if (*meshcmd) return run_mesh(mc, mlo, mo);
     } catch (const strata::Cancelled& e) {
-        std::cerr << "strata: " << e.what() << "\n";
+        std::cerr << "\nstrata: " << e.what() << "; nothing was written\n";
         return 130;
     } catch (const std::exception& e) {
-        std::string msg = e.what();
-        for (char& c : msg)
-            if (c == '\n') c = ' ';  // one line, whatever a backend said
+        std::string msg = in_flags(e.what());
+        for (char& ch : msg)
+            if (ch == '\n') ch = ' ';  // one line, whatever a backend said
         std::cerr << "strata: error: " << msg << "\n";
         return 1;
     }

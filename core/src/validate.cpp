@@ -204,6 +204,7 @@ double boundary_volume(const VolumeMesh& mesh) {
 
 ValidationReport validate(const VolumeMesh& mesh, const ValidateParams& params, std::size_t& total) {
     ValidationReport report;
+    strata::report(params.progress, "validation", 0.0);
     const CellNumbering cells(mesh);
     report.cells = static_cast<Index>(cells.count());
     Problems problems;
@@ -224,12 +225,14 @@ ValidationReport validate(const VolumeMesh& mesh, const ValidateParams& params, 
     }
     report.cell_volume = cr.volume;
     problems.merge(std::move(cr.problems));
+    strata::report(params.progress, "validation", 0.4);
 
     const FaceMatch match = match_faces(mesh, params.threads);
     report.interior_faces = static_cast<Index>(match.interior);
     report.boundary_faces = static_cast<Index>(match.boundary);
     for (const FaceMatch::Problem& p : match.problems) problems.add(kind_of(p.issue), [&] { return describe(match, p); });
 
+    strata::report(params.progress, "validation", 0.9);
     report.boundary_volume = boundary_volume(mesh);
     const double diff = std::abs(report.cell_volume - report.boundary_volume);
     if (!(diff <= params.volume_tolerance * std::abs(report.boundary_volume)))
@@ -243,6 +246,7 @@ ValidationReport validate(const VolumeMesh& mesh, const ValidateParams& params, 
 
     total = problems.total();
     report.problems = problems.flatten();
+    strata::report(params.progress, "validation", 1.0);
     return report;
 }
 

@@ -55,25 +55,31 @@ void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::stri
 }
 
 SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source,
-                         PrepareReport* report) {
+                         PrepareReport* report, Progress* progress) {
+    strata::report(progress, "surface", 0.6);
     assign_patch_kinds(raw, params.patch_kinds, source);
     // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
     if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
     SurfaceMesh merged = merge_coincident_nodes(raw, params.merge_tolerance);
     const Index merged_nodes = raw.num_points() - merged.num_points();
     raw = SurfaceMesh{};  // the input copy is no longer needed
+    strata::report(progress, "surface", 0.7);
     check_surface(merged, source);
+    strata::report(progress, "surface", 0.8);
     OrientReport orient;
     SurfaceMesh oriented = orient_surface(merged, &orient);
     if (report) {
         report->merged_nodes = merged_nodes;
         report->orient = orient;
     }
+    strata::report(progress, "surface", 1.0);
     return oriented;
 }
 
-SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params, PrepareReport* report) {
-    return prepare_mesh(read_any(path, params.cad), params, path, report);
+SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params, PrepareReport* report,
+                            Progress* progress) {
+    strata::report(progress, "surface", 0.0);
+    return prepare_mesh(read_any(path, params.cad), params, path, report, progress);
 }
 
 }  // namespace strata

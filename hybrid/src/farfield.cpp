@@ -1,4 +1,5 @@
 #include <strata/core/error.h>
+#include <strata/core/format.h>
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/farfield.h>
@@ -13,12 +14,14 @@
 
 namespace strata {
 
+std::string_view to_string(FarfieldShape shape) { return shape == FarfieldShape::Box ? "box" : "sphere"; }
+
 FarfieldShape parse_farfield_shape(std::string_view text) {
     std::string t(text);
-    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (t == "box") return FarfieldShape::Box;
-    if (t == "sphere") return FarfieldShape::Sphere;
-    throw InputError("--farfield " + std::string(text) + ": use box or sphere");
+    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (FarfieldShape s : {FarfieldShape::Box, FarfieldShape::Sphere})
+        if (t == to_string(s)) return s;
+    throw InputError("FarfieldParams::shape '" + std::string(text) + "': use box or sphere");
 }
 
 namespace {
@@ -117,10 +120,10 @@ namespace {
 
 void check_params(const FarfieldParams& params) {
     if (!(params.size > 1.0))
-        throw InputError(
-            "--farfield-size " + std::to_string(params.size) +
-            ": the farfield must be larger than the body (a multiple of its size > 1, typically 10 to 50)");
-    if (params.divisions < 2) throw InputError("farfield divisions must be at least 2");
+        throw InputError("FarfieldParams::size = " + format_number(params.size) +
+                         ": the farfield must be larger than the body (a multiple of its size > 1, typically 10 to 50)");
+    if (params.divisions < 2)
+        throw InputError("FarfieldParams::divisions = " + std::to_string(params.divisions) + ": need at least 2");
 }
 
 }  // namespace
@@ -168,7 +171,7 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
     if (open.rows() == 0 || !(pl.deviation <= 1e-6 * diag))
         throw InputError(
             "the surface is open, but its open edges do not lie in one plane (they are " +
-            std::to_string(pl.deviation) + " off their best plane, the body's size is " + std::to_string(diag) +
+            format_number(pl.deviation) + " off their best plane, the body's size is " + format_number(diag) +
             "): only a half model cut by one symmetry plane is closed automatically; close the fluid domain "
             "yourself (walls plus symmetry and farfield patches) or mesh the full body");
     // The plane's normal towards the body.
@@ -181,7 +184,7 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
     const Vec3 n = above >= -below ? pl.normal : Vec3(-pl.normal);
     if (std::min(above, -below) > 1e-6 * diag)
         throw InputError("the surface is open along a plane (a half model) but lies on both sides of it (" +
-                         std::to_string(std::max(above, -below)) + " and " + std::to_string(std::min(above, -below)) +
+                         format_number(std::max(above, -below)) + " and " + format_number(std::min(above, -below)) +
                          " away): a half model must lie on one side of its symmetry plane");
 
     SurfaceMesh dom;

@@ -131,6 +131,9 @@ std::string bc_name(const std::string& name, Index number) {
 }
 
 
+/// Cells written between two checks for cancellation.
+constexpr std::int64_t kCellsPerCheck = 1 << 16;
+
 /// The second cell of every face as written, per slot: the 1-based cell across an interior
 /// face when the slot's cell is the lower-numbered one (c1), −patch number on a boundary face,
 /// and 0 when the face is written from the other cell.
@@ -147,7 +150,8 @@ std::vector<Index> second_cells(const FaceMatch& match, const std::vector<Index>
     return c2;
 }
 
-void write_grid(BufferedFile& out, const VolumeMesh& mesh, const std::vector<Index>& c2, Index npatches) {
+void write_grid(BufferedFile& out, const VolumeMesh& mesh, const std::vector<Index>& c2, Index npatches,
+                Progress* progress) {
     std::int64_t nfaces = 0;
     for (Index c : c2) nfaces += c != 0;
     const CellNumbering cells(mesh);
@@ -177,6 +181,8 @@ void write_grid(BufferedFile& out, const VolumeMesh& mesh, const std::vector<Ind
         for (std::size_t i = 0; i < mesh.num_cells(t); ++i) {
             const Index* v = mesh.cell(t, i);
             const std::int64_t c1 = cells.start(t) + static_cast<std::int64_t>(i) + 1;
+            if (c1 % kCellsPerCheck == 0)
+                report(progress, "writing", static_cast<double>(c1) / static_cast<double>(cells.count()));
             for (std::size_t f = 0; f < static_cast<std::size_t>(table.count); ++f, ++slot) {
                 if (c2[slot] == 0) continue;  // written from its other cell
                 out.put(static_cast<std::int64_t>(table.size[f]));
@@ -216,7 +222,8 @@ void write_bc(BufferedFile& out, const std::string& grid_path, const SurfaceMesh
 
 }  // namespace
 
-void write_cobalt(const VolumeMesh& mesh, const std::string& path) {
+void write_cobalt(const VolumeMesh& mesh, const std::string& path, Progress* progress) {
+    report(progress, "writing", 0.0);
     const std::string where = "cannot write Cobalt grid '" + path + "': ";
     require_sound(check_volume_arrays(mesh), where);
     const FaceMatch match = match_faces(mesh);
@@ -239,7 +246,7 @@ void write_cobalt(const VolumeMesh& mesh, const std::string& path) {
     AtomicFile bc_file(bc_path);
     {
         BufferedFile out(grid_file.temp_path(), path);
-        write_grid(out, mesh, c2, npatches);
+        write_grid(out, mesh, c2, npatches, progress);
         out.close();
     }
     {
@@ -247,6 +254,8 @@ void write_cobalt(const VolumeMesh& mesh, const std::string& path) {
         write_bc(out, path, b, patch_number);
         out.close();
     }
+
+    report(progress, "writing", 1.0);  // cancelled here: the temporary files go, nothing is written
 
     // The patch map first, then the grid: if the grid cannot be renamed into place, the new
     // patch map is removed again so no grid is ever left with another grid's patch map.

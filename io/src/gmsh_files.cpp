@@ -23,7 +23,9 @@ namespace {
 /// Build the mesh in a scratch model with \p add and write it to \p path through a temporary
 /// file (AtomicFile), with Strata's output options set for the call only.
 template <class Add>
-void write_through_gmsh(const std::string& path, double msh_version, const char* session_name, Add&& add) {
+void write_through_gmsh(const std::string& path, double msh_version, const char* session_name, Progress* progress,
+                        Add&& add) {
+    report(progress, "writing", 0.0);
     AtomicFile out(path);  // InputError now if the directory does not exist
     GmshSession session(session_name);
     GmshOptionScope options;  // declared after the session: restored before the session ends
@@ -41,6 +43,7 @@ void write_through_gmsh(const std::string& path, double msh_version, const char*
         const std::string last = GmshSession::last_error();
         throw BackendError("writing '" + path + "': Gmsh wrote nothing" + (last.empty() ? "" : ": " + last));
     }
+    report(progress, "writing", 1.0);  // cancelled here: the temporary file goes, nothing is written
     out.commit();
 }
 
@@ -58,17 +61,17 @@ VolumeMesh read_volume_msh(const std::string& path) {
     return volume_from_gmsh_model("'" + path + "'");
 }
 
-void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_version) {
+void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_version, Progress* progress) {
     check_surface_output(path, msh_version);
     require_sound(check_surface_arrays(mesh), "cannot write '" + path + "': ");
-    write_through_gmsh(path, msh_version, "write_surface", [&] { add_surface_to_gmsh_model(mesh); });
+    write_through_gmsh(path, msh_version, "write_surface", progress, [&] { add_surface_to_gmsh_model(mesh); });
 }
 
-void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version) {
+void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version, Progress* progress) {
     check_volume_output(path, msh_version);
-    if (is_cobalt_path(path)) return write_cobalt(mesh, path);
+    if (is_cobalt_path(path)) return write_cobalt(mesh, path, progress);
     require_sound(check_volume_arrays(mesh), "cannot write '" + path + "': ");
-    write_through_gmsh(path, msh_version, "write_volume", [&] { add_volume_to_gmsh_model(mesh); });
+    write_through_gmsh(path, msh_version, "write_volume", progress, [&] { add_volume_to_gmsh_model(mesh); });
 }
 
 }  // namespace strata

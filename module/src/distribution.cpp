@@ -2,6 +2,8 @@
 #include <strata/core/format.h>
 #include <strata/module/distribution.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -27,49 +29,100 @@ double bisect(F f, double lo, double hi) {
 
 std::string_view to_string(Distribution d) {
     switch (d) {
+        case Distribution::Auto: return "auto";
         case Distribution::Geometric: return "geometric";
         case Distribution::Thickness: return "thickness";
         case Distribution::Tanh: return "tanh";
     }
-    return "geometric";
+    return "auto";
+}
+
+Distribution parse_distribution(std::string_view text) {
+    std::string t(text);
+    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (Distribution d : {Distribution::Auto, Distribution::Geometric, Distribution::Thickness, Distribution::Tanh})
+        if (t == to_string(d)) return d;
+    throw InputError("unknown distribution '" + std::string(text) + "': use auto, geometric, thickness or tanh");
+}
+
+DistributionParams resolve(const DistributionParams& in) {
+    DistributionParams p = in;
+    if (p.layers < 1)
+        throw InputError("DistributionParams::layers = " + std::to_string(p.layers) + ": need at least one layer");
+    if (p.first_height > 0.0 && p.yplus > 0.0)
+        throw InputError(
+            "DistributionParams::first_height and DistributionParams::yplus both set the first layer height: give "
+            "one of them");
+    // Only first_height = 0 means "from y+": a negative or NaN height is a mistake, not a request.
+    if (p.first_height == 0.0 && p.yplus > 0.0)
+        p.first_height = first_height_from_yplus(p.yplus, p.reynolds, p.reference_length);
+    else if (!(p.first_height > 0.0) || !std::isfinite(p.first_height))
+        throw InputError("DistributionParams::first_height = " + format_number(p.first_height) +
+                         ": give a positive first layer height, or DistributionParams::yplus with "
+                         "DistributionParams::reynolds");
+    const bool has_growth = p.growth != 0.0, has_thickness = p.thickness != 0.0;
+    if (p.kind == Distribution::Auto) {
+        if (has_growth && has_thickness)
+            throw InputError(
+                "DistributionParams::thickness with DistributionParams::growth over-determines the layers: give two "
+                "of first height, growth and thickness");
+        p.kind = has_thickness ? Distribution::Thickness : Distribution::Geometric;
+    }
+    if (p.kind == Distribution::Geometric) {
+        if (has_thickness)
+            throw InputError("DistributionParams::thickness = " + format_number(p.thickness) +
+                             " with a geometric distribution over-determines the layers: give two of first height, "
+                             "growth and thickness");
+        if (!has_growth) p.growth = kDefaultGrowth;
+        if (!(p.growth >= 1.0) || !std::isfinite(p.growth))
+            throw InputError("DistributionParams::growth = " + format_number(p.growth) +
+                             ": the growth ratio must be ≥ 1");
+    } else {
+        if (has_growth)
+            throw InputError("DistributionParams::growth = " + format_number(p.growth) + " with the " +
+                             std::string(to_string(p.kind)) +
+                             " distribution: its heights follow from the first height and the thickness; give "
+                             "no growth ratio");
+        if (!(p.thickness > 0.0) || !std::isfinite(p.thickness))
+            throw InputError("DistributionParams::thickness = " + format_number(p.thickness) + ": the " +
+                             std::string(to_string(p.kind)) + " distribution needs a positive, finite total thickness");
+    }
+    return p;
 }
 
 double first_height_from_yplus(double yplus, double re, double length) {
     if (!(yplus > 0.0) || !(re > 0.0) || !(length > 0.0))
-        throw InputError("y+ " + format_number(yplus) + ", Reynolds number " + format_number(re) + ", reference length " + format_number(length) +
+        throw InputError("DistributionParams::yplus (y+) = " + format_number(yplus) +
+                         ", DistributionParams::reynolds (Reynolds number) = " + format_number(re) +
+                         ", DistributionParams::reference_length = " + format_number(length) +
                          ": all three must be positive to derive the first layer height");
     // White's flat-plate turbulent skin friction; u_tau = U sqrt(Cf/2); y = y+ nu / u_tau.
     const double cf = 0.026 / std::pow(re, 1.0 / 7.0);
     return yplus * length / (re * std::sqrt(0.5 * cf));
 }
 
-std::vector<double> layer_heights(const DistributionParams& p) {
+std::vector<double> layer_heights(const DistributionParams& given) {
+    const DistributionParams p = resolve(given);
     const int n = p.layers;
-    if (n < 1) throw InputError("--layers " + std::to_string(n) + ": need at least one layer");
-    double h1 = p.first_height;
-    // Only first_height = 0 means "from y+": a negative or NaN height is a mistake, not a request.
-    if (h1 == 0.0 && p.yplus > 0.0)
-        h1 = first_height_from_yplus(p.yplus, p.reynolds, p.reference_length);
-    else if (!(h1 > 0.0) || !std::isfinite(h1))
-        throw InputError("first layer height " + format_number(h1) + ": give a positive --first-height, or --yplus with --reynolds");
+    const double h1 = p.first_height;
     std::vector<double> d(static_cast<std::size_t>(n) + 1);
     auto at = [&d](int k) -> double& { return d[static_cast<std::size_t>(k)]; };
     switch (p.kind) {
+        case Distribution::Auto:  // resolved above
         case Distribution::Geometric: {
-            if (!(p.growth >= 1.0) || !std::isfinite(p.growth))
-                throw InputError("--growth " + format_number(p.growth) + ": the growth ratio must be ≥ 1");
             for (int k = 0; k <= n; ++k) at(k) = h1 * std::pow(p.growth, k);
             return d;
         }
         case Distribution::Thickness: {
             const double t = p.thickness;
             if (!(t >= n * h1 * (1.0 - 1e-12)))
-                throw InputError("--thickness " + format_number(t) + " is less than " + std::to_string(n) + " layers × first height " +
-                                 format_number(h1) + ": increase the thickness or reduce the layers or the first height");
-            if (!std::isfinite(t)) throw InputError("--thickness " + format_number(t) + ": the total thickness must be finite");
+                throw InputError("DistributionParams::thickness = " + format_number(t) + " is less than " +
+                                 std::to_string(n) + " layers × first height " + format_number(h1) +
+                                 ": increase the thickness or reduce the layers or the first height");
             // One layer has no ratio to solve for: its height is the thickness.
             if (n == 1 && !(t <= h1 * (1.0 + 1e-12)))
-                throw InputError("--layers 1 with --thickness " + format_number(t) + " and first height " + format_number(h1) +
+                throw InputError("DistributionParams::layers = 1 with DistributionParams::thickness = " +
+                                 format_number(t) + " and first height " + format_number(h1) +
                                  ": one layer is the whole thickness; give more layers or thickness = first height");
             // Σ_{k<n} h1 q^k = t, monotone in q. Solved for the excess x = q − 1 with expm1/log1p:
             // h1 (q^n − 1)/(q − 1) cancels catastrophically when t is close to n h1 (q near 1).
@@ -83,13 +136,12 @@ std::vector<double> layer_heights(const DistributionParams& p) {
         }
         case Distribution::Tanh: {
             const double t = p.thickness;
-            if (!(t > 0.0) || !std::isfinite(t))
-                throw InputError("--thickness " + format_number(t) + ": the tanh distribution needs a positive total thickness");
             if (n < 2)
-                throw InputError("--layers 1: one tanh layer is the whole thickness " + format_number(t) +
-                                 ", so a first height cannot be honoured; use at least 2 layers");
+                throw InputError("DistributionParams::layers = 1: one tanh layer is the whole thickness " +
+                                 format_number(t) + ", so a first height cannot be honoured; use at least 2 layers");
             if (!(h1 < t / n))
-                throw InputError("first height " + format_number(h1) + " ≥ thickness/layers " + format_number(t / n) +
+                throw InputError("DistributionParams::first_height = " + format_number(h1) +
+                                 " ≥ thickness/layers " + format_number(t / n) +
                                  ": the tanh distribution clusters towards the wall; lower the first height");
             // One-sided tanh stretching x(s) = t (1 + tanh(β (s − 1)) / tanh β), s = k / n; the first
             // spacing falls from t/n (β → 0) as β grows. Evaluated as the equal
@@ -99,8 +151,9 @@ std::vector<double> layer_heights(const DistributionParams& p) {
             const double s1 = 1.0 / n;
             const double beta = bisect([&](double b) { return x(b, s1) - h1; }, 1e-6, 100.0);
             if (!(std::abs(x(beta, s1) - h1) <= 1e-9 * h1))
-                throw InputError("first height " + format_number(h1) + " is too small for the tanh distribution over " + format_number(t) +
-                                 " with " + std::to_string(n) + " layers; raise it or use more layers");
+                throw InputError("DistributionParams::first_height = " + format_number(h1) +
+                                 " is too small for the tanh distribution over " + format_number(t) + " with " +
+                                 std::to_string(n) + " layers; raise it or use more layers");
             for (int k = 0; k < n; ++k) at(k) = x(beta, (k + 1.0) / n) - x(beta, static_cast<double>(k) / n);
             // Level 2 of the last layer continues the last ratio.
             at(n) = at(n - 1) * at(n - 1) / at(n - 2);

@@ -1,8 +1,11 @@
 // End-to-end tests of the `strata` program: real inputs succeed and write what they claim;
 // every bad input gives one line on stderr, a non-zero exit and no output file.
 
-#include <strata/io/read_surface.h>
+#include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
+#include <strata/hybrid/hybrid_mesh.h>
+#include <strata/io/read_surface.h>
+#include <strata/io/write_volume.h>
 
 #include <gtest/gtest.h>
 
@@ -34,11 +37,12 @@ std::string slurp(const std::string& path) {
     return s.str();
 }
 
-/// Run the strata program with \p args (already shell-quoted) in \p dir.
-CliResult strata_cli(const test::ScratchDir& dir, const std::string& args) {
+/// Run the strata program with \p args (already shell-quoted) in \p dir, under \p wrapper (a
+/// command prefix such as "timeout ... ").
+CliResult strata_cli(const test::ScratchDir& dir, const std::string& args, const std::string& wrapper = "") {
     const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-    const std::string cmd = "cd '" + dir.path().string() + "' && '" + STRATA_CLI + "' " + args + " >'" + out + "' 2>'" +
-                            err + "' </dev/null";
+    const std::string cmd = "cd '" + dir.path().string() + "' && " + wrapper + "'" + STRATA_CLI + "' " + args + " >'" +
+                            out + "' 2>'" + err + "' </dev/null";
     const int status = std::system(cmd.c_str());
     CliResult r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -247,6 +251,42 @@ TEST(Cli, MeshBadInputsFailCleanly) {
     expect_clean_failure(
         "mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 5 --first-height 1e-3 --farfield-size 1",
         "farfield-size", "ffsize");
+}
+
+TEST(Cli, SameMeshAsTheLibraryGivenTheSameValues) {
+    // Defaults and inference live in the Params structs: the program with the fewest options
+    // and the library with the same values and default Params write the same bytes. (The
+    // tetrahedron growth default used to be 0.3 in the program and 0 in TetFillParams.)
+    test::ScratchDir dir("cli_same_as_library");
+    CliResult r = strata_cli(dir, "mesh '" + example_data("sphere.stl") + "' -o cli.msh --layers 3 --first-height 2e-3");
+    ASSERT_EQ(r.code, 0) << r.err;
+    HybridParams p;
+    p.layers.distribution.layers = 3;
+    p.layers.distribution.first_height = 2e-3;
+    const SurfaceMesh s = prepare_surface(example_data("sphere.stl"), {});
+    write_volume(build_hybrid_mesh(s, p), dir.file("library.msh"));
+    EXPECT_TRUE(slurp(dir.file("cli.msh")) == slurp(dir.file("library.msh")));
+}
+
+TEST(Cli, LibraryMessagesNameTheFlags) {
+    // The library names parameters (DistributionParams::growth); the program shows its flags.
+    const std::string in = "layers '" + example_data("sphere_pyhyp_quads.msh") + "' -o out.msh --layers 4";
+    expect_clean_failure(in + " --first-height 1e-3 --growth 0.5", "--growth", "growth_flag");
+    expect_clean_failure(in + " --first-height 1e-3 --distribution tanh --thickness 1e-3", "--first-height",
+                         "tanh_flag");
+}
+
+TEST(Cli, CtrlCCancelsAndLeavesNoFile) {
+    // SIGINT a second into a run of several seconds (the half ONERA M6, 20 layers of hexahedra):
+    // exit code 130 and nothing in the directory, not even a temporary file. Wherever the signal
+    // lands, the running stage sees it at its next check.
+    test::ScratchDir dir("cli_ctrl_c");
+    CliResult r = strata_cli(dir, "mesh '" + example_data("onera_m6_pyhyp_quads.msh") +
+                                      "' -o m6.cgr --layers 20 --first-height 1e-5 --growth 1.15 --farfield box",
+                             "timeout --preserve-status -s INT 1 ");
+    EXPECT_EQ(r.code, 130) << r.err;
+    EXPECT_NE(r.err.find("cancelled"), std::string::npos) << r.err;
+    EXPECT_TRUE(files_in(dir).empty());
 }
 
 }  // namespace

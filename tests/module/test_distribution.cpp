@@ -16,13 +16,14 @@ std::size_t sz(int i) { return static_cast<std::size_t>(i); }
 
 double total(const std::vector<double>& d, int n) { return std::accumulate(d.begin(), d.begin() + n, 0.0); }
 
+/// The parameter a kind does not use is left unset (0): giving it is an error (resolve).
 DistributionParams params(Distribution kind, int layers, double h1, double growth, double thickness) {
     DistributionParams p;
     p.kind = kind;
     p.layers = layers;
     p.first_height = h1;
-    p.growth = growth;
-    p.thickness = thickness;
+    p.growth = kind == Distribution::Geometric ? growth : 0.0;
+    p.thickness = kind == Distribution::Geometric ? 0.0 : thickness;
     return p;
 }
 
@@ -165,11 +166,47 @@ TEST(Distribution, LayerHeightsDerivesFirstHeightFromYplus) {
         ASSERT_EQ(d.size(), 26u);
         EXPECT_NEAR(d[0], h1, 1e-10 * h1) << to_string(kind);
     }
-    // An explicit first height wins over y+.
+    // A first height and a y+ both set the first height: an error, not a silent choice.
     DistributionParams p = params(Distribution::Geometric, 5, 1e-3, 1.2, 0.0);
     p.yplus = 1.0;
     p.reynolds = 1e6;
-    EXPECT_DOUBLE_EQ(layer_heights(p)[0], 1e-3);
+    expect_input_error([&] { (void)layer_heights(p); }, "DistributionParams::yplus");
+}
+
+// ---------------------------------------------------------------- defaults and inference
+
+TEST(Distribution, AutoInfersTheKindFromWhatIsGiven) {
+    DistributionParams p;  // the defaults: Auto, no growth, no thickness
+    p.layers = 3;
+    p.first_height = 1e-3;
+    DistributionParams r = resolve(p);
+    EXPECT_EQ(r.kind, Distribution::Geometric);
+    EXPECT_EQ(r.growth, kDefaultGrowth);
+    p.growth = 1.5;
+    r = resolve(p);
+    EXPECT_EQ(r.kind, Distribution::Geometric);
+    EXPECT_EQ(r.growth, 1.5);
+    p.growth = 0.0;
+    p.thickness = 0.01;
+    r = resolve(p);
+    EXPECT_EQ(r.kind, Distribution::Thickness);
+    EXPECT_NEAR(total(layer_heights(p), 3), 0.01, 1e-15);
+    p.growth = 1.5;  // all three: over-determined
+    expect_input_error([&] { (void)resolve(p); }, "DistributionParams::growth");
+}
+
+TEST(Distribution, ParametersAKindDoesNotUseAreRefused) {
+    DistributionParams p;
+    p.layers = 3;
+    p.first_height = 1e-3;
+    p.kind = Distribution::Geometric;
+    p.thickness = 0.01;
+    expect_input_error([&] { (void)resolve(p); }, "DistributionParams::thickness");
+    for (Distribution kind : {Distribution::Thickness, Distribution::Tanh}) {
+        p.kind = kind;
+        p.growth = 1.2;
+        expect_input_error([&] { (void)resolve(p); }, "DistributionParams::growth");
+    }
 }
 
 // ---------------------------------------------------------------- errors
@@ -214,6 +251,10 @@ TEST(Distribution, RejectsBadInput) {
 }
 
 TEST(Distribution, Names) {
+    for (Distribution d : {Distribution::Auto, Distribution::Geometric, Distribution::Thickness, Distribution::Tanh})
+        EXPECT_EQ(parse_distribution(to_string(d)), d);
+    EXPECT_EQ(parse_distribution("TANH"), Distribution::Tanh);
+    expect_input_error([] { (void)parse_distribution("linear"); }, "linear");
     EXPECT_EQ(to_string(Distribution::Geometric), "geometric");
     EXPECT_EQ(to_string(Distribution::Thickness), "thickness");
     EXPECT_EQ(to_string(Distribution::Tanh), "tanh");

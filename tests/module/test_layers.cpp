@@ -82,7 +82,7 @@ TEST(Layers, FlatPlateQuadsGeometric) {
 TEST(Layers, FlatPlateTrianglesAllDistributions) {
     const SurfaceMesh wall = split_into_triangles(test::quad_grid(8, 8, 0.1));
     expect_flat_plate_exact(wall, geometric(12, 1e-3, 1.2), std::sqrt(0.5));
-    LayerParams t = geometric(12, 1e-3, 1.0);
+    LayerParams t = geometric(12, 1e-3, 0.0);  // no growth ratio: the thickness determines it
     t.distribution.kind = Distribution::Thickness;
     t.distribution.thickness = 0.05;
     expect_flat_plate_exact(wall, t, std::sqrt(0.5));

@@ -1,7 +1,11 @@
 #pragma once
 /// \file
 /// The one small interface through which long stages report progress and learn of
-/// cancellation. Library users pass nothing (a null pointer); the CLI draws a bar.
+/// cancellation. Library users pass nothing (a null pointer); the CLI draws a bar and cancels
+/// on Ctrl-C. Stages report at their start (fraction 0) and between steps: "surface", "layers",
+/// "pyramids", "tetrahedra", "validation", "writing". A stage that sees cancelled() throws
+/// Cancelled at its next check; writers then leave no output file. (Third-party calls, Gmsh's
+/// meshing and TetGen, cannot be interrupted: the check comes when they return.)
 
 #include <string_view>
 
@@ -27,6 +31,11 @@ inline void report(Progress* p, std::string_view stage, double fraction) {
     if (!p) return;
     p->report(stage, fraction);
     if (p->cancelled()) throw Cancelled();
+}
+
+/// Throw Cancelled if \p p asks to stop (a check without a report, inside a loop).
+inline void check_cancelled(const Progress* p) {
+    if (p && p->cancelled()) throw Cancelled();
 }
 
 }  // namespace strata

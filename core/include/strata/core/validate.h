@@ -5,6 +5,7 @@
 /// sets, boundary faces exactly the patch faces (and pointing out), and cell volumes summing
 /// to the volume enclosed by the boundary (divergence theorem).
 
+#include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
 
 #include <string>
@@ -29,6 +30,7 @@ struct ValidationReport {
 struct ValidateParams {
     double volume_tolerance = 1e-9;  ///< allowed |Σ cell volumes − boundary volume|, relative to the latter
     int threads = 0;                 ///< 0: OpenMP's default; the report is the same for any count
+    Progress* progress = nullptr;    ///< stage "validation", checked between the checks
 };
 
 /// Check \p mesh: its arrays (check_volume_arrays; with an id out of range nothing else is

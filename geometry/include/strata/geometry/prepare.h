@@ -3,6 +3,7 @@
 /// The geometry stage as one call: read whatever the user has, assign patch kinds, merge,
 /// check, orient. The result is what module/ extrudes.
 
+#include <strata/core/progress.h>
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
 #include <strata/core/surface_mesh.h>
@@ -32,7 +33,7 @@ struct PrepareReport {
 /// this after reading is prepare_mesh). Throws InputError for a missing file or an unknown
 /// extension.
 SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params,
-                            PrepareReport* report = nullptr);
+                            PrepareReport* report = nullptr, Progress* progress = nullptr);
 
 /// The part of prepare_surface after reading, for a mesh that comes from elsewhere (the
 /// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,
@@ -40,7 +41,7 @@ SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params
 /// \p source names the mesh in errors ("wing.stl", "Gmsh model 'sphere'"). InputError if
 /// \p raw has no faces.
 SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source,
-                         PrepareReport* report = nullptr);
+                         PrepareReport* report = nullptr, Progress* progress = nullptr);
 
 /// Apply the naming rule and mappings above to \p mesh's patch table.
 void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::string, PatchKind>>& kinds,

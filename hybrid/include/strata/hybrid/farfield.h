@@ -9,7 +9,9 @@
 namespace strata {
 
 enum class FarfieldShape { Box, Sphere };
-/// "box" or "sphere" (InputError otherwise).
+/// "box", "sphere".
+std::string_view to_string(FarfieldShape shape);
+/// Inverse of to_string (case-insensitive); InputError naming \p text otherwise.
 FarfieldShape parse_farfield_shape(std::string_view text);
 
 struct FarfieldParams {

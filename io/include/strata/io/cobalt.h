@@ -3,6 +3,7 @@
 /// Cobalt60 ASCII writer (FORMATS.md): every face once, 1-based ids, boundary faces with
 /// −patch in the second cell slot, face normals from the first cell to the second.
 
+#include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
 
 #include <string>
@@ -13,6 +14,6 @@ namespace strata {
 /// `<path>.bc` ("<number> <name> <kind>" per line, numbers 1..npatches in the file's order).
 /// Only patches with faces are numbered. Both files are written atomically. Throws
 /// InputError (unwritable path) or TopologyError (a face shared by more than two cells).
-void write_cobalt(const VolumeMesh& mesh, const std::string& path);
+void write_cobalt(const VolumeMesh& mesh, const std::string& path, Progress* progress = nullptr);
 
 }  // namespace strata

@@ -3,6 +3,7 @@
 /// Surface-mesh writer through the Gmsh API: one discrete surface and one physical group per
 /// patch, so every format Gmsh writes is available from the extension.
 
+#include <strata/core/progress.h>
 #include <strata/core/surface_mesh.h>
 
 #include <string>
@@ -13,7 +14,8 @@ namespace strata {
 /// extension, formats.h) as add_surface_to_gmsh_model lays it out, so read_msh gives the nodes,
 /// faces and patches back in order. Atomic: written to a temporary name and renamed. Throws
 /// InputError for an unknown extension, a missing directory or malformed arrays, BackendError if
-/// Gmsh fails.
-void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_version = 4.1);
+/// Gmsh fails. \p progress: stage "writing"; cancelled, nothing is left at \p path.
+void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_version = 4.1,
+                   Progress* progress = nullptr);
 
 }  // namespace strata

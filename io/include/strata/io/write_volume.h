@@ -2,6 +2,7 @@
 /// \file
 /// Volume meshes to and from files: Cobalt60 (cobalt.h) and every format Gmsh writes.
 
+#include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
 
 #include <string>
@@ -14,8 +15,10 @@ namespace strata {
 /// (3D), one discrete surface and one 2D physical group per boundary patch, named after the
 /// patch (add_volume_to_gmsh_model). Atomic (temporary name, then rename). Does not validate:
 /// callers run require_valid_mesh first. InputError for an unknown extension, a missing
-/// directory or malformed arrays; BackendError if Gmsh fails.
-void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version = 4.1);
+/// directory or malformed arrays; BackendError if Gmsh fails. \p progress: stage "writing";
+/// cancelled, nothing is left at \p path.
+void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version = 4.1,
+                  Progress* progress = nullptr);
 
 /// Read a volume mesh written by write_volume (or any .msh with linear tets, pyramids,
 /// prisms and hexes, and 2D physical groups as patches) through the Gmsh API
