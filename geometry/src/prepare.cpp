@@ -47,7 +47,7 @@ void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::stri
         if (i == kNone) {
             std::string list;
             for (const Patch& p : mesh.patches) list += (list.empty() ? "" : ", ") + p.name;
-            throw InputError(source + ": --patch " + name + "=" + std::string(to_string(kind)) +
+            throw InputError(source + ": PrepareParams::patch_kinds " + name + "=" + std::string(to_string(kind)) +
                              ": no patch named '" + name + "'; the patches are: " + list);
         }
         mesh.patches[static_cast<std::size_t>(i)].kind = kind;

@@ -52,6 +52,7 @@
 #include <strata/core/format.h>
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
+#include <strata/core/progress.h>
 #include <strata/hybrid/pyramids.h>
 #include <strata/core/cell_quality.h>
 
@@ -302,7 +303,8 @@ private:
 
 class Builder {
 public:
-    Builder(const SurfaceMesh& top, const PyramidParams& params) : top_(top), params_(params) {}
+    Builder(const SurfaceMesh& top, const PyramidParams& params, Progress* progress)
+        : top_(top), params_(params), progress_(progress) {}
 
     PyramidLayer run();
 
@@ -335,6 +337,7 @@ private:
 
     const SurfaceMesh& top_;
     const PyramidParams& params_;
+    Progress* progress_;
     std::vector<Pyr> pyr_;
     std::vector<Index> pyr_of_face_;  // face → pyramid or kNone
     std::vector<Vec3> face_centroid_;
@@ -627,6 +630,7 @@ void Builder::fail(Index k, const Failure& why, double h) const {
 }
 
 PyramidLayer Builder::run() {
+    report(progress_, "pyramids", 0.0);
     setup();
     PyramidLayer out;
     const Index np = static_cast<Index>(pyr_.size());
@@ -635,6 +639,7 @@ PyramidLayer Builder::run() {
 
         // Phase 1: each pyramid against the fixed top surface.
         for (Index k = 0; k < np; ++k) {
+            if (k % 4096 == 0) check_cancelled(progress_);
             Pyr& p = pyr_[static_cast<std::size_t>(k)];
             p.static_ok.assign(p.heights.size(), -1);
             p.static_why.assign(p.heights.size(), Failure{});
@@ -647,7 +652,9 @@ PyramidLayer Builder::run() {
         std::vector<char> active(static_cast<std::size_t>(np), 1), shorten(static_cast<std::size_t>(np), 0);
         std::vector<Index> act(static_cast<std::size_t>(np));
         for (Index k = 0; k < np; ++k) act[static_cast<std::size_t>(k)] = k;
+        report(progress_, "pyramids", 0.5);
         while (!act.empty()) {
+            check_cancelled(progress_);
             for (const Index k : act) {
                 for (const Index* mp = near_pyrs_.row_begin(k); mp != near_pyrs_.row_end(k); ++mp) {
                     const Index m = *mp;
@@ -708,13 +715,14 @@ PyramidLayer Builder::run() {
         const auto& v = out.pyramids[static_cast<std::size_t>(k)];
         for (int i = 0; i < 4; ++i) out.surface.add_face({v[i], v[(i + 1) % 4], v[4]}, patch);
     }
+    report(progress_, "pyramids", 1.0);
     return out;
 }
 
 }  // namespace
 
-PyramidLayer build_pyramids(const SurfaceMesh& top, const PyramidParams& params) {
-    return Builder(top, params).run();
+PyramidLayer build_pyramids(const SurfaceMesh& top, const PyramidParams& params, Progress* progress) {
+    return Builder(top, params, progress).run();
 }
 
 }  // namespace strata

@@ -180,12 +180,24 @@ TEST(ValidateMesh, PyramidCubeAmongHexesIsValid) {
     EXPECT_EQ(r.interior_faces, (cell_faces(m) - 54) / 2);
 }
 
-TEST(ValidateMesh, ReportIsDeterministic) {
-    VolumeMesh m = test::mixed_box().build();
-    m.hexes.erase(m.hexes.begin() + 3);
-    const ValidationReport a = validate_mesh(m), b = validate_mesh(m);
-    EXPECT_EQ(a.problems, b.problems);
-    EXPECT_EQ(a.cell_volume, b.cell_volume);
+TEST(ValidateMesh, ReportIsTheSameForAnyThreadCount) {
+    // 40³ hexahedra on 41³ nodes span two chunks of cells and five of nodes; problems in several
+    // chunks (holes where cubes are missing, inverted cells) must come out in one order, with one
+    // worst cell and the same sums, whatever the number of threads.
+    VolumeMesh m = test::BoxMesh(40, 40, 40, 1.0 / 40).build();
+    for (std::size_t c : {100u, 20000u, 40000u, 63000u}) m.hexes.erase(m.hexes.begin() + static_cast<std::ptrdiff_t>(c));
+    for (std::size_t c : {5u, 33000u, 62000u}) std::swap(m.hexes[c][0], m.hexes[c][1]);
+    const ValidationReport one = validate_mesh(m, {.threads = 1});
+    EXPECT_FALSE(one.ok());
+    EXPECT_GE(one.problems.size(), 8u) << all_problems(one);
+    for (int threads : {2, 3, 8}) {
+        const ValidationReport r = validate_mesh(m, {.threads = threads});
+        EXPECT_EQ(r.problems, one.problems) << threads << " threads";
+        EXPECT_EQ(r.cell_volume, one.cell_volume) << threads << " threads";
+        EXPECT_EQ(r.min_scaled_jacobian, one.min_scaled_jacobian) << threads << " threads";
+        EXPECT_EQ(r.worst_cell, one.worst_cell) << threads << " threads";
+        EXPECT_EQ(r.interior_faces, one.interior_faces) << threads << " threads";
+    }
 }
 
 TEST(ValidateMesh, RemovedInteriorCellLeavesAHoleAndAVolumeMismatch) {

@@ -3,6 +3,7 @@
 /// The pyramid transition: over every quad of the outermost layer, a pyramid whose apex
 /// sits along the quad's normal, so the tetrahedral region sees triangles only.
 
+#include <strata/core/progress.h>
 #include <strata/core/surface_mesh.h>
 
 #include <array>
@@ -30,7 +31,7 @@ struct PyramidLayer {
 /// region still to mesh) with a pyramid. Apex at centroid + h × unit normal, with h shortened
 /// (down to min_height) where the pyramid would intersect another pyramid or the surface
 /// nearby or invert its side faces; throws TopologyError naming the quad if it cannot be
-/// placed. Triangles of \p top pass through unchanged.
-PyramidLayer build_pyramids(const SurfaceMesh& top, const PyramidParams& params);
+/// placed. Triangles of \p top pass through unchanged. \p progress: stage "pyramids".
+PyramidLayer build_pyramids(const SurfaceMesh& top, const PyramidParams& params, Progress* progress = nullptr);
 
 }  // namespace strata
