@@ -1,6 +1,9 @@
-// The real geometries the hybrid stage must mesh (the list): each gives a valid mesh
-// with the expected cell types and patches, written as Cobalt60 and .msh, re-read and
-// validated again.
+// The real geometries the hybrid stage must mesh (the list): each gives a mesh with the
+// expected cell types and patches that fills exactly the fluid domain its input describes (a
+// volume computed from the input surface, not from the mesh), carries every wall face of the
+// input unchanged, and is written as Cobalt60 and .msh, re-read and validated again.
+// (build_hybrid_mesh validates before it returns, so asserting its report is ok would prove
+// nothing; these checks are independent of it.)
 
 #include <strata/geometry/prepare.h>
 #include <strata/hybrid/hybrid_mesh.h>
@@ -11,6 +14,8 @@
 #include "test_support.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -33,10 +38,56 @@ std::vector<std::string> names(const SurfaceMesh& s, const std::vector<Index>& p
     return out;
 }
 
-/// The checks every case ends with; prints the figures for the record.
-void expect_valid_case(const std::string& name, const VolumeMesh& m, const HybridReport& rep) {
-    ASSERT_TRUE(rep.validation.ok()) << name << ": " << rep.validation.problems.front();
+/// Σ over \p faces of (1/6) x0·(x1 × x2) per triangle (quads split at v0): the volume a closed
+/// surface encloses, positive when its normals point out.
+double enclosed_volume(const std::vector<Vec3>& points, const SurfaceMesh& faces, const Vec3& origin) {
+    double v = 0.0;
+    for (Index f = 0; f < faces.num_faces(); ++f)
+        for (Index k = 1; k + 1 < faces.face_size(f); ++k) {
+            const Vec3 a = points[faces.face_node(f, 0)] - origin, b = points[faces.face_node(f, k)] - origin,
+                       c = points[faces.face_node(f, k + 1)] - origin;
+            v += a.dot(b.cross(c)) / 6.0;
+        }
+    return v;
+}
+
+/// The wall faces of \p s as sorted corner coordinates, for comparing two meshes' walls.
+std::vector<std::vector<std::array<double, 3>>> wall_faces(const std::vector<Vec3>& points, const SurfaceMesh& s) {
+    std::vector<std::vector<std::array<double, 3>>> out;
+    for (Index f = 0; f < s.num_faces(); ++f) {
+        if (s.patches[static_cast<std::size_t>(s.face_patch[f])].kind != PatchKind::Wall) continue;
+        std::vector<std::array<double, 3>> corners;
+        for (const Index* v = s.face_begin(f); v != s.face_end(f); ++v)
+            corners.push_back({points[*v].x(), points[*v].y(), points[*v].z()});
+        std::sort(corners.begin(), corners.end());
+        out.push_back(corners);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+/// The checks every case ends with; prints the figures for the record. The cells fill the
+/// domain: the input surface's enclosed volume (its normals point into the fluid, so that of a
+/// closed fluid domain is minus its volume, that of a body plus the body's), and with a
+/// generated farfield, the volume inside it less the body's.
+void expect_valid_case(const std::string& name, const SurfaceMesh& input, const VolumeMesh& m,
+                       const HybridReport& rep) {
+    EXPECT_EQ(rep.validation.cells, m.num_cells()) << name;
     EXPECT_GT(rep.validation.min_scaled_jacobian, 0.0) << name;
+    EXPECT_EQ(wall_faces(m.points, m.boundary), wall_faces(input.points, input)) << name;
+    const Vec3 o = input.points.front();
+    double expected = -enclosed_volume(input.points, input, o);
+    const Index far = find_patch(m.boundary, "farfield");
+    if (far != kNone && find_patch(input, "farfield") == kNone) {  // generated: its own faces
+        SurfaceMesh farfield = m.boundary;
+        farfield.face_offsets = {0};
+        farfield.face_nodes.clear();
+        farfield.face_patch.clear();
+        for (Index f = 0; f < m.boundary.num_faces(); ++f)
+            if (m.boundary.face_patch[f] == far) farfield.add_face(m.boundary.face_begin(f), m.boundary.face_size(f), far);
+        expected = enclosed_volume(m.points, farfield, o) - enclosed_volume(input.points, input, o);
+    }
+    EXPECT_NEAR(rep.validation.cell_volume, expected, 1e-9 * std::abs(expected)) << name;
     std::printf(
         "%s: %zu hex, %zu prisms, %zu pyramids, %zu tets; min scaled Jacobian %.2e (layers %.2e)\n", name.c_str(),
         m.hexes.size(), m.prisms.size(), m.pyramids.size(), m.tets.size(), rep.validation.min_scaled_jacobian,
@@ -52,7 +103,7 @@ TEST(HybridCases, SphereStlInAGeneratedFarfield) {
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(10, 1e-3), nullptr, &rep);
     EXPECT_EQ(m.prisms.size(), 10u * static_cast<std::size_t>(s.num_faces()));
-    expect_valid_case("sphere_stl", m, rep);
+    expect_valid_case("sphere_stl", s, m, rep);
 }
 
 TEST(HybridCases, OneraM6FromStep) {
@@ -63,7 +114,7 @@ TEST(HybridCases, OneraM6FromStep) {
     const VolumeMesh m = build_hybrid_mesh(s, params(10, 0.02), nullptr, &rep);
     EXPECT_GT(m.prisms.size(), 0u);
     EXPECT_GT(m.tets.size(), 0u);
-    expect_valid_case("m6_step", m, rep);
+    expect_valid_case("m6_step", s, m, rep);
 }
 
 TEST(HybridCases, HemisphereCylinderHalfDomainWithSymmetryAndOutflowPlanes) {
@@ -88,7 +139,7 @@ TEST(HybridCases, HemisphereCylinderHalfDomainWithSymmetryAndOutflowPlanes) {
             }
         }
     }
-    expect_valid_case("hemisphere_cylinder", m, rep);
+    expect_valid_case("hemisphere_cylinder", s, m, rep);
 }
 
 TEST(HybridCases, BodyFinInABoxWhoseSidesAreFarfield) {
@@ -101,7 +152,7 @@ TEST(HybridCases, BodyFinInABoxWhoseSidesAreFarfield) {
     // The floor's and the ceiling's layers end on all four sides.
     EXPECT_EQ(names(s, rep.remeshed_patches),
               (std::vector<std::string>{"surface_1", "surface_2", "surface_4", "surface_6"}));
-    expect_valid_case("body_fin_box", m, rep);
+    expect_valid_case("body_fin_box", s, m, rep);
 }
 
 TEST(HybridCases, WingFuselageFusedFromTwoSolids) {
@@ -111,7 +162,7 @@ TEST(HybridCases, WingFuselageFusedFromTwoSolids) {
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(5, 0.05), nullptr, &rep);
     EXPECT_GT(m.prisms.size(), 0u);
-    expect_valid_case("wing_fuselage", m, rep);
+    expect_valid_case("wing_fuselage", s, m, rep);
 }
 
 TEST(HybridCases, MixedQuadTriangleOneraM6HasEveryCellType) {
@@ -122,7 +173,7 @@ TEST(HybridCases, MixedQuadTriangleOneraM6HasEveryCellType) {
     EXPECT_GT(m.prisms.size(), 0u);
     EXPECT_EQ(m.pyramids.size(), m.hexes.size() / 5);  // one per quad of the outermost layer
     EXPECT_GT(m.tets.size(), 0u);
-    expect_valid_case("m6_mixed", m, rep);
+    expect_valid_case("m6_mixed", s, m, rep);
 }
 
 }  // namespace
