@@ -344,71 +344,80 @@ void print_written(const std::vector<std::string>& files) {
 // ---------------------------------------------------------------------------------------
 // The subcommands.
 
+/// What every subcommand starts with: the output checked (a typo in its name should not cost a
+/// meshing run), then the surface read, checked and oriented.
+struct Start {
+    double msh_version = 4.1;
+    strata::SurfaceMesh surface;
+    strata::PrepareReport report;
+    double seconds = 0.0;
+};
+
+enum class Output { Surface, Volume };
+
+Start start(const Common& c, const strata::PrepareParams& params, Output output, Terminal& terminal) {
+    const auto t0 = std::chrono::steady_clock::now();
+    Start s;
+    s.msh_version = strata::parse_msh_version(c.msh_version);
+    if (output == Output::Surface)
+        strata::check_surface_output(c.output, s.msh_version);
+    else
+        strata::check_volume_output(c.output, s.msh_version);
+    s.surface = strata::prepare_surface(c.input, params, &s.report, &terminal);
+    s.seconds = seconds_since(t0);
+    return s;
+}
+
 int run_surface(const Common& c) {
     const auto t0 = std::chrono::steady_clock::now();
-    const strata::PrepareParams params = prepare_params(c);
-    const double version = strata::parse_msh_version(c.msh_version);
-    strata::check_surface_output(c.output, version);
     Terminal terminal(c.quiet);
-    strata::PrepareReport rep;
-    const strata::SurfaceMesh mesh = strata::prepare_surface(c.input, params, &rep, &terminal);
-    strata::write_surface(mesh, c.output, version, &terminal);
+    const Start s = start(c, prepare_params(c), Output::Surface, terminal);
+    strata::write_surface(s.surface, c.output, s.msh_version, &terminal);
     if (c.quiet) return 0;
-    print_surface_summary(mesh, rep);
+    print_surface_summary(s.surface, s.report);
     std::printf("wrote %s (%.2f s)\n", c.output.c_str(), seconds_since(t0));
     return 0;
 }
 
 int run_layers(const Common& c, const LayerOptions& o) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const strata::PrepareParams pp = prepare_params(c);
     const strata::LayerParams lp = layer_params(o);
-    const double version = strata::parse_msh_version(c.msh_version);
-    strata::check_volume_output(c.output, version);
     Terminal terminal(c.quiet);
-    strata::PrepareReport rep;
-    const strata::SurfaceMesh wall = strata::prepare_surface(c.input, pp, &rep, &terminal);
+    const Start s = start(c, prepare_params(c), Output::Volume, terminal);
     const auto t1 = std::chrono::steady_clock::now();
-    const strata::LayerMesh lm = strata::extrude_layers(wall, lp, &terminal);
+    const strata::LayerMesh lm = strata::extrude_layers(s.surface, lp, &terminal);
+    const double t_layers = seconds_since(t1);
     const auto t2 = std::chrono::steady_clock::now();
     const strata::ValidationReport v =
         strata::require_valid_mesh(lm.mesh, c.input, {.threads = lp.threads, .progress = &terminal});
-    strata::write_volume(lm.mesh, c.output, version, &terminal);
+    strata::write_volume(lm.mesh, c.output, s.msh_version, &terminal);
     if (c.quiet) return 0;
-    print_surface_summary(wall, rep);
+    print_surface_summary(s.surface, s.report);
     print_layer_table(lm);
     std::printf("cells: %zu hexahedra, %zu prisms; min scaled Jacobian %.3f; volume %.6g\n", lm.mesh.hexes.size(),
                 lm.mesh.prisms.size(), v.min_scaled_jacobian, v.cell_volume);
-    auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
-    std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", secs(t0, t1), secs(t1, t2),
+    std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", s.seconds, t_layers,
                 seconds_since(t2));
     print_written(strata::volume_output_files(c.output));
     return 0;
 }
 
 int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const strata::PrepareParams pp = prepare_params(c);
     strata::HybridParams hp = mo.params;
     hp.layers = layer_params(lo);
     hp.farfield.shape = strata::parse_farfield_shape(mo.farfield);
-    const double version = strata::parse_msh_version(c.msh_version);
-    strata::check_volume_output(c.output, version);
     Terminal terminal(c.quiet);
-    strata::PrepareReport rep;
-    const strata::SurfaceMesh surface = strata::prepare_surface(c.input, pp, &rep, &terminal);
-    const double t_surface = seconds_since(t0);
+    const Start s = start(c, prepare_params(c), Output::Volume, terminal);
     strata::HybridReport hr;
-    const strata::VolumeMesh mesh = strata::build_hybrid_mesh(surface, hp, &terminal, &hr);
+    const strata::VolumeMesh mesh = strata::build_hybrid_mesh(s.surface, hp, &terminal, &hr);
     const auto t1 = std::chrono::steady_clock::now();
-    strata::write_volume(mesh, c.output, version, &terminal);
+    strata::write_volume(mesh, c.output, s.msh_version, &terminal);
     const double t_write = seconds_since(t1);
     if (c.quiet) return 0;
-    print_surface_summary(surface, rep);
+    print_surface_summary(s.surface, s.report);
     print_hybrid_summary(mesh, hr);
     std::printf(
         "time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f s\n",
-        t_surface, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
+        s.seconds, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
     print_written(strata::volume_output_files(c.output));
     return 0;
 }

@@ -30,24 +30,30 @@ double pyramid_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<
     return j;
 }
 
-double prism_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 6>& v) {
+namespace {
+
+/// Prisms (n = 3) and hexahedra (n = 4): bottom corners 0..n−1 with edges to the next and
+/// previous bottom corner and up the column; top corners n..2n−1 the same, seen from above.
+template <std::size_t N>
+double extruded_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, N>& v) {
+    constexpr int n = static_cast<int>(N) / 2;
     double j = 1.0;
-    for (int i = 0; i < 3; ++i) {
-        const int n = (i + 1) % 3, q = (i + 2) % 3;
-        j = std::min(j, corner_scaled_jacobian(p[v[i]], p[v[n]], p[v[q]], p[v[i + 3]]));
-        j = std::min(j, corner_scaled_jacobian(p[v[i + 3]], p[v[q + 3]], p[v[n + 3]], p[v[i]]));
+    for (int i = 0; i < n; ++i) {
+        const int next = (i + 1) % n, prev = (i + n - 1) % n;
+        j = std::min(j, corner_scaled_jacobian(p[v[i]], p[v[next]], p[v[prev]], p[v[i + n]]));
+        j = std::min(j, corner_scaled_jacobian(p[v[i + n]], p[v[prev + n]], p[v[next + n]], p[v[i]]));
     }
     return j;
 }
 
+}  // namespace
+
+double prism_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 6>& v) {
+    return extruded_min_scaled_jacobian(p, v);
+}
+
 double hex_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 8>& v) {
-    double j = 1.0;
-    for (int i = 0; i < 4; ++i) {
-        const int n = (i + 1) % 4, q = (i + 3) % 4;
-        j = std::min(j, corner_scaled_jacobian(p[v[i]], p[v[n]], p[v[q]], p[v[i + 4]]));
-        j = std::min(j, corner_scaled_jacobian(p[v[i + 4]], p[v[q + 4]], p[v[n + 4]], p[v[i]]));
-    }
-    return j;
+    return extruded_min_scaled_jacobian(p, v);
 }
 
 namespace {

@@ -31,16 +31,22 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
-AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
+void check_output_path(const std::string& path) {
     namespace fs = std::filesystem;
-    fs::path t(target_);
-    fs::path dir = t.parent_path().empty() ? fs::path(".") : t.parent_path();
+    const fs::path t(path);
+    const fs::path dir = t.parent_path().empty() ? fs::path(".") : t.parent_path();
     std::error_code ec;
     if (!fs::is_directory(dir, ec))
-        throw InputError("cannot write '" + target_ + "': directory '" + dir.string() +
+        throw InputError("cannot write '" + path + "': directory '" + dir.string() +
                          "' does not exist; create it or choose another output path");
-    if (fs::is_directory(t, ec))
-        throw InputError("cannot write '" + target_ + "': it is a directory; choose a file name");
+    if (fs::is_directory(t, ec)) throw InputError("cannot write '" + path + "': it is a directory; choose a file name");
+}
+
+AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
+    namespace fs = std::filesystem;
+    check_output_path(target_);
+    const fs::path t(target_);
+    const fs::path dir = t.parent_path().empty() ? fs::path(".") : t.parent_path();
     // Same directory (so rename is atomic), same extension (writers pick the format from it).
     std::string name = ".";
     name += t.stem().string();

@@ -3,7 +3,6 @@
 #include <strata/io/formats.h>
 
 #include <array>
-#include <filesystem>
 
 namespace strata {
 namespace {
@@ -43,17 +42,6 @@ void check_msh_version(const std::string& path, double version) {
                          " is not written; use 4.1 (default) or 2.2");
 }
 
-void check_directory(const std::string& path) {
-    namespace fs = std::filesystem;
-    const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec))
-        throw InputError("cannot write '" + path + "': directory '" + dir.string() +
-                         "' does not exist; create it or choose another output path");
-    if (fs::is_directory(path, ec))
-        throw InputError("cannot write '" + path + "': it is a directory; choose a file name");
-}
-
 }  // namespace
 
 double parse_msh_version(std::string_view text) {
@@ -68,7 +56,7 @@ void check_surface_output(const std::string& path, double msh_version) {
         throw InputError("cannot write '" + path + "': unknown mesh extension '" + ext + "'; use one of " +
                          join(kSurfaceExtensions));
     if (ext == ".msh") check_msh_version(path, msh_version);
-    check_directory(path);
+    check_output_path(path);
 }
 
 void check_volume_output(const std::string& path, double msh_version) {
@@ -77,7 +65,7 @@ void check_volume_output(const std::string& path, double msh_version) {
         throw InputError("cannot write '" + path + "': unknown volume-mesh extension '" + ext + "'; use one of " +
                          join(kCobaltExtensions) + " (Cobalt60) or " + join(kGmshVolumeExtensions));
     if (ext == ".msh") check_msh_version(path, msh_version);
-    check_directory(path);
+    check_output_path(path);
 }
 
 bool is_cobalt_path(const std::string& path) { return listed(lower_extension(path), kCobaltExtensions); }

@@ -6,6 +6,8 @@
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
 
+#include "gmsh_element_types.h"
+
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -16,13 +18,7 @@
 namespace strata {
 namespace {
 
-// Gmsh element types.
-constexpr int kTriangle3 = 2;
-constexpr int kQuad4 = 3;
-constexpr int kTet4 = 4;
-constexpr int kHex8 = 5;
-constexpr int kPrism6 = 6;
-constexpr int kPyramid5 = 7;
+using namespace gmsh_types;
 
 std::string index_range_hint() {
     return "exceed the 32-bit index range; rebuild Strata with -DSTRATA_INDEX64=ON";

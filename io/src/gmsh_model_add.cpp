@@ -6,6 +6,8 @@
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
 
+#include "gmsh_element_types.h"
+
 #include <algorithm>
 #include <array>
 #include <map>
@@ -15,13 +17,7 @@
 namespace strata {
 namespace {
 
-// Gmsh element types.
-constexpr int kTriangle3 = 2;
-constexpr int kQuad4 = 3;
-constexpr int kTet4 = 4;
-constexpr int kHex8 = 5;
-constexpr int kPrism6 = 6;
-constexpr int kPyramid5 = 7;
+using namespace gmsh_types;
 
 /// Add the faces \p faces of \p mesh to surface \p surface as triangles, then quadrangles;
 /// element tag = element_base + face index + 1, node tag = node_base + node index + 1.

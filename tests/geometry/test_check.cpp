@@ -2,6 +2,7 @@
 
 #include <strata/core/error.h>
 #include <strata/geometry/check.h>
+#include <strata/geometry/primitives.h>
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
 
@@ -43,41 +44,16 @@ std::string message_of(F&& f) {
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 /// Append an icosphere (20·4^levels triangles) of \p radius around \p centre on \p patch,
-/// every face oriented outward.
+/// every face oriented outward (checked here from geometry, so the builder cannot silently be
+/// inward).
 void add_icosphere(SurfaceMesh& m, int levels, double radius, const Vec3& centre, Index patch) {
-    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<Vec3> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<std::array<Index, 3>> tri = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
-                                             {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                             {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
-                                             {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-    for (Vec3& x : p) x.normalize();
-    for (int l = 0; l < levels; ++l) {
-        std::map<std::pair<Index, Index>, Index> mid;
-        auto midpoint = [&](Index a, Index b) {
-            const auto key = std::minmax(a, b);
-            auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            p.push_back((p[a] + p[b]).normalized());
-            return mid[key] = static_cast<Index>(p.size()) - 1;
-        };
-        std::vector<std::array<Index, 3>> next;
-        for (const auto& f : tri) {
-            const Index ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
-            next.push_back({f[0], ab, ca});
-            next.push_back({f[1], bc, ab});
-            next.push_back({f[2], ca, bc});
-            next.push_back({ab, bc, ca});
-        }
-        tri = std::move(next);
-    }
+    const SurfaceMesh s = icosphere(centre, radius, levels, {"sphere", PatchKind::Wall});
     const Index base = m.num_points();
-    for (const Vec3& x : p) m.points.push_back(centre + radius * x);
-    for (auto f : tri) {
-        // Orientation from geometry, so the builder cannot silently be inward.
-        if ((p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).dot(p[f[0]]) < 0) std::swap(f[1], f[2]);
-        m.add_face({base + f[0], base + f[1], base + f[2]}, patch);
+    m.points.insert(m.points.end(), s.points.begin(), s.points.end());
+    for (Index f = 0; f < s.num_faces(); ++f) {
+        const Vec3 a = s.points[s.face_node(f, 0)], b = s.points[s.face_node(f, 1)], c = s.points[s.face_node(f, 2)];
+        ASSERT_GT((b - a).cross(c - a).dot(a - centre), 0.0) << "icosphere face " << f << " points inward";
+        m.add_face({base + s.face_node(f, 0), base + s.face_node(f, 1), base + s.face_node(f, 2)}, patch);
     }
 }
 

@@ -11,6 +11,10 @@ namespace strata {
 /// check the path" (or: it is a directory, or the system's reason it cannot be read).
 void check_input_file(const std::string& path);
 
+/// Refuse \p path as an output before anything is written: InputError "cannot write '<path>':
+/// directory '<dir>' does not exist; ..." or "...: it is a directory; choose a file name".
+void check_output_path(const std::string& path);
+
 /// The extension of \p path in lower case, with its dot (".step"); "" if it has none.
 std::string lower_extension(const std::string& path);
 
