@@ -1,29 +1,21 @@
-#include <strata/core/error.h>
+#include <strata/core/enum_names.h>
 #include <strata/core/surface_mesh.h>
 
-#include <algorithm>
-#include <cctype>
 
 namespace strata {
 
-std::string_view to_string(PatchKind kind) {
-    switch (kind) {
-        case PatchKind::Wall: return "wall";
-        case PatchKind::Symmetry: return "symmetry";
-        case PatchKind::Farfield: return "farfield";
-        case PatchKind::Other: return "other";
-    }
-    return "other";
-}
+namespace {
 
-PatchKind parse_patch_kind(std::string_view text) {
-    std::string t(text);
-    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return std::tolower(c); });
-    for (PatchKind k : {PatchKind::Wall, PatchKind::Symmetry, PatchKind::Farfield, PatchKind::Other})
-        if (t == to_string(k)) return k;
-    throw InputError("unknown patch kind '" + std::string(text) +
-                     "': use wall, symmetry, farfield or other");
-}
+constexpr EnumNames<PatchKind, 4> kPatchKindNames{{{{PatchKind::Wall, "wall"},
+                                                    {PatchKind::Symmetry, "symmetry"},
+                                                    {PatchKind::Farfield, "farfield"},
+                                                    {PatchKind::Other, "other"}}}};
+
+}  // namespace
+
+std::string_view to_string(PatchKind kind) { return kPatchKindNames.name(kind); }
+
+PatchKind parse_patch_kind(std::string_view text) { return kPatchKindNames.parse(text, "patch kind"); }
 
 void SurfaceMesh::add_face(const Index* nodes, Index n, Index patch) {
     face_nodes.insert(face_nodes.end(), nodes, nodes + n);

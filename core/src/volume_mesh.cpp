@@ -1,21 +1,19 @@
+#include <strata/core/enum_names.h>
 #include <strata/core/format.h>
 #include <strata/core/volume_mesh.h>
 
 namespace strata {
 
-std::string_view to_string(CellType t) {
-    switch (t) {
-        case CellType::Tet:
-            return "tetrahedron";
-        case CellType::Pyramid:
-            return "pyramid";
-        case CellType::Prism:
-            return "prism";
-        case CellType::Hex:
-            return "hexahedron";
-    }
-    return "cell";
-}
+namespace {
+
+constexpr EnumNames<CellType, 4> kCellTypeNames{{{{CellType::Tet, "tetrahedron"},
+                                                  {CellType::Pyramid, "pyramid"},
+                                                  {CellType::Prism, "prism"},
+                                                  {CellType::Hex, "hexahedron"}}}};
+
+}  // namespace
+
+std::string_view to_string(CellType t) { return kCellTypeNames.name(t); }
 
 std::size_t VolumeMesh::num_cells(CellType t) const {
     switch (t) {

@@ -1,3 +1,4 @@
+#include <strata/core/enum_names.h>
 #include <strata/core/error.h>
 #include <strata/core/format.h>
 #include <strata/core/face_geometry.h>
@@ -15,15 +16,15 @@
 
 namespace strata {
 
-std::string_view to_string(FarfieldShape shape) { return shape == FarfieldShape::Box ? "box" : "sphere"; }
+namespace {
 
-FarfieldShape parse_farfield_shape(std::string_view text) {
-    std::string t(text);
-    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    for (FarfieldShape s : {FarfieldShape::Box, FarfieldShape::Sphere})
-        if (t == to_string(s)) return s;
-    throw InputError("FarfieldParams::shape '" + std::string(text) + "': use box or sphere");
-}
+constexpr EnumNames<FarfieldShape, 2> kShapeNames{{{{FarfieldShape::Box, "box"}, {FarfieldShape::Sphere, "sphere"}}}};
+
+}  // namespace
+
+std::string_view to_string(FarfieldShape shape) { return kShapeNames.name(shape); }
+
+FarfieldShape parse_farfield_shape(std::string_view text) { return kShapeNames.parse(text, "FarfieldParams::shape"); }
 
 namespace {
 

@@ -1,9 +1,8 @@
+#include <strata/core/enum_names.h>
 #include <strata/core/error.h>
 #include <strata/core/format.h>
 #include <strata/module/distribution.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -27,22 +26,19 @@ double bisect(F f, double lo, double hi) {
 
 }  // namespace
 
-std::string_view to_string(Distribution d) {
-    switch (d) {
-        case Distribution::Auto: return "auto";
-        case Distribution::Geometric: return "geometric";
-        case Distribution::Thickness: return "thickness";
-        case Distribution::Tanh: return "tanh";
-    }
-    return "auto";
-}
+namespace {
+
+constexpr EnumNames<Distribution, 4> kDistributionNames{{{{Distribution::Auto, "auto"},
+                                                          {Distribution::Geometric, "geometric"},
+                                                          {Distribution::Thickness, "thickness"},
+                                                          {Distribution::Tanh, "tanh"}}}};
+
+}  // namespace
+
+std::string_view to_string(Distribution d) { return kDistributionNames.name(d); }
 
 Distribution parse_distribution(std::string_view text) {
-    std::string t(text);
-    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    for (Distribution d : {Distribution::Auto, Distribution::Geometric, Distribution::Thickness, Distribution::Tanh})
-        if (t == to_string(d)) return d;
-    throw InputError("unknown distribution '" + std::string(text) + "': use auto, geometric, thickness or tanh");
+    return kDistributionNames.parse(text, "DistributionParams::kind");
 }
 
 DistributionParams resolve(const DistributionParams& in) {
