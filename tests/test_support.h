@@ -3,10 +3,14 @@
 
 #include <strata/core/surface_mesh.h>
 
+#include <gtest/gtest.h>
+
 #include <unistd.h>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace strata::test {
 
@@ -17,6 +21,30 @@ inline std::string example_data(const std::string& name) {
 /// A file of tests/data (small inputs written for the tests).
 inline std::string test_data(const std::string& name) {
     return std::string(STRATA_TEST_DATA) + "/" + name;
+}
+
+/// The message of the exception of type E that \p f throws; a test failure (and "") if it throws
+/// none or another type.
+template <class E, class F>
+std::string error_message(F&& f) {
+    try {
+        f();
+    } catch (const E& e) {
+        return e.what();
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "wrong exception type: " << e.what();
+        return {};
+    }
+    ADD_FAILURE() << "no exception thrown";
+    return {};
+}
+
+/// \p f throws an E whose one-line message contains every one of \p parts.
+template <class E, class F>
+void expect_error(F&& f, const std::vector<std::string>& parts) {
+    const std::string msg = error_message<E>(std::forward<F>(f));
+    for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << "message is not one line: " << msg;
 }
 
 /// A fresh empty directory for one test, removed when the object goes.

@@ -4,15 +4,7 @@
 
 namespace strata {
 
-namespace {
-
-constexpr EnumNames<PatchKind, 4> kPatchKindNames{{{{PatchKind::Wall, "wall"},
-                                                    {PatchKind::Symmetry, "symmetry"},
-                                                    {PatchKind::Farfield, "farfield"},
-                                                    {PatchKind::Other, "other"}}}};
-
-}  // namespace
-
+constexpr EnumNames<PatchKind, 4> kPatchKindNames{{"wall", "symmetry", "farfield", "other"}};
 std::string_view to_string(PatchKind kind) { return kPatchKindNames.name(kind); }
 
 PatchKind parse_patch_kind(std::string_view text) { return kPatchKindNames.parse(text, "patch kind"); }

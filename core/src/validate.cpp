@@ -75,28 +75,11 @@ constexpr std::array<const char*, kNumKinds> kKindNoun{"input problems",
                                                        "duplicated boundary faces",
                                                        "volume mismatches"};
 
-Kind kind_of(FaceIssue issue) {
-    switch (issue) {
-        case FaceIssue::SharedByThreeOrMoreCells:
-            return kNonConforming;
-        case FaceIssue::NotOpposite:
-        case FaceIssue::SameCell:
-            return kOverlap;
-        case FaceIssue::InteriorOnBoundary:
-            return kBoundaryInterior;
-        case FaceIssue::BoundaryDuplicated:
-            return kBoundaryDuplicate;
-        case FaceIssue::BoundaryMisoriented:
-            return kBoundaryOrientation;
-        case FaceIssue::QuadAgainstTriangles:
-            return kQuadTriangles;
-        case FaceIssue::Hole:
-            return kHole;
-        case FaceIssue::StrayBoundary:
-            return kBoundaryUnmatched;
-    }
-    return kNonConforming;
-}
+/// The kind of problem each FaceIssue is, in FaceIssue order.
+constexpr std::array<Kind, 9> kKindOfIssue{kNonConforming,       kOverlap, kOverlap,      kBoundaryInterior,
+                                           kBoundaryDuplicate,   kBoundaryOrientation, kQuadTriangles, kHole,
+                                           kBoundaryUnmatched};
+Kind kind_of(FaceIssue issue) { return kKindOfIssue[static_cast<std::size_t>(issue)]; }
 
 struct Problems {
     std::array<std::vector<std::string>, kNumKinds> lines;

@@ -4,43 +4,15 @@
 
 namespace strata {
 
-namespace {
-
-constexpr EnumNames<CellType, 4> kCellTypeNames{{{{CellType::Tet, "tetrahedron"},
-                                                  {CellType::Pyramid, "pyramid"},
-                                                  {CellType::Prism, "prism"},
-                                                  {CellType::Hex, "hexahedron"}}}};
-
-}  // namespace
-
+constexpr EnumNames<CellType, 4> kCellTypeNames{{"tetrahedron", "pyramid", "prism", "hexahedron"}};
 std::string_view to_string(CellType t) { return kCellTypeNames.name(t); }
 
 std::size_t VolumeMesh::num_cells(CellType t) const {
-    switch (t) {
-        case CellType::Tet:
-            return tets.size();
-        case CellType::Pyramid:
-            return pyramids.size();
-        case CellType::Prism:
-            return prisms.size();
-        case CellType::Hex:
-            return hexes.size();
-    }
-    return 0;
+    return with_cells(t, [](const auto& cells) { return cells.size(); });
 }
 
 const Index* VolumeMesh::cell(CellType t, std::size_t i) const {
-    switch (t) {
-        case CellType::Tet:
-            return tets[i].data();
-        case CellType::Pyramid:
-            return pyramids[i].data();
-        case CellType::Prism:
-            return prisms[i].data();
-        case CellType::Hex:
-            return hexes[i].data();
-    }
-    return nullptr;
+    return with_cells(t, [i](const auto& cells) { return cells[i].data(); });
 }
 
 CellNumbering::CellNumbering(const VolumeMesh& mesh) {

@@ -16,12 +16,7 @@
 
 namespace strata {
 
-namespace {
-
-constexpr EnumNames<FarfieldShape, 2> kShapeNames{{{{FarfieldShape::Box, "box"}, {FarfieldShape::Sphere, "sphere"}}}};
-
-}  // namespace
-
+constexpr EnumNames<FarfieldShape, 2> kShapeNames{{"box", "sphere"}};
 std::string_view to_string(FarfieldShape shape) { return kShapeNames.name(shape); }
 
 FarfieldShape parse_farfield_shape(std::string_view text) { return kShapeNames.parse(text, "FarfieldParams::shape"); }

@@ -26,15 +26,7 @@ double bisect(F f, double lo, double hi) {
 
 }  // namespace
 
-namespace {
-
-constexpr EnumNames<Distribution, 4> kDistributionNames{{{{Distribution::Auto, "auto"},
-                                                          {Distribution::Geometric, "geometric"},
-                                                          {Distribution::Thickness, "thickness"},
-                                                          {Distribution::Tanh, "tanh"}}}};
-
-}  // namespace
-
+constexpr EnumNames<Distribution, 4> kDistributionNames{{"auto", "geometric", "thickness", "tanh"}};
 std::string_view to_string(Distribution d) { return kDistributionNames.name(d); }
 
 Distribution parse_distribution(std::string_view text) {

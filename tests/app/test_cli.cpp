@@ -60,6 +60,16 @@ std::vector<std::string> files_in(const test::ScratchDir& dir) {
     return names;
 }
 
+/// `strata surface INPUT -o OUT EXTRA` in \p dir, which must succeed; the surface it wrote.
+SurfaceMesh surface_via_cli(const test::ScratchDir& dir, const std::string& input, const std::string& out,
+                            const std::string& extra = "", std::string* stdout_text = nullptr) {
+    CliResult r = strata_cli(dir, "surface '" + input + "' -o " + out + " " + extra);
+    EXPECT_EQ(r.code, 0) << r.err;
+    if (stdout_text) *stdout_text = r.out;
+    if (r.code != 0) return {};
+    return read_msh(dir.file(out));
+}
+
 std::size_t lines(const std::string& s) {
     std::size_t n = 0;
     for (char c : s) n += c == '\n';
@@ -92,9 +102,7 @@ TEST(Cli, HelpAndVersion) {
 
 TEST(Cli, SurfaceFromStl) {
     test::ScratchDir dir("cli_stl");
-    CliResult r = strata_cli(dir, "surface '" + example_data("sphere.stl") + "' -o sphere.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    const SurfaceMesh m = read_msh(dir.file("sphere.msh"));
+    const SurfaceMesh m = surface_via_cli(dir, example_data("sphere.stl"), "sphere.msh");
     EXPECT_EQ(m.num_triangles(), 606);
     EXPECT_EQ(m.num_points(), 305);  // closed genus-0 triangulation: V = F/2 + 2
     EXPECT_TRUE(closed_manifold(m));
@@ -103,10 +111,7 @@ TEST(Cli, SurfaceFromStl) {
 
 TEST(Cli, SurfaceFromQuadMsh) {
     test::ScratchDir dir("cli_quads");
-    CliResult r =
-        strata_cli(dir, "surface '" + example_data("sphere_pyhyp_quads.msh") + "' -o s.msh --msh-version 2.2");
-    ASSERT_EQ(r.code, 0) << r.err;
-    const SurfaceMesh m = read_msh(dir.file("s.msh"));
+    const SurfaceMesh m = surface_via_cli(dir, example_data("sphere_pyhyp_quads.msh"), "s.msh", "--msh-version 2.2");
     EXPECT_EQ(m.num_quads(), 1536);
     EXPECT_EQ(m.num_triangles(), 0);
     EXPECT_TRUE(closed_manifold(m));
@@ -118,11 +123,10 @@ TEST(Cli, SurfaceFromMixedMshWithPatchKind) {
     const SurfaceMesh in = read_msh(example_data("onera_m6_mixed_quadtri.msh"));
     ASSERT_FALSE(in.patches.empty());
     const std::string name = in.patches.front().name;
-    CliResult r = strata_cli(
-        dir, "surface '" + example_data("onera_m6_mixed_quadtri.msh") + "' -o m6.msh --patch '" + name + "=symmetry'");
-    ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("symmetry"), std::string::npos) << r.out;
-    const SurfaceMesh m = read_msh(dir.file("m6.msh"));
+    std::string out;
+    const SurfaceMesh m = surface_via_cli(dir, example_data("onera_m6_mixed_quadtri.msh"), "m6.msh",
+                                          "--patch '" + name + "=symmetry'", &out);
+    EXPECT_NE(out.find("symmetry"), std::string::npos) << out;
     EXPECT_EQ(m.num_quads(), 7753);
     EXPECT_EQ(m.num_triangles(), 2588);
     EXPECT_TRUE(closed_manifold(m));
@@ -130,9 +134,7 @@ TEST(Cli, SurfaceFromMixedMshWithPatchKind) {
 
 TEST(Cli, SurfaceFromStep) {
     test::ScratchDir dir("cli_step");
-    CliResult r = strata_cli(dir, "surface '" + example_data("onera_m6_sharp_te.stp") + "' -o m6.msh --size 60");
-    ASSERT_EQ(r.code, 0) << r.err;
-    const SurfaceMesh m = read_msh(dir.file("m6.msh"));
+    const SurfaceMesh m = surface_via_cli(dir, example_data("onera_m6_sharp_te.stp"), "m6.msh", "--size 60");
     EXPECT_GT(m.num_triangles(), 500);
     EXPECT_EQ(m.patches.size(), 11u);
     EXPECT_TRUE(closed_manifold(m));
@@ -140,9 +142,7 @@ TEST(Cli, SurfaceFromStep) {
 
 TEST(Cli, SurfaceFromStepFused) {
     test::ScratchDir dir("cli_fuse");
-    CliResult r = strata_cli(dir, "surface '" + example_data("wing_fuselage.step") + "' -o wf.msh --fuse --quads");
-    ASSERT_EQ(r.code, 0) << r.err;
-    const SurfaceMesh m = read_msh(dir.file("wf.msh"));
+    const SurfaceMesh m = surface_via_cli(dir, example_data("wing_fuselage.step"), "wf.msh", "--fuse --quads");
     EXPECT_GT(m.num_quads(), m.num_triangles());
     EXPECT_TRUE(closed_manifold(m));
     Index components = 0;

@@ -237,19 +237,21 @@ TEST(MeshCad, WingFuselageFusedIsOneClosedSurface) {
     EXPECT_NEAR(b.lo.x(), -137.85, 0.5);
 }
 
+/// A closed, well-formed surface with \p patches patches; its bounding box.
+Box3 expect_closed_with_patches(const SurfaceMesh& m, std::size_t patches) {
+    expect_well_formed(m);
+    EXPECT_EQ(m.patches.size(), patches);
+    EXPECT_TRUE(closed(m));
+    return bounds(m);
+}
+
 TEST(MeshCad, BrepBenchmarksMeshClosed) {
     const SurfaceMesh notch = mesh_cad(example_data("bl3d_4_box_notch_concave_corner.brep"), {});
-    expect_well_formed(notch);
-    EXPECT_EQ(notch.patches.size(), 11u);
-    EXPECT_TRUE(closed(notch));
-    const Box3 b = bounds(notch);
+    const Box3 b = expect_closed_with_patches(notch, 11);
     EXPECT_NEAR(b.lo.x(), -0.5, 1e-9);
     EXPECT_NEAR(b.hi.z(), 1.0, 1e-9);
 
-    const SurfaceMesh fin = mesh_cad(example_data("bl3d_5_body_fin_in_box.brep"), {});
-    expect_well_formed(fin);
-    EXPECT_EQ(fin.patches.size(), 13u);
-    EXPECT_TRUE(closed(fin));
+    expect_closed_with_patches(mesh_cad(example_data("bl3d_5_body_fin_in_box.brep"), {}), 13);
 }
 
 TEST(MeshCad, ExtensionCaseAndBrpAreAccepted) {
@@ -331,10 +333,7 @@ TEST(MeshCad, NodesAreNumberedInOrderOfFirstUse) {
 
 TEST(MeshCad, IgesMeshes) {
     const SurfaceMesh m = mesh_cad(test_data("cad_box_with_hole.igs"), {});
-    expect_well_formed(m);
-    EXPECT_EQ(m.patches.size(), 7u);
-    EXPECT_TRUE(closed(m));
-    const Box3 b = bounds(m);
+    const Box3 b = expect_closed_with_patches(m, 7);
     EXPECT_NEAR(b.lo.x(), 0.0, 1e-6);
     EXPECT_NEAR(b.hi.x(), 2.0, 1e-6);
     EXPECT_NEAR(b.hi.y(), 1.0, 1e-6);

@@ -29,16 +29,7 @@ using test::quad_grid;
 /// Runs \p f, expects exception E, returns its message.
 template <class E, class F>
 std::string message_of(F&& f) {
-    try {
-        f();
-    } catch (const E& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "wrong exception type: " << e.what();
-        return {};
-    }
-    ADD_FAILURE() << "no exception thrown";
-    return {};
+    return test::error_message<E>(std::forward<F>(f));
 }
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
@@ -127,24 +118,26 @@ TEST(CheckSurface, OutOfRangeNodeId) {
     EXPECT_TRUE(contains(msg, "node 99")) << msg;
 }
 
-TEST(CheckSurface, RepeatedNodeNamesTheFaceAndPatch) {
+/// A unit quad plus a triangle (\p face) on a second patch \p patch over the extra \p points:
+/// the TopologyError check_surface gives for it, read as "in.msh".
+std::string message_for_extra_face(const std::string& patch, const std::vector<Vec3>& points,
+                                   std::initializer_list<Index> face) {
     SurfaceMesh m = quad_grid(1, 1);
-    m.patches.push_back({"fin", PatchKind::Wall});
-    m.points.emplace_back(2.0, 0.0, 0.0);
-    m.add_face({1, 4, 4}, 1);
-    const std::string msg = message_of<TopologyError>([&] { check_surface(m, "in.msh"); });
+    m.patches.push_back({patch, PatchKind::Wall});
+    m.points.insert(m.points.end(), points.begin(), points.end());
+    m.add_face(face, 1);
+    return message_of<TopologyError>([&] { check_surface(m, "in.msh"); });
+}
+
+TEST(CheckSurface, RepeatedNodeNamesTheFaceAndPatch) {
+    const std::string msg = message_for_extra_face("fin", {Vec3(2, 0, 0)}, {1, 4, 4});
     EXPECT_EQ(msg.rfind("in.msh: face 1 ", 0), 0u) << msg;
     EXPECT_TRUE(contains(msg, "'fin'")) << msg;
     EXPECT_TRUE(contains(msg, "node 4 twice")) << msg;
 }
 
 TEST(CheckSurface, ZeroAreaFaceNamesTheFacePatchAndCentroid) {
-    SurfaceMesh m = quad_grid(1, 1);
-    m.patches.push_back({"flap", PatchKind::Wall});
-    m.points.emplace_back(2.0, 0.0, 0.0);
-    m.points.emplace_back(3.0, 0.0, 0.0);
-    m.add_face({1, 4, 5}, 1);  // collinear corners
-    const std::string msg = message_of<TopologyError>([&] { check_surface(m, "in.msh"); });
+    const std::string msg = message_for_extra_face("flap", {Vec3(2, 0, 0), Vec3(3, 0, 0)}, {1, 4, 5});  // collinear
     EXPECT_TRUE(contains(msg, "face 1 ")) << msg;
     EXPECT_TRUE(contains(msg, "'flap'")) << msg;
     EXPECT_TRUE(contains(msg, "(2, 0, 0)")) << msg;  // centroid

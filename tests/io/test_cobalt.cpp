@@ -102,6 +102,7 @@ struct Expected {
 /// Write \p mesh to \p path and check every property of the file against \p mesh; returns the
 /// mesh rebuilt from the file.
 RebuiltMesh write_and_check(const VolumeMesh& mesh, const std::string& path, Expected expected) {
+    EXPECT_TRUE(validate_mesh(mesh).ok()) << "the test mesh itself is invalid";
     write_cobalt(mesh, path);
     const CobaltGrid g = test::read_cobalt(path);
     const std::vector<CobaltPatch> bc = test::read_cobalt_bc(path + ".bc");
@@ -226,9 +227,7 @@ TEST(WriteCobalt, TetsOnly) {
     BoxMesh box(2, 2, 1);
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) box.set(i, j, 0, CubeSplit::Kuhn);
-    const VolumeMesh m = box.build();
-    ASSERT_TRUE(validate_mesh(m).ok());
-    const RebuiltMesh r = write_and_check(m, dir.file("tets.cgr"), {3, 4});
+    const RebuiltMesh r = write_and_check(box.build(), dir.file("tets.cgr"), {3, 4});
     EXPECT_EQ(r.mesh.tets.size(), 24u);
 }
 
@@ -236,9 +235,7 @@ TEST(WriteCobalt, HexAndPrisms) {
     ScratchDir dir("cobalt_hex_prisms");
     BoxMesh box(2, 1, 1);
     box.set(1, 0, 0, CubeSplit::Prisms);
-    const VolumeMesh m = box.build();
-    ASSERT_TRUE(validate_mesh(m).ok());
-    const RebuiltMesh r = write_and_check(m, dir.file("box.cgr"), {4, 6});
+    const RebuiltMesh r = write_and_check(box.build(), dir.file("box.cgr"), {4, 6});
     EXPECT_EQ(r.mesh.hexes.size(), 1u);
     EXPECT_EQ(r.mesh.prisms.size(), 2u);
     // Numbering: prisms before hexes, so the hex is cell 3.

@@ -3,6 +3,8 @@
 #include <strata/core/error.h>
 #include <strata/module/distribution.h>
 
+#include "test_support.h"
+
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -30,14 +32,7 @@ DistributionParams params(Distribution kind, int layers, double h1, double growt
 /// Throws InputError whose message contains \p needle.
 template <class F>
 void expect_input_error(F f, const std::string& needle) {
-    try {
-        f();
-        ADD_FAILURE() << "no InputError (expected one mentioning '" << needle << "')";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "wrong exception type: " << e.what();
-    }
+    test::expect_error<InputError>(f, {needle});
 }
 
 // ---------------------------------------------------------------- geometric

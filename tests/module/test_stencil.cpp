@@ -66,6 +66,17 @@ std::vector<StencilPoint> row(const Stencils& s, Index o) {
     return {s.points.begin() + s.offsets[sz(o)], s.points.begin() + s.offsets[sz(o) + 1]};
 }
 
+void check_layout(const Stencils& s, const SurfaceMesh& m);
+
+/// Node 0's stencil points, after checking the stencils' layout and that node 0 has one
+/// (empty, with a failure, otherwise).
+std::vector<StencilPoint> checked_row_of_node_0(const Stencils& s, const SurfaceMesh& m) {
+    check_layout(s, m);
+    EXPECT_TRUE(s.valid[0]);
+    if (!s.valid[0]) return {};
+    return row(s, 0);
+}
+
 /// Array sizes, and for every valid node: the weights annihilate constants (the centre
 /// weights are minus the sum of the others). Invalid nodes have empty rows.
 void check_layout(const Stencils& s, const SurfaceMesh& m) {
@@ -392,9 +403,7 @@ TEST(Stencil, ThreeTrianglesTakeFarVerticesAsDiagonals) {
     const SurfaceMesh m = three_triangles(true);
     const NodeRings rings = node_rings(m);
     const Stencils s = build_stencils(m, rings, {}, {});
-    check_layout(s, m);
-    ASSERT_TRUE(s.valid[0]);
-    const auto pts = row(s, 0);
+    const auto pts = checked_row_of_node_0(s, m);
     ASSERT_EQ(pts.size(), 6u);
     for (std::size_t k = 0; k < 3; ++k) {
         const Index a = rings.neighbours.values[k];
@@ -443,9 +452,7 @@ TEST(Stencil, FourTrianglesTakeFarVerticesAsDiagonals) {
     const SurfaceMesh m = plus_ring({false, false, false, false}, {true, true, true, true});
     const NodeRings rings = node_rings(m);
     const Stencils s = build_stencils(m, rings, {}, {});
-    check_layout(s, m);
-    ASSERT_TRUE(s.valid[0]);
-    const auto pts = row(s, 0);
+    const auto pts = checked_row_of_node_0(s, m);
     ASSERT_EQ(pts.size(), 8u);
     for (std::size_t k = 0; k < 4; ++k) {
         const Index a = rings.neighbours.values[k];
@@ -558,9 +565,7 @@ TEST(Stencil, MixedRingM4) {
     m.add_face({1, 4, se, q}, 0);  // E, S, SE, Q: across the outer edge S→E
     const NodeRings rings = node_rings(m);
     const Stencils s = build_stencils(m, rings, {}, {});
-    check_layout(s, m);
-    ASSERT_TRUE(s.valid[0]);
-    const auto pts = row(s, 0);
+    const auto pts = checked_row_of_node_0(s, m);
     ASSERT_EQ(pts.size(), 8u);
     const Frame fr = frame_of(s, m, kNoPlanes, 0);
     for (std::size_t k = 0; k < 4; ++k) {

@@ -28,18 +28,10 @@ inline constexpr CellFaceTable kPrismFaces{
 inline constexpr CellFaceTable kHexFaces{
     6, {4, 4, 4, 4, 4, 4}, {{{0, 3, 2, 1}, {0, 1, 5, 4}, {0, 4, 7, 3}, {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}}}};
 
+/// The faces of cell type \p t (indexed in CellType order).
 inline const CellFaceTable& cell_faces(CellType t) {
-    switch (t) {
-        case CellType::Tet:
-            return kTetFaces;
-        case CellType::Pyramid:
-            return kPyramidFaces;
-        case CellType::Prism:
-            return kPrismFaces;
-        case CellType::Hex:
-            return kHexFaces;
-    }
-    return kTetFaces;
+    static constexpr std::array<const CellFaceTable*, 4> kTables{&kTetFaces, &kPyramidFaces, &kPrismFaces, &kHexFaces};
+    return *kTables[static_cast<std::size_t>(t)];
 }
 
 /// The node set of a face (3 or 4 nodes) as a sorted key, a triangle's 4th entry kNone: two

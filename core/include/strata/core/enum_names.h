@@ -1,7 +1,8 @@
 #pragma once
 /// \file
-/// An enum's values and their names in one table, for to_string and for parsing user input
-/// (case-insensitive) with one error message, whatever the enum.
+/// The names of an enum's values in one table, for to_string and for parsing user input
+/// (case-insensitive) with one error message, whatever the enum. The enum's values must be
+/// 0, 1, ..., N − 1 (the default for an enum class without initialisers); name i is value i's.
 
 #include <strata/core/error.h>
 
@@ -10,31 +11,26 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
-#include <utility>
 
 namespace strata {
 
 template <class E, std::size_t N>
 struct EnumNames {
-    std::array<std::pair<E, std::string_view>, N> names;
+    std::array<std::string_view, N> names;
 
-    /// The name of \p e ("" for a value not in the table).
-    constexpr std::string_view name(E e) const {
-        for (const auto& [value, text] : names)
-            if (value == e) return text;
-        return {};
-    }
+    /// The name of \p e.
+    constexpr std::string_view name(E e) const { return names[static_cast<std::size_t>(e)]; }
 
     /// The value named \p text in any case; InputError "<what> '<text>': use a, b or c" otherwise
     /// (\p what names the parameter, e.g. "FarfieldParams::shape").
     E parse(std::string_view text, std::string_view what) const {
         std::string lower(text);
         for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        for (const auto& [value, name] : names)
-            if (lower == name) return value;
         std::string choices;
-        for (std::size_t i = 0; i < N; ++i)
-            choices += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(names[i].second);
+        for (std::size_t i = 0; i < N; ++i) {
+            if (lower == names[i]) return static_cast<E>(i);
+            choices += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(names[i]);
+        }
         throw InputError(std::string(what) + " '" + std::string(text) + "': use " + choices);
     }
 };

@@ -22,17 +22,8 @@ inline constexpr std::array<CellType, 4> kCellTypes{CellType::Tet, CellType::Pyr
 
 /// Corners per cell type: 4, 5, 6, 8.
 constexpr int cell_corners(CellType t) {
-    switch (t) {
-        case CellType::Tet:
-            return 4;
-        case CellType::Pyramid:
-            return 5;
-        case CellType::Prism:
-            return 6;
-        case CellType::Hex:
-            return 8;
-    }
-    return 0;
+    constexpr std::array<int, 4> kCorners{4, 5, 6, 8};
+    return kCorners[static_cast<std::size_t>(t)];
 }
 /// "tetrahedron", "pyramid", "prism", "hexahedron".
 std::string_view to_string(CellType t);
@@ -54,6 +45,21 @@ struct VolumeMesh {
     std::size_t num_cells(CellType t) const;
     /// The cell_corners(t) corners of cell \p i of type \p t.
     const Index* cell(CellType t, std::size_t i) const;
+    /// \p f(cells) on the block of cells of type \p t (a std::vector<std::array<Index, N>>).
+    template <class F>
+    decltype(auto) with_cells(CellType t, F&& f) const {
+        switch (t) {
+            case CellType::Tet:
+                return f(tets);
+            case CellType::Pyramid:
+                return f(pyramids);
+            case CellType::Prism:
+                return f(prisms);
+            case CellType::Hex:
+                break;
+        }
+        return f(hexes);
+    }
 };
 
 /// Global cell numbers, one order for every stage and writer: tetrahedra first, then
