@@ -1,15 +1,19 @@
 #pragma once
 // Helpers shared by the test suites: data paths, scratch directories, tiny meshes.
 
+#include <strata/core/face_geometry.h>
 #include <strata/core/surface_mesh.h>
 
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 #include <exception>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace strata::test {
@@ -63,6 +67,25 @@ public:
 private:
     std::filesystem::path path_;
 };
+
+/// Every undirected edge is used by exactly two faces (a closed manifold surface).
+inline bool closed_manifold(const SurfaceMesh& m) {
+    std::map<std::pair<Index, Index>, int> uses;
+    for (Index f = 0; f < m.num_faces(); ++f)
+        for (Index i = 0, n = m.face_size(f); i < n; ++i)
+            ++uses[std::minmax(m.face_node(f, i), m.face_node(f, (i + 1) % n))];
+    return std::all_of(uses.begin(), uses.end(), [](const auto& e) { return e.second == 2; });
+}
+
+/// Σ (1/3) centroid · area vector over the faces of \p m, the faces indexing \p points: the volume a
+/// closed surface encloses, positive when its normals point out.
+inline double enclosed_volume(const SurfaceMesh& m, const std::vector<Vec3>& points) {
+    double v = 0.0;
+    for (Index f = 0; f < m.num_faces(); ++f)
+        v += face_centroid(m, points, f).dot(face_area_vector(m, points, f)) / 3.0;
+    return v;
+}
+inline double enclosed_volume(const SurfaceMesh& m) { return enclosed_volume(m, m.points); }
 
 /// Structured nx × ny grid of unit quads in the z = 0 plane, one "wall" patch, normals +z.
 inline SurfaceMesh quad_grid(int nx, int ny, double h = 1.0) {

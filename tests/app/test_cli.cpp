@@ -21,6 +21,9 @@
 namespace strata {
 namespace {
 
+using test::closed_manifold;
+using test::enclosed_volume;
+
 namespace fs = std::filesystem;
 using test::example_data;
 using test::test_data;
@@ -74,14 +77,6 @@ std::size_t lines(const std::string& s) {
     std::size_t n = 0;
     for (char c : s) n += c == '\n';
     return n;
-}
-
-/// Every undirected edge of a closed surface is used by exactly two faces.
-bool closed_manifold(const SurfaceMesh& m) {
-    const EdgeTable e = edge_table(m);
-    for (Index i = 0; i < e.faces.rows(); ++i)
-        if (e.faces.row_size(i) != 2) return false;
-    return true;
 }
 
 TEST(Cli, HelpAndVersion) {

@@ -350,12 +350,16 @@ TEST(MeshCad, IgesMeshes) {
     EXPECT_GT(on_hole, 10);
 }
 
-TEST(MeshCad, CurvatureRefinementAddsFaces) {
+/// The unit sphere (.geo) meshed at maximum size \p size and \p curvature_points per 2π.
+SurfaceMesh unit_sphere(double size, int curvature_points = 0) {
     CadParams p;
-    p.size = 0.4;
-    const SurfaceMesh plain = mesh_cad(test_data("cad_unit_sphere.geo"), p);
-    p.curvature_points = 40;
-    const SurfaceMesh curved = mesh_cad(test_data("cad_unit_sphere.geo"), p);
+    p.size = size;
+    p.curvature_points = curvature_points;
+    return mesh_cad(test_data("cad_unit_sphere.geo"), p);
+}
+
+TEST(MeshCad, CurvatureRefinementAddsFaces) {
+    const SurfaceMesh plain = unit_sphere(0.4), curved = unit_sphere(0.4, 40);
     EXPECT_TRUE(closed(curved));
     // 40 elements per 2π on a unit radius: size 0.157 instead of 0.4.
     EXPECT_GT(curved.num_faces(), 2 * plain.num_faces())
@@ -363,11 +367,7 @@ TEST(MeshCad, CurvatureRefinementAddsFaces) {
 }
 
 TEST(MeshCad, HalvingTheSizeRoughlyQuadruplesTheFaces) {
-    CadParams p;
-    p.size = 0.2;
-    const SurfaceMesh coarse = mesh_cad(test_data("cad_unit_sphere.geo"), p);
-    p.size = 0.1;
-    const SurfaceMesh fine = mesh_cad(test_data("cad_unit_sphere.geo"), p);
+    const SurfaceMesh coarse = unit_sphere(0.2), fine = unit_sphere(0.1);
     const double ratio = static_cast<double>(fine.num_faces()) / coarse.num_faces();
     EXPECT_GT(ratio, 3.0);
     EXPECT_LT(ratio, 5.5);

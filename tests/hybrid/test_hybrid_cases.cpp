@@ -38,18 +38,6 @@ std::vector<std::string> names(const SurfaceMesh& s, const std::vector<Index>& p
     return out;
 }
 
-/// Σ over \p faces of (1/6) x0·(x1 × x2) per triangle (quads split at v0): the volume a closed
-/// surface encloses, positive when its normals point out.
-double enclosed_volume(const std::vector<Vec3>& points, const SurfaceMesh& faces, const Vec3& origin) {
-    double v = 0.0;
-    for (Index f = 0; f < faces.num_faces(); ++f)
-        for (Index k = 1; k + 1 < faces.face_size(f); ++k) {
-            const Vec3 a = points[faces.face_node(f, 0)] - origin, b = points[faces.face_node(f, k)] - origin,
-                       c = points[faces.face_node(f, k + 1)] - origin;
-            v += a.dot(b.cross(c)) / 6.0;
-        }
-    return v;
-}
 
 /// The wall faces of \p s as sorted corner coordinates, for comparing two meshes' walls.
 std::vector<std::vector<std::array<double, 3>>> wall_faces(const std::vector<Vec3>& points, const SurfaceMesh& s) {
@@ -75,8 +63,7 @@ void expect_valid_case(const std::string& name, const SurfaceMesh& input, const 
     EXPECT_EQ(rep.validation.cells, m.num_cells()) << name;
     EXPECT_GT(rep.validation.min_scaled_jacobian, 0.0) << name;
     EXPECT_EQ(wall_faces(m.points, m.boundary), wall_faces(input.points, input)) << name;
-    const Vec3 o = input.points.front();
-    double expected = -enclosed_volume(input.points, input, o);
+    double expected = -test::enclosed_volume(input);
     const Index far = find_patch(m.boundary, "farfield");
     if (far != kNone && find_patch(input, "farfield") == kNone) {  // generated: its own faces
         SurfaceMesh farfield = m.boundary;
@@ -85,7 +72,7 @@ void expect_valid_case(const std::string& name, const SurfaceMesh& input, const 
         farfield.face_patch.clear();
         for (Index f = 0; f < m.boundary.num_faces(); ++f)
             if (m.boundary.face_patch[f] == far) farfield.add_face(m.boundary.face_begin(f), m.boundary.face_size(f), far);
-        expected = enclosed_volume(m.points, farfield, o) - enclosed_volume(input.points, input, o);
+        expected = test::enclosed_volume(farfield, m.points) - test::enclosed_volume(input);
     }
     EXPECT_NEAR(rep.validation.cell_volume, expected, 1e-9 * std::abs(expected)) << name;
     std::printf(

@@ -21,20 +21,10 @@
 namespace strata {
 namespace {
 
+using test::closed_manifold;
+using test::enclosed_volume;
+
 using test::example_data;
-
-double enclosed_volume(const SurfaceMesh& m) {
-    double v = 0.0;
-    for (Index f = 0; f < m.num_faces(); ++f) v += face_centroid(m, m.points, f).dot(face_area_vector(m, f)) / 3.0;
-    return v;
-}
-
-bool closed_manifold(const SurfaceMesh& m) {
-    const EdgeTable e = edge_table(m);
-    for (Index i = 0; i < e.faces.rows(); ++i)
-        if (e.faces.row_size(i) != 2) return false;
-    return true;
-}
 
 TEST(Farfield, BoxAndSphereAreClosedOutwardAndSized) {
     const std::vector<Vec3> body = {Vec3(0, 0, 0), Vec3(2, 1, 0.5)};

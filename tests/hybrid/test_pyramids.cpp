@@ -27,6 +27,9 @@
 namespace strata {
 namespace {
 
+using test::closed_manifold;
+using test::enclosed_volume;
+
 using test::BoxMesh;
 
 /// The boundary of a box of cubes as a surface (normals out of the solid: away from the
@@ -40,12 +43,6 @@ SurfaceMesh box_surface(const BoxMesh& box) {
 
 /// Volume enclosed by a closed surface (divergence theorem; quads through their diagonals,
 /// as validate.h does).
-double enclosed_volume(const SurfaceMesh& s) {
-    double v = 0.0;
-    for (Index f = 0; f < s.num_faces(); ++f) v += face_centroid(s, s.points, f).dot(face_area_vector(s, f)) / 3.0;
-    return v;
-}
-
 /// Every edge used once in each direction: closed, manifold, consistently oriented.
 void expect_closed_oriented(const SurfaceMesh& s) {
     std::map<std::pair<Index, Index>, int> directed;
@@ -259,14 +256,18 @@ TEST(Pyramids, MixedTopTrianglesPassThrough) {
     EXPECT_EQ(count_crossings(top, l), 0);
 }
 
-TEST(Pyramids, ConcaveEdgeShortensPyramidsNearTheCorner) {
-    // An L-shaped solid (4 × 2 × 4 quarter cubes without the x, z ≥ 0.5 block): its re-entrant
-    // edge along y at x = z = 0.5 is a 90° concave edge of the outer surface.
+/// An L-shaped solid (4 × 2 × 4 quarter cubes without the x, z ≥ 0.5 block): its re-entrant
+/// edge along y at x = z = 0.5 is a 90° concave edge of the outer surface.
+SurfaceMesh l_shape() {
     BoxMesh box(4, 2, 4, 0.25);
     for (int i = 2; i < 4; ++i)
         for (int j = 0; j < 2; ++j)
             for (int k = 2; k < 4; ++k) box.remove(i, j, k);
-    const SurfaceMesh top = box_surface(box);
+    return box_surface(box);
+}
+
+TEST(Pyramids, ConcaveEdgeShortensPyramidsNearTheCorner) {
+    const SurfaceMesh top = l_shape();
     const PyramidLayer l = build_pyramids(top, {});
     expect_closed_oriented(l.surface);
 
@@ -297,11 +298,7 @@ TEST(Pyramids, ConcaveEdgeShortensPyramidsNearTheCorner) {
 
 TEST(Pyramids, ConcaveEdgeWithTallPyramidsStaysDisjoint) {
     // Taller pyramids than the default reach across the corner unless shortened.
-    BoxMesh box(4, 2, 4, 0.25);
-    for (int i = 2; i < 4; ++i)
-        for (int j = 0; j < 2; ++j)
-            for (int k = 2; k < 4; ++k) box.remove(i, j, k);
-    const SurfaceMesh top = box_surface(box);
+    const SurfaceMesh top = l_shape();
     const PyramidLayer l = build_pyramids(top, {1.5, 0.05});
     double sum = 0.0;
     for (std::size_t k = 0; k < l.pyramids.size(); ++k) sum += pyramid_volume(l, k);
