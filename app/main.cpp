@@ -404,6 +404,7 @@ int run_layers(const Common& c, const LayerOptions& o) {
 int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo) {
     strata::HybridParams hp = mo.params;
     hp.layers = layer_params(lo);
+    hp.threads = hp.layers.threads;
     hp.farfield.shape = strata::parse_farfield_shape(mo.farfield);
     Terminal terminal(c.quiet);
     const Start s = start(c, prepare_params(c), Output::Volume, terminal);

@@ -2,12 +2,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace strata {
+namespace {
+
+/// min(j, c), except that a NaN (a corner whose quality cannot be computed, e.g. overflowing
+/// coordinates) wins and stays: a cell is never better than its worst corner.
+double worse(double j, double c) { return std::isnan(j) || (!std::isnan(c) && !(c < j)) ? j : c; }
+
+}  // namespace
 
 double corner_scaled_jacobian(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 e1 = a - o, e2 = b - o, e3 = c - o;
     const double l = e1.norm() * e2.norm() * e3.norm();
+    // NaN or overflowing coordinates: the corner's quality cannot be computed (a finite volume
+    // over an infinite l would pass for a flat corner).
+    if (!std::isfinite(l)) return std::numeric_limits<double>::quiet_NaN();
     if (!(l > 0.0)) return 0.0;  // a collapsed edge is as bad as an inverted corner
     return e1.cross(e2).dot(e3) / l;
 }
@@ -15,8 +26,10 @@ double corner_scaled_jacobian(const Vec3& o, const Vec3& a, const Vec3& b, const
 double tet_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 4>& v) {
     // Every corner of a tetrahedron sees the same signed volume; only the scaling differs.
     const Vec3 &a = p[v[0]], &b = p[v[1]], &c = p[v[2]], &d = p[v[3]];
-    return std::min({corner_scaled_jacobian(a, b, c, d), corner_scaled_jacobian(b, c, a, d),
-                     corner_scaled_jacobian(c, a, b, d), corner_scaled_jacobian(d, a, c, b)});
+    double j = corner_scaled_jacobian(a, b, c, d);
+    j = worse(j, corner_scaled_jacobian(b, c, a, d));
+    j = worse(j, corner_scaled_jacobian(c, a, b, d));
+    return worse(j, corner_scaled_jacobian(d, a, c, b));
 }
 
 double pyramid_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 5>& v) {
@@ -24,9 +37,9 @@ double pyramid_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<
     // measured once per base corner i with its edges to i+1, i and i−1.
     double j = 1.0;
     for (int i = 0; i < 4; ++i)
-        j = std::min(j, corner_scaled_jacobian(p[v[i]], p[v[(i + 1) % 4]], p[v[(i + 3) % 4]], p[v[4]]));
+        j = worse(j, corner_scaled_jacobian(p[v[i]], p[v[(i + 1) % 4]], p[v[(i + 3) % 4]], p[v[4]]));
     for (int i = 0; i < 4; ++i)
-        j = std::min(j, corner_scaled_jacobian(p[v[4]], p[v[(i + 1) % 4]], p[v[i]], p[v[(i + 3) % 4]]));
+        j = worse(j, corner_scaled_jacobian(p[v[4]], p[v[(i + 1) % 4]], p[v[i]], p[v[(i + 3) % 4]]));
     return j;
 }
 
@@ -40,8 +53,8 @@ double extruded_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array
     double j = 1.0;
     for (int i = 0; i < n; ++i) {
         const int next = (i + 1) % n, prev = (i + n - 1) % n;
-        j = std::min(j, corner_scaled_jacobian(p[v[i]], p[v[next]], p[v[prev]], p[v[i + n]]));
-        j = std::min(j, corner_scaled_jacobian(p[v[i + n]], p[v[prev + n]], p[v[next + n]], p[v[i]]));
+        j = worse(j, corner_scaled_jacobian(p[v[i]], p[v[next]], p[v[prev]], p[v[i + n]]));
+        j = worse(j, corner_scaled_jacobian(p[v[i + n]], p[v[prev + n]], p[v[next + n]], p[v[i]]));
     }
     return j;
 }

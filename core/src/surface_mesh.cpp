@@ -1,10 +1,12 @@
 #include <strata/core/enum_names.h>
 #include <strata/core/surface_mesh.h>
 
+#include <algorithm>
 
 namespace strata {
 
 constexpr EnumNames<PatchKind, 4> kPatchKindNames{{"wall", "symmetry", "farfield", "other"}};
+
 std::string_view to_string(PatchKind kind) { return kPatchKindNames.name(kind); }
 
 PatchKind parse_patch_kind(std::string_view text) { return kPatchKindNames.parse(text, "patch kind"); }
@@ -29,6 +31,11 @@ Index SurfaceMesh::num_quads() const {
     Index n = 0;
     for (Index f = 0; f < num_faces(); ++f) n += face_size(f) == 4;
     return n;
+}
+
+void flip_faces(SurfaceMesh& mesh) {
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+        std::reverse(mesh.face_nodes.begin() + mesh.face_offsets[f] + 1, mesh.face_nodes.begin() + mesh.face_offsets[f + 1]);
 }
 
 Index find_patch(const SurfaceMesh& mesh, std::string_view name) {

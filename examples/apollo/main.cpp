@@ -36,18 +36,18 @@ int main(int argc, char** argv) {
         const LayerMesh lm = extrude_layers(wall, params);
         const auto& d = params.distribution;
         std::printf("layers: %d (%s, first height %.3g m, total %.3g m, %d-%d sweeps), %zu hexahedra, %zu prisms\n",
-                    lm.layers, std::string(to_string(d.kind)).c_str(), d.first_height, d.thickness, params.sweeps,
+                    lm.layers(), std::string(to_string(d.kind)).c_str(), d.first_height, d.thickness, params.sweeps,
                     params.max_sweeps, lm.mesh.hexes.size(), lm.mesh.prisms.size());
         // Per layer, the hexahedra and the nose prisms apart: the prisms' sharpest corner is
         // the nose triangles' 18° apex angle (scaled Jacobian sin 18° = 0.309 at best).
-        const std::size_t nl = static_cast<std::size_t>(lm.layers);
+        const std::size_t nl = static_cast<std::size_t>(lm.layers());
         std::vector<double> hex_min(nl, 1.0), prism_min(nl, 1.0);
         for (const auto& c : lm.mesh.hexes) {
-            const std::size_t k = static_cast<std::size_t>(c[0] / lm.wall_nodes);  // level of the bottom face
+            const std::size_t k = static_cast<std::size_t>(lm.level_of(c[0]));  // level of the bottom face
             hex_min[k] = std::min(hex_min[k], hex_min_scaled_jacobian(lm.mesh.points, c));
         }
         for (const auto& c : lm.mesh.prisms) {
-            const std::size_t k = static_cast<std::size_t>(c[0] / lm.wall_nodes);
+            const std::size_t k = static_cast<std::size_t>(lm.level_of(c[0]));
             prism_min[k] = std::min(prism_min[k], prism_min_scaled_jacobian(lm.mesh.points, c));
         }
         std::printf("layer  height [m]  sweeps  min SJ  (hexes  prisms)  mean SJ  max orth [deg]\n");
@@ -68,11 +68,11 @@ int main(int argc, char** argv) {
         if (loops.rows() != 1) throw TopologyError("apollo surface: expected one open boundary (the nozzle exit)");
         const double x_exit = wall.points[loops.values.front()].x();
         double deviation = 0.0;
-        for (int k = 0; k <= lm.layers; ++k)
+        for (int k = 0; k <= lm.layers(); ++k)
             for (const Index i : loops.values)
-                deviation = std::max(deviation, std::abs(lm.mesh.points[static_cast<std::size_t>(k * lm.wall_nodes + i)].x() - x_exit));
+                deviation = std::max(deviation, std::abs(lm.mesh.points[static_cast<std::size_t>(lm.level_node(k, i))].x() - x_exit));
         std::printf("nozzle exit: %d nodes at x = %.6f m, max |x - x_exit| over all %d levels = %.3g m\n",
-                    static_cast<int>(loops.values.size()), x_exit, lm.layers + 1, deviation);
+                    static_cast<int>(loops.values.size()), x_exit, lm.layers() + 1, deviation);
 
         write_volume(lm.mesh, out);
         std::printf("wrote %s\n", out.c_str());

@@ -1,4 +1,6 @@
+#include <strata/core/enum_names.h>
 #include <strata/core/error.h>
+#include <strata/core/parallel.h>
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/normals.h>
 #include <strata/geometry/topology.h>
@@ -14,30 +16,12 @@
 
 namespace strata {
 
-std::string_view to_string(NormalMethod m) {
-    switch (m) {
-        case NormalMethod::AreaWeighted:
-            return "area";
-        case NormalMethod::AngleWeighted:
-            return "angle";
-        case NormalMethod::MaxMinDot:
-            return "robust";
-        case NormalMethod::Max:
-            return "max";
-    }
-    return "robust";
-}
+constexpr EnumNames<NormalMethod, 4> kNormalMethodNames{{"area", "angle", "robust", "max"}};
+
+std::string_view to_string(NormalMethod m) { return kNormalMethodNames.name(m); }
 
 NormalMethod parse_normal_method(std::string_view text) {
-    std::string t(text);
-    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return std::tolower(c); });
-    for (NormalMethod m :
-         {NormalMethod::AreaWeighted, NormalMethod::AngleWeighted, NormalMethod::MaxMinDot, NormalMethod::Max})
-        if (t == to_string(m)) return m;
-    throw InputError("unknown normal method '" + std::string(text) +
-                     "': use area (area-weighted, the paper's), angle (angle-weighted), robust "
-                     "(max-min dot product) or max (Nelson Max's weights, exact on a sphere; best "
-                     "for smooth walls)");
+    return kNormalMethodNames.parse(text, "LayerParams::normals");
 }
 
 namespace {
@@ -105,30 +89,33 @@ Vec3 normalised(const Vec3& sum, double magnitude_of_terms) {
     return sum / len;
 }
 
-Vec3 area_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Index* begin, const Index* end) {
+/// Σ term(f, a) over the usable incident faces (a: the face's area vector), normalised against
+/// Σ weight: \p term returns the face's contribution and its weight.
+template <class Term>
+Vec3 weighted_sum(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Index* begin, const Index* end,
+                  Term&& term) {
     Vec3 sum = Vec3::Zero();
     double total = 0.0;
     for (const Index* f = begin; f != end; ++f) {
         Vec3 a;
         if (!face_area(mesh, points, *f, a)) continue;
-        sum += a;
-        total += a.norm();
+        const auto [contribution, weight] = term(*f, a);
+        sum += contribution;
+        total += weight;
     }
     return normalised(sum, total);
 }
 
+Vec3 area_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Index* begin, const Index* end) {
+    return weighted_sum(mesh, points, begin, end, [](Index, const Vec3& a) { return std::pair<Vec3, double>(a, a.norm()); });
+}
+
 Vec3 angle_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node, const Index* begin,
                     const Index* end) {
-    Vec3 sum = Vec3::Zero();
-    double total = 0.0;
-    for (const Index* f = begin; f != end; ++f) {
-        Vec3 a;
-        if (!face_area(mesh, points, *f, a)) continue;
-        const double angle = corner_angle(mesh, points, *f, node);
-        sum += angle * a.normalized();
-        total += angle;
-    }
-    return normalised(sum, total);
+    return weighted_sum(mesh, points, begin, end, [&](Index f, const Vec3& a) {
+        const double angle = corner_angle(mesh, points, f, node);
+        return std::pair<Vec3, double>(angle * a.normalized(), angle);
+    });
 }
 
 // Nelson Max's weights: sum of (e1 × e2) / (|e1|² |e2|²) over the node's corners, e1 and e2
@@ -307,7 +294,7 @@ Vec3 max_min_dot_direction(const std::vector<Vec3>& directions, double* min_dot)
 }
 
 std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Csr& vertex_faces,
-                               NormalMethod method) {
+                               NormalMethod method, int threads) {
     const Index n = static_cast<Index>(points.size());
     if (n != mesh.num_points() || vertex_faces.rows() != n)
         throw InputError("node_normals: " + std::to_string(points.size()) + " positions and " +
@@ -316,7 +303,7 @@ std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>&
                          " nodes; pass one position per mesh node and vertex_faces(mesh)");
     std::vector<Vec3> normals(points.size(), Vec3::Zero());
     // Each node is independent (reads only): the result does not depend on the thread count.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads))
     for (Index v = 0; v < n; ++v) {
         const Index* begin = vertex_faces.row_begin(v);
         const Index* end = vertex_faces.row_end(v);
@@ -339,8 +326,9 @@ std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>&
     return normals;
 }
 
-std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, NormalMethod method) {
-    return node_normals(mesh, points, vertex_faces(mesh), method);
+std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, NormalMethod method,
+                               int threads) {
+    return node_normals(mesh, points, vertex_faces(mesh), method, threads);
 }
 
 }  // namespace strata

@@ -66,9 +66,9 @@ struct Builder {
         for (std::size_t i = 0; i < l.input_node.size(); ++i)
             wall_of[static_cast<std::size_t>(l.input_node[i])] = static_cast<Index>(i);
         input_map.assign(static_cast<std::size_t>(s.num_points()), kNone);
-        top_map.assign(static_cast<std::size_t>(l.wall_nodes), kNone);
-        std::vector<int> count(static_cast<std::size_t>(l.wall_nodes), 0);
-        top_size.assign(static_cast<std::size_t>(l.wall_nodes), 0.0);
+        top_map.assign(static_cast<std::size_t>(l.wall_nodes()), kNone);
+        std::vector<int> count(static_cast<std::size_t>(l.wall_nodes()), 0);
+        top_size.assign(static_cast<std::size_t>(l.wall_nodes()), 0.0);
         const SurfaceMesh& t = l.top;
         for (Index f = 0; f < t.num_faces(); ++f)
             for (Index i = 0, n = t.face_size(f); i < n; ++i) {
@@ -199,10 +199,11 @@ struct Builder {
             kept.push_back(i);
         }
         auto too_short = [&](const End& e, const Vec3& far) {
-            return TopologyError("the layers at " + format_point(e.base) + " (" + std::to_string(e.height) +
+            return TopologyError("the layers at " + format_point(e.base) + " (" + format_number(e.height) +
                                  " thick) reach beyond the end of the patch edge they march along, at " +
                                  format_point(far) +
-                                 ": use thinner layers (fewer, or a smaller --first-height or --growth)");
+                                 ": use thinner layers (fewer DistributionParams::layers, or a smaller "
+                                 "DistributionParams::first_height or DistributionParams::growth)");
         };
         if (kept.empty()) {
             if (a.wall && !b.wall && (pk - p0).dot(a.dir) < a.height + 0.25 * a.size) throw too_short(a, pk);
@@ -333,9 +334,9 @@ OuterBoundary outer_boundary(const SurfaceMesh& surface, const LayerMesh& layers
         if (!pl.planar())
             throw InputError(
                 "patch '" + b.patch_name(p) + "' meets the walls, so the layers end on it, but it is not planar (" +
-                std::to_string(pl.deviation) + " off its best plane over a size of " + std::to_string(pl.size) +
+                format_number(pl.deviation) + " off its best plane over a size of " + format_number(pl.size) +
                 "): the hybrid stage re-meshes only planar symmetry, outflow or farfield patches around the "
-                "layers; mark it as a wall (--patch " +
+                "layers; mark it as a wall (PrepareParams::patch_kinds " +
                 b.patch_name(p) + "=wall) or cut the domain with a plane there");
         b.out.remeshed.push_back(p);
     }

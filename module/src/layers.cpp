@@ -3,11 +3,12 @@
 // smoothing of the middle level with the Poisson equation (Eq. 3) in Knupp's local logical
 // space, level 2 regenerated after every sweep; then the middle level becomes the next wall.
 
-#include <strata/core/error.h>
-#include <strata/core/format.h>
-#include <strata/core/face_geometry.h>
-#include <strata/geometry/topology.h>
 #include <strata/core/cell_quality.h>
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
+#include <strata/core/format.h>
+#include <strata/core/parallel.h>
+#include <strata/geometry/topology.h>
 #include <strata/module/layers.h>
 #include <strata/module/stencil.h>
 
@@ -15,13 +16,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <string>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace strata {
 namespace {
@@ -31,6 +27,7 @@ struct Wall {
     SurfaceMesh mesh;
     std::vector<Index> input_node;  ///< wall node → input node
     std::vector<Index> input_face;  ///< wall face → input face
+    Csr loops;                      ///< boundary loops of the wall (its open edges)
 };
 
 Wall extract_wall(const SurfaceMesh& in) {
@@ -58,6 +55,11 @@ Wall extract_wall(const SurfaceMesh& in) {
         w.mesh.add_face(v, n, in.face_patch[f]);
         w.input_face.push_back(f);
     }
+    if (w.mesh.num_faces() == 0)
+        throw InputError(
+            "no wall faces to extrude: every patch is symmetry, farfield or other; mark the body as a wall "
+            "(PrepareParams::patch_kinds NAME=wall)");
+    w.loops = boundary_loops(w.mesh);
     return w;
 }
 
@@ -166,9 +168,9 @@ void patch_constraints(const SurfaceMesh& surface, const Wall& w, const Csr& loo
 /// node is convex there. The Poisson terms pull such a node across the edge and fold the
 /// thin cells on its sides within a few layers, so it is extruded along its normal without
 /// smoothing (ALGORITHM.md section 9 leaves sharp convex edges open; this is our decision).
-void freeze_sharp_convex_nodes(const SurfaceMesh& wall, const Csr& vf, Stencils& st) {
+void freeze_sharp_convex_nodes(const SurfaceMesh& wall, const Csr& vf, Stencils& st, int threads) {
     static const double kSharp = std::cos(60.0 * std::numbers::pi / 180.0);
-    const std::vector<Vec3> n = node_normals(wall, wall.points, vf, NormalMethod::MaxMinDot);
+    const std::vector<Vec3> n = node_normals(wall, wall.points, vf, NormalMethod::MaxMinDot, threads);
     for (Index o = 0; o < wall.num_points(); ++o) {
         if (!st.valid[o]) continue;
         double worst = 1.0;
@@ -206,6 +208,7 @@ struct Derivs {
 struct Marcher {
     const SurfaceMesh& wall;
     const LayerParams& params;
+    int threads;  ///< thread_count(params.threads)
     Csr vf;
     Stencils st;
     std::vector<MirrorPlane> planes;
@@ -228,7 +231,7 @@ struct Marcher {
     }
 
     std::vector<Vec3> normals(const std::vector<Vec3>& r) const {
-        std::vector<Vec3> n = node_normals(wall, r, vf, params.normals);
+        std::vector<Vec3> n = node_normals(wall, r, vf, params.normals, threads);
         // Nodes on a plane march in it: their normal is the mirror-symmetric one.
         for (std::size_t i = 0; i < n.size(); ++i)
             if (node_plane[i] != kNone) {
@@ -413,244 +416,284 @@ Index hold_back_folds(const Marcher& mc, const std::vector<Vec3>& r0, double dk,
 
 }  // namespace
 
-LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
-    const std::vector<double> delta = layer_heights(params.distribution);
-    const int nlayers = params.distribution.layers;
-    if (params.sweeps < 0 || params.max_sweeps < params.sweeps)
-        throw InputError("--sweeps " + std::to_string(params.sweeps) + ": need 0 ≤ sweeps ≤ max sweeps (" +
-                         std::to_string(params.max_sweeps) + ")");
-    Wall w = extract_wall(surface);
-    if (w.mesh.num_faces() == 0)
-        throw InputError(
-            "no wall faces to extrude: every patch is symmetry, farfield or other; mark the body with --patch "
-            "NAME=wall");
-#ifdef _OPENMP
-    const int threads = params.threads > 0 ? params.threads : omp_get_max_threads();
-    // node_normals (geometry) parallelises with OpenMP's default team: make it this call's.
-    struct ThreadScope {
-        int saved = omp_get_max_threads();
-        explicit ThreadScope(int n) { omp_set_num_threads(n); }
-        ~ThreadScope() { omp_set_num_threads(saved); }
-    } thread_scope(threads);
-#endif
 
-    Marcher mc{w.mesh, params, vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}};
+namespace {
+
+/// Everything fixed for the whole extrusion: the planes and lines open-boundary nodes keep to,
+/// the stencils, the nodes extruded without smoothing, the control functions.
+Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParams& params) {
+    Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}};
     const NodeRings rings = node_rings(w.mesh);
-    const Csr loops = boundary_loops(w.mesh);
     {
-        const std::vector<Vec3> n = node_normals(w.mesh, w.mesh.points, mc.vf, params.normals);
+        const std::vector<Vec3> n = node_normals(w.mesh, w.mesh.points, mc.vf, params.normals, mc.threads);
         const std::size_t nn = static_cast<std::size_t>(w.mesh.num_points());
         mc.node_plane.assign(nn, kNone);
         mc.node_line.assign(nn, Vec3::Zero());
         std::vector<char> fixed(nn, 0);
-        patch_constraints(surface, w, loops, n, mc.planes, mc.node_plane, mc.node_line, fixed);
-        boundary_planes(w.mesh, loops, n, fixed, mc.planes, mc.node_plane);
+        patch_constraints(surface, w, w.loops, n, mc.planes, mc.node_plane, mc.node_line, fixed);
+        boundary_planes(w.mesh, w.loops, n, fixed, mc.planes, mc.node_plane);
     }
     mc.st = build_stencils(w.mesh, rings, mc.node_plane, mc.planes);
-    freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st);
+    freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st, mc.threads);
     freeze_degenerate_nodes(mc);
     mc.control_functions();
+    return mc;
+}
 
-    const Index nw = w.mesh.num_points();
-    LayerMesh out;
-    out.wall_nodes = nw;
-    out.layers = nlayers;
-    out.input_node = w.input_node;
-    for (Index i = 0; i < nw; ++i) out.unsmoothed_nodes += mc.st.valid[i] ? 0 : 1;
-    std::vector<Vec3>& pts = out.mesh.points;
-    pts.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(nlayers + 1));
-    pts.insert(pts.end(), w.mesh.points.begin(), w.mesh.points.end());
+/// Step 1 of a layer (Eq. 11): level 1 of the locally orthogonal reference mesh, \p r0 moved by
+/// the layer height \p dk along its normals. Returns those normals.
+std::vector<Vec3> reference_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, std::vector<Vec3>& r1) {
+    std::vector<Vec3> n0 = mc.normals(r0);
+    for (std::size_t i = 0; i < r0.size(); ++i) r1[i] = r0[i] + dk * n0[i];
+    return n0;
+}
 
-    std::vector<Vec3> r0 = w.mesh.points, r1(r0.size()), r2(r0.size()), next(r0.size());
-    for (int k = 0; k < nlayers; ++k) {
-        const double dk = delta[static_cast<std::size_t>(k)], dk1 = delta[static_cast<std::size_t>(k) + 1];
-        const double theta = params.control_functions ? -2.0 * (dk1 - dk) / (dk + dk1) : 0.0;
-        const std::vector<Vec3> n0 = mc.normals(r0);
-        for (Index i = 0; i < nw; ++i) r1[i] = r0[i] + dk * n0[i];  // Eq. 11
+/// The three levels of the reference mesh the smoothing works on: the wall of the layer, its
+/// middle level (being smoothed) and level 2 (Eq. 12, regenerated after every sweep).
+struct Levels {
+    const std::vector<Vec3>& r0;
+    const std::vector<Vec3>& r1;
+    const std::vector<Vec3>& r2;
+};
 
-        LayerStats stats;
-        stats.height = dk;
-        const int max_sweeps = params.smoothing ? params.max_sweeps : 0;
-        int sweep = 0;
-        for (; sweep < max_sweeps; ++sweep) {
-            const std::vector<Vec3> n1 = mc.normals(r1);
-            for (Index i = 0; i < nw; ++i) r2[i] = r1[i] + dk1 * n1[i];  // Eq. 12
-            double max_move = 0.0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : max_move)
-            for (Index o = 0; o < nw; ++o) {
-                next[o] = r1[o];
-                if (!mc.st.valid[o]) continue;
-                const Derivs g = mc.derivatives(r1, o);
-                const Vec3 &rx = g.d[Stencils::Xi], &ry = g.d[Stencils::Eta];
-                const Vec3 rz = 0.5 * (r2[o] - r0[o]);
-                const double g11 = rx.dot(rx), g12 = rx.dot(ry), g22 = ry.dot(ry), g33 = rz.dot(rz);
-                const double A = g22 * g33, B = -2.0 * g12 * g33, C = g11 * g33, D = g11 * g22 - g12 * g12;
-                const auto& c = mc.st.centre[o];
-                // L(r) = A (r_ξξ + Φ r_ξ) + B r_ξη + C (r_ηη + Ψ r_η) + D (r_ζζ + Θ r_ζ) + E = 0,
-                // written as K r_o + rest; r_ζζ = r2 − 2 r1 + r0 carries −2 r_o.
-                Vec3 L = A * (g.d[Stencils::XiXi] + mc.phi[o] * rx) + B * g.d[Stencils::XiEta] +
-                         C * (g.d[Stencils::EtaEta] + mc.psi[o] * ry) + D * (r2[o] - 2.0 * r1[o] + r0[o] + theta * rz);
-                double K = A * (c[Stencils::XiXi] + mc.phi[o] * c[Stencils::Xi]) + B * c[Stencils::XiEta] +
-                           C * (c[Stencils::EtaEta] + mc.psi[o] * c[Stencils::Eta]) - 2.0 * D;
-                if (params.concave) {
-                    // Eqs. 15–18, bounded reading, in the rotation-invariant form: Σ ν_m times the
-                    // second derivative along neighbour m's direction, scaled by the metric across it
-                    // (for M = 4 exactly g22 g33 (ν_E + ν_W) r_ξξ + g11 g33 (ν_N + ν_S) r_ηη).
-                    const Vec3 nrm = (r2[o] - r1[o]).normalized();
-                    for (Index j = mc.st.offsets[o]; j < mc.st.offsets[o + 1]; ++j) {
-                        const auto& dir = mc.st.direction[j];
-                        if (dir[0] == 0.0 && dir[1] == 0.0) continue;
-                        const Vec3 e = mc.at(r1, mc.st.points[j]) - r1[o];
-                        const double gm = e.squaredNorm();
-                        if (gm <= g33) continue;
-                        const double alpha = std::acos(std::clamp(e.dot(nrm) / std::sqrt(gm), -1.0, 1.0));
-                        // Literal reading g_m/g33 − 1, capped (ALGORITHM.md section 6); the
-                        // bounded reading 1 − g33/g_m when the cap is 0.
-                        const double cap = params.concave_cap;
-                        const double nu =
-                            (cap > 0.0 ? std::min(gm / g33 - 1.0, cap) : 1.0 - g33 / gm) * concave_ramp(alpha);
-                        if (nu <= 0.0) continue;
-                        const double cs = dir[0], sn = dir[1];
-                        const double gperp = sn * sn * g11 - 2.0 * sn * cs * g12 + cs * cs * g22;
-                        const double wt = g33 * nu * gperp;
-                        L += wt * (cs * cs * g.d[Stencils::XiXi] + 2.0 * cs * sn * g.d[Stencils::XiEta] +
-                                   sn * sn * g.d[Stencils::EtaEta]);
-                        K += wt * (cs * cs * c[Stencils::XiXi] + 2.0 * cs * sn * c[Stencils::XiEta] +
-                                   sn * sn * c[Stencils::EtaEta]);
-                    }
-                }
-                if (!(K < 0.0)) continue;  // degenerate metrics: leave the reference position
-                Vec3 p = r1[o] - L / K;    // K r_o_new + (L − K r_o) = 0
-                if (mc.node_plane[o] != kNone) p = mc.planes[mc.node_plane[o]].project(p);
-                next[o] = p;
-                max_move = std::max(max_move, (p - r1[o]).norm());
-            }
-            std::swap(r1, next);
-            if (sweep + 1 >= params.sweeps && max_move <= params.tolerance * dk) {
-                ++sweep;
-                break;
-            }
-        }
-        stats.sweeps = sweep;
-        if (params.hold_back && max_sweeps > 0 && !params.keep_invalid)
-            stats.held_nodes = hold_back_folds(mc, r0, dk, r1);
-
-        // Cells of this layer and their quality; an inverted cell stops the extrusion.
-        const Index base0 = static_cast<Index>(k) * nw, base1 = base0 + nw;
-        pts.insert(pts.end(), r1.begin(), r1.end());
-        double jmin = 1.0, jsum = 0.0, omax = 0.0, osum = 0.0;
-        Index worst_face = kNone;
-        for (Index f = 0; f < w.mesh.num_faces(); ++f) {
-            const Index* v = w.mesh.face_begin(f);
-            const double j =
-                w.mesh.face_size(f) == 3
-                    ? prism_min_scaled_jacobian(
-                          pts, {base0 + v[0], base0 + v[1], base0 + v[2], base1 + v[0], base1 + v[1], base1 + v[2]})
-                    : hex_min_scaled_jacobian(pts, {base0 + v[0], base0 + v[1], base0 + v[2], base0 + v[3],
-                                                    base1 + v[0], base1 + v[1], base1 + v[2], base1 + v[3]});
-            if (j < jmin || worst_face == kNone) jmin = std::min(jmin, j), worst_face = j <= jmin ? f : worst_face;
-            jsum += j;
-        }
-        for (Index i = 0; i < nw; ++i) {
-            const Vec3 e = r1[i] - r0[i];
-            const double ang = std::acos(std::clamp(e.normalized().dot(n0[i]), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-            omax = std::max(omax, ang);
-            osum += ang;
-        }
-        stats.min_scaled_jacobian = jmin;
-        stats.mean_scaled_jacobian = jsum / static_cast<double>(w.mesh.num_faces());
-        stats.max_orthogonality_deg = omax;
-        stats.mean_orthogonality_deg = osum / static_cast<double>(nw);
-        out.stats.push_back(stats);
-        if (jmin <= 0.0 && !params.keep_invalid) {
-            const Index f = worst_face;
-            const Vec3 c = face_centroid(w.mesh, r0, f);
-            throw TopologyError(
-                "layer " + std::to_string(k + 1) + " of " + std::to_string(nlayers) + ": the " +
-                (w.mesh.face_size(f) == 3 ? "prism" : "hexahedron") + " over wall face " +
-                std::to_string(w.input_face[static_cast<std::size_t>(f)]) + " (patch '" +
-                w.mesh.patches[static_cast<std::size_t>(w.mesh.face_patch[f])].name + "') at " + format_point(c) +
-                " would invert (min scaled Jacobian " + std::to_string(jmin) +
-                "); the layers fold there: use fewer layers or a smaller total thickness, more --sweeps, "
-                "or keep the concave modification on");
-        }
-        std::swap(r0, r1);
-        report(progress, "layers", static_cast<double>(k + 1) / nlayers);
+/// The concave-region terms (Eqs. 15–18) added to node o's L and K, in the rotation-invariant
+/// form: Σ ν_m times the second derivative along neighbour m's direction, scaled by the metric
+/// across it (for M = 4 exactly g22 g33 (ν_E + ν_W) r_ξξ + g11 g33 (ν_N + ν_S) r_ηη).
+void add_concave_terms(const Marcher& mc, const Levels& lv, Index o, const Derivs& g, const Vec3& metric, double g33,
+                       Vec3& L, double& K) {
+    const double g11 = metric[0], g12 = metric[1], g22 = metric[2];
+    const auto& c = mc.st.centre[o];
+    const Vec3 nrm = (lv.r2[o] - lv.r1[o]).normalized();
+    for (Index j = mc.st.offsets[o]; j < mc.st.offsets[o + 1]; ++j) {
+        const auto& dir = mc.st.direction[j];
+        if (dir[0] == 0.0 && dir[1] == 0.0) continue;
+        const Vec3 e = mc.at(lv.r1, mc.st.points[j]) - lv.r1[o];
+        const double gm = e.squaredNorm();
+        if (gm <= g33) continue;
+        const double alpha = std::acos(std::clamp(e.dot(nrm) / std::sqrt(gm), -1.0, 1.0));
+        // Literal reading g_m/g33 − 1, capped (ALGORITHM.md section 6); the bounded reading
+        // 1 − g33/g_m when the cap is 0.
+        const double cap = mc.params.concave_cap;
+        const double nu = (cap > 0.0 ? std::min(gm / g33 - 1.0, cap) : 1.0 - g33 / gm) * concave_ramp(alpha);
+        if (nu <= 0.0) continue;
+        const double cs = dir[0], sn = dir[1];
+        const double gperp = sn * sn * g11 - 2.0 * sn * cs * g12 + cs * cs * g22;
+        const double wt = g33 * nu * gperp;
+        L += wt * (cs * cs * g.d[Stencils::XiXi] + 2.0 * cs * sn * g.d[Stencils::XiEta] +
+                   sn * sn * g.d[Stencils::EtaEta]);
+        K += wt * (cs * cs * c[Stencils::XiXi] + 2.0 * cs * sn * c[Stencils::XiEta] + sn * sn * c[Stencils::EtaEta]);
     }
+}
 
-    // Cells in Gmsh order (bottom face = wall orientation, whose normal points into the cell).
-    for (int k = 0; k < nlayers; ++k) {
-        const Index b0 = static_cast<Index>(k) * nw, b1 = b0 + nw;
+/// The point-Jacobi update of node o's middle-level position: Eq. 3 with the control functions
+/// Φ, Ψ, Θ (\p theta) and the concave terms, written as K r_o + (L − K r_o) = 0 (r_ζζ = r2 − 2 r1 +
+/// r0 carries −2 r_o), projected into the node's plane. Unchanged where the node is extruded
+/// without smoothing or its metrics are degenerate (K ≥ 0).
+Vec3 jacobi_update(const Marcher& mc, const Levels& lv, Index o, double theta) {
+    if (!mc.st.valid[o]) return lv.r1[o];
+    const Derivs g = mc.derivatives(lv.r1, o);
+    const Vec3 &rx = g.d[Stencils::Xi], &ry = g.d[Stencils::Eta];
+    const Vec3 rz = 0.5 * (lv.r2[o] - lv.r0[o]);
+    const double g11 = rx.dot(rx), g12 = rx.dot(ry), g22 = ry.dot(ry), g33 = rz.dot(rz);
+    const double A = g22 * g33, B = -2.0 * g12 * g33, C = g11 * g33, D = g11 * g22 - g12 * g12;
+    const auto& c = mc.st.centre[o];
+    Vec3 L = A * (g.d[Stencils::XiXi] + mc.phi[o] * rx) + B * g.d[Stencils::XiEta] +
+             C * (g.d[Stencils::EtaEta] + mc.psi[o] * ry) + D * (lv.r2[o] - 2.0 * lv.r1[o] + lv.r0[o] + theta * rz);
+    double K = A * (c[Stencils::XiXi] + mc.phi[o] * c[Stencils::Xi]) + B * c[Stencils::XiEta] +
+               C * (c[Stencils::EtaEta] + mc.psi[o] * c[Stencils::Eta]) - 2.0 * D;
+    if (mc.params.concave) add_concave_terms(mc, lv, o, g, Vec3(g11, g12, g22), g33, L, K);
+    if (!(K < 0.0)) return lv.r1[o];  // degenerate metrics: leave the reference position
+    Vec3 p = lv.r1[o] - L / K;
+    if (mc.node_plane[o] != kNone) p = mc.planes[mc.node_plane[o]].project(p);
+    return p;
+}
+
+/// Step 2 of a layer: point-Jacobi sweeps of the Poisson system over the middle level \p r1
+/// (each node's update reads only the previous iterate, so the result does not depend on the
+/// thread count), level 2 regenerated from it before every sweep (Eq. 12). At least
+/// LayerParams::sweeps sweeps, more (up to max_sweeps) while the largest update exceeds
+/// tolerance × δ_k. Returns the sweeps done.
+int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, double dk1, std::vector<Vec3>& r1) {
+    const LayerParams& p = mc.params;
+    const double theta = p.control_functions ? -2.0 * (dk1 - dk) / (dk + dk1) : 0.0;
+    const int max_sweeps = p.smoothing ? std::max(p.max_sweeps, p.sweeps) : 0;
+    const Index nw = mc.wall.num_points();
+    std::vector<Vec3> r2(r1.size()), next(r1.size());
+    int sweep = 0;
+    for (; sweep < max_sweeps; ++sweep) {
+        const std::vector<Vec3> n1 = mc.normals(r1);
+        for (Index i = 0; i < nw; ++i) r2[i] = r1[i] + dk1 * n1[i];  // Eq. 12
+        const Levels lv{r0, r1, r2};
+        double max_move = 0.0;
+#pragma omp parallel for num_threads(mc.threads) schedule(static) reduction(max : max_move)
+        for (Index o = 0; o < nw; ++o) {
+            next[o] = jacobi_update(mc, lv, o, theta);
+            max_move = std::max(max_move, (next[o] - r1[o]).norm());
+        }
+        std::swap(r1, next);
+        if (sweep + 1 >= p.sweeps && max_move <= p.tolerance * dk) return sweep + 1;
+    }
+    return sweep;
+}
+
+/// The quality of layer k (the cells between levels k and k + 1 of \p out, whose points are
+/// r0 and r1), pushed onto out.stats. A cell with a scaled Jacobian ≤ 0 or one that cannot be
+/// computed (NaN: coordinates out of range) stops the extrusion with a TopologyError naming it,
+/// unless LayerParams::keep_invalid.
+void check_layer(const Wall& w, const LayerParams& params, int k, const std::vector<Vec3>& r0,
+                 const std::vector<Vec3>& r1, const std::vector<Vec3>& n0, LayerStats stats, LayerMesh& out) {
+    const std::vector<Vec3>& pts = out.mesh.points;
+    double jmin = 1.0, jsum = 0.0, omax = 0.0, osum = 0.0;
+    Index worst = kNone;
+    for (Index f = 0; f < w.mesh.num_faces(); ++f) {
+        const Index* v = w.mesh.face_begin(f);
+        auto at = [&](int level, int c) { return out.level_node(k + level, v[c]); };
+        const double j = w.mesh.face_size(f) == 3
+                             ? prism_min_scaled_jacobian(pts, {at(0, 0), at(0, 1), at(0, 2), at(1, 0), at(1, 1), at(1, 2)})
+                             : hex_min_scaled_jacobian(pts, {at(0, 0), at(0, 1), at(0, 2), at(0, 3), at(1, 0), at(1, 1),
+                                                             at(1, 2), at(1, 3)});
+        if (std::isnan(j)) {  // sticky: a NaN anywhere is the layer's worst
+            if (!std::isnan(jmin)) jmin = j, worst = f;
+        } else if (!std::isnan(jmin) && (j < jmin || worst == kNone)) {
+            jmin = std::min(jmin, j), worst = j <= jmin ? f : worst;
+        }
+        jsum += j;
+    }
+    for (std::size_t i = 0; i < r0.size(); ++i) {
+        const Vec3 e = r1[i] - r0[i];
+        const double ang = std::acos(std::clamp(e.normalized().dot(n0[i]), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+        omax = std::max(omax, ang);
+        osum += ang;
+    }
+    stats.min_scaled_jacobian = jmin;
+    stats.mean_scaled_jacobian = jsum / static_cast<double>(w.mesh.num_faces());
+    stats.max_orthogonality_deg = omax;
+    stats.mean_orthogonality_deg = osum / static_cast<double>(r0.size());
+    out.stats.push_back(stats);
+    if (jmin > 0.0 || params.keep_invalid) return;
+    const Index f = worst;
+    const std::string what = std::isnan(jmin) ? " has a quality that cannot be computed (a non-finite coordinate: the "
+                                                "model's coordinates or the layer heights are out of range)"
+                                              : " would invert (min scaled Jacobian " + format_number(jmin) +
+                                                    "); the layers fold there: use fewer layers or a smaller total "
+                                                    "thickness, more LayerParams::sweeps, or keep "
+                                                    "LayerParams::concave on";
+    throw TopologyError("layer " + std::to_string(k + 1) + " of " + std::to_string(out.layers()) + ": the " +
+                        (w.mesh.face_size(f) == 3 ? "prism" : "hexahedron") + " over wall face " +
+                        std::to_string(w.input_face[static_cast<std::size_t>(f)]) + " (patch '" +
+                        w.mesh.patches[static_cast<std::size_t>(w.mesh.face_patch[f])].name + "') at " +
+                        format_point(face_centroid(w.mesh, r0, f)) + what);
+}
+
+/// The cells in Gmsh order (bottom face = wall orientation, whose normal points into the cell).
+void add_cells(const Wall& w, LayerMesh& out) {
+    for (int k = 0; k < out.layers(); ++k)
         for (Index f = 0; f < w.mesh.num_faces(); ++f) {
             const Index* v = w.mesh.face_begin(f);
+            auto at = [&](int level, int c) { return out.level_node(k + level, v[c]); };
             if (w.mesh.face_size(f) == 3)
-                out.mesh.prisms.push_back({b0 + v[0], b0 + v[1], b0 + v[2], b1 + v[0], b1 + v[1], b1 + v[2]});
+                out.mesh.prisms.push_back({at(0, 0), at(0, 1), at(0, 2), at(1, 0), at(1, 1), at(1, 2)});
             else
                 out.mesh.hexes.push_back(
-                    {b0 + v[0], b0 + v[1], b0 + v[2], b0 + v[3], b1 + v[0], b1 + v[1], b1 + v[2], b1 + v[3]});
+                    {at(0, 0), at(0, 1), at(0, 2), at(0, 3), at(1, 0), at(1, 1), at(1, 2), at(1, 3)});
+        }
+}
+
+/// The side faces of the layers on the wall's open edges, each on the patch of the input face
+/// across the open edge if there is one (a symmetry plane of a half model), else on one
+/// "layer_side" patch.
+void add_side_faces(const SurfaceMesh& surface, const Wall& w, LayerMesh& out) {
+    SurfaceMesh& bnd = out.mesh.boundary;
+    const EdgeTable in_edges = edge_table(surface);
+    Index side_patch = kNone;
+    for (Index l = 0; l < w.loops.rows(); ++l) {
+        const Index m = w.loops.row_size(l);
+        for (Index i = 0; i < m; ++i) {
+            const Index a = w.loops.row_begin(l)[i], b = w.loops.row_begin(l)[(i + 1) % m];
+            Index patch = kNone;
+            const Index ia = w.input_node[static_cast<std::size_t>(a)], ib = w.input_node[static_cast<std::size_t>(b)];
+            const std::array<Index, 2> key{std::min(ia, ib), std::max(ia, ib)};
+            const auto it = std::lower_bound(in_edges.nodes.begin(), in_edges.nodes.end(), key);
+            if (it != in_edges.nodes.end() && *it == key) {
+                const Index e = static_cast<Index>(it - in_edges.nodes.begin());
+                for (const Index* f = in_edges.faces.row_begin(e); f != in_edges.faces.row_end(e); ++f)
+                    if (surface.patches[static_cast<std::size_t>(surface.face_patch[*f])].kind != PatchKind::Wall)
+                        patch = surface.face_patch[*f];
+            }
+            if (patch == kNone) {
+                if (side_patch == kNone) {
+                    side_patch = static_cast<Index>(bnd.patches.size());
+                    bnd.patches.push_back({"layer_side", PatchKind::Other});
+                }
+                patch = side_patch;
+            }
+            for (int k = 0; k < out.layers(); ++k)
+                bnd.add_face({out.level_node(k, a), out.level_node(k, b), out.level_node(k + 1, b),
+                              out.level_node(k + 1, a)},
+                             patch);
         }
     }
+}
 
-    // Boundary: the wall (reversed: out of the layers), the top, and side quads on open edges.
+/// The boundary: the wall (reversed: out of the layers), the top (top_patch), and side faces on
+/// open edges; then the outermost level as a surface for the next stage.
+void add_boundary_and_top(const SurfaceMesh& surface, const Wall& w, LayerMesh& out) {
     SurfaceMesh& bnd = out.mesh.boundary;
     bnd.patches = w.mesh.patches;
-    const Index top_patch = static_cast<Index>(bnd.patches.size());
+    out.top_patch = static_cast<Index>(bnd.patches.size());
     bnd.patches.push_back({"layer_top", PatchKind::Other});
-    const Index top = static_cast<Index>(nlayers) * nw;
+    SurfaceMesh reversed = w.mesh;
+    flip_faces(reversed);
+    for (Index f = 0; f < reversed.num_faces(); ++f)
+        bnd.add_face(reversed.face_begin(f), reversed.face_size(f), reversed.face_patch[f]);
     for (Index f = 0; f < w.mesh.num_faces(); ++f) {
         Index v[4];
         const Index n = w.mesh.face_size(f);
-        v[0] = w.mesh.face_node(f, 0);
-        for (Index i = 1; i < n; ++i) v[i] = w.mesh.face_node(f, n - i);
-        bnd.add_face(v, n, w.mesh.face_patch[f]);
+        for (Index i = 0; i < n; ++i) v[i] = out.top_node(w.mesh.face_node(f, i));
+        bnd.add_face(v, n, out.top_patch);
     }
-    for (Index f = 0; f < w.mesh.num_faces(); ++f) {
-        Index v[4];
-        const Index n = w.mesh.face_size(f);
-        for (Index i = 0; i < n; ++i) v[i] = top + w.mesh.face_node(f, i);
-        bnd.add_face(v, n, top_patch);
-    }
-    if (loops.rows() > 0) {
-        // Side faces take the patch of the input face across the open edge if there is one
-        // (a symmetry plane of a half model), else one "layer_side" patch.
-        const EdgeTable in_edges = edge_table(surface);
-        Index side_patch = kNone;
-        for (Index l = 0; l < loops.rows(); ++l) {
-            const Index m = loops.row_size(l);
-            for (Index i = 0; i < m; ++i) {
-                const Index a = loops.row_begin(l)[i], b = loops.row_begin(l)[(i + 1) % m];
-                Index patch = kNone;
-                const Index ia = w.input_node[static_cast<std::size_t>(a)],
-                            ib = w.input_node[static_cast<std::size_t>(b)];
-                const std::array<Index, 2> key{std::min(ia, ib), std::max(ia, ib)};
-                const auto it = std::lower_bound(in_edges.nodes.begin(), in_edges.nodes.end(), key);
-                if (it != in_edges.nodes.end() && *it == key) {
-                    const Index e = static_cast<Index>(it - in_edges.nodes.begin());
-                    for (const Index* f = in_edges.faces.row_begin(e); f != in_edges.faces.row_end(e); ++f)
-                        if (surface.patches[static_cast<std::size_t>(surface.face_patch[*f])].kind != PatchKind::Wall)
-                            patch = surface.face_patch[*f];
-                }
-                if (patch == kNone) {
-                    if (side_patch == kNone) {
-                        side_patch = static_cast<Index>(bnd.patches.size());
-                        bnd.patches.push_back({"layer_side", PatchKind::Other});
-                    }
-                    patch = side_patch;
-                }
-                for (int k = 0; k < nlayers; ++k) {
-                    const Index b0 = static_cast<Index>(k) * nw, b1 = b0 + nw;
-                    bnd.add_face({b0 + a, b0 + b, b1 + b, b1 + a}, patch);
-                }
-            }
-        }
-    }
+    if (w.loops.rows() > 0) add_side_faces(surface, w, out);
 
-    // The outermost level as a surface for the next stage.
-    out.top.points.assign(pts.end() - nw, pts.end());
-    out.top.face_offsets = w.mesh.face_offsets;
-    out.top.face_nodes = w.mesh.face_nodes;
-    out.top.face_patch = w.mesh.face_patch;
-    out.top.patches = w.mesh.patches;
+    out.top = w.mesh;
+    for (Index i = 0; i < w.mesh.num_points(); ++i) out.top.points[static_cast<std::size_t>(i)] = out.mesh.points[out.top_node(i)];
+}
+
+}  // namespace
+
+LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
+    const std::vector<double> delta = layer_heights(params.distribution);
+    if (params.sweeps < 0)
+        throw InputError("LayerParams::sweeps = " + std::to_string(params.sweeps) + ": need 0 or more sweeps per layer");
+    const Wall w = extract_wall(surface);
+    const Marcher mc = make_marcher(surface, w, params);
+    const Index nw = w.mesh.num_points();
+    LayerMesh out(nw, params.distribution.layers);
+    out.input_node = w.input_node;
+    for (Index i = 0; i < nw; ++i) out.unsmoothed_nodes += mc.st.valid[i] ? 0 : 1;
+    out.mesh.points.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(out.layers() + 1));
+    out.mesh.points.insert(out.mesh.points.end(), w.mesh.points.begin(), w.mesh.points.end());
+    report(progress, "layers", 0.0);
+
+    const bool holds = params.hold_back && params.smoothing && std::max(params.max_sweeps, params.sweeps) > 0 &&
+                       !params.keep_invalid;
+    std::vector<Vec3> r0 = w.mesh.points, r1(r0.size());
+    for (int k = 0; k < out.layers(); ++k) {
+        const double dk = delta[static_cast<std::size_t>(k)], dk1 = delta[static_cast<std::size_t>(k) + 1];
+        LayerStats stats;
+        stats.height = dk;
+        // 1. The locally orthogonal reference mesh: level 1 along the normals (level 2 in step 2).
+        const std::vector<Vec3> n0 = reference_level(mc, r0, dk, r1);
+        // 2. Poisson smoothing of level 1; where its cells would still invert, hold it back.
+        stats.sweeps = smooth_level(mc, r0, dk, dk1, r1);
+        if (holds) stats.held_nodes = hold_back_folds(mc, r0, dk, r1);
+        out.mesh.points.insert(out.mesh.points.end(), r1.begin(), r1.end());
+        check_layer(w, params, k, r0, r1, n0, stats, out);
+        // 3. Level 1 becomes the wall of the next layer.
+        std::swap(r0, r1);
+        report(progress, "layers", static_cast<double>(k + 1) / out.layers());
+    }
+    add_cells(w, out);
+    add_boundary_and_top(surface, w, out);
     return out;
 }
 

@@ -119,3 +119,15 @@ TEST(PyramidScaledJacobian, FlippedPyramidIsNegative) {
     flat[4].z() = 0.0;
     EXPECT_LE(pyramid_min_scaled_jacobian(flat, {0, 1, 2, 3, 4}), 0.0);
 }
+
+TEST(ScaledJacobian, ACornerThatCannotBeComputedMakesTheCellNaN) {
+    // A prism whose top triangle has edges of 1e160: at its top corners |e1| |e2| |e3| overflows
+    // and the corner's value is NaN, while the bottom corners are fine. The cell is then NaN
+    // (never better than its worst corner), not the minimum of the corners that could be
+    // computed, so every caller sees that its quality is unknown.
+    const double h = 1e160;
+    const std::vector<Vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, h}, {h, 0, h}, {0, h, h}};
+    EXPECT_TRUE(std::isnan(corner_scaled_jacobian(p[3], p[5], p[4], p[0])));
+    EXPECT_TRUE(std::isnan(prism_min_scaled_jacobian(p, {0, 1, 2, 3, 4, 5})));
+    EXPECT_TRUE(std::isnan(min_scaled_jacobian(p, std::array<Index, 6>{0, 1, 2, 3, 4, 5}.data(), CellType::Prism)));
+}

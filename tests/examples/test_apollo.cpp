@@ -124,7 +124,7 @@ TEST(Apollo, LayersValidAndExitNodesStayInTheirPlane) {
     const SurfaceMesh wall = apollo_surface();
     const LayerParams params = apollo_layer_params();
     const LayerMesh lm = extrude_layers(wall, params);
-    ASSERT_EQ(lm.layers, 30);
+    ASSERT_EQ(lm.layers(), 30);
     EXPECT_EQ(lm.mesh.hexes.size(), 30u * 1580u);
     EXPECT_EQ(lm.mesh.prisms.size(), 30u * 20u);
     EXPECT_EQ(lm.unsmoothed_nodes, 0);
@@ -144,16 +144,16 @@ TEST(Apollo, LayersValidAndExitNodesStayInTheirPlane) {
     ASSERT_EQ(loops.rows(), 1);
     const double x_exit = wall.points[loops.values[0]].x();
     double deviation = 0.0;
-    for (int k = 0; k <= lm.layers; ++k)
+    for (int k = 0; k <= lm.layers(); ++k)
         for (const Index i : loops.values) {
-            const double x = lm.mesh.points[static_cast<std::size_t>(k * lm.wall_nodes + i)].x();
+            const double x = lm.mesh.points[static_cast<std::size_t>(lm.level_node(k, i))].x();
             EXPECT_NEAR(x, x_exit, 1e-12) << "level " << k << ", exit node " << i;
             deviation = std::max(deviation, std::abs(x - x_exit));
         }
     std::printf("apollo layers: exit nodes max |x - x_exit| %.3g m\n", deviation);
     // They did march: the outermost exit nodes lie 0.3 m (the total thickness) out, about.
     for (const Index i : loops.values) {
-        const Vec3& top = lm.mesh.points[static_cast<std::size_t>(lm.layers * lm.wall_nodes + i)];
+        const Vec3& top = lm.mesh.points[static_cast<std::size_t>(lm.top_node(i))];
         const double r0 = std::hypot(wall.points[i].y(), wall.points[i].z());
         EXPECT_NEAR(std::hypot(top.y(), top.z()) - r0, 0.3, 0.03) << "exit node " << i;
     }

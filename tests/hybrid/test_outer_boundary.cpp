@@ -103,9 +103,8 @@ TEST(OuterBoundary, PatchEdgesAreCutAtTheTopOfTheLayersTheSameWayOnBothSides) {
     SurfaceMesh all = ob.mesh;
     std::vector<Index> id(static_cast<std::size_t>(lm.mesh.points.size()), kNone);
     // Map the layers' points into all: top nodes are the outer points with a top_node.
-    const Index top_base = static_cast<Index>(lm.layers) * lm.wall_nodes;
     for (std::size_t i = 0; i < ob.top_node.size(); ++i)
-        if (ob.top_node[i] != kNone) id[static_cast<std::size_t>(top_base + ob.top_node[i])] = static_cast<Index>(i);
+        if (ob.top_node[i] != kNone) id[static_cast<std::size_t>(lm.top_node(ob.top_node[i]))] = static_cast<Index>(i);
     auto node = [&](Index v) {
         Index& k = id[static_cast<std::size_t>(v)];
         if (k == kNone) {
@@ -116,7 +115,8 @@ TEST(OuterBoundary, PatchEdgesAreCutAtTheTopOfTheLayersTheSameWayOnBothSides) {
     };
     const SurfaceMesh& lb = lm.mesh.boundary;
     for (Index f = 0; f < lb.num_faces(); ++f) {
-        if (lb.patches[static_cast<std::size_t>(lb.face_patch[f])].name == "layer_top") continue;
+        if (lb.face_patch[f] == lm.top_patch) continue;
+        EXPECT_NE(lb.patches[static_cast<std::size_t>(lb.face_patch[f])].name, "layer_top");
         Index v[4];
         for (Index i = 0; i < lb.face_size(f); ++i) v[i] = node(lb.face_node(f, i));
         all.add_face(v, lb.face_size(f), 0);

@@ -58,11 +58,12 @@ SurfaceMesh split_into_triangles(const SurfaceMesh& q) {
 void expect_flat_plate_exact(const SurfaceMesh& wall, const LayerParams& p, double corner_jacobian) {
     const LayerMesh lm = extrude_layers(wall, p);
     const std::vector<double> h = level_heights(p);
-    const Index nw = lm.wall_nodes;
+    const Index nw = lm.wall_nodes();
     ASSERT_EQ(lm.mesh.points.size(), static_cast<std::size_t>(nw) * (p.distribution.layers + 1));
+    ASSERT_EQ(lm.layers(), p.distribution.layers);
     for (int k = 0; k <= p.distribution.layers; ++k)
         for (Index i = 0; i < nw; ++i) {
-            const Vec3& x = lm.mesh.points[static_cast<std::size_t>(k * nw + i)];
+            const Vec3& x = lm.mesh.points[static_cast<std::size_t>(lm.level_node(k, i))];
             const Vec3& x0 = wall.points[i];
             EXPECT_NEAR(x.z(), h[static_cast<std::size_t>(k)], 1e-12 * h.back()) << "level " << k << " node " << i;
             EXPECT_NEAR(x.x(), x0.x(), 1e-12) << "level " << k << " node " << i;
@@ -101,8 +102,8 @@ double worst_radius_error(const LayerMesh& lm, const LayerParams& p, double R) {
     const std::vector<double> h = level_heights(p);
     double worst = 0.0;
     for (int k = 1; k <= p.distribution.layers; ++k)
-        for (Index i = 0; i < lm.wall_nodes; ++i) {
-            const double r = lm.mesh.points[static_cast<std::size_t>(k * lm.wall_nodes + i)].norm();
+        for (Index i = 0; i < lm.wall_nodes(); ++i) {
+            const double r = lm.mesh.points[static_cast<std::size_t>(lm.level_node(k, i))].norm();
             worst = std::max(worst, std::abs(r - R - h[static_cast<std::size_t>(k)]) / h[static_cast<std::size_t>(k)]);
         }
     return worst;
@@ -221,11 +222,11 @@ TEST(Layers, OneraM6RootStaysInSymmetryPlane) {
     EXPECT_TRUE(validate_mesh(lm.mesh).ok());
     EXPECT_GT(min_jacobian(lm), 0.0);
     Index root = 0;
-    for (Index i = 0; i < lm.wall_nodes; ++i) {
+    for (Index i = 0; i < lm.wall_nodes(); ++i) {
         if (wall.points[i].z() != 0.0) continue;
         ++root;
         for (int k = 1; k <= 20; ++k)
-            EXPECT_LE(std::abs(lm.mesh.points[static_cast<std::size_t>(k * lm.wall_nodes + i)].z()), 1e-12);
+            EXPECT_LE(std::abs(lm.mesh.points[static_cast<std::size_t>(lm.level_node(k, i))].z()), 1e-12);
     }
     EXPECT_GT(root, 100);
     EXPECT_EQ(lm.unsmoothed_nodes, 0);  // root nodes are smoothed with mirror nodes, not frozen
@@ -241,7 +242,7 @@ TEST(Layers, MixedOneraM6WingTipAtTheSharpTrailingEdgeStaysValid) {
     const LayerParams p = geometric(10, 0.02, 1.2);
     const LayerMesh lm = extrude_layers(wall, p);
     ASSERT_EQ(lm.stats.size(), 10u);
-    const Index nw = lm.wall_nodes;
+    const Index nw = lm.wall_nodes();
     for (std::size_t k = 0; k < lm.stats.size(); ++k) {
         const LayerStats& s = lm.stats[k];
         std::printf("mixed M6 layer %zu: min scaled Jacobian %.2e, mean %.3f, %d sweeps, %d nodes held back\n", k + 1,
@@ -262,7 +263,7 @@ TEST(Layers, MixedOneraM6WingTipAtTheSharpTrailingEdgeStaysValid) {
     // Thinner where held back, but every node keeps a good part of the thickness (measured 17 %).
     const double total = level_heights(p).back();
     for (Index i = 0; i < nw; ++i)
-        ASSERT_GT((lm.mesh.points[static_cast<std::size_t>(10 * nw + i)] - wall.points[i]).norm(), 0.1 * total)
+        ASSERT_GT((lm.mesh.points[static_cast<std::size_t>(lm.level_node(10, i))] - wall.points[i]).norm(), 0.1 * total)
             << "node " << i;
     EXPECT_TRUE(validate_mesh(lm.mesh).ok());
 }
@@ -279,11 +280,24 @@ TEST(Layers, FoldsAreHeldBackLocallyInsteadOfThrowing) {
     std::printf("body-fin without the concave modification: %d node columns held back, min scaled Jacobian %.3f\n",
                 static_cast<int>(held), min_jacobian(lm));
     EXPECT_GT(held, 0);
-    EXPECT_LT(held, lm.wall_nodes / 20);
+    EXPECT_LT(held, lm.wall_nodes() / 20);
     EXPECT_GT(min_jacobian(lm), 0.0);
     EXPECT_TRUE(validate_mesh(lm.mesh).ok());
     p.hold_back = false;
     EXPECT_THROW(extrude_layers(wall, p), TopologyError);
+}
+
+TEST(Layers, AQualityThatCannotBeComputedStopsTheLayers) {
+    // Edges of 1e76 and a layer of 1e157: every position is finite, but a corner's |e1| |e2| |e3|
+    // overflows to infinity and every scaled Jacobian is NaN. A NaN never compares below the
+    // layer's minimum, so such a layer used to pass as valid (min scaled Jacobian 1); now it stops
+    // the extrusion, naming where.
+    SurfaceMesh wall = prepare_surface(example_data("sphere.stl"), {});
+    for (Vec3& x : wall.points) x *= 1e76;
+    LayerParams p = geometric(1, 1e157, 1.2);
+    p.smoothing = false;  // plain extrusion along the normals
+    test::expect_error<TopologyError>([&] { (void)extrude_layers(wall, p); },
+                                      {"layer 1 of 1: the prism over wall face ", "cannot be computed"});
 }
 
 TEST(Layers, SameOutputForOneAndTwoThreads) {

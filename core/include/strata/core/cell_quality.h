@@ -12,7 +12,9 @@
 
 namespace strata {
 
-/// Scaled Jacobian of the corner at \p o with edges to \p a, \p b, \p c (right-handed).
+/// Scaled Jacobian of the corner at \p o with edges to \p a, \p b, \p c (right-handed); 0 for a
+/// collapsed edge, NaN where it cannot be computed (NaN coordinates, or edge lengths whose product
+/// overflows). A cell's value is NaN if any corner's is.
 double corner_scaled_jacobian(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c);
 
 double tet_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 4>& v);

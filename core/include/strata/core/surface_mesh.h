@@ -27,7 +27,7 @@ struct Patch {
 
 /// Surface mesh of arbitrary topology. Faces are triangles or quadrilaterals, nodes
 /// counter-clockwise so that the right-hand normal points into the flow domain once the
-/// mesh has been oriented (see orient.h).
+/// mesh has been oriented (orient_surface, geometry/check.h).
 struct SurfaceMesh {
     std::vector<Vec3> points;            ///< #nodes, model units
     std::vector<Index> face_offsets{0};  ///< #faces + 1; face f is face_nodes[offsets[f], offsets[f+1])
@@ -49,6 +49,10 @@ struct SurfaceMesh {
     Index num_triangles() const;
     Index num_quads() const;
 };
+
+/// Reverse the orientation of every face of \p mesh, keeping its first node first (a triangle
+/// a b c becomes a c b, a quad a b c d becomes a d c b).
+void flip_faces(SurfaceMesh& mesh);
 
 /// Index of the patch called \p name, or kNone.
 Index find_patch(const SurfaceMesh& mesh, std::string_view name);

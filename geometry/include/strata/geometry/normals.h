@@ -64,13 +64,15 @@ Vec3 max_min_dot_direction(const std::vector<Vec3>& directions, double* min_dot 
 /// One unit normal per node for the node positions \p points (#nodes, model units; may differ
 /// from mesh.points: the module calls this on every layer). A node no usable face touches gets
 /// (0,0,0), as does a node whose face normals cancel (a folded surface). Nodes are independent
-/// of each other. Throws InputError if \p points does not have one entry per mesh node.
-std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, NormalMethod method);
+/// of each other, computed on \p threads threads (0: OpenMP's default; the result is the same
+/// for any count). Throws InputError if \p points does not have one entry per mesh node.
+std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, NormalMethod method,
+                               int threads = 0);
 /// Same, with the node → face adjacency (vertex_faces(mesh)) precomputed by the caller; it
 /// allocates nothing but the result, so it suits a loop over smoothing sweeps. Throws
 /// InputError if \p vertex_faces does not have one row per node.
 std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Csr& vertex_faces,
-                               NormalMethod method);
+                               NormalMethod method, int threads = 0);
 inline std::vector<Vec3> node_normals(const SurfaceMesh& mesh, NormalMethod method) {
     return node_normals(mesh, mesh.points, method);
 }

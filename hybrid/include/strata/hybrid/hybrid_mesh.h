@@ -13,10 +13,13 @@
 namespace strata {
 
 struct HybridParams {
-    LayerParams layers;
+    LayerParams layers;       ///< its threads field is set from threads below
     PyramidParams pyramids;
     TetFillParams tets;
     FarfieldParams farfield;  ///< used when the surface has no farfield patch
+    /// Threads of every parallel stage (layers, validation; 0: OpenMP's default). The mesh is the
+    /// same for any count.
+    int threads = 0;
 };
 
 /// What each stage produced and how long it took, for the CLI's summary.
@@ -41,7 +44,8 @@ struct HybridReport {
 /// a box side): the layers march in those planes and the planes are re-meshed around the
 /// layers' side faces (outer_boundary). A half model (walls only, open along one plane) is
 /// closed first (close_half_model: half farfield, symmetry plane). Any other open input:
-/// InputError.
+/// InputError. \p progress: stages "layers", "pyramids", "tetrahedra", "validation"; cancelled,
+/// Cancelled is thrown at the next check.
 VolumeMesh build_hybrid_mesh(const SurfaceMesh& surface, const HybridParams& params, Progress* progress = nullptr,
                              HybridReport* report = nullptr);
 

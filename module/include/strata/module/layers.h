@@ -3,8 +3,8 @@
 /// The boundary-layer module: Poisson marching extrusion of prism and hexahedron layers
 /// (Thompson, Chalasani & Soni; ALGORITHM.md).
 
-#include <strata/geometry/normals.h>
 #include <strata/core/surface_mesh.h>
+#include <strata/geometry/normals.h>
 #include <strata/module/distribution.h>
 #include <strata/core/volume_mesh.h>
 #include <strata/core/progress.h>
@@ -16,8 +16,8 @@ namespace strata {
 /// Parameters of layer generation. Lengths in model units.
 struct LayerParams {
     DistributionParams distribution;  ///< number of layers and their heights
-    int sweeps = 10;                  ///< point-Jacobi sweeps per layer (the paper's ten)
-    int max_sweeps = 50;              ///< extra sweeps allowed while the residual is high
+    int sweeps = 10;                  ///< point-Jacobi sweeps per layer (the paper's ten), ≥ 0
+    int max_sweeps = 50;              ///< more sweeps allowed while the residual is high; below sweeps it is sweeps
     double tolerance = 1e-3;          ///< stop extra sweeps when max update < tolerance × δ_k
     bool control_functions = true;    ///< Φ, Ψ from the wall, Θ from the distribution
     bool concave = true;              ///< the concave-region modification (Eqs. 15–18)
@@ -36,7 +36,9 @@ struct LayerParams {
     /// (LayerStats::held_nodes counts them). Only where smoothing runs (smoothing, max_sweeps
     /// > 0): plain extrusion stays the bare reference mesh. Never with keep_invalid.
     bool hold_back = true;
-    int threads = 0;  ///< OpenMP threads; 0 = OpenMP's default
+    /// Threads of the smoothing and the normals (0: OpenMP's default); the layers are the same for
+    /// any count. For extrude_layers called alone: build_hybrid_mesh sets it from HybridParams::threads.
+    int threads = 0;
     /// Diagnostics only: return layers with inverted cells instead of throwing (the stats
     /// then show min_scaled_jacobian ≤ 0), as marched: nothing is held back. Never used for a
     /// mesh that is written.
@@ -54,24 +56,47 @@ struct LayerStats {
     Index held_nodes = 0;  ///< nodes held back (lowered, unsmoothed) to keep the layer valid
 };
 
-/// The layers: a volume mesh of prisms (on triangles) and hexahedra (on quads), node
-/// `k * nw + i` being wall node i on level k (nw = wall node count).
-struct LayerMesh {
-    VolumeMesh mesh;                ///< boundary: wall patches, side faces on open-boundary patches, "layer_top"
-    SurfaceMesh top;                ///< outermost level as a surface (same faces as the wall), for the next stage
+/// The layers: a volume mesh of prisms (on triangles) and hexahedra (on quads) over the wall
+/// faces, level by level. Other stages reach its nodes through the accessors, never through the
+/// numbering itself (columns will not all have the same number of levels).
+class LayerMesh {
+public:
+    LayerMesh() = default;
+    /// Layers over \p wall_nodes wall nodes, \p layers levels above the wall.
+    LayerMesh(Index wall_nodes, int layers) : wall_nodes_(wall_nodes), layers_(layers) {}
+
+    VolumeMesh mesh;  ///< boundary: the wall patches, side faces on open-boundary patches, and top_patch
+    /// The outermost level as a surface for the next stage: the wall's faces and patches, node i
+    /// of it being top_node(i) (top.points[i] = mesh.points[top_node(i)]).
+    SurfaceMesh top;
     std::vector<LayerStats> stats;  ///< one per layer
-    Index wall_nodes = 0;
     std::vector<Index> input_node;  ///< wall node → node of the input surface
-    int layers = 0;
-    Index unsmoothed_nodes = 0;  ///< nodes extruded along their normal without smoothing (sharp convex edges,
-                                 ///< open-edge corners, degenerate stencils: ends of needle triangles)
+    Index top_patch = kNone;        ///< the patch of mesh.boundary ("layer_top") holding the outermost level
+    Index unsmoothed_nodes = 0;     ///< nodes extruded along their normal without smoothing (sharp convex edges,
+                                    ///< open-edge corners, degenerate stencils: ends of needle triangles)
+
+    Index wall_nodes() const { return wall_nodes_; }
+    /// Levels above the wall.
+    int layers() const { return layers_; }
+    /// The node of mesh.points that wall node \p i has on level \p k (0: the wall itself).
+    Index level_node(int k, Index i) const { return static_cast<Index>(k) * wall_nodes_ + i; }
+    /// The node of wall node \p i on the outermost level.
+    Index top_node(Index i) const { return level_node(layers_, i); }
+    /// The level of node \p node of mesh.points.
+    int level_of(Index node) const { return static_cast<int>(node / wall_nodes_); }
+
+private:
+    Index wall_nodes_ = 0;
+    int layers_ = 0;
 };
 
 /// Extrude \p wall (oriented, normals into the flow; faces on Wall patches are extruded).
 /// Open boundaries of the wall keep their nodes on the planar non-wall patches they meet (a
 /// symmetry or outflow plane, a box side; along the line where two such planes meet), or, with
-/// no such patch, in the plane of the open boundary loop if it is planar. Throws TopologyError naming the layer, face
-/// and position of the first cell that would invert.
+/// no such patch, in the plane of the open boundary loop if it is planar. Per layer, the paper's three steps: the
+/// locally orthogonal reference levels (Eqs. 11–12), Poisson smoothing of the middle level (Eq. 3), which then
+/// becomes the next wall. Throws TopologyError naming the layer, face and position of the first cell that would
+/// invert or whose quality cannot be computed. \p progress: stage "layers", checked after every layer.
 LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, Progress* progress = nullptr);
 
 }  // namespace strata
