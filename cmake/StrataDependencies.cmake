@@ -2,6 +2,8 @@
 # packages (scripts/setup.sh installs them).
 
 find_package(Eigen3 3.3 REQUIRED CONFIG)
+# k-d tree for nearest-point queries (Debian's libnanoflann-dev, header-only).
+find_package(nanoflann REQUIRED CONFIG)
 
 # Gmsh ships no CMake config (PLATFORM.md): header + library.
 if(NOT TARGET strata::libgmsh)

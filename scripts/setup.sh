@@ -18,6 +18,7 @@ packages=(
   libgmsh-dev          # Gmsh SDK 4.8 with OpenCASCADE: CAD import, surface meshing, .msh I/O
   libeigen3-dev        # small dense linear algebra
   libtet1.5-dev        # TetGen 1.5 (tetrahedral fill)
+  libnanoflann-dev     # k-d tree (the tetrahedra's size field)
   libgtest-dev         # GoogleTest
   libcli11-dev         # command-line parsing for the strata program
 )

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
-/// The tetrahedral fill through TetGen (libtet, linked as a library): the region enclosed by a
-/// closed triangulated boundary is meshed with tetrahedra, the boundary preserved exactly.
+/// The tetrahedral fill through TetGen 1.5 (Debian's libtet, loaded privately at run time, not
+/// linked: hybrid/src/tetgen_library.cpp says why): the region enclosed by a closed
+/// triangulated boundary is meshed with tetrahedra, the boundary preserved exactly.
 
 #include <strata/core/surface_mesh.h>
 
@@ -17,8 +18,9 @@ struct TetFillParams {
     double max_volume = 0.0;    ///< global volume bound per tetrahedron (-a); 0 = none
     /// Size grading: target edge length grows linearly with distance from the boundary faces
     /// whose patch is not Farfield (the layer top): h(d) = h_wall + growth × d, capped at the
-    /// farfield's own edge length. 0 = no sizing field.
-    double growth = 0.0;
+    /// farfield's own edge length. 0 = no sizing field (TetGen's quality bound alone
+    /// then sets the sizes, which grow much faster).
+    double growth = 0.3;
     /// Sample the size field on a background mesh (a quality-only TetGen run), so the growth
     /// holds throughout; false: at the boundary points only, TetGen interpolating linearly
     /// between them. TetGen locates every point in the background mesh, and a point on its hull

@@ -1,0 +1,264 @@
+// TetGen 1.5 (Debian's libtet), loaded privately at run time; see tetgen_library.h.
+//
+// Loading libtet. Debian's libgmsh 4.8 exports its own, different TetGen under the same
+// names (tetgenmesh::..., 151 symbols in common with libtet). In one global symbol scope one
+// of the two always binds to the other's copy, whatever the link order:
+//   -lgmsh -ltet: libtet's internal calls go to Gmsh's copy, SIGSEGV in tetrahedralize
+//                 (PLATFORM.md);
+//   -ltet -lgmsh: Gmsh's calls go to libtet's copy, SIGSEGV in Gmsh's HXT 3D mesher
+//                 (tetgenmesh::makepoint2submap from hxt_boundary_recovery; a unit sphere
+//                 with Mesh.MeshSizeMax 0.25 is enough; its Delaunay mesher survives).
+// So libtet is not linked at all: it is dlopen()ed with RTLD_LOCAL (its symbols stay out of
+// the global scope, Gmsh keeps binding to itself) and RTLD_DEEPBIND (libtet's own references
+// resolve inside libtet first, not in libgmsh). Only tetrahedralize() is looked up; tetgenio
+// is header-only (inline), so nothing else of libtet is called from here.
+//
+// TetGen's failures. Debian's libtet 1.5.0 crashes instead of throwing: terminatetetgen(m, code)
+// frees the mesh (m->freememory(), leaving its pointers dangling) and throws the int; unwinding
+// then destroys that same tetgenmesh (a local of tetrahedralize), whose destructor frees it
+// again: SIGSEGV in memorypool::~memorypool (reproduced with a self-intersecting boundary;
+// the crash reported in SCIRun issue #1538). libtet calls terminatetetgen
+// through its PLT (all 43 call sites; a JUMP_SLOT relocation in a RELRO GOT since libtet is
+// linked -z now), so after loading, that one GOT slot is pointed at a replacement which only
+// throws: the mesh is freed once, by the destructor, and the int reaches run(). Where no
+// slot can be patched (another libtet build or architecture) load() refuses TetGen with a
+// BackendError rather than risk that crash. tests/hybrid/test_tetgen_library.cpp checks the
+// loader; test_tetgen_fill.cpp a self-intersecting boundary (BackendError) and TetGen with
+// Gmsh's Delaunay and HXT meshers in one process, both orders.
+// Left as they are: on a failure TetGen leaks a few KB of its own (arraypools local to
+// recoverboundary; valgrind) and may print a line or two to stdout despite Q ("Found two
+// segments intersect each other.").
+//
+// Caveat of RTLD_DEEPBIND: libtet resolves operator new/delete in libstdc++ even if the
+// program replaces them (as AddressSanitizer does), while tetgenio's inline destructor uses
+// the program's: run sanitizer builds with ASAN_OPTIONS=alloc_dealloc_mismatch=0.
+
+#include "tetgen_library.h"
+
+#include <strata/core/error.h>
+
+#include <dlfcn.h>
+#include <elf.h>
+#include <link.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <mutex>
+#include <new>
+#include <string>
+#include <vector>
+
+namespace strata::tetgen {
+namespace {
+
+
+/// Replaces libtet's terminatetetgen: throw TetGen's exit code, leave the freeing to the
+/// tetgenmesh destructor.
+[[noreturn]] void throwing_terminatetetgen(tetgenmesh* /*mesh*/, int code) {
+    throw code;
+}
+
+/// Point every GOT slot of the loaded object \p handle that binds \p symbol (JUMP_SLOT or
+/// GLOB_DAT relocations) at \p replacement. Returns the number of slots changed.
+int replace_got_slots(void* handle, const char* symbol, void* replacement) {
+#if defined(__x86_64__)  // both 64-bit ELF: ELF64_R_TYPE/ELF64_R_SYM below
+    constexpr unsigned kJumpSlot = R_X86_64_JUMP_SLOT, kGlobDat = R_X86_64_GLOB_DAT;
+#elif defined(__aarch64__)
+    constexpr unsigned kJumpSlot = R_AARCH64_JUMP_SLOT, kGlobDat = R_AARCH64_GLOB_DAT;
+#else
+    (void)handle, (void)symbol, (void)replacement;
+    return 0;
+#endif
+#if defined(__x86_64__) || defined(__aarch64__)
+    link_map* map = nullptr;
+    if (dlinfo(handle, RTLD_DI_LINKMAP, &map) != 0 || map == nullptr) return 0;
+    const ElfW(Addr) base = map->l_addr;
+    // glibc has relocated these d_ptr values in place on x86-64 and AArch64; stay safe if not.
+    auto at = [base](ElfW(Addr) p) { return p < base ? p + base : p; };
+    const ElfW(Sym)* symtab = nullptr;
+    const char* strtab = nullptr;
+    std::array<const ElfW(Rela)*, 2> rela{nullptr, nullptr};
+    std::array<std::size_t, 2> rela_bytes{0, 0};
+    bool plt_is_rela = true;
+    for (const ElfW(Dyn)* d = map->l_ld; d->d_tag != DT_NULL; ++d) {
+        switch (d->d_tag) {
+            case DT_SYMTAB:
+                symtab = reinterpret_cast<const ElfW(Sym)*>(at(d->d_un.d_ptr));
+                break;
+            case DT_STRTAB:
+                strtab = reinterpret_cast<const char*>(at(d->d_un.d_ptr));
+                break;
+            case DT_JMPREL:
+                rela[0] = reinterpret_cast<const ElfW(Rela)*>(at(d->d_un.d_ptr));
+                break;
+            case DT_PLTRELSZ:
+                rela_bytes[0] = d->d_un.d_val;
+                break;
+            case DT_PLTREL:
+                plt_is_rela = d->d_un.d_val == DT_RELA;
+                break;
+            case DT_RELA:
+                rela[1] = reinterpret_cast<const ElfW(Rela)*>(at(d->d_un.d_ptr));
+                break;
+            case DT_RELASZ:
+                rela_bytes[1] = d->d_un.d_val;
+                break;
+            default:
+                break;
+        }
+    }
+    if (symtab == nullptr || strtab == nullptr || !plt_is_rela) return 0;
+
+    // The part of PT_GNU_RELRO that the loader made read-only (whole pages only).
+    struct Relro {
+        ElfW(Addr) base, begin = 0, end = 0;
+    } relro{base};
+    const auto page = static_cast<ElfW(Addr)>(sysconf(_SC_PAGESIZE));
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, std::size_t, void* data) {
+            auto* r = static_cast<Relro*>(data);
+            if (info->dlpi_addr != r->base) return 0;
+            for (int i = 0; i < info->dlpi_phnum; ++i)
+                if (info->dlpi_phdr[i].p_type == PT_GNU_RELRO) {
+                    r->begin = info->dlpi_addr + info->dlpi_phdr[i].p_vaddr;
+                    r->end = r->begin + info->dlpi_phdr[i].p_memsz;
+                }
+            return 1;
+        },
+        &relro);
+    relro.begin &= ~(page - 1);
+    relro.end &= ~(page - 1);
+
+    int changed = 0;
+    for (std::size_t k = 0; k < rela.size(); ++k) {
+        if (rela[k] == nullptr) continue;
+        for (std::size_t i = 0; i < rela_bytes[k] / sizeof(ElfW(Rela)); ++i) {
+            const ElfW(Rela)& r = rela[k][i];
+            const auto type = ELF64_R_TYPE(r.r_info);
+            if ((type != kJumpSlot && type != kGlobDat) ||
+                std::strcmp(strtab + symtab[ELF64_R_SYM(r.r_info)].st_name, symbol) != 0)
+                continue;
+            const ElfW(Addr) slot = base + r.r_offset;
+            const ElfW(Addr) slot_page = slot & ~(page - 1);
+            const bool read_only = slot_page >= relro.begin && slot_page < relro.end;
+            void* p = reinterpret_cast<void*>(slot_page);
+            if (read_only && mprotect(p, page, PROT_READ | PROT_WRITE) != 0) continue;
+            *reinterpret_cast<void**>(slot) = replacement;
+            if (read_only) mprotect(p, page, PROT_READ);
+            ++changed;
+        }
+    }
+    return changed;
+#endif
+}
+
+std::string object_of(const void* address) {
+    Dl_info info{};
+    return dladdr(address, &info) != 0 && info.dli_fname != nullptr ? info.dli_fname : "";
+}
+
+std::mutex& tetgen_mutex() {
+    static std::mutex m;
+    return m;
+}
+
+}  // namespace
+
+Library load(const Symbols& symbols) {
+    // The runtime package's soname first (Debian's libtet1.5); the -dev symlink as fallback.
+    std::vector<const char*> names{"libtet.so.1.5", "libtet.so"};
+#ifdef STRATA_LIBTET
+    names.insert(names.begin(), STRATA_LIBTET);
+#endif
+    // Linked into the program after all (global scope)? Then libtet binds to libgmsh's copy
+    // if libgmsh comes first, which crashes: refuse with the reason.
+    if (void* global = dlsym(RTLD_DEFAULT, symbols.tetrahedralize)) {
+        const std::string tet = object_of(global);
+        void* shared = dlsym(RTLD_DEFAULT, symbols.shared_with_gmsh);
+        if (shared != nullptr && object_of(shared) != tet)
+            throw BackendError("TetGen: libtet is linked into this program (" + tet +
+                               ") after a library with its own TetGen (" + object_of(shared) +
+                               "), so TetGen would crash; do not link libtet, Strata loads it itself "
+                               "(hybrid/CMakeLists.txt)");
+    }
+    void* handle = nullptr;
+    std::string tried, loaded;
+    for (const char* name : names) {
+        handle = dlopen(name, RTLD_NOW | RTLD_LOCAL | RTLD_DEEPBIND);
+        if (handle != nullptr) {
+            loaded = name;
+            break;
+        }
+        const char* e = dlerror();
+        tried += std::string(tried.empty() ? "" : "; ") + (e != nullptr ? e : name);
+    }
+    if (handle == nullptr)
+        throw BackendError("TetGen's library could not be loaded (" + tried + "); install libtet1.5 (Debian/Ubuntu)");
+    // Never dlclose()d: TetGen stays loaded for the process.
+    Library lib;
+    lib.tetrahedralize = reinterpret_cast<TetrahedralizeFn>(dlsym(handle, symbols.tetrahedralize));
+    if (lib.tetrahedralize == nullptr)
+        throw BackendError("TetGen's library " + loaded + " has no " + symbols.tetrahedralize +
+                           " (tetrahedralize(char*, tetgenio*, ...)): not TetGen 1.5 built with TETLIBRARY; "
+                           "install Debian's libtet1.5");
+    lib.replaced_slots =
+        replace_got_slots(handle, symbols.terminate, reinterpret_cast<void*>(&throwing_terminatetetgen));
+    if (lib.replaced_slots == 0)
+        throw BackendError(std::string("TetGen: no call to ") + symbols.terminate +
+                           " (terminatetetgen) could be redirected in its library, so a TetGen failure would "
+                           "crash the process instead of being reported; Strata supports Debian's libtet1.5 on "
+                           "x86-64 and AArch64");
+    return lib;
+}
+
+void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background) {
+    std::lock_guard<std::mutex> lock(tetgen_mutex());
+    static const Library lib = load();
+    std::vector<char> buf(switches.begin(), switches.end());
+    buf.push_back('\0');
+    try {
+        lib.tetrahedralize(buf.data(), &in, &out, nullptr, background);
+    } catch (int code) {
+        throw BackendError(failure_message(code));
+    } catch (const std::bad_alloc&) {
+        throw BackendError(failure_message(1));
+    }
+}
+
+std::string failure_message(int code) {
+    const std::string c = " (TetGen code " + std::to_string(code) + ")";
+    switch (code) {
+        case 1:
+            return "TetGen ran out of memory" + c +
+                   ": the tetrahedral mesh is too large; coarsen it (larger growth or max_volume, a coarser "
+                   "farfield) or use a machine with more memory";
+        case 2:
+            return "TetGen failed internally" + c +
+                   ": usually a boundary with nearly degenerate or nearly touching triangles; check the input "
+                   "surface for needle or sliver triangles and the layer top for folds, and retry";
+        case 3:
+            return "TetGen: the boundary intersects itself" + c +
+                   ": the layer top or the farfield overlaps itself or the other; reduce the layer thickness "
+                   "or enlarge the farfield";
+        case 4:
+            return "TetGen: the boundary has a very small feature" + c +
+                   ": two boundary nodes, or a node and a triangle, nearly touch (relative to the bounding box); "
+                   "merge near-duplicate nodes, reduce the layer thickness where the layer top nearly touches "
+                   "itself, or enlarge the farfield less";
+        case 5:
+            return "TetGen: two boundary triangles are very close to each other" + c +
+                   ": the layer top nearly touches itself or the farfield (e.g. layers meeting in a narrow "
+                   "gap); reduce the layer thickness there";
+        case 10:
+            return "TetGen rejected its input" + c +
+                   ": a degenerate boundary triangle or a boundary that is not a closed surface; check the "
+                   "input surface (strata surface reports what it finds)";
+        default:
+            return "TetGen failed" + c;
+    }
+}
+
+}  // namespace strata::tetgen

@@ -1,0 +1,50 @@
+#pragma once
+/// \file
+/// Private to strata_hybrid: TetGen 1.5 (Debian's libtet) loaded at run time and called under
+/// one process-wide lock, its failures turned into BackendError. Why it is loaded and not
+/// linked, and how its crash on failure is avoided: tetgen_library.cpp.
+
+// TETLIBRARY: TetGen's library interface (hybrid/CMakeLists.txt does not link libtet, which
+// would put it on the link line; strata::tetgen gives the header only).
+#ifndef TETLIBRARY
+#define TETLIBRARY
+#endif
+#include <tetgen.h>
+
+#include <string>
+
+namespace strata::tetgen {
+
+/// The mangled names the loader looks up and patches; a parameter so that a test can ask for
+/// a symbol the library does not have.
+struct Symbols {
+    const char* tetrahedralize = "_Z14tetrahedralizePcP8tetgenioS1_S1_S1_";  ///< tetrahedralize(char*, tetgenio*, ...)
+    const char* terminate = "_Z15terminatetetgenP10tetgenmeshi";             ///< terminatetetgen(tetgenmesh*, int)
+    const char* shared_with_gmsh = "_ZN10tetgenmesh10inittablesEv";          ///< tetgenmesh::inittables()
+};
+
+using TetrahedralizeFn = void (*)(char*, tetgenio*, tetgenio*, tetgenio*, tetgenio*);
+
+/// libtet, loaded.
+struct Library {
+    TetrahedralizeFn tetrahedralize = nullptr;
+    int replaced_slots = 0;  ///< terminatetetgen GOT slots pointed at the throwing replacement (≥ 1)
+};
+
+/// Load libtet privately (RTLD_LOCAL | RTLD_DEEPBIND) and point its terminatetetgen at a
+/// replacement that throws. BackendError, saying what to do, when libtet cannot be loaded,
+/// lacks \p symbols.tetrahedralize, is linked into the program after libgmsh, or when no
+/// terminatetetgen slot could be patched (a TetGen failure would then crash the process, so
+/// TetGen is not used at all). Loading again returns the same library (dlopen counts).
+Library load(const Symbols& symbols = {});
+
+/// tetrahedralize(\p switches, in, out, nullptr, \p background) under the process-wide lock
+/// (TetGen is not reentrant: exactinit() sets process-wide predicate bounds), with the
+/// library loaded once per process. TetGen's failures are BackendError with its code
+/// explained (failure_message).
+void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background);
+
+/// TetGen's exit code (terminatetetgen in tetgen.h) as a message saying what to do.
+std::string failure_message(int code);
+
+}  // namespace strata::tetgen

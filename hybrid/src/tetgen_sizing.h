@@ -1,0 +1,67 @@
+#pragma once
+/// \file
+/// Private to strata_hybrid: what fill_with_tets asks of TetGen (its switches) and the size
+/// field h(x) = min(h_wall + growth · d(x), h_far) it hands over as TetGen -m sizes, sampled on
+/// a background mesh. The reasoning and the calibration: tetgen_sizing.cpp.
+
+#include "tetgen_library.h"
+
+#include <strata/core/surface_mesh.h>
+#include <strata/hybrid/tetgen_fill.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace strata::tetgen {
+
+/// TetGen's -m size (a circumradius bound) per target edge length (calibration in the .cpp).
+inline constexpr double kRadiusPerEdge = 0.75;
+/// Radius-edge bound of the background mesh's quality-only refinement.
+inline constexpr double kBackgroundRatio = 2.0;
+
+/// Switches for one run, parsed by TetGen itself (so its consistency rules apply):
+///  p Y z Q [q<ratio>[/<angle>]] [a<vol>] [m] for the fill (\p sizing adds m), or
+///  p Y z Q c q<kBackgroundRatio> for the background mesh (\p background).
+std::string switches(const TetFillParams& p, bool sizing, bool background);
+
+/// h(x) = min(h_wall(nearest wall node) + growth·|x − that node|, h_far), the wall being the
+/// boundary faces whose patch is not Farfield. Nearest-node queries on a nanoflann k-d tree;
+/// of equally near nodes the lowest-numbered one counts, so h is a function of the input alone.
+class SizeField {
+public:
+    /// \p max_volume > 0 also caps h at the edge of the regular tet of that volume: TetGen's
+    /// -m sizes are spacings too (a point closer to a vertex than its size is rejected), so
+    /// without the cap -a could not be met where h is larger.
+    SizeField(const SurfaceMesh& boundary, double growth, double max_volume);
+    ~SizeField();
+    SizeField(const SizeField&) = delete;
+    SizeField& operator=(const SizeField&) = delete;
+
+    /// Target edge length at boundary node \p i: its own mean edge length (capped by max_volume).
+    double boundary_size(Index i) const;
+
+    /// Target edge length at a point off the boundary.
+    double operator()(const Vec3& x) const;
+
+private:
+    struct Tree;
+    double growth_;
+    double cap_ = 0.0;
+    double volume_edge_;
+    std::vector<double> node_size_;
+    std::vector<Vec3> wall_points_;
+    std::vector<double> wall_size_;
+    std::unique_ptr<Tree> tree_;
+};
+
+/// TetGen -m sizes on \p io's points (kRadiusPerEdge × h): the first \p num_boundary (the
+/// boundary's own nodes) their own size, the others h(x).
+void set_sizes(tetgenio& io, Index num_boundary, const SizeField& h);
+
+/// The boundary of the background mesh: \p b with its farfield 1 % larger about the
+/// farfield's centroid (unchanged when the farfield shares a node with another patch). Why:
+/// tetgen_sizing.cpp.
+SurfaceMesh background_boundary(const SurfaceMesh& b);
+
+}  // namespace strata::tetgen
