@@ -26,90 +26,93 @@
 // of about 1.33 r (1.63 r for a regular tet), so 0.75 h gives a mean edge within ~5% of h up
 // to the farfield's influence (checked with growth 0.1-0.3 on the cube in a box of
 // tests/hybrid/test_tetgen_fill.cpp).
+//
+// Nearest wall node: nanoflann's k-d tree (Debian's libnanoflann-dev, header-only), with the
+// distance computed as Eigen's squaredNorm of the difference. Of equally near nodes (exact
+// ties are common on symmetric inputs: 38 of the sphere case's queries) the one of the
+// smallest size counts, then the lowest-numbered: h is a function of the geometry, never of
+// the tree's layout. (The hand-written tree this replaced took whichever tie its traversal
+// met first.)
 
 #include "tetgen_sizing.h"
 
 #include <strata/core/face_geometry.h>
 #include <strata/core/format.h>
 
+#include <nanoflann.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <numeric>
 #include <vector>
 
 namespace strata::tetgen {
 namespace {
 
-class NearestPoint {
-public:
-    explicit NearestPoint(const std::vector<Vec3>& points) : p_(points), order_(points.size()), axis_(points.size()) {
-        std::iota(order_.begin(), order_.end(), Index{0});
-        build(0, static_cast<Index>(order_.size()));
+/// The wall points as nanoflann's dataset.
+struct PointCloud {
+    const std::vector<Vec3>& points;
+    std::size_t kdtree_get_point_count() const { return points.size(); }
+    double kdtree_get_pt(std::size_t i, std::size_t axis) const { return points[i][static_cast<int>(axis)]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box& /*box*/) const {
+        return false;  // let nanoflann compute it
     }
+};
 
-    /// Index into the points given to the constructor (kNone if there were none).
-    Index nearest(const Vec3& q) const {
-        Index best = kNone;
-        double best_d2 = std::numeric_limits<double>::infinity();
-        search(q, 0, static_cast<Index>(order_.size()), best, best_d2);
-        return best;
+/// Squared Euclidean distance as Eigen computes it for Vec3 (the same rounding wherever the
+/// point is found); nanoflann's metric interface.
+struct SquaredDistance {
+    using ElementType = double;
+    using DistanceType = double;
+    const PointCloud& cloud;
+    explicit SquaredDistance(const PointCloud& c) : cloud(c) {}
+    double evalMetric(const double* a, std::size_t b, std::size_t /*dim*/) const {
+        return (Vec3(a[0], a[1], a[2]) - cloud.points[b]).squaredNorm();
     }
+    double accum_dist(double a, double b, std::size_t /*axis*/) const { return (a - b) * (a - b); }
+};
+
+/// nanoflann result set keeping the nearest point; of equally near ones the one of the
+/// smallest \p size, then the lowest index. worstDist is just above the best distance so that
+/// equally near points are still offered.
+class NearestSmallest {
+public:
+    explicit NearestSmallest(const std::vector<double>& size) : size_(size) {}
+    bool full() const { return true; }
+    bool addPoint(double d2, std::size_t i) {
+        const bool tie = d2 == best_ && index_ < size_.size();
+        const bool better = d2 < best_ || (tie && (size_[i] < size_[index_] || (size_[i] == size_[index_] && i < index_)));
+        if (better) best_ = d2, index_ = i;
+        return true;
+    }
+    double worstDist() const { return std::nextafter(best_, std::numeric_limits<double>::infinity()); }
+    std::size_t index() const { return index_; }
 
 private:
-    static constexpr Index kLeaf = 8;
-
-    void build(Index lo, Index hi) {
-        if (hi - lo <= kLeaf) return;
-        Vec3 mn = Vec3::Constant(std::numeric_limits<double>::infinity()), mx = -mn;
-        for (Index i = lo; i < hi; ++i) {
-            mn = mn.cwiseMin(p_[order_[i]]);
-            mx = mx.cwiseMax(p_[order_[i]]);
-        }
-        int axis = 0;
-        (mx - mn).maxCoeff(&axis);
-        const Index mid = lo + (hi - lo) / 2;
-        std::nth_element(order_.begin() + lo, order_.begin() + mid, order_.begin() + hi,
-                         [&](Index a, Index b) { return p_[a][axis] < p_[b][axis]; });
-        axis_[mid] = static_cast<char>(axis);
-        build(lo, mid);
-        build(mid + 1, hi);
-    }
-
-    void search(const Vec3& q, Index lo, Index hi, Index& best, double& best_d2) const {
-        if (hi - lo <= kLeaf) {
-            for (Index i = lo; i < hi; ++i) {
-                const double d2 = (p_[order_[i]] - q).squaredNorm();
-                if (d2 < best_d2) best_d2 = d2, best = order_[i];
-            }
-            return;
-        }
-        const Index mid = lo + (hi - lo) / 2;
-        const Vec3& m = p_[order_[mid]];
-        const double d2 = (m - q).squaredNorm();
-        if (d2 < best_d2) best_d2 = d2, best = order_[mid];
-        const double diff = q[axis_[mid]] - m[axis_[mid]];
-        if (diff < 0) {
-            search(q, lo, mid, best, best_d2);
-            if (diff * diff < best_d2) search(q, mid + 1, hi, best, best_d2);
-        } else {
-            search(q, mid + 1, hi, best, best_d2);
-            if (diff * diff < best_d2) search(q, lo, mid, best, best_d2);
-        }
-    }
-
-    const std::vector<Vec3>& p_;
-    std::vector<Index> order_;
-    std::vector<char> axis_;
+    const std::vector<double>& size_;
+    double best_ = std::numeric_limits<double>::infinity();
+    std::size_t index_ = std::numeric_limits<std::size_t>::max();
 };
 
 }  // namespace
 
 struct SizeField::Tree {
-    NearestPoint index;
-    explicit Tree(const std::vector<Vec3>& points) : index(points) {}
-    std::size_t nearest(const Vec3& x) const { return static_cast<std::size_t>(index.nearest(x)); }
+    using KdTree = nanoflann::KDTreeSingleIndexAdaptor<SquaredDistance, PointCloud, 3, std::size_t>;
+    PointCloud cloud;
+    const std::vector<double>& size;
+    KdTree index;
+    Tree(const std::vector<Vec3>& points, const std::vector<double>& sizes)
+        : cloud{points}, size(sizes), index(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
+        index.buildIndex();
+    }
+    std::size_t nearest(const Vec3& x) const {
+        NearestSmallest result(size);
+        const double q[3] = {x[0], x[1], x[2]};
+        index.findNeighbors(result, q, nanoflann::SearchParams());
+        return result.index();
+    }
 };
 
 std::string switches(const TetFillParams& p, bool sizing, bool background) {
@@ -165,7 +168,7 @@ SizeField::SizeField(const SurfaceMesh& b, double growth, double max_volume)
     cap_ = std::min(cap_, volume_edge_);
     for (std::size_t i = 0; i < b.points.size(); ++i)
         if (wall[i]) wall_points_.push_back(b.points[i]), wall_size_.push_back(node_size_[i]);
-    if (!wall_points_.empty()) tree_ = std::make_unique<Tree>(wall_points_);
+    if (!wall_points_.empty()) tree_ = std::make_unique<Tree>(wall_points_, wall_size_);
 }
 
 SizeField::~SizeField() = default;

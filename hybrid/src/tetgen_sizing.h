@@ -27,7 +27,8 @@ std::string switches(const TetFillParams& p, bool sizing, bool background);
 
 /// h(x) = min(h_wall(nearest wall node) + growth·|x − that node|, h_far), the wall being the
 /// boundary faces whose patch is not Farfield. Nearest-node queries on a nanoflann k-d tree;
-/// of equally near nodes the lowest-numbered one counts, so h is a function of the input alone.
+/// of equally near nodes the one of the smallest size counts, so h is a function of the
+/// geometry alone.
 class SizeField {
 public:
     /// \p max_volume > 0 also caps h at the edge of the regular tet of that volume: TetGen's
