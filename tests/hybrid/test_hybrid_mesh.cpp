@@ -7,6 +7,7 @@
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
+#include <strata/io/write_volume.h>
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 #include <fstream>
 #include <numbers>
 
@@ -170,6 +176,56 @@ TEST(HybridMesh, OpenSurfaceThatIsNotAHalfModelIsRefusedClearly) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("do not lie in one plane"), std::string::npos) << e.what();
     }
+}
+
+/// Cancels once \p stop_stage has reported a fraction of at least \p stop_at; records every
+/// report, and the reports that came after the cancellation.
+class StopAt : public Progress {
+public:
+    StopAt(std::string stage, double at) : stage_(std::move(stage)), at_(at) {}
+    void report(std::string_view stage, double fraction) override {
+        if (stop_) ++after_;
+        stages.emplace_back(stage);
+        if (stage == stage_ && fraction >= at_) stop_ = true;
+    }
+    bool cancelled() const override { return stop_; }
+    std::vector<std::string> stages;
+    int reports_after_cancelling() const { return after_; }
+
+private:
+    std::string stage_;
+    double at_;
+    bool stop_ = false;
+    int after_ = 0;
+};
+
+TEST(Cancellation, EveryStageStopsAtItsNextCheckAndNothingIsWritten) {
+    // The whole pipeline (surface, layers on quads so that pyramids are built, tetrahedra,
+    // validation, writing Cobalt60 and MSH), cancelled in each stage at its start and halfway:
+    // Cancelled comes before any later stage reports, and no file (not even a temporary one).
+    const std::string input = example_data("sphere_pyhyp_quads.msh");
+    HybridParams p;
+    p.layers.distribution.layers = 3;
+    p.layers.distribution.first_height = 1e-3;
+    for (const std::string stage : {"surface", "layers", "pyramids", "tetrahedra", "validation", "writing"})
+        for (const double at : {0.0, 0.5})
+            for (const char* out : {"mesh.cgr", "mesh.msh"}) {
+                if (stage != "writing" && out == std::string("mesh.msh")) continue;  // the same up to writing
+                test::ScratchDir dir("cancel_" + stage);
+                StopAt progress(stage, at);
+                bool cancelled = false;
+                try {
+                    const SurfaceMesh s = prepare_surface(input, {}, nullptr, &progress);
+                    write_volume(build_hybrid_mesh(s, p, &progress), dir.file(out), 4.1, &progress);
+                } catch (const Cancelled&) {
+                    cancelled = true;
+                }
+                EXPECT_TRUE(cancelled) << stage << " " << at << " " << out;
+                EXPECT_EQ(progress.reports_after_cancelling(), 0) << stage << " " << at;
+                ASSERT_FALSE(progress.stages.empty());
+                EXPECT_EQ(progress.stages.back(), stage) << at;
+                EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << stage << " " << at << " " << out;
+            }
 }
 
 }  // namespace
