@@ -53,155 +53,178 @@ double winding_number(const SurfaceMesh& mesh, const Index* faces, const Index* 
     return sum / (4.0 * std::numbers::pi);
 }
 
-}  // namespace
-
-SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report) {
-    const Index nf = mesh.num_faces();
-    const EdgeTable edges = edge_table(mesh);
+/// Face → its edges (CSR), from the edge → faces table.
+Csr face_edges_of(const EdgeTable& edges, Index nf) {
     const Index ne = edges.faces.rows();
-
-    // Face → its edges (CSR), from the edge → faces table.
     Csr face_edges;
     face_edges.offsets.assign(static_cast<std::size_t>(nf) + 1, 0);
     for (Index f : edges.faces.values) ++face_edges.offsets[f + 1];
     for (Index f = 0; f < nf; ++f) face_edges.offsets[f + 1] += face_edges.offsets[f];
     face_edges.values.resize(edges.faces.values.size());
-    {
-        std::vector<Index> cursor(face_edges.offsets.begin(), face_edges.offsets.end() - 1);
-        for (Index e = 0; e < ne; ++e)
-            for (const Index* f = edges.faces.row_begin(e); f != edges.faces.row_end(e); ++f)
-                face_edges.values[cursor[*f]++] = e;
+    std::vector<Index> cursor(face_edges.offsets.begin(), face_edges.offsets.end() - 1);
+    for (Index e = 0; e < ne; ++e)
+        for (const Index* f = edges.faces.row_begin(e); f != edges.faces.row_end(e); ++f)
+            face_edges.values[cursor[*f]++] = e;
+    return face_edges;
+}
+
+/// The connected components of a surface with one consistent orientation each.
+struct Components {
+    Index count = 0;
+    std::vector<Index> of_face;  ///< face → its component
+    std::vector<char> flip;      ///< face → reverse it (the orientation chosen so far)
+    Csr faces;                   ///< component → its faces in BFS order
+    std::vector<char> closed;    ///< component → no boundary edge
+
+    void invert(Index c) {
+        for (const Index* f = faces.row_begin(c); f != faces.row_end(c); ++f) flip[*f] ^= 1;
     }
+};
 
-    auto edge_text = [&](Index e) {
-        const Index a = edges.nodes[e][0], b = edges.nodes[e][1];
-        return "edge between node " + std::to_string(a) + " " + format_point(mesh.points[a], 9) + " and node " +
-               std::to_string(b) + " " + format_point(mesh.points[b], 9);
-    };
+std::string edge_text(const SurfaceMesh& mesh, const EdgeTable& edges, Index e) {
+    const Index a = edges.nodes[e][0], b = edges.nodes[e][1];
+    return "edge between node " + std::to_string(a) + " " + format_point(mesh.points[a], 9) + " and node " +
+           std::to_string(b) + " " + format_point(mesh.points[b], 9);
+}
 
-    // Breadth-first from the lowest face of each component. flip[g] is chosen so that g
-    // traverses every shared edge opposite to its already placed neighbour.
-    std::vector<Index> comp(static_cast<std::size_t>(nf), kNone);
-    std::vector<char> flip(static_cast<std::size_t>(nf), 0);
-    Csr comp_faces;  // component → its faces in BFS order
-    comp_faces.values.reserve(static_cast<std::size_t>(nf));
-    Index ncomp = 0;
+/// Breadth-first from the lowest face of each component. flip[g] is chosen so that g
+/// traverses every shared edge opposite to its already placed neighbour. TopologyError on a
+/// non-manifold edge or a non-orientable component.
+Components consistent_orientation(const SurfaceMesh& mesh, const EdgeTable& edges) {
+    const Index nf = mesh.num_faces();
+    const Csr face_edges = face_edges_of(edges, nf);
+    Components c;
+    c.of_face.assign(static_cast<std::size_t>(nf), kNone);
+    c.flip.assign(static_cast<std::size_t>(nf), 0);
+    c.faces.values.reserve(static_cast<std::size_t>(nf));
     for (Index s = 0; s < nf; ++s) {
-        if (comp[s] != kNone) continue;
-        const std::size_t first = comp_faces.values.size();
-        comp[s] = ncomp;
-        comp_faces.values.push_back(s);
-        for (std::size_t q = first; q < comp_faces.values.size(); ++q) {
-            const Index f = comp_faces.values[q];
+        if (c.of_face[s] != kNone) continue;
+        const std::size_t first = c.faces.values.size();
+        c.of_face[s] = c.count;
+        c.faces.values.push_back(s);
+        for (std::size_t q = first; q < c.faces.values.size(); ++q) {
+            const Index f = c.faces.values[q];
             for (const Index* ep = face_edges.row_begin(f); ep != face_edges.row_end(f); ++ep) {
                 const Index e = *ep;
                 const Index k = edges.faces.row_size(e);
                 if (k == 1) continue;
                 if (k > 2)
-                    throw TopologyError("orient_surface: non-manifold " + edge_text(e) + " is shared by " +
+                    throw TopologyError("orient_surface: non-manifold " + edge_text(mesh, edges, e) + " is shared by " +
                                         std::to_string(k) + " faces; run check_surface first and fix the surface");
                 const Index* fs = edges.faces.row_begin(e);
                 const Index g = fs[0] == f ? fs[1] : fs[0];
                 const Index lo = edges.nodes[e][0], hi = edges.nodes[e][1];
                 const bool same_direction = direction(mesh, f, lo, hi) == direction(mesh, g, lo, hi);
-                const char want = static_cast<char>(flip[f] ^ (same_direction ? 1 : 0));
-                if (comp[g] == kNone) {
-                    comp[g] = ncomp;
-                    flip[g] = want;
-                    comp_faces.values.push_back(g);
-                } else if (flip[g] != want) {
-                    throw TopologyError(
-                        "orient_surface: surface component " + std::to_string(ncomp) + " (containing face " +
-                        std::to_string(s) + ") is not orientable (like a Moebius strip): faces " + std::to_string(f) +
-                        " and " + std::to_string(g) + " cannot agree on the direction of the " + edge_text(e) +
-                        "; it has no consistent inside and outside, fix the "
-                        "surface in the CAD tool");
+                const char want = static_cast<char>(c.flip[f] ^ (same_direction ? 1 : 0));
+                if (c.of_face[g] == kNone) {
+                    c.of_face[g] = c.count;
+                    c.flip[g] = want;
+                    c.faces.values.push_back(g);
+                } else if (c.flip[g] != want) {
+                    throw TopologyError("orient_surface: surface component " + std::to_string(c.count) +
+                                        " (containing face " + std::to_string(s) +
+                                        ") is not orientable (like a Moebius strip): faces " + std::to_string(f) +
+                                        " and " + std::to_string(g) + " cannot agree on the direction of the " +
+                                        edge_text(mesh, edges, e) +
+                                        "; it has no consistent inside and outside, fix the "
+                                        "surface in the CAD tool");
                 }
             }
         }
-        comp_faces.offsets.push_back(static_cast<Index>(comp_faces.values.size()));
-        ++ncomp;
+        c.faces.offsets.push_back(static_cast<Index>(c.faces.values.size()));
+        ++c.count;
     }
+    c.closed.assign(static_cast<std::size_t>(c.count), 1);
+    for (Index e = 0; e < edges.faces.rows(); ++e)
+        if (edges.faces.row_size(e) == 1) c.closed[c.of_face[*edges.faces.row_begin(e)]] = 0;
+    return c;
+}
 
-    std::vector<char> closed(static_cast<std::size_t>(ncomp), 1);
-    for (Index e = 0; e < ne; ++e)
-        if (edges.faces.row_size(e) == 1) closed[comp[*edges.faces.row_begin(e)]] = 0;
-
-    auto invert = [&](Index c) {
-        for (const Index* f = comp_faces.row_begin(c); f != comp_faces.row_end(c); ++f) flip[*f] ^= 1;
-    };
-
-    // Open components: the BFS root's orientation is arbitrary, the majority is what the user
-    // meant (an already consistent surface stays untouched). A tie keeps the root's.
-    for (Index c = 0; c < ncomp; ++c) {
-        if (closed[c]) continue;
-        Index flipped = 0;
-        for (const Index* f = comp_faces.row_begin(c); f != comp_faces.row_end(c); ++f) flipped += flip[*f];
-        if (2 * flipped > comp_faces.row_size(c)) invert(c);
-    }
-
-    // Closed components: which ones enclose the flow domain ("outer")?
-    std::vector<char> outer(static_cast<std::size_t>(ncomp), 0);
-    for (Index f = 0; f < nf; ++f) {
+/// Closed components that enclose the flow domain: those with a farfield face, and those that
+/// contain another component (its probe point, the centroid of its lowest face: a component
+/// inside a closed surface lies wholly inside it, as components do not intersect).
+std::vector<char> outer_components(const SurfaceMesh& mesh, const Components& comps) {
+    std::vector<char> outer(static_cast<std::size_t>(comps.count), 0);
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
         const Index p = mesh.face_patch[f];
         if (p >= 0 && p < static_cast<Index>(mesh.patches.size()) && mesh.patches[p].kind == PatchKind::Farfield)
-            outer[comp[f]] = 1;
+            outer[comps.of_face[f]] = 1;
     }
-    // One probe point per component (centroid of its lowest face): a component inside a
-    // closed surface lies wholly inside it, as components do not intersect.
-    std::vector<Vec3> probe(static_cast<std::size_t>(ncomp));
-    for (Index c = 0; c < ncomp; ++c) probe[c] = face_centroid(mesh, mesh.points, *comp_faces.row_begin(c));
-    for (Index c = 0; c < ncomp; ++c) {
-        if (!closed[c] || outer[c]) continue;
+    std::vector<Vec3> probe(static_cast<std::size_t>(comps.count));
+    for (Index c = 0; c < comps.count; ++c) probe[c] = face_centroid(mesh, mesh.points, *comps.faces.row_begin(c));
+    for (Index c = 0; c < comps.count; ++c) {
+        if (!comps.closed[c] || outer[c]) continue;
         // Bounding box first: most pairs are rejected without touching the faces.
         BoundingBox box;
-        box.min = box.max = mesh.points[mesh.face_node(*comp_faces.row_begin(c), 0)];
-        for (const Index* f = comp_faces.row_begin(c); f != comp_faces.row_end(c); ++f)
+        box.min = box.max = mesh.points[mesh.face_node(*comps.faces.row_begin(c), 0)];
+        for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f)
             for (const Index* v = mesh.face_begin(*f); v != mesh.face_end(*f); ++v) {
                 box.min = box.min.cwiseMin(mesh.points[*v]);
                 box.max = box.max.cwiseMax(mesh.points[*v]);
             }
-        for (Index d = 0; d < ncomp && !outer[c]; ++d) {
+        for (Index d = 0; d < comps.count && !outer[c]; ++d) {
             if (d == c) continue;
             const Vec3& p = probe[d];
             if ((p.array() < box.min.array()).any() || (p.array() > box.max.array()).any()) continue;
-            if (std::abs(winding_number(mesh, comp_faces.row_begin(c), comp_faces.row_end(c), flip, p)) > 0.5)
+            if (std::abs(winding_number(mesh, comps.faces.row_begin(c), comps.faces.row_end(c), comps.flip, p)) > 0.5)
                 outer[c] = 1;
         }
     }
+    return outer;
+}
 
-    // Signed enclosed volume (divergence theorem) with the BFS orientation. Measured from the
-    // component's centroid so that a body far from the origin does not lose the volume in
-    // cancellation.
+/// Signed volume closed component \p c encloses with its current orientation (divergence
+/// theorem), measured from its centroid so that a body far from the origin does not lose the
+/// volume in cancellation.
+double enclosed_volume(const SurfaceMesh& mesh, const Components& comps, Index c) {
+    Vec3 ref = Vec3::Zero();
+    for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f)
+        ref += face_centroid(mesh, mesh.points, *f);
+    ref /= static_cast<double>(comps.faces.row_size(c));
+    double volume = 0.0;
+    for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f) {
+        const double v = (face_centroid(mesh, mesh.points, *f) - ref).dot(face_area_vector(mesh, *f)) / 3.0;
+        volume += comps.flip[*f] ? -v : v;
+    }
+    return volume;
+}
+
+}  // namespace
+
+SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report) {
+    const EdgeTable edges = edge_table(mesh);
+    Components comps = consistent_orientation(mesh, edges);
+
+    // Open components: the BFS root's orientation is arbitrary, the majority is what the user
+    // meant (an already consistent surface stays untouched). A tie keeps the root's.
+    for (Index c = 0; c < comps.count; ++c) {
+        if (comps.closed[c]) continue;
+        Index flipped = 0;
+        for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f) flipped += comps.flip[*f];
+        if (2 * flipped > comps.faces.row_size(c)) comps.invert(c);
+    }
+
+    // Closed components: outer surfaces point into the domain they enclose (negative volume),
+    // bodies point outward into the flow (positive volume).
+    const std::vector<char> outer = outer_components(mesh, comps);
     Index num_closed = 0;
-    for (Index c = 0; c < ncomp; ++c) {
-        if (!closed[c]) continue;
+    for (Index c = 0; c < comps.count; ++c) {
+        if (!comps.closed[c]) continue;
         ++num_closed;
-        Vec3 ref = Vec3::Zero();
-        for (const Index* f = comp_faces.row_begin(c); f != comp_faces.row_end(c); ++f)
-            ref += face_centroid(mesh, mesh.points, *f);
-        ref /= static_cast<double>(comp_faces.row_size(c));
-        double volume = 0.0;
-        for (const Index* f = comp_faces.row_begin(c); f != comp_faces.row_end(c); ++f) {
-            const double v = (face_centroid(mesh, mesh.points, *f) - ref).dot(face_area_vector(mesh, *f)) / 3.0;
-            volume += flip[*f] ? -v : v;
-        }
-        // Outer surfaces point into the domain they enclose (negative volume), bodies point
-        // outward into the flow (positive volume).
-        if (volume != 0.0 && (volume < 0.0) != static_cast<bool>(outer[c])) invert(c);
+        const double volume = enclosed_volume(mesh, comps, c);
+        if (volume != 0.0 && (volume < 0.0) != static_cast<bool>(outer[c])) comps.invert(c);
     }
 
     // Reverse keeping the first node (a,b,c,d → a,d,c,b): node set and first node stay.
     SurfaceMesh out = mesh;
     Index flipped = 0;
-    for (Index f = 0; f < nf; ++f) {
-        if (!flip[f]) continue;
-        std::reverse(out.face_nodes.begin() + out.face_offsets[f] + 1,
-                     out.face_nodes.begin() + out.face_offsets[f + 1]);
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        if (!comps.flip[f]) continue;
+        std::reverse(out.face_nodes.begin() + out.face_offsets[f] + 1, out.face_nodes.begin() + out.face_offsets[f + 1]);
         ++flipped;
     }
     if (report) {
-        report->components = ncomp;
+        report->components = comps.count;
         report->flipped_faces = flipped;
         report->closed_components = num_closed;
     }
