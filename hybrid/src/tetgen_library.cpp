@@ -78,38 +78,22 @@ int replace_got_slots(void* handle, const char* symbol, void* replacement) {
     const ElfW(Addr) base = map->l_addr;
     // glibc has relocated these d_ptr values in place on x86-64 and AArch64; stay safe if not.
     auto at = [base](ElfW(Addr) p) { return p < base ? p + base : p; };
-    const ElfW(Sym)* symtab = nullptr;
-    const char* strtab = nullptr;
-    std::array<const ElfW(Rela)*, 2> rela{nullptr, nullptr};
-    std::array<std::size_t, 2> rela_bytes{0, 0};
-    bool plt_is_rela = true;
-    for (const ElfW(Dyn)* d = map->l_ld; d->d_tag != DT_NULL; ++d) {
-        switch (d->d_tag) {
-            case DT_SYMTAB:
-                symtab = reinterpret_cast<const ElfW(Sym)*>(at(d->d_un.d_ptr));
-                break;
-            case DT_STRTAB:
-                strtab = reinterpret_cast<const char*>(at(d->d_un.d_ptr));
-                break;
-            case DT_JMPREL:
-                rela[0] = reinterpret_cast<const ElfW(Rela)*>(at(d->d_un.d_ptr));
-                break;
-            case DT_PLTRELSZ:
-                rela_bytes[0] = d->d_un.d_val;
-                break;
-            case DT_PLTREL:
-                plt_is_rela = d->d_un.d_val == DT_RELA;
-                break;
-            case DT_RELA:
-                rela[1] = reinterpret_cast<const ElfW(Rela)*>(at(d->d_un.d_ptr));
-                break;
-            case DT_RELASZ:
-                rela_bytes[1] = d->d_un.d_val;
-                break;
-            default:
-                break;
-        }
-    }
+    // The dynamic section's entries (0 where absent), pointers relocated.
+    auto entry = [map](ElfW(Sxword) tag) -> ElfW(Xword) {
+        for (const ElfW(Dyn)* d = map->l_ld; d->d_tag != DT_NULL; ++d)
+            if (d->d_tag == tag) return d->d_un.d_val;
+        return 0;
+    };
+    auto pointer = [&](ElfW(Sxword) tag) -> ElfW(Addr) {
+        const ElfW(Addr) p = entry(tag);
+        return p == 0 ? 0 : at(p);
+    };
+    const auto* symtab = reinterpret_cast<const ElfW(Sym)*>(pointer(DT_SYMTAB));
+    const auto* strtab = reinterpret_cast<const char*>(pointer(DT_STRTAB));
+    const std::array<const ElfW(Rela)*, 2> rela{reinterpret_cast<const ElfW(Rela)*>(pointer(DT_JMPREL)),
+                                                reinterpret_cast<const ElfW(Rela)*>(pointer(DT_RELA))};
+    const std::array<std::size_t, 2> rela_bytes{entry(DT_PLTRELSZ), entry(DT_RELASZ)};
+    const bool plt_is_rela = entry(DT_PLTREL) == 0 || entry(DT_PLTREL) == DT_RELA;
     if (symtab == nullptr || strtab == nullptr || !plt_is_rela) return 0;
 
     // The part of PT_GNU_RELRO that the loader made read-only (whole pages only).

@@ -366,42 +366,36 @@ TEST(Pyramids, GapTooNarrowForTwoButNotForOneShortensBoth) {
     EXPECT_EQ(count_crossings(top, l), 0);
 }
 
+/// The apex of the pyramid on the unit quad (0,0,0)-(1,1,0) next to one wall triangle
+/// (\p tri, numbering the quad's corners 0-3 and \p extra 4 on), default parameters.
+Vec3 apex_over_unit_quad(const std::vector<Vec3>& extra, std::initializer_list<Index> tri) {
+    SurfaceMesh top;
+    top.patches.push_back({"wall", PatchKind::Wall});
+    top.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    top.points.insert(top.points.end(), extra.begin(), extra.end());
+    top.add_face({0, 1, 2, 3}, 0);
+    top.add_face(tri, 0);
+    return build_pyramids(top, {}).apexes[0];
+}
+
 TEST(Pyramids, FoldAcrossConcaveEdgeShortens) {
     // A quad and a wall triangle across its edge at 90°: at 0.5 the side triangle would lie in
     // the bisector plane (apex 45° up, limit 0.9 × 45°); at 0.25 it is clear. The apex is still
     // 0.5 from the wall, so the clearance rules alone would accept 0.5.
-    SurfaceMesh top;
-    top.patches.push_back({"wall", PatchKind::Wall});
-    top.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0, 1}};
-    top.add_face({0, 1, 2, 3}, 0);
-    top.add_face({1, 0, 4}, 0);
-    const PyramidLayer l = build_pyramids(top, {});
-    EXPECT_NEAR((l.apexes[0] - Vec3(0.5, 0.5, 0.25)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((apex_over_unit_quad({{0.5, 0, 1}}, {1, 0, 4}) - Vec3(0.5, 0.5, 0.25)).norm(), 0.0, 1e-15);
 }
 
 TEST(Pyramids, ApexKeepsClearOfAFaceAbove) {
     // A triangle 0.6 above the quad, facing down: at 0.5 the apex would be 0.1 from it (less
     // than half the height, though nothing crosses); at 0.25 it is 0.35 away.
-    SurfaceMesh top;
-    top.patches.push_back({"wall", PatchKind::Wall});
-    top.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-2, -2, 0.6}, {0.5, 3, 0.6}, {3, -2, 0.6}};
-    top.add_face({0, 1, 2, 3}, 0);
-    top.add_face({4, 5, 6}, 0);
-    const PyramidLayer l = build_pyramids(top, {});
-    EXPECT_NEAR((l.apexes[0] - Vec3(0.5, 0.5, 0.25)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((apex_over_unit_quad({{-2, -2, 0.6}, {0.5, 3, 0.6}, {3, -2, 0.6}}, {4, 5, 6}) - Vec3(0.5, 0.5, 0.25)).norm(), 0.0, 1e-15);
 }
 
 TEST(Pyramids, SideCrossingAFaceShortens) {
     // A large vertical triangle at x = 0.9 reaching down to z = 0.05 over the quad cuts the
     // pyramid's side while staying 0.4 from its apex: shortened until the side passes under it
     // (height 0.25 touches it at z = 0.05, 0.125 clears it).
-    SurfaceMesh top;
-    top.patches.push_back({"wall", PatchKind::Wall});
-    top.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.9, -1, 0.05}, {0.9, 2, 0.05}, {0.9, 0.5, 3}};
-    top.add_face({0, 1, 2, 3}, 0);
-    top.add_face({4, 5, 6}, 0);
-    const PyramidLayer l = build_pyramids(top, {});
-    EXPECT_NEAR((l.apexes[0] - Vec3(0.5, 0.5, 0.125)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((apex_over_unit_quad({{0.9, -1, 0.05}, {0.9, 2, 0.05}, {0.9, 0.5, 3}}, {4, 5, 6}) - Vec3(0.5, 0.5, 0.125)).norm(), 0.0, 1e-15);
 }
 
 TEST(Pyramids, ImpossibleGapThrowsNamingTheQuad) {
