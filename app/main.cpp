@@ -150,9 +150,10 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
                    "refine by curvature: elements per 2*pi of radius (CAD only; 0: off)")
         ->capture_default_str();
     auto* q = cmd.add_flag("--quads", c.quads, "recombine the surface mesh into quadrilaterals (CAD only)");
-    auto* m = cmd.add_option("--mixed", c.mixed, "quadrilaterals on these CAD surface tags, triangles elsewhere (CAD only)")
-                  ->delimiter(',')
-                  ->expected(1, -1);
+    auto* m =
+        cmd.add_option("--mixed", c.mixed, "quadrilaterals on these CAD surface tags, triangles elsewhere (CAD only)")
+            ->delimiter(',')
+            ->expected(1, -1);
     q->excludes(m);
     cmd.add_flag("--fuse", cad.fuse, "fuse all solids into one body before meshing (CAD only)");
     cmd.add_option("--patch", c.patches,
@@ -246,7 +247,8 @@ struct MeshOptions {
 
 void add_mesh_options(CLI::App& cmd, MeshOptions& o) {
     strata::HybridParams& p = o.params;
-    cmd.add_option("--farfield", o.farfield, "generated outer boundary when the input has no farfield patch: sphere or box")
+    cmd.add_option("--farfield", o.farfield,
+                   "generated outer boundary when the input has no farfield patch: sphere or box")
         ->capture_default_str();
     cmd.add_option("--farfield-size", p.farfield.size, "farfield extent as a multiple of the body size")
         ->capture_default_str();
@@ -452,8 +454,7 @@ int main(int argc, char** argv) {
     CLI::App* meshcmd = app.add_subcommand("mesh",
                                            "the whole pipeline: surface, boundary layers, pyramids, tetrahedra; "
                                            "write one validated hybrid mesh");
-    add_common_options(*meshcmd, mc,
-                       "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .msh, .vtk, .su2, ...");
+    add_common_options(*meshcmd, mc, "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .msh, .vtk, .su2, ...");
     add_layer_options(*meshcmd, mlo);
     add_mesh_options(*meshcmd, mo);
 

@@ -109,8 +109,8 @@ int main() {
     constexpr int kRepeats = 3;
     constexpr int kLayers = 10;
     try {
-        std::printf("bench_layers: %d layers x 10 sweeps, best of %d runs, %u hardware threads\n\n", kLayers,
-                    kRepeats, std::thread::hardware_concurrency());
+        std::printf("bench_layers: %d layers x 10 sweeps, best of %d runs, %u hardware threads\n\n", kLayers, kRepeats,
+                    std::thread::hardware_concurrency());
         std::printf("%-26s %8s %8s %12s %14s\n", "surface", "faces", "threads", "best [s]", "cells/s");
         bool all_identical = true;
         std::vector<std::string> checks;
@@ -126,7 +126,8 @@ int main() {
                             runs.back().best_seconds, cells / runs.back().best_seconds);
             }
             const std::vector<Vec3>& top = runs[0].result.top.points;
-            if (!(top.front().norm() > 1.0)) throw Error(name + ": the layers went into the sphere (faces point inward)");
+            if (!(top.front().norm() > 1.0))
+                throw Error(name + ": the layers went into the sphere (faces point inward)");
             const bool same = identical(runs[0].result, runs[1].result);
             all_identical = all_identical && same;
             char line[160];

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
-#include <exception>
 #include <algorithm>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -85,7 +85,9 @@ inline double enclosed_volume(const SurfaceMesh& m, const std::vector<Vec3>& poi
         v += face_centroid(m, points, f).dot(face_area_vector(m, points, f)) / 3.0;
     return v;
 }
-inline double enclosed_volume(const SurfaceMesh& m) { return enclosed_volume(m, m.points); }
+inline double enclosed_volume(const SurfaceMesh& m) {
+    return enclosed_volume(m, m.points);
+}
 
 /// Structured nx × ny grid of unit quads in the z = 0 plane, one "wall" patch, normals +z.
 inline SurfaceMesh quad_grid(int nx, int ny, double h = 1.0) {

@@ -9,7 +9,9 @@ namespace {
 
 /// min(j, c), except that a NaN (a corner whose quality cannot be computed, e.g. overflowing
 /// coordinates) wins and stays: a cell is never better than its worst corner.
-double worse(double j, double c) { return std::isnan(j) || (!std::isnan(c) && !(c < j)) ? j : c; }
+double worse(double j, double c) {
+    return std::isnan(j) || (!std::isnan(c) && !(c < j)) ? j : c;
+}
 
 }  // namespace
 

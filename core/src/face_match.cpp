@@ -21,8 +21,8 @@ namespace strata {
 FaceSlots::FaceSlots(const VolumeMesh& mesh) : mesh_(&mesh), cells_(mesh) {
     for (std::size_t k = 0; k < kCellTypes.size(); ++k) {
         const CellType t = kCellTypes[k];
-        start_[k + 1] = start_[k] + static_cast<std::uint64_t>(cells_.count(t)) *
-                                        static_cast<std::uint64_t>(cell_faces(t).count);
+        start_[k + 1] =
+            start_[k] + static_cast<std::uint64_t>(cells_.count(t)) * static_cast<std::uint64_t>(cell_faces(t).count);
     }
 }
 
@@ -120,8 +120,7 @@ struct ChunkResult {
 };
 
 /// Judge the faces of one node set: \p cs cell faces, \p bs boundary faces (ascending codes).
-void judge(FaceMatch& m, const std::vector<std::uint64_t>& cs, const std::vector<std::uint64_t>& bs,
-           ChunkResult& r) {
+void judge(FaceMatch& m, const std::vector<std::uint64_t>& cs, const std::vector<std::uint64_t>& bs, ChunkResult& r) {
     auto problem = [&](FaceIssue issue) {
         std::vector<std::uint64_t> faces(cs);
         faces.insert(faces.end(), bs.begin(), bs.end());
@@ -294,8 +293,7 @@ std::string owner_text(const FaceMatch& m, std::uint64_t code) {
 }
 
 /// "a, b, c": the owners of faces[from, to).
-std::string owners_text(const FaceMatch& m, const std::vector<std::uint64_t>& faces, std::size_t from,
-                        std::size_t to) {
+std::string owners_text(const FaceMatch& m, const std::vector<std::uint64_t>& faces, std::size_t from, std::size_t to) {
     std::string s;
     for (std::size_t k = from; k < to; ++k) s += (k > from ? ", " : "") + owner_text(m, faces[k]);
     return s;
@@ -311,8 +309,9 @@ std::string describe(const FaceMatch& m, const FaceMatch::Problem& p) {
         case FaceIssue::SharedByThreeOrMoreCells: {
             std::size_t cells = 0;
             while (cells < f.size() && m.is_slot(f[cells])) ++cells;
-            return "face " + format_nodes(a, n) + " is shared by " + std::to_string(cells) + " cells: " +
-                   owners_text(m, f, 0, cells) + " (a face joins at most two cells: duplicated or overlapping cells)";
+            return "face " + format_nodes(a, n) + " is shared by " + std::to_string(cells) +
+                   " cells: " + owners_text(m, f, 0, cells) +
+                   " (a face joins at most two cells: duplicated or overlapping cells)";
         }
         case FaceIssue::NotOpposite: {
             face_nodes(m.slots, f[1], b);
@@ -350,7 +349,8 @@ std::string describe(const FaceMatch& m, const FaceMatch::Problem& p) {
             return "quad " + face_text(m, f[0]) +
                    " is not matched: its neighbour has different faces (a quad never against two triangles): " +
                    owner_text(m, f[1]) + " has triangle " + format_nodes(a, 3) + " and " + owner_text(m, f[2]) +
-                   " has triangle " + format_nodes(b, 3) + " there; split the quad's cell or use a pyramid between them";
+                   " has triangle " + format_nodes(b, 3) +
+                   " there; split the quad's cell or use a pyramid between them";
         }
         case FaceIssue::Hole:
             return face_text(m, f[0]) +

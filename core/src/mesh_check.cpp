@@ -87,9 +87,9 @@ MeshProblems check_volume_arrays(const VolumeMesh& mesh) {
                 }
         }
     }
-    const MeshProblems faces = check_face_arrays(mesh.boundary, mesh.points, {.require_faces = false, .word = "boundary face"});
-    for (std::size_t i = 0; i < faces.lines.size(); ++i)
-        out.add(faces.lines[i], i == 0 && faces.first_non_finite);
+    const MeshProblems faces =
+        check_face_arrays(mesh.boundary, mesh.points, {.require_faces = false, .word = "boundary face"});
+    for (std::size_t i = 0; i < faces.lines.size(); ++i) out.add(faces.lines[i], i == 0 && faces.first_non_finite);
     out.count += faces.count - faces.lines.size();
     out.indexable = out.indexable && faces.indexable;
     return out;
@@ -97,7 +97,8 @@ MeshProblems check_volume_arrays(const VolumeMesh& mesh) {
 
 void require_sound(const MeshProblems& problems, const std::string& where) {
     if (problems.ok()) return;
-    const std::string more = problems.count > 1 ? " (and " + std::to_string(problems.count - 1) + " more problems)" : "";
+    const std::string more =
+        problems.count > 1 ? " (and " + std::to_string(problems.count - 1) + " more problems)" : "";
     if (problems.first_non_finite) throw TopologyError(where + problems.lines.front() + more);
     throw InputError(where + problems.lines.front() + more);
 }

@@ -7,9 +7,13 @@ namespace strata {
 
 constexpr EnumNames<PatchKind, 4> kPatchKindNames{{"wall", "symmetry", "farfield", "other"}};
 
-std::string_view to_string(PatchKind kind) { return kPatchKindNames.name(kind); }
+std::string_view to_string(PatchKind kind) {
+    return kPatchKindNames.name(kind);
+}
 
-PatchKind parse_patch_kind(std::string_view text) { return kPatchKindNames.parse(text, "patch kind"); }
+PatchKind parse_patch_kind(std::string_view text) {
+    return kPatchKindNames.parse(text, "patch kind");
+}
 
 void SurfaceMesh::add_face(const Index* nodes, Index n, Index patch) {
     face_nodes.insert(face_nodes.end(), nodes, nodes + n);
@@ -35,7 +39,8 @@ Index SurfaceMesh::num_quads() const {
 
 void flip_faces(SurfaceMesh& mesh) {
     for (Index f = 0; f < mesh.num_faces(); ++f)
-        std::reverse(mesh.face_nodes.begin() + mesh.face_offsets[f] + 1, mesh.face_nodes.begin() + mesh.face_offsets[f + 1]);
+        std::reverse(mesh.face_nodes.begin() + mesh.face_offsets[f] + 1,
+                     mesh.face_nodes.begin() + mesh.face_offsets[f + 1]);
 }
 
 Index find_patch(const SurfaceMesh& mesh, std::string_view name) {

@@ -76,10 +76,12 @@ constexpr std::array<const char*, kNumKinds> kKindNoun{"input problems",
                                                        "volume mismatches"};
 
 /// The kind of problem each FaceIssue is, in FaceIssue order.
-constexpr std::array<Kind, 9> kKindOfIssue{kNonConforming,       kOverlap, kOverlap,      kBoundaryInterior,
-                                           kBoundaryDuplicate,   kBoundaryOrientation, kQuadTriangles, kHole,
-                                           kBoundaryUnmatched};
-Kind kind_of(FaceIssue issue) { return kKindOfIssue[static_cast<std::size_t>(issue)]; }
+constexpr std::array<Kind, 9> kKindOfIssue{
+    kNonConforming,       kOverlap,       kOverlap, kBoundaryInterior, kBoundaryDuplicate,
+    kBoundaryOrientation, kQuadTriangles, kHole,    kBoundaryUnmatched};
+Kind kind_of(FaceIssue issue) {
+    return kKindOfIssue[static_cast<std::size_t>(issue)];
+}
 
 struct Problems {
     std::array<std::vector<std::string>, kNumKinds> lines;
@@ -213,17 +215,18 @@ ValidationReport validate(const VolumeMesh& mesh, const ValidateParams& params, 
     const FaceMatch match = match_faces(mesh, params.threads);
     report.interior_faces = static_cast<Index>(match.interior);
     report.boundary_faces = static_cast<Index>(match.boundary);
-    for (const FaceMatch::Problem& p : match.problems) problems.add(kind_of(p.issue), [&] { return describe(match, p); });
+    for (const FaceMatch::Problem& p : match.problems)
+        problems.add(kind_of(p.issue), [&] { return describe(match, p); });
 
     strata::report(params.progress, "validation", 0.9);
     report.boundary_volume = boundary_volume(mesh);
     const double diff = std::abs(report.cell_volume - report.boundary_volume);
     if (!(diff <= params.volume_tolerance * std::abs(report.boundary_volume)))
         problems.add(kVolume, [&] {
-            return "the cells' volumes sum to " + format_number(report.cell_volume, 12) + " but the boundary encloses " +
-                   format_number(report.boundary_volume, 12) + " (relative difference " +
-                   format_number(diff / std::abs(report.boundary_volume), 3) + " > tolerance " +
-                   format_number(params.volume_tolerance, 3) +
+            return "the cells' volumes sum to " + format_number(report.cell_volume, 12) +
+                   " but the boundary encloses " + format_number(report.boundary_volume, 12) +
+                   " (relative difference " + format_number(diff / std::abs(report.boundary_volume), 3) +
+                   " > tolerance " + format_number(params.volume_tolerance, 3) +
                    "): cells are missing or overlap, or the boundary is incomplete or misoriented";
         });
 
@@ -249,7 +252,8 @@ double cell_volume(const std::vector<Vec3>& p, const Index* cell, CellType type)
     double sum = 0.0;
     Vec3 f[4];
     for (std::size_t i = 0; i < static_cast<std::size_t>(table.count); ++i) {
-        for (std::size_t k = 0; k < static_cast<std::size_t>(table.size[i]); ++k) f[k] = x[static_cast<std::size_t>(table.node[i][k])];
+        for (std::size_t k = 0; k < static_cast<std::size_t>(table.size[i]); ++k)
+            f[k] = x[static_cast<std::size_t>(table.node[i][k])];
         sum += face_volume_term(f, table.size[i]);
     }
     return sum;

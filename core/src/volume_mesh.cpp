@@ -5,7 +5,9 @@
 namespace strata {
 
 constexpr EnumNames<CellType, 4> kCellTypeNames{{"tetrahedron", "pyramid", "prism", "hexahedron"}};
-std::string_view to_string(CellType t) { return kCellTypeNames.name(t); }
+std::string_view to_string(CellType t) {
+    return kCellTypeNames.name(t);
+}
 
 std::size_t VolumeMesh::num_cells(CellType t) const {
     return with_cells(t, [](const auto& cells) { return cells.size(); });
@@ -16,8 +18,7 @@ const Index* VolumeMesh::cell(CellType t, std::size_t i) const {
 }
 
 CellNumbering::CellNumbering(const VolumeMesh& mesh) {
-    for (CellType t : kCellTypes)
-        start_[next(t)] = start(t) + static_cast<std::int64_t>(mesh.num_cells(t));
+    for (CellType t : kCellTypes) start_[next(t)] = start(t) + static_cast<std::int64_t>(mesh.num_cells(t));
 }
 
 CellNumbering::Cell CellNumbering::locate(std::int64_t g) const {

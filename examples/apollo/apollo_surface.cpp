@@ -22,13 +22,13 @@ using Curve = std::function<Point2(double)>;
 constexpr double deg = std::numbers::pi / 180.0;
 
 // Dimensions, metres (a notional shape; proportions of the real CSM).
-constexpr double kNoseRadius = 0.6;       // blunt forward end of the command module
+constexpr double kNoseRadius = 0.6;  // blunt forward end of the command module
 constexpr double kConeHalfAngle = 33.0 * deg;
-constexpr double kBodyRadius = 1.95;      // command module base and service module
-constexpr double kShoulderRadius = 0.2;   // toroidal shoulder, cone → cylinder
-constexpr double kServiceLength = 4.7;    // shoulder end to the base plane
-constexpr double kRimRadius = 0.15;       // rounded aft rim of the service module
-constexpr double kNozzleRoot = 0.55;      // nozzle radius where it leaves the base
+constexpr double kBodyRadius = 1.95;     // command module base and service module
+constexpr double kShoulderRadius = 0.2;  // toroidal shoulder, cone → cylinder
+constexpr double kServiceLength = 4.7;   // shoulder end to the base plane
+constexpr double kRimRadius = 0.15;      // rounded aft rim of the service module
+constexpr double kNozzleRoot = 0.55;     // nozzle radius where it leaves the base
 constexpr double kNozzleLength = 2.8;
 constexpr double kNozzleExit = 1.25;
 constexpr double kNozzleRootAngle = 20.0 * deg;

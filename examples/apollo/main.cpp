@@ -6,12 +6,12 @@
 
 #include "apollo/apollo_surface.h"
 
-#include <strata/core/error.h>
-#include <strata/geometry/topology.h>
 #include <strata/core/cell_quality.h>
-#include <strata/module/layers.h>
+#include <strata/core/error.h>
 #include <strata/core/validate.h>
+#include <strata/geometry/topology.h>
 #include <strata/io/write_volume.h>
+#include <strata/module/layers.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,8 +29,9 @@ int main(int argc, char** argv) {
         Index nose_valence = 0;
         for (Index f = 0; f < wall.num_faces(); ++f)
             nose_valence += static_cast<Index>(std::count(wall.face_begin(f), wall.face_end(f), Index{0}));
-        std::printf("surface: %d nodes, %d quads, %d triangles, nose node valence %d\n", static_cast<int>(wall.num_points()),
-                    static_cast<int>(wall.num_quads()), static_cast<int>(wall.num_triangles()), static_cast<int>(nose_valence));
+        std::printf("surface: %d nodes, %d quads, %d triangles, nose node valence %d\n",
+                    static_cast<int>(wall.num_points()), static_cast<int>(wall.num_quads()),
+                    static_cast<int>(wall.num_triangles()), static_cast<int>(nose_valence));
 
         const LayerParams params = apollo_layer_params();
         const LayerMesh lm = extrude_layers(wall, params);
@@ -70,7 +71,8 @@ int main(int argc, char** argv) {
         double deviation = 0.0;
         for (int k = 0; k <= lm.layers(); ++k)
             for (const Index i : loops.values)
-                deviation = std::max(deviation, std::abs(lm.mesh.points[static_cast<std::size_t>(lm.level_node(k, i))].x() - x_exit));
+                deviation = std::max(
+                    deviation, std::abs(lm.mesh.points[static_cast<std::size_t>(lm.level_node(k, i))].x() - x_exit));
         std::printf("nozzle exit: %d nodes at x = %.6f m, max |x - x_exit| over all %d levels = %.3g m\n",
                     static_cast<int>(loops.values.size()), x_exit, lm.layers() + 1, deviation);
 

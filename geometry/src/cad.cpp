@@ -32,10 +32,14 @@ std::optional<CadFormat> format_of(const std::string& path) {
 
 const char* format_name(CadFormat f) {
     switch (f) {
-        case CadFormat::Step: return "STEP";
-        case CadFormat::Iges: return "IGES";
-        case CadFormat::Brep: return "BREP";
-        case CadFormat::Geo: return "Gmsh .geo";
+        case CadFormat::Step:
+            return "STEP";
+        case CadFormat::Iges:
+            return "IGES";
+        case CadFormat::Brep:
+            return "BREP";
+        case CadFormat::Geo:
+            return "Gmsh .geo";
     }
     return "CAD";
 }
@@ -60,9 +64,8 @@ void validate(const CadParams& p) {
         throw InputError("CAD meshing: size must be a finite number >= 0 (0 = automatic), got " +
                          format_number(p.size));
     if (!(p.size_min >= 0.0) || !std::isfinite(p.size_min))
-        throw InputError(
-            "CAD meshing: size_min must be a finite number >= 0 (0 = automatic), got " +
-            format_number(p.size_min));
+        throw InputError("CAD meshing: size_min must be a finite number >= 0 (0 = automatic), got " +
+                         format_number(p.size_min));
     if (p.size > 0.0 && p.size_min > p.size)
         throw InputError("CAD meshing: size_min (" + format_number(p.size_min) + ") is larger than size (" +
                          format_number(p.size) + "); give a smaller size_min");
@@ -76,13 +79,11 @@ void validate(const CadParams& p) {
     // Unknown values would silently fall back to Gmsh's default.
     static constexpr std::array<int, 5> kAlgorithms{1, 2, 5, 6, 9};
     if (std::find(kAlgorithms.begin(), kAlgorithms.end(), p.algorithm) == kAlgorithms.end()) {
-        const std::string why =
-            p.algorithm == 7   ? " (BAMG aborts the process on curved surfaces in Gmsh 4.8)"
-            : p.algorithm == 8 ? " (Frontal-Delaunay for quads crashes Gmsh 4.8.4; for quads use "
-                                 "algorithm 6 with quad elements, which recombines)"
-                               : "";
-        throw InputError("CAD meshing: Gmsh 2D algorithm " + std::to_string(p.algorithm) +
-                         " is not supported" + why +
+        const std::string why = p.algorithm == 7   ? " (BAMG aborts the process on curved surfaces in Gmsh 4.8)"
+                                : p.algorithm == 8 ? " (Frontal-Delaunay for quads crashes Gmsh 4.8.4; for quads use "
+                                                     "algorithm 6 with quad elements, which recombines)"
+                                                   : "";
+        throw InputError("CAD meshing: Gmsh 2D algorithm " + std::to_string(p.algorithm) + " is not supported" + why +
                          "; use 1 (MeshAdapt), 2 (Automatic), 5 (Delaunay), 6 (Frontal-Delaunay) "
                          "or 9 (packing of parallelograms)");
     }
@@ -133,8 +134,7 @@ void set_number(const std::string& name, double v) {
 }
 
 void load(const std::string& path, CadFormat format) {
-    const std::string context =
-        path + ": Gmsh could not read this " + std::string(format_name(format)) + " file";
+    const std::string context = path + ": Gmsh could not read this " + std::string(format_name(format)) + " file";
     try {
         gmsh_call(context, [&] {
             if (format == CadFormat::Geo) {
@@ -147,20 +147,17 @@ void load(const std::string& path, CadFormat format) {
             } else {
                 // The format is given explicitly: Gmsh guesses from the extension and knows
                 // neither ".brp" nor upper-case extensions.
-                const char* kind = format == CadFormat::Step   ? "step"
-                                   : format == CadFormat::Iges ? "iges"
-                                                               : "brep";
+                const char* kind = format == CadFormat::Step ? "step" : format == CadFormat::Iges ? "iges" : "brep";
                 gmsh::vectorpair imported;
                 gmsh::model::occ::importShapes(path, imported, true, kind);
                 gmsh::model::occ::synchronize();
             }
         });
     } catch (const BackendError& e) {
-        const std::string hint =
-            format == CadFormat::Geo
-                ? "; fix the script (open it in Gmsh to see the error in context)"
-                : "; check that it is a valid " + std::string(format_name(format)) +
-                      " file (export it again from the CAD tool)";
+        const std::string hint = format == CadFormat::Geo
+                                     ? "; fix the script (open it in Gmsh to see the error in context)"
+                                     : "; check that it is a valid " + std::string(format_name(format)) +
+                                           " file (export it again from the CAD tool)";
         throw InputError(std::string(e.what()) + hint);
     }
 }
@@ -180,8 +177,7 @@ void fuse_volumes(const std::string& path) {
     const std::vector<int> volumes = entity_tags(3);
     if (volumes.size() < 2) return;
     gmsh::vectorpair occ_volumes;
-    gmsh_call(path + ": listing the solids",
-              [&] { gmsh::model::occ::getEntities(occ_volumes, 3); });
+    gmsh_call(path + ": listing the solids", [&] { gmsh::model::occ::getEntities(occ_volumes, 3); });
     if (occ_volumes.size() != volumes.size())
         throw InputError(path + ": cannot fuse the " + std::to_string(volumes.size()) +
                          " solids: they are not OpenCASCADE entities (a built-in kernel .geo "
@@ -239,7 +235,9 @@ SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces) {
 
 }  // namespace
 
-bool is_cad_file(const std::string& path) { return format_of(path).has_value(); }
+bool is_cad_file(const std::string& path) {
+    return format_of(path).has_value();
+}
 
 SurfaceMesh mesh_cad(const std::string& path, const CadParams& params) {
     const std::optional<CadFormat> format = format_of(path);
@@ -276,11 +274,10 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params) {
     gmsh_call(path + ": computing the bounding box",
               [&] { gmsh::model::getBoundingBox(-1, -1, xmin, ymin, zmin, xmax, ymax, zmax); });
     const double diagonal =
-        std::sqrt((xmax - xmin) * (xmax - xmin) + (ymax - ymin) * (ymax - ymin) +
-                  (zmax - zmin) * (zmax - zmin));
+        std::sqrt((xmax - xmin) * (xmax - xmin) + (ymax - ymin) * (ymax - ymin) + (zmax - zmin) * (zmax - zmin));
     if (!(diagonal > 0.0) || !std::isfinite(diagonal))
-        throw InputError(path + ": the model has no extent (bounding-box diagonal " +
-                         format_number(diagonal) + "); check the file's geometry");
+        throw InputError(path + ": the model has no extent (bounding-box diagonal " + format_number(diagonal) +
+                         "); check the file's geometry");
 
     if (params.size > 0.0)
         set_number("Mesh.MeshSizeMax", params.size);
@@ -304,8 +301,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params) {
 
     // Gmsh's default, explicit: sizes on curves (curvature-refined edges, a script's point
     // sizes) spread into the surfaces they bound instead of jumping to the maximum size.
-    if (!script_set("Mesh.MeshSizeExtendFromBoundary"))
-        set_number("Mesh.MeshSizeExtendFromBoundary", 1);
+    if (!script_set("Mesh.MeshSizeExtendFromBoundary")) set_number("Mesh.MeshSizeExtendFromBoundary", 1);
     if (!script_set("Mesh.MeshSizeFactor")) set_number("Mesh.MeshSizeFactor", 1);
     // Strata needs linear faces, whatever a script asks for.
     set_number("Mesh.ElementOrder", 1);
@@ -318,22 +314,22 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params) {
     // recombination settings still gives it quads.
     if (const double a = get_number("Mesh.Algorithm"); a == 7 || a == 8)
         set_number("Mesh.Algorithm", kDefaultAlgorithm);
-    if (!script_set("Mesh.RecombinationAlgorithm"))
-        set_number("Mesh.RecombinationAlgorithm", 1);  // Blossom
+    if (!script_set("Mesh.RecombinationAlgorithm")) set_number("Mesh.RecombinationAlgorithm", 1);  // Blossom
 
     switch (params.elements) {
         case SurfaceElements::Triangles:
             if (!script_set("Mesh.RecombineAll")) set_number("Mesh.RecombineAll", 0);
             break;
-        case SurfaceElements::Quads: set_number("Mesh.RecombineAll", 1); break;
+        case SurfaceElements::Quads:
+            set_number("Mesh.RecombineAll", 1);
+            break;
         case SurfaceElements::Mixed: {
             set_number("Mesh.RecombineAll", 0);
             for (int tag : params.quad_surfaces) {
                 if (!std::binary_search(surfaces.begin(), surfaces.end(), tag))
-                    throw InputError(path + ": quad surface " + std::to_string(tag) +
-                                     " is not a surface of the model" +
-                                     (params.fuse ? " (after fusing the solids)" : "") +
-                                     "; its surfaces are " + format_tags(surfaces));
+                    throw InputError(path + ": quad surface " + std::to_string(tag) + " is not a surface of the model" +
+                                     (params.fuse ? " (after fusing the solids)" : "") + "; its surfaces are " +
+                                     format_tags(surfaces));
                 gmsh_call(path + ": asking for quads on surface " + std::to_string(tag),
                           [&] { gmsh::model::mesh::setRecombine(2, tag); });
             }

@@ -1,7 +1,7 @@
 #include <strata/core/enum_names.h>
 #include <strata/core/error.h>
-#include <strata/core/parallel.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/parallel.h>
 #include <strata/geometry/normals.h>
 #include <strata/geometry/topology.h>
 
@@ -18,7 +18,9 @@ namespace strata {
 
 constexpr EnumNames<NormalMethod, 4> kNormalMethodNames{{"area", "angle", "robust", "max"}};
 
-std::string_view to_string(NormalMethod m) { return kNormalMethodNames.name(m); }
+std::string_view to_string(NormalMethod m) {
+    return kNormalMethodNames.name(m);
+}
 
 NormalMethod parse_normal_method(std::string_view text) {
     return kNormalMethodNames.parse(text, "LayerParams::normals");
@@ -107,7 +109,8 @@ Vec3 weighted_sum(const SurfaceMesh& mesh, const std::vector<Vec3>& points, cons
 }
 
 Vec3 area_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Index* begin, const Index* end) {
-    return weighted_sum(mesh, points, begin, end, [](Index, const Vec3& a) { return std::pair<Vec3, double>(a, a.norm()); });
+    return weighted_sum(mesh, points, begin, end,
+                        [](Index, const Vec3& a) { return std::pair<Vec3, double>(a, a.norm()); });
 }
 
 Vec3 angle_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node, const Index* begin,

@@ -220,7 +220,8 @@ SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report) {
     Index flipped = 0;
     for (Index f = 0; f < mesh.num_faces(); ++f) {
         if (!comps.flip[f]) continue;
-        std::reverse(out.face_nodes.begin() + out.face_offsets[f] + 1, out.face_nodes.begin() + out.face_offsets[f + 1]);
+        std::reverse(out.face_nodes.begin() + out.face_offsets[f] + 1,
+                     out.face_nodes.begin() + out.face_offsets[f + 1]);
         ++flipped;
     }
     if (report) {

@@ -2,9 +2,9 @@
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/prepare.h>
+#include <strata/geometry/topology.h>
 #include <strata/io/files.h>
 #include <strata/io/read_surface.h>
-#include <strata/geometry/topology.h>
 
 #include <algorithm>
 #include <cctype>
@@ -54,8 +54,8 @@ void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::stri
     }
 }
 
-SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source,
-                         PrepareReport* report, Progress* progress) {
+SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source, PrepareReport* report,
+                         Progress* progress) {
     strata::report(progress, "surface", 0.6);
     assign_patch_kinds(raw, params.patch_kinds, source);
     // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).

@@ -2,9 +2,9 @@
 // volume mesh. Unlike Strata's readers and writers it does not use a GmshSession (whose scratch
 // model would hide the user's) but only Gmsh's lock, and it never initialises Gmsh itself.
 
+#include <strata/gmsh_api/gmsh_api.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
-#include <strata/gmsh_api/gmsh_api.h>
 
 #include <set>
 #include <string>

@@ -1,9 +1,9 @@
 #include <strata/core/enum_names.h>
 #include <strata/core/error.h>
-#include <strata/core/format.h>
 #include <strata/core/face_geometry.h>
-#include <strata/geometry/topology.h>
+#include <strata/core/format.h>
 #include <strata/geometry/primitives.h>
+#include <strata/geometry/topology.h>
 #include <strata/hybrid/farfield.h>
 #include <strata/hybrid/plane_mesh.h>
 
@@ -17,9 +17,13 @@
 namespace strata {
 
 constexpr EnumNames<FarfieldShape, 2> kShapeNames{{"box", "sphere"}};
-std::string_view to_string(FarfieldShape shape) { return kShapeNames.name(shape); }
+std::string_view to_string(FarfieldShape shape) {
+    return kShapeNames.name(shape);
+}
 
-FarfieldShape parse_farfield_shape(std::string_view text) { return kShapeNames.parse(text, "FarfieldParams::shape"); }
+FarfieldShape parse_farfield_shape(std::string_view text) {
+    return kShapeNames.parse(text, "FarfieldParams::shape");
+}
 
 namespace {
 
@@ -84,8 +88,9 @@ namespace {
 
 void check_params(const FarfieldParams& params) {
     if (!(params.size > 1.0))
-        throw InputError("FarfieldParams::size = " + format_number(params.size) +
-                         ": the farfield must be larger than the body (a multiple of its size > 1, typically 10 to 50)");
+        throw InputError(
+            "FarfieldParams::size = " + format_number(params.size) +
+            ": the farfield must be larger than the body (a multiple of its size > 1, typically 10 to 50)");
     if (params.divisions < 2)
         throw InputError("FarfieldParams::divisions = " + std::to_string(params.divisions) + ": need at least 2");
 }
@@ -134,8 +139,8 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
     const double diag = bounding_box(walls.points).diagonal();
     if (open.rows() == 0 || !(pl.deviation <= 1e-6 * diag))
         throw InputError(
-            "the surface is open, but its open edges do not lie in one plane (they are " +
-            format_number(pl.deviation) + " off their best plane, the body's size is " + format_number(diag) +
+            "the surface is open, but its open edges do not lie in one plane (they are " + format_number(pl.deviation) +
+            " off their best plane, the body's size is " + format_number(diag) +
             "): only a half model cut by one symmetry plane is closed automatically; close the fluid domain "
             "yourself (walls plus symmetry and farfield patches) or mesh the full body");
     // The plane's normal towards the body.

@@ -134,8 +134,9 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
     }
     for (Index f = 0; f < region.num_faces(); ++f) {
         if (region.face_patch[f] == top_patch) continue;
-        mesh.boundary.add_face({node(region.face_node(f, 0)), node(region.face_node(f, 1)), node(region.face_node(f, 2))},
-                               region.face_patch[f]);
+        mesh.boundary.add_face(
+            {node(region.face_node(f, 0)), node(region.face_node(f, 1)), node(region.face_node(f, 2))},
+            region.face_patch[f]);
     }
     return mesh;
 }

@@ -1,8 +1,8 @@
 // Re-meshing the planes the layers end on (symmetry, outflow, box sides): outer_boundary.h.
 
 #include <strata/core/error.h>
-#include <strata/core/format.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/format.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/outer_boundary.h>
 #include <strata/hybrid/plane_mesh.h>

@@ -2,8 +2,8 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
-#include <strata/io/gmsh_session.h>
 #include <strata/hybrid/plane_mesh.h>
+#include <strata/io/gmsh_session.h>
 
 #include <algorithm>
 #include <array>
@@ -100,7 +100,8 @@ std::vector<int> add_geo_model(const Frame& f, const std::vector<std::vector<Ind
             if (point_tag.count(p))
                 throw TopologyError(ctx + ": its new boundary passes twice through " + format_point(points[p]));
             const Vec3& x = points[p];
-            const double h = 0.5 * ((x - points[loop[(i + 1) % m]]).norm() + (x - points[loop[(i + m - 1) % m]]).norm());
+            const double h =
+                0.5 * ((x - points[loop[(i + 1) % m]]).norm() + (x - points[loop[(i + m - 1) % m]]).norm());
             const Eigen::Vector2d q = f.uv(p);
             point_tag[p] = gmsh::model::geo::addPoint(q.x(), q.y(), 0.0, h);
         }

@@ -48,13 +48,13 @@
 // the largest clearance) stay valid throughout: O(n) checks per round after an O(n log n)
 // sort, and few rounds (each moves a pyramid down one of its few candidates).
 
-#include <strata/core/error.h>
-#include <strata/core/format.h>
-#include <strata/core/face_geometry.h>
-#include <strata/geometry/topology.h>
-#include <strata/core/progress.h>
-#include <strata/hybrid/pyramids.h>
 #include <strata/core/cell_quality.h>
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
+#include <strata/core/format.h>
+#include <strata/core/progress.h>
+#include <strata/geometry/topology.h>
+#include <strata/hybrid/pyramids.h>
 
 #include <algorithm>
 #include <array>
@@ -605,8 +605,8 @@ void Builder::fail(Index k, const Failure& why, double h) const {
                      (why.other == kNone ? std::string("the open boundary there") : face_at(why.other));
             break;
         case Failure::FaceClearance:
-            reason =
-                "its apex comes closer than " + format_number(kFaceClearance) + " x its height to " + face_at(why.other);
+            reason = "its apex comes closer than " + format_number(kFaceClearance) + " x its height to " +
+                     face_at(why.other);
             break;
         case Failure::FaceCrossing:
             reason = "its side crosses " + face_at(why.other);

@@ -87,7 +87,8 @@ void check_input(const SurfaceMesh& b, const std::vector<Vec3>& holes, const Tet
             throw InputError(where + "min_dihedral = " + format_number(p.min_dihedral) +
                              " degrees is outside [0, 70); TetGen reaches about 15-18 in practice");
         if (!(p.max_volume >= 0.0) || !std::isfinite(p.max_volume))
-            throw InputError(where + "max_volume = " + format_number(p.max_volume) + " must be 0 (no bound) or positive");
+            throw InputError(where + "max_volume = " + format_number(p.max_volume) +
+                             " must be 0 (no bound) or positive");
         if (!(p.growth >= 0.0) || !std::isfinite(p.growth))
             throw InputError(where + "growth = " + format_number(p.growth) + " must be 0 (no sizing) or positive");
     }

@@ -54,7 +54,6 @@
 namespace strata::tetgen {
 namespace {
 
-
 /// Replaces libtet's terminatetetgen: throw TetGen's exit code, leave the freeing to the
 /// tetgenmesh destructor.
 [[noreturn]] void throwing_terminatetetgen(tetgenmesh* /*mesh*/, int code) {

@@ -83,7 +83,8 @@ public:
     bool full() const { return true; }
     bool addPoint(double d2, std::size_t i) {
         const bool tie = d2 == best_ && index_ < size_.size();
-        const bool better = d2 < best_ || (tie && (size_[i] < size_[index_] || (size_[i] == size_[index_] && i < index_)));
+        const bool better =
+            d2 < best_ || (tie && (size_[i] < size_[index_] || (size_[i] == size_[index_] && i < index_)));
         if (better) best_ = d2, index_ = i;
         return true;
     }

@@ -19,13 +19,13 @@
 // are complete. Coordinates use the shortest decimal form that reads back to the same double
 // (std::to_chars), which round-trips exactly like %.17g but is shorter.
 
-#include <strata/core/error.h>
-#include <strata/core/format.h>
-#include <strata/io/files.h>
-#include <strata/io/cobalt.h>
 #include <strata/core/cell_faces.h>
+#include <strata/core/error.h>
 #include <strata/core/face_match.h>
+#include <strata/core/format.h>
 #include <strata/core/mesh_check.h>
+#include <strata/io/cobalt.h>
+#include <strata/io/files.h>
 
 #include <algorithm>
 #include <array>
@@ -129,7 +129,6 @@ std::string bc_name(const std::string& name, Index number) {
     const std::size_t b = s.find_first_not_of(' '), e = s.find_last_not_of(' ');
     return s.substr(b, e - b + 1);
 }
-
 
 /// Cells written between two checks for cancellation.
 constexpr std::int64_t kCellsPerCheck = 1 << 16;

@@ -1,6 +1,7 @@
 #include <strata/core/error.h>
 #include <strata/io/files.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -8,7 +9,6 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
-#include <unistd.h>
 #include <utility>
 
 namespace strata {
@@ -18,8 +18,7 @@ void check_input_file(const std::string& path) {
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
     if (!fs::exists(st)) throw InputError("cannot open '" + path + "': no such file; check the path");
-    if (fs::is_directory(st))
-        throw InputError("cannot open '" + path + "': it is a directory; give the file itself");
+    if (fs::is_directory(st)) throw InputError("cannot open '" + path + "': it is a directory; give the file itself");
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!f) throw InputError("cannot open '" + path + "': " + std::strerror(errno));
 }

@@ -10,15 +10,15 @@ namespace {
 /// Mesh formats Gmsh 4.8 writes a surface to, from a file extension
 /// (GuessFileFormatFromFileName). Images, .geo and post-processing formats are left out: they
 /// are not meshes.
-constexpr std::array<const char*, 20> kSurfaceExtensions = {
-    ".msh", ".vtk", ".stl", ".su2", ".unv", ".mesh", ".bdf", ".nas", ".inp", ".cgns",
-    ".med", ".mail", ".p3d", ".wrl", ".vrml", ".ply2", ".off", ".x3d", ".neu", ".key"};
+constexpr std::array<const char*, 20> kSurfaceExtensions = {".msh",  ".vtk",  ".stl",  ".su2", ".unv",  ".mesh", ".bdf",
+                                                            ".nas",  ".inp",  ".cgns", ".med", ".mail", ".p3d",  ".wrl",
+                                                            ".vrml", ".ply2", ".off",  ".x3d", ".neu",  ".key"};
 
 /// Formats Gmsh 4.8 writes volume meshes to (.cgns and .med only if this Gmsh was built with
 /// them: BackendError at writing otherwise). Surface-only formats (.stl, .off, .ply2, .wrl, ...)
 /// are left out, and so is Gambit .neu: Gmsh 4.8's writer corrupts the heap (the process aborts)
 /// on a mesh mixing cell types.
-constexpr std::array<const char*, 11> kGmshVolumeExtensions = {".msh", ".vtk", ".su2", ".unv", ".mesh", ".bdf",
+constexpr std::array<const char*, 11> kGmshVolumeExtensions = {".msh", ".vtk", ".su2",  ".unv", ".mesh", ".bdf",
                                                                ".nas", ".inp", ".cgns", ".med", ".key"};
 constexpr std::array<const char*, 3> kCobaltExtensions = {".cgr", ".cog", ".grd"};
 
@@ -68,7 +68,9 @@ void check_volume_output(const std::string& path, double msh_version) {
     check_output_path(path);
 }
 
-bool is_cobalt_path(const std::string& path) { return listed(lower_extension(path), kCobaltExtensions); }
+bool is_cobalt_path(const std::string& path) {
+    return listed(lower_extension(path), kCobaltExtensions);
+}
 
 std::vector<std::string> volume_output_files(const std::string& path) {
     if (is_cobalt_path(path)) return {path, path + ".bc"};

@@ -93,8 +93,8 @@ SurfaceMesh parse_binary(const std::string& path, const std::string& data) {
             const char* q = p + 12 + 12 * k;
             v[k] = Vec3(load_f32le(q), load_f32le(q + 4), load_f32le(q + 8));
             if (!v[k].allFinite())
-                throw InputError("'" + path + "': facet " + std::to_string(f + 1) + " (of " +
-                                 std::to_string(n) + "): vertex " + std::to_string(k + 1) +
+                throw InputError("'" + path + "': facet " + std::to_string(f + 1) + " (of " + std::to_string(n) +
+                                 "): vertex " + std::to_string(k + 1) +
                                  " has a non-finite coordinate; the file is corrupt");
         }
         add_facet(mesh, v, 0);
@@ -105,10 +105,14 @@ SurfaceMesh parse_binary(const std::string& path, const std::string& data) {
 // ---------------------------------------------------------------------------------------
 // ASCII
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
+bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
 
 /// Token separator for the hot loops: whitespace and any other control character, one compare.
-bool is_separator(char c) { return static_cast<unsigned char>(c) <= ' '; }
+bool is_separator(char c) {
+    return static_cast<unsigned char>(c) <= ' ';
+}
 
 bool iequals(std::string_view a, std::string_view b) {
     if (a.size() != b.size()) return false;
@@ -162,8 +166,7 @@ public:
         double v = 0.0;
         auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
         if (t.empty() || ec != std::errc() || end != digits.data() + digits.size()) fail_found(what);
-        if (!std::isfinite(v))
-            fail("non-finite coordinate '" + std::string(t) + "'; the file is corrupt");
+        if (!std::isfinite(v)) fail("non-finite coordinate '" + std::string(t) + "'; the file is corrupt");
         return v;
     }
 
@@ -283,10 +286,9 @@ SurfaceMesh read_stl(const std::string& path) {
                          "begin with 'solid'");
     const std::size_t n = load_u32le(data.data() + 80);
     const std::size_t whole = (data.size() - kBinaryHeader) / kBinaryFacet;
-    throw InputError("'" + path + "': binary STL header announces " + std::to_string(n) +
-                     " facets, so 84+50*" + std::to_string(n) + " = " +
-                     std::to_string(kBinaryHeader + kBinaryFacet * n) + " bytes expected, but the file has " +
-                     std::to_string(data.size()) + " (" + std::to_string(whole) +
+    throw InputError("'" + path + "': binary STL header announces " + std::to_string(n) + " facets, so 84+50*" +
+                     std::to_string(n) + " = " + std::to_string(kBinaryHeader + kBinaryFacet * n) +
+                     " bytes expected, but the file has " + std::to_string(data.size()) + " (" + std::to_string(whole) +
                      " whole facets); the file is truncated or not an STL file");
 }
 

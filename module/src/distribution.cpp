@@ -27,7 +27,9 @@ double bisect(F f, double lo, double hi) {
 }  // namespace
 
 constexpr EnumNames<Distribution, 4> kDistributionNames{{"auto", "geometric", "thickness", "tanh"}};
-std::string_view to_string(Distribution d) { return kDistributionNames.name(d); }
+std::string_view to_string(Distribution d) {
+    return kDistributionNames.name(d);
+}
 
 Distribution parse_distribution(std::string_view text) {
     return kDistributionNames.parse(text, "DistributionParams::kind");
@@ -128,14 +130,16 @@ std::vector<double> layer_heights(const DistributionParams& given) {
                 throw InputError("DistributionParams::layers = 1: one tanh layer is the whole thickness " +
                                  format_number(t) + ", so a first height cannot be honoured; use at least 2 layers");
             if (!(h1 < t / n))
-                throw InputError("DistributionParams::first_height = " + format_number(h1) +
-                                 " ≥ thickness/layers " + format_number(t / n) +
+                throw InputError("DistributionParams::first_height = " + format_number(h1) + " ≥ thickness/layers " +
+                                 format_number(t / n) +
                                  ": the tanh distribution clusters towards the wall; lower the first height");
             // One-sided tanh stretching x(s) = t (1 + tanh(β (s − 1)) / tanh β), s = k / n; the first
             // spacing falls from t/n (β → 0) as β grows. Evaluated as the equal
             // t sinh(β s) / (sinh β cosh(β (s − 1))): the literal form loses digits to cancellation
             // near the wall (h1/t = 1e-7 came out 5e-10 relative off), this one loses none.
-            auto x = [&](double beta, double s) { return t * std::sinh(beta * s) / (std::sinh(beta) * std::cosh(beta * (s - 1.0))); };
+            auto x = [&](double beta, double s) {
+                return t * std::sinh(beta * s) / (std::sinh(beta) * std::cosh(beta * (s - 1.0)));
+            };
             const double s1 = 1.0 / n;
             const double beta = bisect([&](double b) { return x(b, s1) - h1; }, 1e-6, 100.0);
             if (!(std::abs(x(beta, s1) - h1) <= 1e-9 * h1))

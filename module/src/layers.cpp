@@ -416,7 +416,6 @@ Index hold_back_folds(const Marcher& mc, const std::vector<Vec3>& r0, double dk,
 
 }  // namespace
 
-
 namespace {
 
 /// Everything fixed for the whole extrusion: the planes and lines open-boundary nodes keep to,
@@ -479,8 +478,8 @@ void add_concave_terms(const Marcher& mc, const Levels& lv, Index o, const Deriv
         const double cs = dir[0], sn = dir[1];
         const double gperp = sn * sn * g11 - 2.0 * sn * cs * g12 + cs * cs * g22;
         const double wt = g33 * nu * gperp;
-        L += wt * (cs * cs * g.d[Stencils::XiXi] + 2.0 * cs * sn * g.d[Stencils::XiEta] +
-                   sn * sn * g.d[Stencils::EtaEta]);
+        L += wt *
+             (cs * cs * g.d[Stencils::XiXi] + 2.0 * cs * sn * g.d[Stencils::XiEta] + sn * sn * g.d[Stencils::EtaEta]);
         K += wt * (cs * cs * c[Stencils::XiXi] + 2.0 * cs * sn * c[Stencils::XiEta] + sn * sn * c[Stencils::EtaEta]);
     }
 }
@@ -548,10 +547,11 @@ void check_layer(const Wall& w, const LayerParams& params, int k, const std::vec
     for (Index f = 0; f < w.mesh.num_faces(); ++f) {
         const Index* v = w.mesh.face_begin(f);
         auto at = [&](int level, int c) { return out.level_node(k + level, v[c]); };
-        const double j = w.mesh.face_size(f) == 3
-                             ? prism_min_scaled_jacobian(pts, {at(0, 0), at(0, 1), at(0, 2), at(1, 0), at(1, 1), at(1, 2)})
-                             : hex_min_scaled_jacobian(pts, {at(0, 0), at(0, 1), at(0, 2), at(0, 3), at(1, 0), at(1, 1),
-                                                             at(1, 2), at(1, 3)});
+        const double j =
+            w.mesh.face_size(f) == 3
+                ? prism_min_scaled_jacobian(pts, {at(0, 0), at(0, 1), at(0, 2), at(1, 0), at(1, 1), at(1, 2)})
+                : hex_min_scaled_jacobian(
+                      pts, {at(0, 0), at(0, 1), at(0, 2), at(0, 3), at(1, 0), at(1, 1), at(1, 2), at(1, 3)});
         if (std::isnan(j)) {  // sticky: a NaN anywhere is the layer's worst
             if (!std::isnan(jmin)) jmin = j, worst = f;
         } else if (!std::isnan(jmin) && (j < jmin || worst == kNone)) {
@@ -628,9 +628,9 @@ void add_side_faces(const SurfaceMesh& surface, const Wall& w, LayerMesh& out) {
                 patch = side_patch;
             }
             for (int k = 0; k < out.layers(); ++k)
-                bnd.add_face({out.level_node(k, a), out.level_node(k, b), out.level_node(k + 1, b),
-                              out.level_node(k + 1, a)},
-                             patch);
+                bnd.add_face(
+                    {out.level_node(k, a), out.level_node(k, b), out.level_node(k + 1, b), out.level_node(k + 1, a)},
+                    patch);
         }
     }
 }
@@ -655,7 +655,8 @@ void add_boundary_and_top(const SurfaceMesh& surface, const Wall& w, LayerMesh& 
     if (w.loops.rows() > 0) add_side_faces(surface, w, out);
 
     out.top = w.mesh;
-    for (Index i = 0; i < w.mesh.num_points(); ++i) out.top.points[static_cast<std::size_t>(i)] = out.mesh.points[out.top_node(i)];
+    for (Index i = 0; i < w.mesh.num_points(); ++i)
+        out.top.points[static_cast<std::size_t>(i)] = out.mesh.points[out.top_node(i)];
 }
 
 }  // namespace
@@ -663,7 +664,8 @@ void add_boundary_and_top(const SurfaceMesh& surface, const Wall& w, LayerMesh& 
 LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
     const std::vector<double> delta = layer_heights(params.distribution);
     if (params.sweeps < 0)
-        throw InputError("LayerParams::sweeps = " + std::to_string(params.sweeps) + ": need 0 or more sweeps per layer");
+        throw InputError("LayerParams::sweeps = " + std::to_string(params.sweeps) +
+                         ": need 0 or more sweeps per layer");
     const Wall w = extract_wall(surface);
     const Marcher mc = make_marcher(surface, w, params);
     const Index nw = w.mesh.num_points();
@@ -674,8 +676,8 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     out.mesh.points.insert(out.mesh.points.end(), w.mesh.points.begin(), w.mesh.points.end());
     report(progress, "layers", 0.0);
 
-    const bool holds = params.hold_back && params.smoothing && std::max(params.max_sweeps, params.sweeps) > 0 &&
-                       !params.keep_invalid;
+    const bool holds =
+        params.hold_back && params.smoothing && std::max(params.max_sweeps, params.sweeps) > 0 && !params.keep_invalid;
     std::vector<Vec3> r0 = w.mesh.points, r1(r0.size());
     for (int k = 0; k < out.layers(); ++k) {
         const double dk = delta[static_cast<std::size_t>(k)], dk1 = delta[static_cast<std::size_t>(k) + 1];

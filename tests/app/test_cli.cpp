@@ -255,7 +255,8 @@ TEST(Cli, SameMeshAsTheLibraryGivenTheSameValues) {
     // and the library with the same values and default Params write the same bytes. (The
     // tetrahedron growth default used to be 0.3 in the program and 0 in TetFillParams.)
     test::ScratchDir dir("cli_same_as_library");
-    CliResult r = strata_cli(dir, "mesh '" + example_data("sphere.stl") + "' -o cli.msh --layers 3 --first-height 2e-3");
+    CliResult r =
+        strata_cli(dir, "mesh '" + example_data("sphere.stl") + "' -o cli.msh --layers 3 --first-height 2e-3");
     ASSERT_EQ(r.code, 0) << r.err;
     HybridParams p;
     p.layers.distribution.layers = 3;

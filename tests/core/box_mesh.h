@@ -105,10 +105,14 @@ private:
     }
     static bool triangulated(const Cube& cube, int s) {
         switch (cube.split) {
-            case CubeSplit::Prisms: return s >= 4;
-            case CubeSplit::Kuhn: return true;
-            case CubeSplit::PyramidsTets: return s == cube.tet_side;
-            default: return false;
+            case CubeSplit::Prisms:
+                return s >= 4;
+            case CubeSplit::Kuhn:
+                return true;
+            case CubeSplit::PyramidsTets:
+                return s == cube.tet_side;
+            default:
+                return false;
         }
     }
     /// The side's two triangles, split along the diagonal through local corner 0 or 6.
@@ -124,7 +128,9 @@ private:
 
     void add_cells(VolumeMesh& m, const std::array<Index, 8>& c, const Cube& cube) const {
         switch (cube.split) {
-            case CubeSplit::Hex: m.hexes.push_back(c); return;
+            case CubeSplit::Hex:
+                m.hexes.push_back(c);
+                return;
             case CubeSplit::Prisms:
                 m.prisms.push_back({c[0], c[1], c[2], c[4], c[5], c[6]});
                 m.prisms.push_back({c[0], c[2], c[3], c[4], c[6], c[7]});

@@ -73,9 +73,9 @@ TEST(HexScaledJacobian, ShearedHexIsCosineOfTheShear) {
 
 TEST(HexScaledJacobian, FlippedHexIsNegative) {
     const auto p = unit_cube();
-    EXPECT_LT(hex_min_scaled_jacobian(p, {1, 0, 2, 3, 4, 5, 6, 7}), 0.0);             // two nodes swapped
-    EXPECT_DOUBLE_EQ(hex_min_scaled_jacobian(p, {4, 5, 6, 7, 0, 1, 2, 3}), -1.0);     // mirrored
-    EXPECT_DOUBLE_EQ(hex_min_scaled_jacobian(p, {0, 3, 2, 1, 4, 7, 6, 5}), -1.0);     // mirrored
+    EXPECT_LT(hex_min_scaled_jacobian(p, {1, 0, 2, 3, 4, 5, 6, 7}), 0.0);          // two nodes swapped
+    EXPECT_DOUBLE_EQ(hex_min_scaled_jacobian(p, {4, 5, 6, 7, 0, 1, 2, 3}), -1.0);  // mirrored
+    EXPECT_DOUBLE_EQ(hex_min_scaled_jacobian(p, {0, 3, 2, 1, 4, 7, 6, 5}), -1.0);  // mirrored
 }
 
 TEST(PrismScaledJacobian, RightPrismIsOneAtTheRightAngleAndEquilateralIsHalfSqrt3) {
@@ -85,7 +85,7 @@ TEST(PrismScaledJacobian, RightPrismIsOneAtTheRightAngleAndEquilateralIsHalfSqrt
     // 45° corners at nodes 1, 2, 4, 5.
     EXPECT_NEAR(prism_min_scaled_jacobian(p, {0, 1, 2, 3, 4, 5}), kHalfSqrt2, 1e-15);
 
-    const std::vector<Vec3> q{{0, 0, 0}, {1, 0, 0}, {0.5, kHalfSqrt3, 0},
+    const std::vector<Vec3> q{{0, 0, 0},   {1, 0, 0},   {0.5, kHalfSqrt3, 0},
                               {0, 0, 0.3}, {1, 0, 0.3}, {0.5, kHalfSqrt3, 0.3}};
     EXPECT_NEAR(prism_min_scaled_jacobian(q, {0, 1, 2, 3, 4, 5}), kHalfSqrt3, 1e-15);
     EXPECT_NEAR(prism_min_scaled_jacobian(moved(q), {0, 1, 2, 3, 4, 5}), kHalfSqrt3, 1e-12);

@@ -27,9 +27,9 @@ TEST(CheckFaceArrays, SoundMeshesPass) {
 
 TEST(CheckFaceArrays, NamesEachProblem) {
     SurfaceMesh m = test::quad_grid(2, 2);
-    m.add_face({0, 1, 99}, 0);   // node out of range
-    m.add_face({0, 1, 2}, 7);    // patch out of range
-    m.points[3].x() = NAN;       // non-finite
+    m.add_face({0, 1, 99}, 0);  // node out of range
+    m.add_face({0, 1, 2}, 7);   // patch out of range
+    m.points[3].x() = NAN;      // non-finite
     const MeshProblems p = check_surface_arrays(m);
     EXPECT_EQ(p.count, 3u);
     EXPECT_FALSE(p.indexable);

@@ -46,10 +46,18 @@ VolumeMesh single_cell(std::vector<Vec3> points, CellType type, const std::vecto
         m.boundary.add_face(o.data(), static_cast<Index>(o.size()), 0);
     }
     switch (type) {
-        case CellType::Tet: m.tets.push_back({0, 1, 2, 3}); break;
-        case CellType::Pyramid: m.pyramids.push_back({0, 1, 2, 3, 4}); break;
-        case CellType::Prism: m.prisms.push_back({0, 1, 2, 3, 4, 5}); break;
-        case CellType::Hex: m.hexes.push_back({0, 1, 2, 3, 4, 5, 6, 7}); break;
+        case CellType::Tet:
+            m.tets.push_back({0, 1, 2, 3});
+            break;
+        case CellType::Pyramid:
+            m.pyramids.push_back({0, 1, 2, 3, 4});
+            break;
+        case CellType::Prism:
+            m.prisms.push_back({0, 1, 2, 3, 4, 5});
+            break;
+        case CellType::Hex:
+            m.hexes.push_back({0, 1, 2, 3, 4, 5, 6, 7});
+            break;
     }
     return m;
 }
@@ -68,10 +76,9 @@ VolumeMesh reference_prism() {
                        {{0, 1, 2}, {3, 4, 5}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}});
 }
 VolumeMesh reference_hex() {
-    return single_cell({{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1},
-                        {-1, 1, 1}},
-                       CellType::Hex,
-                       {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+    return single_cell(
+        {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
+        CellType::Hex, {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
 }
 
 Index cell_faces(const VolumeMesh& m) {
@@ -185,7 +192,8 @@ TEST(ValidateMesh, ReportIsTheSameForAnyThreadCount) {
     // chunks (holes where cubes are missing, inverted cells) must come out in one order, with one
     // worst cell and the same sums, whatever the number of threads.
     VolumeMesh m = test::BoxMesh(40, 40, 40, 1.0 / 40).build();
-    for (std::size_t c : {100u, 20000u, 40000u, 63000u}) m.hexes.erase(m.hexes.begin() + static_cast<std::ptrdiff_t>(c));
+    for (std::size_t c : {100u, 20000u, 40000u, 63000u})
+        m.hexes.erase(m.hexes.begin() + static_cast<std::ptrdiff_t>(c));
     for (std::size_t c : {5u, 33000u, 62000u}) std::swap(m.hexes[c][0], m.hexes[c][1]);
     const ValidationReport one = validate_mesh(m, {.threads = 1});
     EXPECT_FALSE(one.ok());
@@ -232,8 +240,9 @@ TEST(ValidateMesh, QuadAgainstTwoTrianglesIsNonConforming) {
     const VolumeMesh m = box.build();
     const ValidationReport r = validate_mesh(m);
     ASSERT_FALSE(r.ok());
-    EXPECT_EQ(count_problems(r, "quad face (1 4 10 7) of hexahedron 0 at (0.5, 0.5, 0.5) is not matched: its "
-                                "neighbour has different faces (a quad never against two triangles)"),
+    EXPECT_EQ(count_problems(r,
+                             "quad face (1 4 10 7) of hexahedron 0 at (0.5, 0.5, 0.5) is not matched: its "
+                             "neighbour has different faces (a quad never against two triangles)"),
               1)
         << all_problems(r);
     EXPECT_EQ(count_problems(r, "tetrahedron"), 1) << all_problems(r);
@@ -249,8 +258,9 @@ TEST(ValidateMesh, InvertedCellIsNamed) {
     const ValidationReport r = validate_mesh(m);
     ASSERT_FALSE(r.ok());
     EXPECT_LT(r.min_scaled_jacobian, 0.0);
-    const auto it = std::find_if(r.problems.begin(), r.problems.end(),
-                                 [](const std::string& p) { return p.find("min scaled Jacobian") != std::string::npos; });
+    const auto it = std::find_if(r.problems.begin(), r.problems.end(), [](const std::string& p) {
+        return p.find("min scaled Jacobian") != std::string::npos;
+    });
     ASSERT_NE(it, r.problems.end()) << all_problems(r);
     EXPECT_EQ(it->rfind("hexahedron 7 at (", 0), 0u) << *it;
     EXPECT_EQ(count_problems(r, "min scaled Jacobian"), 1) << all_problems(r);
@@ -295,9 +305,8 @@ TEST(ValidateMesh, WrongBoundaryOrientationIsReported) {
 TEST(ValidateMesh, DuplicatedCellIsReported) {
     VolumeMesh m = test::mixed_box().build();
     // Cube (1, 1, 1): a hexahedron with six hexahedron or pyramid neighbours.
-    const auto it = std::find_if(m.hexes.begin(), m.hexes.end(), [&](const auto& h) {
-        return (m.points[h[0]] - Vec3(1, 1, 1)).norm() == 0.0;
-    });
+    const auto it = std::find_if(m.hexes.begin(), m.hexes.end(),
+                                 [&](const auto& h) { return (m.points[h[0]] - Vec3(1, 1, 1)).norm() == 0.0; });
     ASSERT_NE(it, m.hexes.end());
     m.hexes.push_back(*it);
     const ValidationReport r = validate_mesh(m);
@@ -321,8 +330,9 @@ TEST(ValidateMesh, OverlappingCellsAreReported) {
     auto& top = m.hexes[1];
     top = {top[4], top[5], top[6], top[7], top[0], top[1], top[2], top[3]};
     const ValidationReport r = validate_mesh(m);
-    EXPECT_EQ(count_problems(r, "hexahedron 0 at (0.5, 0.5, 0.5) and hexahedron 1 at (0.5, 0.5, 1.5) overlap or are "
-                                "misoriented"),
+    EXPECT_EQ(count_problems(r,
+                             "hexahedron 0 at (0.5, 0.5, 0.5) and hexahedron 1 at (0.5, 0.5, 1.5) overlap or are "
+                             "misoriented"),
               1)
         << all_problems(r);
 }

@@ -5,11 +5,11 @@
 
 #include "apollo/apollo_surface.h"
 
+#include <strata/core/cell_quality.h>
+#include <strata/core/validate.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/topology.h>
-#include <strata/core/cell_quality.h>
 #include <strata/module/layers.h>
-#include <strata/core/validate.h>
 
 #include <gtest/gtest.h>
 

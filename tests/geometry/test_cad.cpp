@@ -54,9 +54,8 @@ std::map<std::pair<Index, Index>, int> edge_uses(const SurfaceMesh& m) {
             first_count = n;
         }
     if (bad == 0) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure()
-           << bad << " edges not used exactly twice, e.g. (" << first.first << ", " << first.second
-           << ") used " << first_count << " times";
+    return ::testing::AssertionFailure() << bad << " edges not used exactly twice, e.g. (" << first.first << ", "
+                                         << first.second << ") used " << first_count << " times";
 }
 
 // Connected components of faces joined through shared nodes.
@@ -143,8 +142,8 @@ std::string error_text(F&& f) {
 // ---------------------------------------------------------------------------------------
 
 TEST(CadFile, RecognisesExtensionsCaseInsensitively) {
-    for (const char* p : {"a.step", "a.stp", "b/A.STEP", "a.Stp", "a.iges", "a.IGS", "a.brep",
-                          "a.BRP", "x/y.geo", "y.GEO"})
+    for (const char* p :
+         {"a.step", "a.stp", "b/A.STEP", "a.Stp", "a.iges", "a.IGS", "a.brep", "a.BRP", "x/y.geo", "y.GEO"})
         EXPECT_TRUE(is_cad_file(p)) << p;
     for (const char* p : {"a.stl", "a.msh", "step", "a.step.txt", "a", "a.geo_unrolled", ""})
         EXPECT_FALSE(is_cad_file(p)) << p;
@@ -155,8 +154,7 @@ TEST(MeshCad, OneraM6TrianglesAreClosedWithOnePatchPerFace) {
     expect_well_formed(m);
     EXPECT_EQ(m.num_triangles(), m.num_faces());
     ASSERT_EQ(m.patches.size(), 11u);
-    for (int s = 1; s <= 11; ++s)
-        EXPECT_NE(find_patch(m, "surface_" + std::to_string(s)), kNone) << s;
+    for (int s = 1; s <= 11; ++s) EXPECT_NE(find_patch(m, "surface_" + std::to_string(s)), kNone) << s;
     for (const auto& [tri, quad] : tri_quad_per_patch(m)) EXPECT_GT(tri + quad, 0);
     EXPECT_TRUE(closed(m));
     EXPECT_EQ(components(m), 1);
@@ -272,8 +270,7 @@ TEST(MeshCad, GeoSphereNodesLieOnTheSphere) {
     ASSERT_EQ(m.patches.size(), 1u);
     EXPECT_EQ(m.patches[0].name, "surface_1");
     EXPECT_GT(m.num_faces(), 5000);  // 4π / (0.05² √3/4) ≈ 11,600 triangles
-    for (Index i = 0; i < m.num_points(); ++i)
-        ASSERT_NEAR(m.points[i].norm(), 1.0, 1e-6) << "node " << i;
+    for (Index i = 0; i < m.num_points(); ++i) ASSERT_NEAR(m.points[i].norm(), 1.0, 1e-6) << "node " << i;
     EXPECT_TRUE(closed(m));  // across the sphere's seam and poles too
 }
 
@@ -362,8 +359,7 @@ TEST(MeshCad, CurvatureRefinementAddsFaces) {
     const SurfaceMesh plain = unit_sphere(0.4), curved = unit_sphere(0.4, 40);
     EXPECT_TRUE(closed(curved));
     // 40 elements per 2π on a unit radius: size 0.157 instead of 0.4.
-    EXPECT_GT(curved.num_faces(), 2 * plain.num_faces())
-        << curved.num_faces() << " vs " << plain.num_faces();
+    EXPECT_GT(curved.num_faces(), 2 * plain.num_faces()) << curved.num_faces() << " vs " << plain.num_faces();
 }
 
 TEST(MeshCad, HalvingTheSizeRoughlyQuadruplesTheFaces) {
@@ -397,8 +393,7 @@ TEST(MeshCad, GeoScriptSizesStandUnlessTheCallerGivesOne) {
     EXPECT_EQ(caller.num_faces(), reference.num_faces());
 
     // A script that meshes itself is meshed again, curves included, with the caller's size.
-    const std::string meshed =
-        write_file(dir, "meshed.geo", sphere + "Mesh.MeshSizeMax = 0.5;\nMesh 2;\n");
+    const std::string meshed = write_file(dir, "meshed.geo", sphere + "Mesh.MeshSizeMax = 0.5;\nMesh 2;\n");
     EXPECT_EQ(mesh_cad(meshed, p).num_faces(), reference.num_faces());
 
     // High-order requests are ignored: Strata needs linear faces.
@@ -441,8 +436,7 @@ TEST(MeshCad, SameInputGivesTheSameMesh) {
     EXPECT_EQ(a.face_nodes, b.face_nodes);
     EXPECT_EQ(a.face_patch, b.face_patch);
     ASSERT_EQ(a.patches.size(), b.patches.size());
-    for (std::size_t i = 0; i < a.patches.size(); ++i)
-        EXPECT_EQ(a.patches[i].name, b.patches[i].name);
+    for (std::size_t i = 0; i < a.patches.size(); ++i) EXPECT_EQ(a.patches[i].name, b.patches[i].name);
 }
 
 // --- errors ------------------------------------------------------------------------------
@@ -482,8 +476,8 @@ TEST(MeshCadErrors, BrokenGeoScriptNamesTheFile) {
 
 TEST(MeshCadErrors, ModelWithoutSurfaces) {
     ScratchDir dir("cad_nosurf");
-    const std::string path = write_file(
-        dir, "curves.geo", "Point(1) = {0,0,0};\nPoint(2) = {1,0,0};\nLine(1) = {1,2};\n");
+    const std::string path =
+        write_file(dir, "curves.geo", "Point(1) = {0,0,0};\nPoint(2) = {1,0,0};\nLine(1) = {1,2};\n");
     EXPECT_THROW(mesh_cad(path, {}), InputError);
     const std::string what = error_text([&] { mesh_cad(path, {}); });
     EXPECT_NE(what.find("curves.geo: no surfaces in the model"), std::string::npos) << what;

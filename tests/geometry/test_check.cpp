@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 
 #include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/primitives.h>
-#include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
 
 #include "test_support.h"
@@ -32,7 +32,9 @@ std::string message_of(F&& f) {
     return test::error_message<E>(std::forward<F>(f));
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+    return s.find(part) != std::string::npos;
+}
 
 /// Append an icosphere (20·4^levels triangles) of \p radius around \p centre on \p patch,
 /// every face oriented outward (checked here from geometry, so the builder cannot silently be
@@ -186,7 +188,7 @@ TEST(OrientSurface, SphereWithThirtyPercentFlippedFacesIsRepairedOutward) {
         for (Index f = 0; f < 320; ++f) order[f] = f;
         std::mt19937 rng(seed);
         std::shuffle(order.begin(), order.end(), rng);
-        order.resize(96);  // 30 %
+        order.resize(96);                                                                        // 30 %
         if (seed == 1 && std::find(order.begin(), order.end(), 0) == order.end()) order[0] = 0;  // BFS root flipped
         for (Index f : order) reverse_face(m, f);
 

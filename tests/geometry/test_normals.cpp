@@ -1,7 +1,7 @@
 #include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
-#include <strata/core/face_geometry.h>
 #include <strata/geometry/normals.h>
 #include <strata/geometry/topology.h>
 

@@ -23,7 +23,9 @@ constexpr double kPi = std::numbers::pi;
 
 // ---------------------------------------------------------------- helpers
 
-std::vector<Index> row(const Csr& c, Index i) { return {c.row_begin(i), c.row_end(i)}; }
+std::vector<Index> row(const Csr& c, Index i) {
+    return {c.row_begin(i), c.row_end(i)};
+}
 
 /// The faces of \p m in a random order, each face's node list rotated by a random amount
 /// (orientation kept), so nothing can depend on the order faces were built in.
@@ -152,15 +154,13 @@ TEST_P(RingOrder, CentreRingIsCounterClockwiseWithDiagonalsInTheirSectors) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Valences, RingOrder,
-                         ::testing::Values(RingCase{3, FanKind::Triangles}, RingCase{4, FanKind::Triangles},
-                                           RingCase{5, FanKind::Triangles}, RingCase{6, FanKind::Triangles},
-                                           RingCase{20, FanKind::Triangles}, RingCase{3, FanKind::Quads},
-                                           RingCase{4, FanKind::Quads}, RingCase{5, FanKind::Quads},
-                                           RingCase{6, FanKind::Quads}, RingCase{20, FanKind::Quads},
-                                           RingCase{3, FanKind::Mixed}, RingCase{4, FanKind::Mixed},
-                                           RingCase{5, FanKind::Mixed}, RingCase{6, FanKind::Mixed},
-                                           RingCase{20, FanKind::Mixed}));
+INSTANTIATE_TEST_SUITE_P(
+    Valences, RingOrder,
+    ::testing::Values(RingCase{3, FanKind::Triangles}, RingCase{4, FanKind::Triangles}, RingCase{5, FanKind::Triangles},
+                      RingCase{6, FanKind::Triangles}, RingCase{20, FanKind::Triangles}, RingCase{3, FanKind::Quads},
+                      RingCase{4, FanKind::Quads}, RingCase{5, FanKind::Quads}, RingCase{6, FanKind::Quads},
+                      RingCase{20, FanKind::Quads}, RingCase{3, FanKind::Mixed}, RingCase{4, FanKind::Mixed},
+                      RingCase{5, FanKind::Mixed}, RingCase{6, FanKind::Mixed}, RingCase{20, FanKind::Mixed}));
 
 /// Unit cube [0,1]³ of 6 outward quads; node id = x + 2y + 4z.
 SurfaceMesh unit_cube() {
@@ -286,7 +286,8 @@ TEST(NodeRings, OpenRingsOnTheBoundaryOfAGrid) {
     EXPECT_EQ(r.closed[1], 0);
     EXPECT_EQ(row(r.neighbours, 1), (std::vector<Index>{2, 5, 0}));
     off = r.neighbours.offsets[1];
-    EXPECT_EQ((std::vector<Index>{r.faces[off], r.faces[off + 1], r.faces[off + 2]}), (std::vector<Index>{1, 0, kNone}));
+    EXPECT_EQ((std::vector<Index>{r.faces[off], r.faces[off + 1], r.faces[off + 2]}),
+              (std::vector<Index>{1, 0, kNone}));
     EXPECT_EQ((std::vector<Index>{r.diagonals[off], r.diagonals[off + 1], r.diagonals[off + 2]}),
               (std::vector<Index>{6, 4, kNone}));
 
@@ -338,7 +339,7 @@ TEST(NodeRings, NonManifoldVertexIsReportedWithItsNode) {
     // Two closed tetrahedra sharing one vertex: two closed fans at node 0.
     SurfaceMesh t;
     t.patches.push_back({"wall", PatchKind::Wall});
-    t.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1),
+    t.points = {Vec3(0, 0, 0),  Vec3(1, 0, 0),  Vec3(0, 1, 0), Vec3(0, 0, 1),
                 Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, -1)};
     for (Index base : {Index{0}, Index{3}}) {
         const Index a = base == 0 ? 1 : 4, b = a + 1, c = a + 2;
@@ -437,7 +438,7 @@ TEST(Merge, RespectsTheRelativeTolerance) {
     SurfaceMesh m = cube;
     const Index near = m.num_points(), far = near + 1;
     m.points.push_back(cube.points[7] + Vec3(0.4 * tol, -0.3 * tol, 0.5 * tol));  // within
-    m.points.push_back(cube.points[6] + Vec3(1.1 * tol, 0.0, 0.0));              // beyond
+    m.points.push_back(cube.points[6] + Vec3(1.1 * tol, 0.0, 0.0));               // beyond
     m.add_face({near, far, 5}, 0);
     const SurfaceMesh g = merge_coincident_nodes(m, 1e-3);
     EXPECT_EQ(g.num_points(), 9);
@@ -525,7 +526,7 @@ TEST(BoundaryLoops, GridHasOneLoopInTheFacesDirection) {
     ASSERT_EQ(loops.rows(), 1);
     const std::vector<Index> loop = row(loops, 0);
     ASSERT_EQ(static_cast<int>(loop.size()), 2 * (nx + ny));
-    EXPECT_EQ(loop[0], 0);  // starts at its lowest node
+    EXPECT_EQ(loop[0], 0);                          // starts at its lowest node
     EXPECT_DOUBLE_EQ(loop_area(m, loop), nx * ny);  // counter-clockwise like the +z faces
     for (std::size_t k = 0; k < loop.size(); ++k)
         EXPECT_TRUE(directed_edge_in_faces(m, loop[k], loop[(k + 1) % loop.size()]));
@@ -563,8 +564,8 @@ TEST(BoundaryLoops, GridWithAHoleHasTwoLoops) {
 TEST(BoundaryLoops, TouchingLoopsThrow) {
     SurfaceMesh m;
     m.patches.push_back({"wall", PatchKind::Wall});
-    m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(2, 1, 0), Vec3(2, 2, 0),
-                Vec3(1, 2, 0)};
+    m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                Vec3(2, 1, 0), Vec3(2, 2, 0), Vec3(1, 2, 0)};
     m.add_face({0, 1, 2, 3}, 0);
     m.add_face({2, 4, 5, 6}, 0);  // shares only node 2
     try {
@@ -578,8 +579,8 @@ TEST(BoundaryLoops, TouchingLoopsThrow) {
 TEST(FaceComponents, SeparatedByEdgesNotVertices) {
     SurfaceMesh m;
     m.patches.push_back({"wall", PatchKind::Wall});
-    m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(2, 1, 0), Vec3(2, 2, 0),
-                Vec3(1, 2, 0), Vec3(2, 0, 0)};
+    m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                Vec3(2, 1, 0), Vec3(2, 2, 0), Vec3(1, 2, 0), Vec3(2, 0, 0)};
     m.add_face({2, 4, 5, 6}, 0);  // component 0 (lowest face 0), touches face 1 at node 2 only
     m.add_face({0, 1, 2, 3}, 0);  // component 1
     m.add_face({1, 7, 2}, 0);     // shares edge 1–2 with face 1

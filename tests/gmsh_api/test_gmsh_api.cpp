@@ -7,8 +7,8 @@
 #include "test_support.h"
 
 #include <strata/core/error.h>
-#include <strata/gmsh_api/gmsh_api.h>
 #include <strata/core/validate.h>
+#include <strata/gmsh_api/gmsh_api.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/write_volume.h>
 

@@ -3,8 +3,8 @@
 // the tests, Gmsh's API) and validate what was read: the round trip every test of a finished
 // mesh ends with.
 
-#include <strata/io/cobalt.h>
 #include <strata/core/validate.h>
+#include <strata/io/cobalt.h>
 #include <strata/io/write_volume.h>
 
 #include <gtest/gtest.h>

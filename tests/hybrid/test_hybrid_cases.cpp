@@ -38,7 +38,6 @@ std::vector<std::string> names(const SurfaceMesh& s, const std::vector<Index>& p
     return out;
 }
 
-
 /// The wall faces of \p s as sorted corner coordinates, for comparing two meshes' walls.
 std::vector<std::vector<std::array<double, 3>>> wall_faces(const std::vector<Vec3>& points, const SurfaceMesh& s) {
     std::vector<std::vector<std::array<double, 3>>> out;
@@ -71,7 +70,8 @@ void expect_valid_case(const std::string& name, const SurfaceMesh& input, const 
         farfield.face_nodes.clear();
         farfield.face_patch.clear();
         for (Index f = 0; f < m.boundary.num_faces(); ++f)
-            if (m.boundary.face_patch[f] == far) farfield.add_face(m.boundary.face_begin(f), m.boundary.face_size(f), far);
+            if (m.boundary.face_patch[f] == far)
+                farfield.add_face(m.boundary.face_begin(f), m.boundary.face_size(f), far);
         expected = test::enclosed_volume(farfield, m.points) - test::enclosed_volume(input);
     }
     EXPECT_NEAR(rep.validation.cell_volume, expected, 1e-9 * std::abs(expected)) << name;

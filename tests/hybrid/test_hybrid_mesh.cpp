@@ -17,12 +17,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <numbers>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
-#include <fstream>
-#include <numbers>
 
 namespace strata {
 namespace {

@@ -6,12 +6,12 @@
 // closed capped surface, validate_mesh on the shell of pyramids, and a brute-force
 // triangle–triangle crossing test with orientation predicates (no distances).
 
+#include <strata/core/cell_quality.h>
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/validate.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/pyramids.h>
-#include <strata/core/cell_quality.h>
-#include <strata/core/validate.h>
 
 #include "core/box_mesh.h"
 #include "test_support.h"
@@ -388,14 +388,19 @@ TEST(Pyramids, FoldAcrossConcaveEdgeShortens) {
 TEST(Pyramids, ApexKeepsClearOfAFaceAbove) {
     // A triangle 0.6 above the quad, facing down: at 0.5 the apex would be 0.1 from it (less
     // than half the height, though nothing crosses); at 0.25 it is 0.35 away.
-    EXPECT_NEAR((apex_over_unit_quad({{-2, -2, 0.6}, {0.5, 3, 0.6}, {3, -2, 0.6}}, {4, 5, 6}) - Vec3(0.5, 0.5, 0.25)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR(
+        (apex_over_unit_quad({{-2, -2, 0.6}, {0.5, 3, 0.6}, {3, -2, 0.6}}, {4, 5, 6}) - Vec3(0.5, 0.5, 0.25)).norm(),
+        0.0, 1e-15);
 }
 
 TEST(Pyramids, SideCrossingAFaceShortens) {
     // A large vertical triangle at x = 0.9 reaching down to z = 0.05 over the quad cuts the
     // pyramid's side while staying 0.4 from its apex: shortened until the side passes under it
     // (height 0.25 touches it at z = 0.05, 0.125 clears it).
-    EXPECT_NEAR((apex_over_unit_quad({{0.9, -1, 0.05}, {0.9, 2, 0.05}, {0.9, 0.5, 3}}, {4, 5, 6}) - Vec3(0.5, 0.5, 0.125)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR(
+        (apex_over_unit_quad({{0.9, -1, 0.05}, {0.9, 2, 0.05}, {0.9, 0.5, 3}}, {4, 5, 6}) - Vec3(0.5, 0.5, 0.125))
+            .norm(),
+        0.0, 1e-15);
 }
 
 TEST(Pyramids, ImpossibleGapThrowsNamingTheQuad) {

@@ -2,11 +2,11 @@
 // Gmsh's own 3D meshers work in one process (PLATFORM.md; why libtet is not linked: the file
 // comment of hybrid/src/tetgen_fill.cpp).
 
-#include <strata/core/error.h>
-#include <strata/io/gmsh_session.h>
-#include <strata/hybrid/tetgen_fill.h>
 #include <strata/core/cell_quality.h>
+#include <strata/core/error.h>
 #include <strata/core/validate.h>
+#include <strata/hybrid/tetgen_fill.h>
+#include <strata/io/gmsh_session.h>
 
 #include <gtest/gtest.h>
 

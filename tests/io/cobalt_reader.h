@@ -31,10 +31,10 @@ struct CobaltGrid {
     std::int64_t ndim = 0, nzones = 0, npatches = 0;
     std::int64_t nnodes = 0, nfaces = 0, ncells = 0;
     std::int64_t max_nodes_per_face = 0, max_faces_per_cell = 0;
-    std::vector<Vec3> points;                      ///< nnodes
-    std::vector<std::int64_t> face_offsets{0};     ///< nfaces + 1
-    std::vector<std::int64_t> face_nodes;          ///< 1-based node ids, file order
-    std::vector<std::int64_t> c1, c2;              ///< nfaces each, as in the file
+    std::vector<Vec3> points;                   ///< nnodes
+    std::vector<std::int64_t> face_offsets{0};  ///< nfaces + 1
+    std::vector<std::int64_t> face_nodes;       ///< 1-based node ids, file order
+    std::vector<std::int64_t> c1, c2;           ///< nfaces each, as in the file
 
     std::int64_t face_size(std::int64_t f) const { return face_offsets[f + 1] - face_offsets[f]; }
     /// 0-based node k of face f.
@@ -149,7 +149,8 @@ inline CobaltGrid read_cobalt(const std::string& path) {
             in.fail("face line with " + std::to_string(t.size()) + " fields, expected " + std::to_string(nv + 3));
         for (std::int64_t k = 1; k <= nv; ++k) {
             const std::int64_t v = in.integer(t[k]);
-            if (v < 1 || v > g.nnodes) in.fail("node id " + std::to_string(v) + " out of 1.." + std::to_string(g.nnodes));
+            if (v < 1 || v > g.nnodes)
+                in.fail("node id " + std::to_string(v) + " out of 1.." + std::to_string(g.nnodes));
             g.face_nodes.push_back(v);
         }
         g.face_offsets.push_back(static_cast<std::int64_t>(g.face_nodes.size()));
@@ -220,7 +221,8 @@ inline std::vector<Index> gmsh_corners(const std::vector<std::vector<Index>>& fa
         std::map<Index, Index> up;
         const std::set<Index> in_bottom(bottom.begin(), bottom.end());
         for (const auto& f : faces) {
-            if (f.size() != 4 || (f.size() == bottom.size() && std::set<Index>(f.begin(), f.end()) == in_bottom)) continue;
+            if (f.size() != 4 || (f.size() == bottom.size() && std::set<Index>(f.begin(), f.end()) == in_bottom))
+                continue;
             for (std::size_t k = 0; k < 4; ++k) {
                 const Index a = f[k], b = f[(k + 1) % 4];
                 if (in_bottom.count(a) && !in_bottom.count(b)) up[a] = b;

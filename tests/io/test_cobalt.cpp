@@ -9,11 +9,13 @@
 #include "test_support.h"
 
 #include <strata/core/error.h>
-#include <strata/io/cobalt.h>
 #include <strata/core/validate.h>
+#include <strata/io/cobalt.h>
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -24,8 +26,6 @@
 #include <set>
 #include <sstream>
 #include <string>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <vector>
 
 using namespace strata;
@@ -123,7 +123,8 @@ RebuiltMesh write_and_check(const VolumeMesh& mesh, const std::string& path, Exp
     // Patches: only those with faces, in patch-table order, names and kinds in the .bc file.
     std::vector<Index> used;
     for (std::size_t p = 0; p < b.patches.size(); ++p)
-        if (std::count(b.face_patch.begin(), b.face_patch.end(), static_cast<Index>(p))) used.push_back(static_cast<Index>(p));
+        if (std::count(b.face_patch.begin(), b.face_patch.end(), static_cast<Index>(p)))
+            used.push_back(static_cast<Index>(p));
     EXPECT_EQ(g.npatches, static_cast<std::int64_t>(used.size()));
     EXPECT_EQ(bc.size(), used.size());
     for (std::size_t k = 0; k < std::min(bc.size(), used.size()); ++k) {
@@ -135,8 +136,7 @@ RebuiltMesh write_and_check(const VolumeMesh& mesh, const std::string& path, Exp
     // Coordinates round-trip bit for bit.
     EXPECT_EQ(g.points.size(), mesh.points.size());
     for (std::size_t i = 0; i < std::min(g.points.size(), mesh.points.size()); ++i)
-        for (int d = 0; d < 3; ++d)
-            EXPECT_EQ(g.points[i][d], mesh.points[i][d]) << "node " << i << " coordinate " << d;
+        for (int d = 0; d < 3; ++d) EXPECT_EQ(g.points[i][d], mesh.points[i][d]) << "node " << i << " coordinate " << d;
 
     // Ids are 1-based and span exactly 1..count.
     EXPECT_EQ(*std::min_element(g.face_nodes.begin(), g.face_nodes.end()), 1);
@@ -279,8 +279,9 @@ TEST(WriteCobalt, MixedBoxRoundTripsExactly) {
     ScratchDir dir("cobalt_mixed");
     VolumeMesh m = test::mixed_box(0.1, Vec3(1.0 / 3.0, -2.0 / 7.0, 1e-9 * std::numbers::pi)).build();
     for (std::size_t i = 0; i < m.points.size(); ++i)
-        m.points[i] += 1e-3 * Vec3(std::sin(12.9898 * static_cast<double>(i)), std::cos(78.233 * static_cast<double>(i)),
-                                   std::sin(3.7 * static_cast<double>(i) + 1.0));
+        m.points[i] +=
+            1e-3 * Vec3(std::sin(12.9898 * static_cast<double>(i)), std::cos(78.233 * static_cast<double>(i)),
+                        std::sin(3.7 * static_cast<double>(i) + 1.0));
     ASSERT_TRUE(validate_mesh(m).ok());
     ASSERT_FALSE(m.tets.empty());
     ASSERT_FALSE(m.pyramids.empty());
@@ -382,8 +383,8 @@ TEST(WriteCobalt, HoleIsNamed) {
     m.boundary.face_nodes.resize(static_cast<std::size_t>(m.boundary.face_offsets.back()));
     m.boundary.face_patch.pop_back();
     expect_error<TopologyError>([&] { write_cobalt(m, dir.file("mesh.cgr")); },
-                                "of hexahedron 0 at (0.5, 0.5, 0.5) has no neighbouring cell",
-                                dir.path(), {"mesh.cgr", "mesh.cgr.bc"});
+                                "of hexahedron 0 at (0.5, 0.5, 0.5) has no neighbouring cell", dir.path(),
+                                {"mesh.cgr", "mesh.cgr.bc"});
     EXPECT_EQ(slurp(dir.file("mesh.cgr")), before);
     EXPECT_EQ(slurp(dir.file("mesh.cgr.bc")), bc_before);
 }
@@ -401,12 +402,12 @@ TEST(WriteCobalt, StrayAndDuplicatedBoundaryFaces) {
     VolumeMesh m = BoxMesh(1, 1, 1).build();
     VolumeMesh stray = m;
     stray.boundary.add_face({0, 5, 6}, 1);
-    expect_error<TopologyError>([&] { write_cobalt(stray, dir.file("bad.cgr")); }, "is no face of any cell",
-                                dir.path(), {});
+    expect_error<TopologyError>([&] { write_cobalt(stray, dir.file("bad.cgr")); }, "is no face of any cell", dir.path(),
+                                {});
     VolumeMesh twice = m;
     twice.boundary.add_face(m.boundary.face_begin(0), 4, 2);
-    expect_error<TopologyError>([&] { write_cobalt(twice, dir.file("bad.cgr")); }, "times in the boundary",
-                                dir.path(), {});
+    expect_error<TopologyError>([&] { write_cobalt(twice, dir.file("bad.cgr")); }, "times in the boundary", dir.path(),
+                                {});
 }
 
 TEST(WriteCobalt, OverlappingCellsAreRejected) {
@@ -418,8 +419,7 @@ TEST(WriteCobalt, OverlappingCellsAreRejected) {
     auto& h = m.hexes[1];
     ASSERT_EQ(h, (std::array<Index, 8>{1, 2, 5, 4, 7, 8, 11, 10}));
     h = {4, 5, 2, 1, 10, 11, 8, 7};
-    expect_error<TopologyError>([&] { write_cobalt(m, dir.file("bad.cgr")); }, "into hexahedron 1 at", dir.path(),
-                                {});
+    expect_error<TopologyError>([&] { write_cobalt(m, dir.file("bad.cgr")); }, "into hexahedron 1 at", dir.path(), {});
 }
 
 TEST(WriteCobalt, MalformedInput) {
@@ -442,8 +442,7 @@ TEST(WriteCobalt, UnwritableTargets) {
     ScratchDir dir("cobalt_unwritable");
     const VolumeMesh m = BoxMesh(1, 1, 1).build();
     // Missing directory.
-    expect_error<InputError>([&] { write_cobalt(m, dir.file("missing/mesh.cgr")); }, "does not exist", dir.path(),
-                             {});
+    expect_error<InputError>([&] { write_cobalt(m, dir.file("missing/mesh.cgr")); }, "does not exist", dir.path(), {});
     // A regular file as the directory.
     { std::ofstream(dir.file("plain")) << "x"; }
     expect_error<InputError>([&] { write_cobalt(m, dir.file("plain/mesh.cgr")); }, "plain", dir.path(), {"plain"});

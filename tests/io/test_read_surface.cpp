@@ -231,7 +231,7 @@ TEST(ReadMsh, OneraM6Mixed) {
     const SurfaceMesh m = read_msh(example_data("onera_m6_mixed_quadtri.msh"));
     EXPECT_EQ(m.num_quads(), 7753);
     EXPECT_EQ(m.num_triangles(), 2588);
-    EXPECT_EQ(m.num_points(), 9049);  // closed: V = E − F + 2 with E = (4·7753 + 3·2588)/2
+    EXPECT_EQ(m.num_points(), 9049);   // closed: V = E − F + 2 with E = (4·7753 + 3·2588)/2
     EXPECT_EQ(m.patches.size(), 11u);  // the 11 CAD faces
 }
 
@@ -297,8 +297,8 @@ TEST(ReadMsh, BinaryAndVersion22AgreeWithAscii) {
         double version = 0, binary = 0;
         gmsh::option::getNumber("Mesh.MshFileVersion", version);
         gmsh::option::getNumber("Mesh.Binary", binary);
-        for (auto [v, b, name] : {std::tuple{4.1, 1, "b41.msh"}, std::tuple{2.2, 1, "b22.msh"},
-                                  std::tuple{2.2, 0, "a22.msh"}}) {
+        for (auto [v, b, name] :
+             {std::tuple{4.1, 1, "b41.msh"}, std::tuple{2.2, 1, "b22.msh"}, std::tuple{2.2, 0, "a22.msh"}}) {
             gmsh::option::setNumber("Mesh.MshFileVersion", v);
             gmsh::option::setNumber("Mesh.Binary", b);
             gmsh::write(dir.file(name));
@@ -351,11 +351,11 @@ SurfaceMesh mixed_mesh() {
                  {"farfield_top", PatchKind::Farfield},
                  {"symmetry", PatchKind::Symmetry}};
     for (Index f = 3; f < 6; ++f) m.face_patch[f] = 2;  // upper row of quads
-    m.face_patch[1] = 2;                                 // interleave patches in face order
+    m.face_patch[1] = 2;                                // interleave patches in face order
     const Index hub = m.num_points();
     m.points.emplace_back(0.974928, -0.433884, 0.1);
     m.points.emplace_back(123.456, 7.0, -0.000321);  // unused node: not written
-    m.add_face({hub, 0, 1}, 3);                       // triangles sharing grid nodes
+    m.add_face({hub, 0, 1}, 3);                      // triangles sharing grid nodes
     m.add_face({hub, 1, 2}, 3);
     m.add_face({2, 6, 1}, 0);  // a triangle on the quad patch: mixed types on one surface
     return m;
@@ -435,8 +435,7 @@ TEST(WriteSurface, ArbitraryDoublesRoundTripToSixteenDigits) {
     const SurfaceMesh r = read_msh(dir.file("r.msh"));
     ASSERT_EQ(r.num_points(), m.num_points());
     for (Index i = 0; i < m.num_points(); ++i)
-        for (int k = 0; k < 3; ++k)
-            EXPECT_NEAR(r.points[i][k], m.points[i][k], 1e-15 * std::abs(m.points[i][k])) << i;
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.points[i][k], m.points[i][k], 1e-15 * std::abs(m.points[i][k])) << i;
 }
 
 TEST(WriteSurface, StlAndVtkByExtension) {

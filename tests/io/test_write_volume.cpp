@@ -2,9 +2,9 @@
 #include "test_support.h"
 
 #include <strata/core/error.h>
+#include <strata/core/validate.h>
 #include <strata/io/read_surface.h>
 #include <strata/io/write_surface.h>
-#include <strata/core/validate.h>
 #include <strata/io/write_volume.h>
 
 #include <gtest/gtest.h>
@@ -215,7 +215,8 @@ TEST(WriteVolume, MalformedMeshThrowsNamingTheCell) {
         write_volume(m, dir.file("mesh.msh"));
         FAIL() << "no throw";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("prism 1 (2 7 10000 10 15 14) uses node 10000"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("prism 1 (2 7 10000 10 15 14) uses node 10000"), std::string::npos)
+            << e.what();
     }
     EXPECT_THROW(write_volume(VolumeMesh{}, dir.file("mesh.msh")), InputError);
     EXPECT_TRUE(files_in(dir.path()).empty());

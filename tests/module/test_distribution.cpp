@@ -14,9 +14,13 @@
 namespace strata {
 namespace {
 
-std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+std::size_t sz(int i) {
+    return static_cast<std::size_t>(i);
+}
 
-double total(const std::vector<double>& d, int n) { return std::accumulate(d.begin(), d.begin() + n, 0.0); }
+double total(const std::vector<double>& d, int n) {
+    return std::accumulate(d.begin(), d.begin() + n, 0.0);
+}
 
 /// The parameter a kind does not use is left unset (0): giving it is an error (resolve).
 DistributionParams params(Distribution kind, int layers, double h1, double growth, double thickness) {
@@ -113,9 +117,9 @@ TEST_P(Tanh, SumsToTheThicknessFromH1Increasing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, Tanh,
-                         ::testing::Values(TanhCase{30, 1e-3, 1.0}, TanhCase{20, 1e-4, 0.05},
-                                           TanhCase{2, 0.1, 1.0}, TanhCase{10, 0.0999, 1.0},  // nearly uniform
-                                           TanhCase{40, 1e-7, 1.0},                          // y+ ~ 1 scale
+                         ::testing::Values(TanhCase{30, 1e-3, 1.0}, TanhCase{20, 1e-4, 0.05}, TanhCase{2, 0.1, 1.0},
+                                           TanhCase{10, 0.0999, 1.0},  // nearly uniform
+                                           TanhCase{40, 1e-7, 1.0},    // y+ ~ 1 scale
                                            TanhCase{60, 2e-9, 0.3}, TanhCase{200, 1e-6, 10.0}));
 
 TEST(Distribution, TanhIsTheOneSidedTanhStretching) {

@@ -2,10 +2,10 @@
 // radii on spheres, validity on concave corners, open edges held in their plane.
 
 #include <strata/core/error.h>
+#include <strata/core/validate.h>
 #include <strata/geometry/prepare.h>
 #include <strata/io/read_surface.h>
 #include <strata/module/layers.h>
-#include <strata/core/validate.h>
 
 #include <gtest/gtest.h>
 

@@ -29,11 +29,11 @@ struct MeshProblems {
 
 /// What check_face_arrays asks of the faces.
 struct FaceRules {
-    bool require_faces = true;     ///< no faces is a problem
-    bool triangles_only = false;   ///< a quadrilateral is a problem (TetGen's input)
-    bool coordinates = true;       ///< a non-finite coordinate in the points is a problem
-    bool patches = true;           ///< face_patch must hold a patch of mesh.patches per face
-    const char* word = "face";     ///< how messages name a face ("face", "boundary face")
+    bool require_faces = true;    ///< no faces is a problem
+    bool triangles_only = false;  ///< a quadrilateral is a problem (TetGen's input)
+    bool coordinates = true;      ///< a non-finite coordinate in the points is a problem
+    bool patches = true;          ///< face_patch must hold a patch of mesh.patches per face
+    const char* word = "face";    ///< how messages name a face ("face", "boundary face")
 };
 
 /// The faces of a surface mesh, indexing \p points (mesh.points, or a volume mesh's points for

@@ -44,7 +44,8 @@ inline Csr group_by_key(const std::vector<Index>& key, std::size_t rows) {
     out.values.resize(static_cast<std::size_t>(out.offsets.back()));
     std::vector<Index> fill(out.offsets.begin(), out.offsets.end() - 1);
     for (std::size_t i = 0; i < key.size(); ++i)
-        if (key[i] != kNone) out.values[static_cast<std::size_t>(fill[static_cast<std::size_t>(key[i])]++)] = static_cast<Index>(i);
+        if (key[i] != kNone)
+            out.values[static_cast<std::size_t>(fill[static_cast<std::size_t>(key[i])]++)] = static_cast<Index>(i);
     return out;
 }
 

@@ -38,9 +38,7 @@ struct VolumeMesh {
     /// of the meshed region.
     SurfaceMesh boundary;  ///< boundary.points unused (faces index `points`)
 
-    Index num_cells() const {
-        return static_cast<Index>(tets.size() + pyramids.size() + prisms.size() + hexes.size());
-    }
+    Index num_cells() const { return static_cast<Index>(tets.size() + pyramids.size() + prisms.size() + hexes.size()); }
     /// Cells of type \p t.
     std::size_t num_cells(CellType t) const;
     /// The cell_corners(t) corners of cell \p i of type \p t.
@@ -91,8 +89,7 @@ std::string describe_cell(const VolumeMesh& mesh, CellType t, std::int64_t i);
 /// Append \p from to \p to with every node id mapped through \p map (a callable Index → Index):
 /// how assembly moves one stage's cells into the numbering of the whole mesh.
 template <std::size_t N, class NodeMap>
-void append_cells(std::vector<std::array<Index, N>>& to, const std::vector<std::array<Index, N>>& from,
-                  NodeMap&& map) {
+void append_cells(std::vector<std::array<Index, N>>& to, const std::vector<std::array<Index, N>>& from, NodeMap&& map) {
     to.reserve(to.size() + from.size());
     for (const std::array<Index, N>& c : from) {
         std::array<Index, N> m;

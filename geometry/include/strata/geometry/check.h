@@ -18,9 +18,9 @@ void check_surface(const SurfaceMesh& mesh, const std::string& source);
 
 /// What orient_surface did.
 struct OrientReport {
-    Index components = 0;          ///< connected components
-    Index flipped_faces = 0;       ///< faces whose order was reversed
-    Index closed_components = 0;   ///< of which closed (no boundary edge)
+    Index components = 0;         ///< connected components
+    Index flipped_faces = 0;      ///< faces whose order was reversed
+    Index closed_components = 0;  ///< of which closed (no boundary edge)
 };
 
 /// Make every connected component consistently oriented (breadth-first from its lowest face),

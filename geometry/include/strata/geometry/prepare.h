@@ -4,9 +4,9 @@
 /// check, orient. The result is what module/ extrudes.
 
 #include <strata/core/progress.h>
+#include <strata/core/surface_mesh.h>
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
-#include <strata/core/surface_mesh.h>
 
 #include <string>
 #include <utility>
@@ -15,9 +15,9 @@
 namespace strata {
 
 struct PrepareParams {
-    CadParams cad;                                          ///< used for CAD input only
+    CadParams cad;                                               ///< used for CAD input only
     std::vector<std::pair<std::string, PatchKind>> patch_kinds;  ///< --patch NAME=KIND
-    double merge_tolerance = 1e-9;                          ///< relative to the bounding-box diagonal
+    double merge_tolerance = 1e-9;                               ///< relative to the bounding-box diagonal
 };
 
 /// What prepare_surface did, for the CLI's summary.
@@ -32,8 +32,8 @@ struct PrepareReport {
 /// listing the patches). Then merge_coincident_nodes, check_surface, orient_surface (all of
 /// this after reading is prepare_mesh). Throws InputError for a missing file or an unknown
 /// extension.
-SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params,
-                            PrepareReport* report = nullptr, Progress* progress = nullptr);
+SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params, PrepareReport* report = nullptr,
+                            Progress* progress = nullptr);
 
 /// The part of prepare_surface after reading, for a mesh that comes from elsewhere (the
 /// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,

@@ -12,9 +12,9 @@
 ///     strata::mesh_current_gmsh_model(params);
 ///     gmsh::write("sphere_hybrid.msh");
 
+#include <strata/core/progress.h>
 #include <strata/geometry/prepare.h>
 #include <strata/hybrid/hybrid_mesh.h>
-#include <strata/core/progress.h>
 
 namespace strata {
 

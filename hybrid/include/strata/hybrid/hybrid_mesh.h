@@ -3,17 +3,17 @@
 /// The whole pipeline after the surface: boundary layers, pyramid transition, tetrahedral
 /// fill out to the farfield, assembled into one validated hybrid mesh.
 
+#include <strata/core/progress.h>
+#include <strata/core/validate.h>
 #include <strata/hybrid/farfield.h>
 #include <strata/hybrid/pyramids.h>
 #include <strata/hybrid/tetgen_fill.h>
 #include <strata/module/layers.h>
-#include <strata/core/validate.h>
-#include <strata/core/progress.h>
 
 namespace strata {
 
 struct HybridParams {
-    LayerParams layers;       ///< its threads field is set from threads below
+    LayerParams layers;  ///< its threads field is set from threads below
     PyramidParams pyramids;
     TetFillParams tets;
     FarfieldParams farfield;  ///< used when the surface has no farfield patch
