@@ -2,6 +2,8 @@
 # packages (scripts/setup.sh installs them).
 
 find_package(Eigen3 3.3 REQUIRED CONFIG)
+# Threads for the smoothing, normals and validation (libgomp, part of GCC).
+find_package(OpenMP REQUIRED COMPONENTS CXX)
 # k-d tree for nearest-point queries (Debian's libnanoflann-dev, header-only).
 find_package(nanoflann REQUIRED CONFIG)
 
