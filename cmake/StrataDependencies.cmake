@@ -4,6 +4,8 @@
 find_package(Eigen3 3.3 REQUIRED CONFIG)
 # Threads for the smoothing, normals and validation (libgomp, part of GCC).
 find_package(OpenMP REQUIRED COMPONENTS CXX)
+# Exact predicates and box intersection (Debian's libcgal-dev, header-only; GMP, MPFR).
+find_package(CGAL REQUIRED CONFIG)
 # k-d tree for nearest-point queries (Debian's libnanoflann-dev, header-only).
 find_package(nanoflann REQUIRED CONFIG)
 

@@ -19,6 +19,7 @@ packages=(
   libeigen3-dev        # small dense linear algebra
   libtet1.5-dev        # TetGen 1.5 (tetrahedral fill)
   libnanoflann-dev     # k-d tree (the tetrahedra's size field)
+  libcgal-dev          # exact predicates: the layer front's self-intersection test
   libgtest-dev         # GoogleTest
   libcli11-dev         # command-line parsing for the strata program
 )

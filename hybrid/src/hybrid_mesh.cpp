@@ -4,6 +4,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/geometry/intersections.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/hybrid/outer_boundary.h>
@@ -141,6 +142,23 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
     return mesh;
 }
 
+/// The boundary TetGen is to fill against must not cross itself: found here, with exact
+/// predicates, where it is and why, rather than by TetGen (which stops without a place).
+void check_front(const SurfaceMesh& region) {
+    const std::vector<FacePair> pairs = self_intersections(region);
+    if (pairs.empty()) return;
+    std::string where;
+    for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 3); ++i)
+        where += (i ? "; " : "") + describe_face(region, pairs[i].a) + " meets " + describe_face(region, pairs[i].b);
+    throw TopologyError("the boundary of the region to fill with tetrahedra (the layer top and the outer boundary) "
+                        "intersects itself in " +
+                        std::to_string(pairs.size()) + " pairs of faces: " + where +
+                        (pairs.size() > 3 ? "; and " + std::to_string(pairs.size() - 3) + " more" : "") +
+                        ". The layers collide there (a gap narrower than the layers on both sides) or reach the "
+                        "outer boundary: fewer or thinner layers (DistributionParams::layers, "
+                        "DistributionParams::first_height, DistributionParams::growth), or a larger farfield");
+}
+
 }  // namespace
 
 VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& params, Progress* progress,
@@ -169,6 +187,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     Index top_patch = kNone;
     const Index farfield_patch = has_outer ? kNone : static_cast<Index>(surface.patches.size());
     const SurfaceMesh region = region_to_fill(surface.patches, pyr, outer, farfield_patch, top_patch);
+    check_front(region);
     TetFillParams tet_params = params.tets;
     tet_params.background_mesh = params.tets.background_mesh && outer.remeshed.empty();  // see TetFillParams
     const TetFill fill = fill_with_tets(region, points_in_layers(lm), tet_params);

@@ -5,6 +5,7 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/prepare.h>
+#include <strata/geometry/primitives.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/io/write_volume.h>
@@ -176,6 +177,29 @@ TEST(HybridMesh, OpenSurfaceThatIsNotAHalfModelIsRefusedClearly) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("do not lie in one plane"), std::string::npos) << e.what();
     }
+}
+
+TEST(HybridMesh, CollidingLayersAreFoundBeforeTetgenWithTheirPlace) {
+    // Two unit spheres 0.1 apart, 0.2 of layers on each: the layer tops cross in the gap. The
+    // front check names layer-top faces there (x between 0.9 and 1.3), not TetGen's code 3.
+    SurfaceMesh s = icosphere(Vec3::Zero(), 1.0, 3, {"a", PatchKind::Wall});
+    const SurfaceMesh b = icosphere(Vec3(2.1, 0, 0), 1.0, 3, {"b", PatchKind::Wall});
+    const Index n = s.num_points();
+    s.patches.push_back(b.patches[0]);
+    s.points.insert(s.points.end(), b.points.begin(), b.points.end());
+    for (Index f = 0; f < b.num_faces(); ++f)
+        s.add_face({b.face_node(f, 0) + n, b.face_node(f, 1) + n, b.face_node(f, 2) + n}, 1);
+    HybridParams p;
+    p.layers.distribution.layers = 10;
+    p.layers.distribution.first_height = 0.02;
+    p.layers.distribution.growth = 1.0;
+    const std::string m = test::error_message<TopologyError>([&] { build_hybrid_mesh(s, p); });
+    EXPECT_NE(m.find("intersects itself"), std::string::npos) << m;
+    EXPECT_NE(m.find("patch 'layer_top') at (1."), std::string::npos) << m;
+    EXPECT_EQ(m.find("TetGen"), std::string::npos) << m;
+    // 0.04 of layers on each leaves them apart: a valid mesh.
+    p.layers.distribution.layers = 2;
+    EXPECT_NO_THROW(build_hybrid_mesh(s, p));
 }
 
 /// Cancels once \p stop_stage has reported a fraction of at least \p stop_at; records every

@@ -1,0 +1,32 @@
+#pragma once
+/// \file
+/// Self-intersection test of a surface mesh with exact predicates (CGAL), for the front the
+/// tetrahedra are to fill against: TetGen must never be the first to find that it crosses
+/// itself (it stops without saying where).
+
+#include <strata/core/surface_mesh.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace strata {
+
+/// Two faces of a surface (a < b) that meet other than by sharing exactly one node or one edge.
+struct FacePair {
+    Index a = kNone, b = kNone;
+    bool operator==(const FacePair&) const = default;
+};
+
+/// Every pair of faces of \p mesh that intersect other than along what they share by node
+/// ids: faces that cross or touch, coplanar faces that overlap across a shared edge or node,
+/// repeated faces. Quads are tested as their two triangles (split along the diagonal from
+/// their first node), degenerate triangles (collinear corners) are skipped. Exact predicates
+/// (CGAL's Epick kernel) on a box-intersection broad phase; sorted by (a, b); at most
+/// \p max_pairs (0: all).
+std::vector<FacePair> self_intersections(const SurfaceMesh& mesh, std::size_t max_pairs = 0);
+
+/// "face 12 (patch 'layer_top') at (x, y, z)": for messages about the pairs above.
+std::string describe_face(const SurfaceMesh& mesh, Index f);
+
+}  // namespace strata
