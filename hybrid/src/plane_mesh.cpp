@@ -5,9 +5,15 @@
 #include <strata/hybrid/plane_mesh.h>
 #include <strata/io/gmsh_session.h>
 
+#include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Surface_sweep_2_algorithms.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
+#include <utility>
 #include <map>
 #include <unordered_map>
 
@@ -82,6 +88,39 @@ std::vector<std::vector<std::size_t>> group_loops(const Frame& f, const std::vec
         surfaces[best].push_back(l);
     }
     return surfaces;
+}
+
+/// The loops must bound a region Gmsh can mesh: no two loop segments cross, touch or overlap
+/// other than consecutive ones at their shared point, and no two loop points coincide. Gmsh's
+/// 2D mesher throws from inside an OpenMP region on such input, which ends the process, so
+/// it is refused here first, with the place. Exact (CGAL's sweep with exact constructions).
+void check_simple_loops(const Frame& f, const std::vector<std::vector<Index>>& loops, const std::string& ctx) {
+    using K = CGAL::Exact_predicates_exact_constructions_kernel;
+    using Segment = CGAL::Arr_segment_traits_2<K>::Curve_2;
+    std::vector<Segment> segments;
+    std::vector<std::pair<std::array<double, 2>, Index>> at;  // uv position, point id
+    for (const auto& loop : loops)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+            const Eigen::Vector2d a = f.uv(loop[i]), b = f.uv(loop[(i + 1) % loop.size()]);
+            if (a == b)
+                throw TopologyError(ctx + ": two consecutive points of its boundary coincide at " +
+                                    format_point(f.at(loop[i])));
+            segments.emplace_back(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()));
+            at.push_back({{a.x(), a.y()}, loop[i]});
+        }
+    std::sort(at.begin(), at.end());
+    for (std::size_t i = 1; i < at.size(); ++i)
+        if (at[i].first == at[i - 1].first)
+            throw TopologyError(ctx + ": two points of its boundary coincide at " + format_point(f.at(at[i].second)) +
+                                " (the boundary touches itself there); the region cannot be meshed");
+    std::vector<K::Point_2> crossings;
+    CGAL::compute_intersection_points(segments.begin(), segments.end(), std::back_inserter(crossings), false);
+    if (crossings.empty()) return;
+    const Vec3 x = f.origin + CGAL::to_double(crossings.front().x()) * f.u + CGAL::to_double(crossings.front().y()) * f.v;
+    throw TopologyError(ctx + ": its boundary crosses or overlaps itself at " + format_point(x) + " (" +
+                        std::to_string(crossings.size()) +
+                        " point(s) in all), so it bounds no region; on an input surface this is usually a "
+                        "T-junction or overlapping edges: repair the surface there");
 }
 
 /// The geo model in the current Gmsh session: one point per outer point (size: the mean of
@@ -220,6 +259,7 @@ PlaneMesh mesh_plane_region(const std::vector<Vec3>& points, const std::vector<s
     const Frame frame(points, out, origin, normal);
     // Outer loops run counter-clockwise about n, holes clockwise (the faces' orientation).
     const std::vector<double> area = loop_areas(frame, loops);
+    check_simple_loops(frame, loops, ctx);
     const std::vector<std::vector<std::size_t>> surfaces = group_loops(frame, loops, area, ctx);
 
     GmshSession session("strata_plane");
