@@ -503,6 +503,7 @@ Vec3 jacobi_update(const Marcher& mc, const Levels& lv, Index o, double theta) {
     if (mc.params.concave) add_concave_terms(mc, lv, o, g, Vec3(g11, g12, g22), g33, L, K);
     if (!(K < 0.0)) return lv.r1[o];  // degenerate metrics: leave the reference position
     Vec3 p = lv.r1[o] - L / K;
+    if (!p.allFinite()) return lv.r1[o];  // K so small (needle stencils) that L / K overflows
     if (mc.node_plane[o] != kNone) p = mc.planes[mc.node_plane[o]].project(p);
     return p;
 }

@@ -3,6 +3,8 @@
 
 #include <strata/core/error.h>
 #include <strata/core/validate.h>
+#include <strata/geometry/check.h>
+#include <strata/geometry/normals.h>
 #include <strata/geometry/prepare.h>
 #include <strata/io/read_surface.h>
 #include <strata/module/layers.h>
@@ -11,11 +13,15 @@
 
 #include "test_support.h"
 
+#include <array>
 #include <cmath>
+#include <map>
+#include <utility>
 
 namespace strata {
 namespace {
 
+using test::closed_manifold;
 using test::example_data;
 
 LayerParams geometric(int layers, double h1, double q) {
@@ -288,6 +294,57 @@ TEST(Layers, AQualityThatCannotBeComputedStopsTheLayers) {
     p.smoothing = false;  // plain extrusion along the normals
     test::expect_error<TopologyError>([&] { (void)extrude_layers(wall, p); },
                                       {"layer 1 of 1: the prism over wall face ", "cannot be computed"});
+}
+
+/// A closed 0.9 m cube whose top and front faces are fans of \p count needle triangles, \p h
+/// wide along the top front edge from one corner and 0.9 m long, as CAD tessellators make,
+/// then one triangle over the rest of the edge.
+SurfaceMesh needle_cube(double h, int count) {
+    constexpr double L = 0.9;
+    SurfaceMesh m;
+    m.patches.push_back({"needles", PatchKind::Wall});
+    std::map<std::array<double, 3>, Index> id;
+    auto node = [&](double x, double y, double z) {
+        const auto [it, fresh] = id.emplace(std::array<double, 3>{x, y, z}, static_cast<Index>(m.points.size()));
+        if (fresh) m.points.emplace_back(x, y, z);
+        return it->second;
+    };
+    auto tri = [&](Index a, Index b, Index c) { m.add_face({a, b, c}, 0); };
+    const Index b0 = node(0, 0, 0), b1 = node(0, L, 0), b2 = node(L, L, 0), b3 = node(L, 0, 0);
+    const Index t1 = node(0, L, L), t2 = node(L, L, L), t3 = node(L, 0, L), t0 = node(0, 0, L);
+    const Index apex = node(L / 2, L, L);
+    tri(b0, b1, b2), tri(b0, b2, b3);                              // bottom
+    tri(b3, b2, t2), tri(b3, t2, t3);                              // x = L
+    tri(b1, b0, t0), tri(b1, t0, t1);                              // x = 0
+    tri(b2, b1, t1), tri(b2, t1, apex), tri(b2, apex, t2);         // y = L, split at the apex
+    std::vector<Index> edge{t0};  // the top front edge
+    for (int i = 1; i <= count && i * h < L; ++i) edge.push_back(node(i * h, 0, L));
+    if (edge.back() != t3) edge.push_back(t3);
+    const int n = static_cast<int>(edge.size()) - 1;
+    for (int i = 0; i < n; ++i) tri(b0, edge[i + 1], edge[i]);     // y = 0: needles from b0
+    tri(b0, b3, t3);
+    for (int i = 0; i < n; ++i) tri(edge[i], edge[i + 1], apex);   // top: needles to the apex
+    tri(t0, apex, t1), tri(t3, t2, apex);
+    return orient_surface(m);
+}
+
+TEST(Layers, NeedleTrianglesNeverGiveANonFiniteCoordinate) {
+    // Needles 0.4 mm wide (aspect ratio 2250) along the whole edge, and ten of 1e-7 m (aspect
+    // ratio 9e6; their smoothing update once divided by a K that underflowed, and the second
+    // layer had infinite coordinates). Every normal method, smoothing on: each position
+    // finite, the layers valid.
+    for (const auto& [h, count] : {std::pair{4e-4, 2250}, std::pair{1e-7, 10}}) {
+        const SurfaceMesh wall = needle_cube(h, count);
+        ASSERT_TRUE(closed_manifold(wall));
+        for (const NormalMethod method :
+             {NormalMethod::MaxMinDot, NormalMethod::AreaWeighted, NormalMethod::AngleWeighted, NormalMethod::Max}) {
+            LayerParams p = geometric(10, 1e-4 * 0.9, 1.2);
+            p.normals = method;
+            const LayerMesh lm = extrude_layers(wall, p);
+            for (const Vec3& x : lm.mesh.points) ASSERT_TRUE(x.allFinite()) << h << " " << to_string(method);
+            EXPECT_TRUE(validate_mesh(lm.mesh).ok()) << h << " " << to_string(method);
+        }
+    }
 }
 
 TEST(Layers, SameOutputForOneAndTwoThreads) {
