@@ -98,6 +98,7 @@ const std::vector<std::pair<std::string, std::string>> kFlagOfParameter = {
     {"PyramidParams::height", "--pyramid-height"},
     {"TetFillParams::radius_edge", "--radius-edge"},
     {"TetFillParams::min_dihedral", "--min-dihedral"},
+    {"TetFillParams::max_dihedral", "--max-dihedral"},
     {"TetFillParams::growth", "--tet-growth"},
 };
 
@@ -260,6 +261,10 @@ void add_mesh_options(CLI::App& cmd, MeshOptions& o) {
                    "smallest dihedral angle of the tetrahedra TetGen should aim for, degrees (TetGen -q R/D; 0: "
                    "TetGen's own)")
         ->capture_default_str();
+    cmd.add_option("--max-dihedral", p.tets.max_dihedral,
+                   "largest dihedral angle of the tetrahedra TetGen's optimisation works down to, degrees (TetGen "
+                   "-o/A; 0: TetGen's own, 165)")
+        ->capture_default_str();
     cmd.add_option("--tet-growth", p.tets.growth, "growth of the tetrahedron size with distance from the body")
         ->capture_default_str();
 }
@@ -335,6 +340,14 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     std::printf("valid: min scaled Jacobian %.3f (%s), volume %.6g (boundary %.6g)\n",
                 hr.validation.min_scaled_jacobian, hr.validation.worst_cell.c_str(), hr.validation.cell_volume,
                 hr.validation.boundary_volume);
+    // Per cell type, hexahedra first (the order of the cells line), the worst cell of each.
+    for (const strata::CellType t : {strata::CellType::Hex, strata::CellType::Prism, strata::CellType::Pyramid,
+                                     strata::CellType::Tet}) {
+        const auto& q = hr.validation.by_type[static_cast<std::size_t>(t)];
+        if (mesh.num_cells(t) == 0) continue;
+        std::printf("  %-12s min scaled Jacobian %.3g (%s)\n", (std::string(strata::to_string(t)) + ":").c_str(),
+                    q.min_scaled_jacobian, q.worst_cell.c_str());
+    }
 }
 
 void print_written(const std::vector<std::string>& files) {

@@ -123,6 +123,8 @@ constexpr std::int64_t kCellChunk = 1 << 15;
 struct CellResult {
     double min_jacobian = 1.0;
     std::int64_t worst = -1;  ///< the first cell with min_jacobian (global cell number)
+    std::array<double, 4> type_min{1.0, 1.0, 1.0, 1.0};  ///< the same per cell type
+    std::array<std::int64_t, 4> type_worst{-1, -1, -1, -1};
     double volume = 0.0;
     Problems problems;
 };
@@ -146,6 +148,9 @@ CellResult check_cells(const VolumeMesh& mesh, const CellNumbering& cells, int t
             const double vol = cell_volume(mesh.points, v, t);
             if (r.worst < 0 || j < r.min_jacobian) r.worst = g;
             sticky_min(r.min_jacobian, j);
+            const auto k = static_cast<std::size_t>(t);
+            if (r.type_worst[k] < 0 || j < r.type_min[k]) r.type_worst[k] = g;
+            sticky_min(r.type_min[k], j);
             r.volume += vol;
             if (!(j > 0.0))
                 r.problems.add(kJacobian, [&, t = t, i = i] {
@@ -164,6 +169,11 @@ CellResult check_cells(const VolumeMesh& mesh, const CellNumbering& cells, int t
     for (CellResult& r : results) {  // chunk order: independent of the thread count
         if (out.worst < 0 || r.min_jacobian < out.min_jacobian) out.worst = r.worst;
         sticky_min(out.min_jacobian, r.min_jacobian);
+        for (std::size_t k = 0; k < 4; ++k) {
+            if (r.type_worst[k] < 0) continue;
+            if (out.type_worst[k] < 0 || r.type_min[k] < out.type_min[k]) out.type_worst[k] = r.type_worst[k];
+            sticky_min(out.type_min[k], r.type_min[k]);
+        }
         out.volume += r.volume;
         out.problems.merge(std::move(r.problems));
     }
@@ -207,6 +217,12 @@ ValidationReport validate(const VolumeMesh& mesh, const ValidateParams& params, 
     if (cr.worst >= 0) {
         const auto [t, i] = cells.locate(cr.worst);
         report.worst_cell = describe_cell(mesh, t, i);
+    }
+    for (std::size_t k = 0; k < 4; ++k) {
+        report.by_type[k].min_scaled_jacobian = cr.type_min[k];
+        if (cr.type_worst[k] < 0) continue;
+        const auto [t, i] = cells.locate(cr.type_worst[k]);
+        report.by_type[k].worst_cell = describe_cell(mesh, t, i);
     }
     report.cell_volume = cr.volume;
     problems.merge(std::move(cr.problems));

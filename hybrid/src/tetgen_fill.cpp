@@ -86,6 +86,9 @@ void check_input(const SurfaceMesh& b, const std::vector<Vec3>& holes, const Tet
         if (!(p.min_dihedral >= 0.0 && p.min_dihedral < 70.0))
             throw InputError(where + "min_dihedral = " + format_number(p.min_dihedral) +
                              " degrees is outside [0, 70); TetGen reaches about 15-18 in practice");
+        if (!(p.max_dihedral == 0.0 || (p.max_dihedral > 90.0 && p.max_dihedral < 180.0)))
+            throw InputError(where + "max_dihedral = " + format_number(p.max_dihedral) +
+                             " degrees is outside (90, 180); 0 keeps TetGen's own bound (165)");
         if (!(p.max_volume >= 0.0) || !std::isfinite(p.max_volume))
             throw InputError(where + "max_volume = " + format_number(p.max_volume) +
                              " must be 0 (no bound) or positive");

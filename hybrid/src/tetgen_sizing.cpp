@@ -137,6 +137,10 @@ std::string switches(const TetFillParams& p, bool sizing, bool background) {
         s += format_number(p.max_volume, 17);
     }
     if (sizing) s += 'm';
+    if (p.max_dihedral > 0.0) {
+        s += "o/";
+        s += format_number(p.max_dihedral, 17);
+    }
     return s;
 }
 

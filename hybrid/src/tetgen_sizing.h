@@ -21,7 +21,7 @@ inline constexpr double kRadiusPerEdge = 0.75;
 inline constexpr double kBackgroundRatio = 2.0;
 
 /// Switches for one run, parsed by TetGen itself (so its consistency rules apply):
-///  p Y z Q [q<ratio>[/<angle>]] [a<vol>] [m] for the fill (\p sizing adds m), or
+///  p Y z Q [q<ratio>[/<angle>]] [a<vol>] [m] [o/<max dihedral>] for the fill (\p sizing adds m), or
 ///  p Y z Q c q<kBackgroundRatio> for the background mesh (\p background).
 std::string switches(const TetFillParams& p, bool sizing, bool background);
 

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <dlfcn.h>
 
 #include <algorithm>
@@ -354,6 +356,11 @@ TEST(TetgenFill, BadInputIsInputError) {
     p = TetFillParams{};
     p.growth = -1.0;
     EXPECT_THROW(fill_with_tets(unit_cube(), {}, p), InputError);
+    for (const double bad : {45.0, 180.0, -1.0}) {
+        p = TetFillParams{};
+        p.max_dihedral = bad;
+        strata::test::expect_error<InputError>([&] { fill_with_tets(unit_cube(), {}, p); }, {"max_dihedral"});
+    }
     EXPECT_THROW(fill_with_tets(SurfaceMesh{}, {}, TetFillParams{}), InputError);
 }
 

@@ -91,8 +91,10 @@ TEST(TetgenSizing, Switches) {
     TetFillParams p;
     p.min_dihedral = 12.0;
     p.max_volume = 0.5;
+    EXPECT_EQ(tetgen::switches(p, true, false), "pYzQq1.5/12a0.5mo/150");
+    EXPECT_EQ(tetgen::switches(p, false, false), "pYzQq1.5/12a0.5o/150");
+    p.max_dihedral = 0.0;
     EXPECT_EQ(tetgen::switches(p, true, false), "pYzQq1.5/12a0.5m");
-    EXPECT_EQ(tetgen::switches(p, false, false), "pYzQq1.5/12a0.5");
     EXPECT_EQ(tetgen::switches(p, true, true), "pYzQcq2");
     p.refine = false;
     EXPECT_EQ(tetgen::switches(p, true, false), "pYzQ");

@@ -8,6 +8,7 @@
 #include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,13 @@ struct ValidationReport {
     Index cells = 0;
     double min_scaled_jacobian = 1.0;  ///< over all corners of all cells
     std::string worst_cell;            ///< the cell that has it: "prism 12 at (x, y, z)"; empty for no cells
+    /// The same per cell type, indexed by CellType (tetrahedra, pyramids, prisms, hexahedra);
+    /// worst_cell empty where the mesh has no cell of that type (min_scaled_jacobian 1 then).
+    struct TypeQuality {
+        double min_scaled_jacobian = 1.0;
+        std::string worst_cell;
+    };
+    std::array<TypeQuality, 4> by_type;
     double cell_volume = 0.0;          ///< Σ cell volumes
     double boundary_volume = 0.0;      ///< volume enclosed by the boundary faces
     Index interior_faces = 0;
