@@ -1,5 +1,6 @@
 #include "box_mesh.h"
 
+#include <strata/core/cell_quality.h>
 #include <strata/core/error.h>
 #include <strata/core/validate.h>
 
@@ -166,6 +167,32 @@ TEST(ValidateMesh, MixedBoxIsValidWithExactVolume) {
     // 54 cube sides on the box, 4 of them (prism ends, Kuhn sides) two triangles.
     EXPECT_EQ(r.boundary_faces, 58);
     EXPECT_NO_THROW(require_valid_mesh(m, "mixed box"));
+}
+
+TEST(ValidateMesh, QualityPerCellTypeIsTheWorstOfEachType) {
+    // The mixed box (unit hexahedra, Kuhn tetrahedra, pyramids, prisms): each type's minimum is the minimum of
+    // its own cells, the overall one the smallest of them, each named by its worst cell.
+    VolumeMesh m = test::mixed_box().build();
+    const ValidationReport r = validate_mesh(m);
+    for (const CellType t : kCellTypes) {
+        double expected = 1.0;
+        std::size_t worst = 0;
+        for (std::size_t i = 0; i < m.num_cells(t); ++i) {
+            const double j = min_scaled_jacobian(m.points, m.cell(t, i), t);
+            if (j < expected) expected = j, worst = i;
+        }
+        const auto& q = r.by_type[static_cast<std::size_t>(t)];
+        EXPECT_EQ(q.min_scaled_jacobian, expected) << to_string(t);
+        EXPECT_EQ(q.worst_cell, describe_cell(m, t, static_cast<std::int64_t>(worst))) << to_string(t);
+    }
+    double overall = 1.0;
+    for (const auto& q : r.by_type) overall = std::min(overall, q.min_scaled_jacobian);
+    EXPECT_EQ(r.min_scaled_jacobian, overall);
+    // Without hexahedra: that type reports 1 and no cell.
+    m.hexes.clear();
+    const ValidationReport no_hex = validate_mesh(m);
+    EXPECT_EQ(no_hex.by_type[static_cast<std::size_t>(CellType::Hex)].min_scaled_jacobian, 1.0);
+    EXPECT_TRUE(no_hex.by_type[static_cast<std::size_t>(CellType::Hex)].worst_cell.empty());
 }
 
 TEST(ValidateMesh, MixedBoxFarFromTheOriginAndSmallIsValid) {
