@@ -91,6 +91,7 @@ const std::vector<std::pair<std::string, std::string>> kFlagOfParameter = {
     {"LayerParams::concave", "--no-concave"},
     {"LayerParams::hold_back", "--no-hold-back"},
     {"LayerParams::normals", "--normals"},
+    {"LayerParams::proximity", "--proximity"},
     {"LayerParams::threads", "--threads"},
     {"HybridParams::threads", "--threads"},
     {"FarfieldParams::shape", "--farfield"},
@@ -197,6 +198,7 @@ struct LayerOptions {
     strata::LayerParams params;
     std::string distribution{strata::to_string(strata::Distribution::Auto)};
     std::string normals{strata::to_string(strata::LayerParams{}.normals)};
+    std::string proximity{strata::to_string(strata::LayerParams{}.proximity)};
     bool no_control = false, no_concave = false, no_hold_back = false;
 };
 
@@ -226,6 +228,9 @@ void add_layer_options(CLI::App& cmd, LayerOptions& o) {
                  "where a layer's cells would invert, stop with an error instead of holding the layer back there");
     cmd.add_option("--normals", o.normals, "node normals: robust, area (the paper's), angle, max")
         ->capture_default_str();
+    cmd.add_option("--proximity", o.proximity,
+                   "where the domain is narrower than the layers need: scale (thinner layers there) or off")
+        ->capture_default_str();
     cmd.add_option("--threads", p.threads, "threads (0: all cores); the output is the same for any count")
         ->capture_default_str();
 }
@@ -234,6 +239,7 @@ strata::LayerParams layer_params(const LayerOptions& o) {
     strata::LayerParams p = o.params;
     p.distribution.kind = strata::parse_distribution(o.distribution);
     p.normals = strata::parse_normal_method(o.normals);
+    p.proximity = strata::parse_proximity_mode(o.proximity);
     p.control_functions = p.control_functions && !o.no_control;
     p.concave = p.concave && !o.no_concave;
     p.hold_back = p.hold_back && !o.no_hold_back;
@@ -294,6 +300,14 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
 }
 
 /// Where layers were held back to stay valid (LayerParams::hold_back), so the user knows they are thinner there.
+void print_thinned(strata::Index nodes, double min_share) {
+    if (nodes == 0) return;
+    std::printf(
+        "proximity: layers thinned at %d wall nodes, down to %.1f %% of the thickness asked, where the domain is "
+        "narrower than the layers need (a gap, a facing wall, a nearby plane)\n",
+        static_cast<int>(nodes), 100.0 * min_share);
+}
+
 void print_held_back(const std::vector<strata::LayerStats>& stats) {
     int layers = 0, most = 0, first = 0;
     for (std::size_t k = 0; k < stats.size(); ++k) {
@@ -321,6 +335,7 @@ void print_layer_table(const strata::LayerMesh& lm) {
             "their normal without smoothing\n",
             static_cast<int>(lm.unsmoothed_nodes));
     print_held_back(lm.stats);
+    print_thinned(lm.thinned_nodes, lm.min_thickness_share);
 }
 
 void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridReport& hr) {
@@ -328,6 +343,10 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
     std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
     print_held_back(hr.layer_stats);
+    print_thinned(hr.thinned_nodes, hr.min_thickness_share);
+    if (hr.front_rounds > 0)
+        std::printf("front: the layer top intersected itself; %d column lowerings in %d rounds fixed it\n",
+                    static_cast<int>(hr.front_lowered_nodes), hr.front_rounds);
     if (!hr.remeshed_patches.empty()) {
         std::string names;
         for (strata::Index p : hr.remeshed_patches)
@@ -341,8 +360,8 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
                 hr.validation.min_scaled_jacobian, hr.validation.worst_cell.c_str(), hr.validation.cell_volume,
                 hr.validation.boundary_volume);
     // Per cell type, hexahedra first (the order of the cells line), the worst cell of each.
-    for (const strata::CellType t : {strata::CellType::Hex, strata::CellType::Prism, strata::CellType::Pyramid,
-                                     strata::CellType::Tet}) {
+    for (const strata::CellType t :
+         {strata::CellType::Hex, strata::CellType::Prism, strata::CellType::Pyramid, strata::CellType::Tet}) {
         const auto& q = hr.validation.by_type[static_cast<std::size_t>(t)];
         if (mesh.num_cells(t) == 0) continue;
         std::printf("  %-12s min scaled Jacobian %.3g (%s)\n", (std::string(strata::to_string(t)) + ":").c_str(),

@@ -73,8 +73,9 @@ struct Run {
     LayerMesh result;
 };
 
-Run time_extrusion(const SurfaceMesh& wall, int threads, int repeats) {
+Run time_extrusion(const SurfaceMesh& wall, int threads, int repeats, ProximityMode proximity = ProximityMode::Scale) {
     LayerParams p;
+    p.proximity = proximity;
     p.distribution.layers = 10;
     p.distribution.kind = Distribution::Geometric;
     p.distribution.first_height = 1e-3;  // unit sphere
@@ -111,7 +112,8 @@ int main() {
     try {
         std::printf("bench_layers: %d layers x 10 sweeps, best of %d runs, %u hardware threads\n\n", kLayers, kRepeats,
                     std::thread::hardware_concurrency());
-        std::printf("%-26s %8s %8s %12s %14s\n", "surface", "faces", "threads", "best [s]", "cells/s");
+        std::printf("%-26s %8s %8s %12s %14s %16s\n", "surface", "faces", "threads", "best [s]", "cells/s",
+                    "proximity cost");
         bool all_identical = true;
         std::vector<std::string> checks;
         for (const bool triangles : {false, true}) {
@@ -122,8 +124,11 @@ int main() {
             std::vector<Run> runs;
             for (const int threads : {1, 2}) {
                 runs.push_back(time_extrusion(wall, threads, kRepeats));
-                std::printf("%-26s %8d %8d %12.3f %14.4g\n", name.c_str(), static_cast<int>(wall.num_faces()), threads,
-                            runs.back().best_seconds, cells / runs.back().best_seconds);
+                // The proximity rays (one AABB tree, one ray per node) against the same run without.
+                const double off = time_extrusion(wall, threads, kRepeats, ProximityMode::Off).best_seconds;
+                std::printf("%-26s %8d %8d %12.3f %14.4g %15.1f%%\n", name.c_str(), static_cast<int>(wall.num_faces()),
+                            threads, runs.back().best_seconds, cells / runs.back().best_seconds,
+                            100.0 * (runs.back().best_seconds / off - 1.0));
             }
             const std::vector<Vec3>& top = runs[0].result.top.points;
             if (!(top.front().norm() > 1.0))

@@ -89,6 +89,19 @@ inline double enclosed_volume(const SurfaceMesh& m) {
     return enclosed_volume(m, m.points);
 }
 
+/// \p a and \p b as one surface: b's points, patches and faces after a's.
+inline SurfaceMesh merged(SurfaceMesh a, const SurfaceMesh& b) {
+    const Index n = a.num_points(), np = static_cast<Index>(a.patches.size());
+    a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+    a.patches.insert(a.patches.end(), b.patches.begin(), b.patches.end());
+    for (Index f = 0; f < b.num_faces(); ++f) {
+        std::vector<Index> v(b.face_begin(f), b.face_end(f));
+        for (Index& i : v) i += n;
+        a.add_face(v.data(), static_cast<Index>(v.size()), b.face_patch[f] + np);
+    }
+    return a;
+}
+
 /// Structured nx × ny grid of unit quads in the z = 0 plane, one "wall" patch, normals +z.
 inline SurfaceMesh quad_grid(int nx, int ny, double h = 1.0) {
     SurfaceMesh m;

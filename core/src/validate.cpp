@@ -122,7 +122,7 @@ constexpr std::int64_t kCellChunk = 1 << 15;
 
 struct CellResult {
     double min_jacobian = 1.0;
-    std::int64_t worst = -1;  ///< the first cell with min_jacobian (global cell number)
+    std::int64_t worst = -1;                             ///< the first cell with min_jacobian (global cell number)
     std::array<double, 4> type_min{1.0, 1.0, 1.0, 1.0};  ///< the same per cell type
     std::array<std::int64_t, 4> type_worst{-1, -1, -1, -1};
     double volume = 0.0;

@@ -13,10 +13,11 @@
 //   three  a repeated triangle.
 // All predicates exact (Epick), so a touching pair counts and a gap of one ulp does not.
 
+#include "cgal_kernel.h"
+
 #include <strata/core/format.h>
 #include <strata/geometry/intersections.h>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
@@ -27,30 +28,13 @@
 namespace strata {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Triangle = Kernel::Triangle_3;
-using Segment = Kernel::Segment_3;
+using cgal::point;
+using cgal::Point;
+using cgal::Segment;
+using cgal::Triangle;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
 
-struct Tri {
-    std::array<Index, 3> v;  ///< node ids
-    Index face;              ///< the face it belongs to
-};
-
-/// The triangles of \p mesh (a quad a b c d as a b c and a c d), degenerate ones left out.
-std::vector<Tri> triangles(const SurfaceMesh& mesh, const std::vector<Point>& p) {
-    std::vector<Tri> tris;
-    tris.reserve(static_cast<std::size_t>(mesh.num_faces()) * 2);
-    for (Index f = 0; f < mesh.num_faces(); ++f) {
-        const Index* v = mesh.face_begin(f);
-        for (Index k = 1; k + 1 < mesh.face_size(f); ++k) {
-            const Tri t{{v[0], v[k], v[k + 1]}, f};
-            if (!CGAL::collinear(p[t.v[0]], p[t.v[1]], p[t.v[2]])) tris.push_back(t);
-        }
-    }
-    return tris;
-}
+using Tri = SurfaceTriangle;
 
 bool intersect(const Tri& s, const Tri& t, const std::vector<Point>& p) {
     std::array<int, 3> in_t{-1, -1, -1};  // for each corner of s, its position in t or -1
@@ -63,8 +47,8 @@ bool intersect(const Tri& s, const Tri& t, const std::vector<Point>& p) {
         case 0:
             return CGAL::do_intersect(ts, tt);
         case 1: {
-            const int i = static_cast<int>(std::find_if(in_t.begin(), in_t.end(), [](int j) { return j >= 0; }) -
-                                           in_t.begin());
+            const int i =
+                static_cast<int>(std::find_if(in_t.begin(), in_t.end(), [](int j) { return j >= 0; }) - in_t.begin());
             const int j = in_t[i];
             const Segment os(p[s.v[(i + 1) % 3]], p[s.v[(i + 2) % 3]]);
             const Segment ot(p[t.v[(j + 1) % 3]], p[t.v[(j + 2) % 3]]);
@@ -89,8 +73,8 @@ bool intersect(const Tri& s, const Tri& t, const std::vector<Point>& p) {
 std::vector<FacePair> self_intersections(const SurfaceMesh& mesh, std::size_t max_pairs) {
     std::vector<Point> p;
     p.reserve(mesh.points.size());
-    for (const Vec3& x : mesh.points) p.emplace_back(x.x(), x.y(), x.z());
-    const std::vector<Tri> tris = triangles(mesh, p);
+    for (const Vec3& x : mesh.points) p.push_back(point(x));
+    const std::vector<Tri> tris = surface_triangles(mesh);
     std::vector<Box> boxes;
     boxes.reserve(tris.size());
     for (std::size_t i = 0; i < tris.size(); ++i) {
@@ -103,12 +87,25 @@ std::vector<FacePair> self_intersections(const SurfaceMesh& mesh, std::size_t ma
         if (s.face == t.face) return;
         if (intersect(s, t, p)) pairs.push_back({std::min(s.face, t.face), std::max(s.face, t.face)});
     });
-    std::sort(pairs.begin(), pairs.end(), [](const FacePair& x, const FacePair& y) {
-        return x.a != y.a ? x.a < y.a : x.b < y.b;
-    });
+    std::sort(pairs.begin(), pairs.end(),
+              [](const FacePair& x, const FacePair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
     if (max_pairs > 0 && pairs.size() > max_pairs) pairs.resize(max_pairs);
     return pairs;
+}
+
+std::vector<SurfaceTriangle> surface_triangles(const SurfaceMesh& mesh) {
+    std::vector<SurfaceTriangle> tris;
+    tris.reserve(static_cast<std::size_t>(mesh.num_faces()) * 2);
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const Index* v = mesh.face_begin(f);
+        for (Index k = 1; k + 1 < mesh.face_size(f); ++k) {
+            const SurfaceTriangle t{{v[0], v[k], v[k + 1]}, f};
+            if (!CGAL::collinear(point(mesh.points[t.v[0]]), point(mesh.points[t.v[1]]), point(mesh.points[t.v[2]])))
+                tris.push_back(t);
+        }
+    }
+    return tris;
 }
 
 std::string describe_face(const SurfaceMesh& mesh, Index f) {

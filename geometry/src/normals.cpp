@@ -16,16 +16,6 @@
 
 namespace strata {
 
-constexpr EnumNames<NormalMethod, 4> kNormalMethodNames{{"area", "angle", "robust", "max"}};
-
-std::string_view to_string(NormalMethod m) {
-    return kNormalMethodNames.name(m);
-}
-
-NormalMethod parse_normal_method(std::string_view text) {
-    return kNormalMethodNames.parse(text, "LayerParams::normals");
-}
-
 namespace {
 
 // A face whose vector area is below this fraction of its summed squared edge lengths is a

@@ -10,6 +10,7 @@
 #include <strata/hybrid/outer_boundary.h>
 
 #include <chrono>
+#include <limits>
 
 namespace strata {
 namespace {
@@ -144,19 +145,52 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
 
 /// The boundary TetGen is to fill against must not cross itself: found here, with exact
 /// predicates, where it is and why, rather than by TetGen (which stops without a place).
-void check_front(const SurfaceMesh& region) {
-    const std::vector<FacePair> pairs = self_intersections(region);
-    if (pairs.empty()) return;
+[[noreturn]] void throw_front_intersects(const SurfaceMesh& region, const std::vector<FacePair>& pairs, int rounds) {
     std::string where;
     for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 3); ++i)
         where += (i ? "; " : "") + describe_face(region, pairs[i].a) + " meets " + describe_face(region, pairs[i].b);
-    throw TopologyError("the boundary of the region to fill with tetrahedra (the layer top and the outer boundary) "
-                        "intersects itself in " +
-                        std::to_string(pairs.size()) + " pairs of faces: " + where +
-                        (pairs.size() > 3 ? "; and " + std::to_string(pairs.size() - 3) + " more" : "") +
-                        ". The layers collide there (a gap narrower than the layers on both sides) or reach the "
-                        "outer boundary: fewer or thinner layers (DistributionParams::layers, "
-                        "DistributionParams::first_height, DistributionParams::growth), or a larger farfield");
+    throw TopologyError(
+        "the boundary of the region to fill with tetrahedra (the layer top and the outer boundary) "
+        "intersects itself in " +
+        std::to_string(pairs.size()) + " pairs of faces after lowering the layers there " + std::to_string(rounds) +
+        " times: " + where + (pairs.size() > 3 ? "; and " + std::to_string(pairs.size() - 3) + " more" : "") +
+        ". The layers collide there (a gap narrower than the layers on both sides) or reach the "
+        "outer boundary: fewer or thinner layers (DistributionParams::layers, "
+        "DistributionParams::first_height, DistributionParams::growth), or a larger farfield");
+}
+
+/// Rounds of lowering colliding columns before giving up (each halves their thickness).
+constexpr int kFrontRounds = 8;
+
+/// Lower the thickness limit of the columns under the layer-top faces of \p pairs to half
+/// what they reached. Region node ids below the wall's node count are wall nodes; the next ones
+/// pyramid apexes (their quad's nodes count); outer points are left alone. Returns the number
+/// of surface nodes lowered.
+Index lower_colliding_columns(const SurfaceMesh& region, Index top_patch, const std::vector<FacePair>& pairs,
+                              const LayerMesh& lm, const PyramidLayer& pyr, std::vector<double>& limit) {
+    const Index nw = lm.wall_nodes();
+    std::vector<char> lowered(static_cast<std::size_t>(nw), 0);
+    auto lower = [&](Index w) { lowered[static_cast<std::size_t>(w)] = 1; };
+    for (const FacePair& p : pairs)
+        for (const Index f : {p.a, p.b}) {
+            if (region.face_patch[f] != top_patch) continue;
+            for (const Index* v = region.face_begin(f); v != region.face_end(f); ++v) {
+                if (*v < nw) {
+                    lower(*v);
+                } else if (*v < nw + static_cast<Index>(pyr.pyramids.size())) {
+                    for (int c = 0; c < 4; ++c) lower(pyr.pyramids[static_cast<std::size_t>(*v - nw)][c]);
+                }
+            }
+        }
+    Index count = 0;
+    for (Index w = 0; w < nw; ++w) {
+        if (!lowered[static_cast<std::size_t>(w)]) continue;
+        const double reached = (lm.mesh.points[lm.top_node(w)] - lm.mesh.points[lm.level_node(0, w)]).norm();
+        double& l = limit[static_cast<std::size_t>(lm.input_node[static_cast<std::size_t>(w)])];
+        l = std::min(l, 0.5 * reached);
+        ++count;
+    }
+    return count;
 }
 
 }  // namespace
@@ -166,32 +200,55 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     HybridReport rep;
     bool has_outer = false;
     const SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, rep.closed_half_model);
+    if (const std::vector<FacePair> crossing = self_intersections(surface, 1); !crossing.empty())
+        throw InputError("the surface intersects itself: " + describe_face(surface, crossing[0].a) + " meets " +
+                         describe_face(surface, crossing[0].b) +
+                         "; overlapping bodies must be fused into one (CadParams::fuse) and a surface crossing "
+                         "itself repaired before layers can grow on it");
 
-    auto t0 = std::chrono::steady_clock::now();
+    // Layers, pyramids and the front TetGen fills against; where the front intersects itself,
+    // the columns under the faces involved are lowered and the layers marched again.
     LayerParams layer_params = params.layers;
     layer_params.threads = params.threads;
-    const LayerMesh lm = extrude_layers(surface, layer_params, progress);
-    rep.layer_stats = lm.stats;
-    rep.unsmoothed_nodes = lm.unsmoothed_nodes;
-    rep.seconds_layers = seconds_since(t0);
-
-    t0 = std::chrono::steady_clock::now();
-    const PyramidLayer pyr = build_pyramids(lm.top, params.pyramids, progress);
-    rep.seconds_pyramids = seconds_since(t0);
-
-    // Region to fill: between the pyramid-capped layer top and the outer boundary.
-    t0 = std::chrono::steady_clock::now();
-    strata::report(progress, "tetrahedra", 0.0);
-    const OuterBoundary outer = outer_part(surface, lm, has_outer, params.farfield);
-    rep.remeshed_patches = outer.remeshed;
+    if (layer_params.node_thickness_limit.empty())
+        layer_params.node_thickness_limit.assign(surface.points.size(), std::numeric_limits<double>::infinity());
+    LayerMesh lm;
+    PyramidLayer pyr;
+    OuterBoundary outer;
+    SurfaceMesh region;
     Index top_patch = kNone;
     const Index farfield_patch = has_outer ? kNone : static_cast<Index>(surface.patches.size());
-    const SurfaceMesh region = region_to_fill(surface.patches, pyr, outer, farfield_patch, top_patch);
-    check_front(region);
+    for (int round = 0;; ++round) {
+        auto t0 = std::chrono::steady_clock::now();
+        lm = extrude_layers(surface, layer_params, progress);
+        rep.seconds_layers += seconds_since(t0);
+        t0 = std::chrono::steady_clock::now();
+        pyr = build_pyramids(lm.top, params.pyramids, progress);
+        rep.seconds_pyramids += seconds_since(t0);
+        t0 = std::chrono::steady_clock::now();
+        outer = outer_part(surface, lm, has_outer, params.farfield);
+        region = region_to_fill(surface.patches, pyr, outer, farfield_patch, top_patch);
+        const std::vector<FacePair> pairs = self_intersections(region);
+        rep.seconds_tets += seconds_since(t0);
+        if (pairs.empty()) break;
+        if (round == kFrontRounds) throw_front_intersects(region, pairs, round);
+        rep.front_lowered_nodes +=
+            lower_colliding_columns(region, top_patch, pairs, lm, pyr, layer_params.node_thickness_limit);
+        rep.front_rounds = round + 1;
+    }
+    rep.layer_stats = lm.stats;
+    rep.unsmoothed_nodes = lm.unsmoothed_nodes;
+    rep.thinned_nodes = lm.thinned_nodes;
+    rep.min_thickness_share = lm.min_thickness_share;
+    rep.remeshed_patches = outer.remeshed;
+
+    // Region to fill: between the pyramid-capped layer top and the outer boundary.
+    auto t0 = std::chrono::steady_clock::now();
+    strata::report(progress, "tetrahedra", 0.0);
     TetFillParams tet_params = params.tets;
     tet_params.background_mesh = params.tets.background_mesh && outer.remeshed.empty();  // see TetFillParams
     const TetFill fill = fill_with_tets(region, points_in_layers(lm), tet_params);
-    rep.seconds_tets = seconds_since(t0);
+    rep.seconds_tets += seconds_since(t0);
     strata::report(progress, "tetrahedra", 1.0);
 
     t0 = std::chrono::steady_clock::now();

@@ -13,9 +13,9 @@
 #include <array>
 #include <cmath>
 #include <iterator>
-#include <utility>
 #include <map>
 #include <unordered_map>
+#include <utility>
 
 namespace strata {
 
@@ -116,7 +116,8 @@ void check_simple_loops(const Frame& f, const std::vector<std::vector<Index>>& l
     std::vector<K::Point_2> crossings;
     CGAL::compute_intersection_points(segments.begin(), segments.end(), std::back_inserter(crossings), false);
     if (crossings.empty()) return;
-    const Vec3 x = f.origin + CGAL::to_double(crossings.front().x()) * f.u + CGAL::to_double(crossings.front().y()) * f.v;
+    const Vec3 x =
+        f.origin + CGAL::to_double(crossings.front().x()) * f.u + CGAL::to_double(crossings.front().y()) * f.v;
     throw TopologyError(ctx + ": its boundary crosses or overlaps itself at " + format_point(x) + " (" +
                         std::to_string(crossings.size()) +
                         " point(s) in all), so it bounds no region; on an input surface this is usually a "

@@ -4,12 +4,14 @@
 // space, level 2 regenerated after every sweep; then the middle level becomes the next wall.
 
 #include <strata/core/cell_quality.h>
+#include <strata/core/enum_names.h>
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/core/format.h>
 #include <strata/core/parallel.h>
 #include <strata/geometry/topology.h>
 #include <strata/module/layers.h>
+#include <strata/module/proximity.h>
 #include <strata/module/stencil.h>
 
 #include <Eigen/Eigenvalues>
@@ -215,6 +217,9 @@ struct Marcher {
     std::vector<Index> node_plane;
     std::vector<Vec3> node_line;   ///< zero, or the line a node marches along (two planes meet there)
     std::vector<double> phi, psi;  ///< control functions, per node, from the wall
+    /// Per node, the share of every layer height it marches (below 1 where the proximity
+    /// limit leaves less room than the layers ask; LayerParams::proximity).
+    std::vector<double> height_scale;
 
     Vec3 at(const std::vector<Vec3>& r, const StencilPoint& p) const {
         return p.mirror == kNone ? r[p.node] : planes[p.mirror].reflect(r[p.node]);
@@ -400,7 +405,7 @@ Index hold_back_folds(const Marcher& mc, const std::vector<Vec3>& r0, double dk,
             } else {
                 scale[i] *= kHoldShrink;
             }
-            r1[i] = r0[i] + scale[i] * dk * dir[i];
+            r1[i] = r0[i] + scale[i] * (dk * mc.height_scale[i]) * dir[i];
         }
         // Only the cells of the nodes that moved can change.
         check.clear();
@@ -420,8 +425,32 @@ namespace {
 
 /// Everything fixed for the whole extrusion: the planes and lines open-boundary nodes keep to,
 /// the stencils, the nodes extruded without smoothing, the control functions.
-Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParams& params) {
-    Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}};
+constexpr EnumNames<ProximityMode, 2> kProximityModeNames{{"off", "scale"}};
+
+/// Per node, the share of the layer heights that fits the proximity limit (1: the full
+/// \p thickness fits). Directions: the level-0 marching directions.
+std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, const Marcher& mc, double thickness) {
+    const auto nw = static_cast<std::size_t>(w.mesh.num_points());
+    std::vector<double> scale(nw, 1.0);
+    const std::vector<double>& by_input = mc.params.node_thickness_limit;
+    if ((mc.params.proximity == ProximityMode::Off && by_input.empty()) || !(thickness > 0.0)) return scale;
+    if (!by_input.empty() && by_input.size() != surface.points.size())
+        throw InputError("LayerParams::node_thickness_limit has " + std::to_string(by_input.size()) +
+                         " values for a surface of " + std::to_string(surface.points.size()) + " nodes");
+    std::vector<ProximityHit> hits(nw);
+    if (mc.params.proximity != ProximityMode::Off)
+        hits = cast_proximity_rays(surface, w.input_node, w.mesh.points, mc.normals(w.mesh.points), mc.threads);
+    std::vector<double> extra;
+    if (!by_input.empty())
+        for (std::size_t i = 0; i < nw; ++i) extra.push_back(by_input[static_cast<std::size_t>(w.input_node[i])]);
+    const std::vector<double> limit = thickness_limits(w.mesh, hits, mc.params.proximity_limits, extra);
+    for (std::size_t i = 0; i < nw; ++i)
+        if (limit[i] < thickness) scale[i] = limit[i] / thickness;
+    return scale;
+}
+
+Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParams& params, double thickness) {
+    Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}};
     const NodeRings rings = node_rings(w.mesh);
     {
         const std::vector<Vec3> n = node_normals(w.mesh, w.mesh.points, mc.vf, params.normals, mc.threads);
@@ -436,6 +465,7 @@ Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParam
     freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st, mc.threads);
     freeze_degenerate_nodes(mc);
     mc.control_functions();
+    mc.height_scale = proximity_scale(surface, w, mc, thickness);
     return mc;
 }
 
@@ -443,7 +473,7 @@ Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParam
 /// the layer height \p dk along its normals. Returns those normals.
 std::vector<Vec3> reference_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, std::vector<Vec3>& r1) {
     std::vector<Vec3> n0 = mc.normals(r0);
-    for (std::size_t i = 0; i < r0.size(); ++i) r1[i] = r0[i] + dk * n0[i];
+    for (std::size_t i = 0; i < r0.size(); ++i) r1[i] = r0[i] + (dk * mc.height_scale[i]) * n0[i];
     return n0;
 }
 
@@ -522,7 +552,7 @@ int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, doub
     int sweep = 0;
     for (; sweep < max_sweeps; ++sweep) {
         const std::vector<Vec3> n1 = mc.normals(r1);
-        for (Index i = 0; i < nw; ++i) r2[i] = r1[i] + dk1 * n1[i];  // Eq. 12
+        for (Index i = 0; i < nw; ++i) r2[i] = r1[i] + (dk1 * mc.height_scale[i]) * n1[i];  // Eq. 12
         const Levels lv{r0, r1, r2};
         double max_move = 0.0;
 #pragma omp parallel for num_threads(mc.threads) schedule(static) reduction(max : max_move)
@@ -662,17 +692,32 @@ void add_boundary_and_top(const SurfaceMesh& surface, const Wall& w, LayerMesh& 
 
 }  // namespace
 
+std::string_view to_string(ProximityMode mode) {
+    return kProximityModeNames.name(mode);
+}
+
+ProximityMode parse_proximity_mode(std::string_view text) {
+    return kProximityModeNames.parse(text, "LayerParams::proximity");
+}
+
 LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
     const std::vector<double> delta = layer_heights(params.distribution);
     if (params.sweeps < 0)
         throw InputError("LayerParams::sweeps = " + std::to_string(params.sweeps) +
                          ": need 0 or more sweeps per layer");
     const Wall w = extract_wall(surface);
-    const Marcher mc = make_marcher(surface, w, params);
+    double thickness = 0.0;
+    for (int k = 0; k < params.distribution.layers; ++k) thickness += delta[static_cast<std::size_t>(k)];
+    const Marcher mc = make_marcher(surface, w, params, thickness);
     const Index nw = w.mesh.num_points();
     LayerMesh out(nw, params.distribution.layers);
     out.input_node = w.input_node;
     for (Index i = 0; i < nw; ++i) out.unsmoothed_nodes += mc.st.valid[i] ? 0 : 1;
+    for (Index i = 0; i < nw; ++i) {
+        const double share = mc.height_scale[static_cast<std::size_t>(i)];
+        if (share < 1.0) ++out.thinned_nodes;
+        out.min_thickness_share = std::min(out.min_thickness_share, share);
+    }
     out.mesh.points.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(out.layers() + 1));
     out.mesh.points.insert(out.mesh.points.end(), w.mesh.points.begin(), w.mesh.points.end());
     report(progress, "layers", 0.0);

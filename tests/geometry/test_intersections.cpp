@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 namespace strata {
 namespace {
 
@@ -20,14 +22,8 @@ SurfaceMesh soup(std::vector<Vec3> points, const std::vector<std::array<Index, 3
 
 /// Two spheres of radius 1, the second at \p dx along x; patches "a" and "b".
 SurfaceMesh two_spheres(double dx) {
-    SurfaceMesh m = icosphere(Vec3::Zero(), 1.0, 2, {"a", PatchKind::Wall});
-    const SurfaceMesh b = icosphere(Vec3(dx, 0, 0), 1.0, 2, {"b", PatchKind::Wall});
-    const Index n = m.num_points();
-    m.patches.push_back(b.patches[0]);
-    m.points.insert(m.points.end(), b.points.begin(), b.points.end());
-    for (Index f = 0; f < b.num_faces(); ++f)
-        m.add_face({b.face_node(f, 0) + n, b.face_node(f, 1) + n, b.face_node(f, 2) + n}, 1);
-    return m;
+    return test::merged(icosphere(Vec3::Zero(), 1.0, 2, {"a", PatchKind::Wall}),
+                        icosphere(Vec3(dx, 0, 0), 1.0, 2, {"b", PatchKind::Wall}));
 }
 
 TEST(SelfIntersections, ClosedSurfaceHasNone) {
@@ -44,8 +40,9 @@ TEST(SelfIntersections, OverlappingSpheresPairOneFaceOfEach) {
         EXPECT_LT(p.a, half);
         EXPECT_GE(p.b, half);
     }
-    EXPECT_TRUE(std::is_sorted(pairs.begin(), pairs.end(),
-                               [](const FacePair& x, const FacePair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; }));
+    EXPECT_TRUE(std::is_sorted(pairs.begin(), pairs.end(), [](const FacePair& x, const FacePair& y) {
+        return x.a != y.a ? x.a < y.a : x.b < y.b;
+    }));
     EXPECT_EQ(self_intersections(m, 3).size(), 3u);
     EXPECT_EQ(self_intersections(m, 3), std::vector<FacePair>(pairs.begin(), pairs.begin() + 3));
 }
@@ -86,8 +83,8 @@ TEST(SelfIntersections, RepeatedFaceAndQuads) {
     const std::vector<Vec3> x = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     EXPECT_EQ(self_intersections(soup(x, {{0, 1, 2}, {0, 2, 1}})).size(), 1u);
     // A quad crossed by a triangle through its second half (a c d): found, named by the quad.
-    SurfaceMesh m = soup({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.2, 0.6, -1}, {0.3, 0.7, 1}, {0.1, 0.9, 1}},
-                         {});
+    SurfaceMesh m =
+        soup({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.2, 0.6, -1}, {0.3, 0.7, 1}, {0.1, 0.9, 1}}, {});
     m.add_face({0, 1, 2, 3}, 0);
     m.add_face({4, 5, 6}, 0);
     EXPECT_EQ(self_intersections(m), (std::vector<FacePair>{{0, 1}}));

@@ -163,5 +163,31 @@ TEST(HybridCases, MixedQuadTriangleOneraM6HasEveryCellType) {
     expect_valid_case("m6_mixed", s, m, rep);
 }
 
+TEST(HybridCases, TwoSpheresWithAGapOfATenthOfTheLayers) {
+    // Issue 9's first case: 30 layers, growth 1.2, first height 1e-4 of the diameter, a gap of
+    // a tenth of the thickness asked. The layers across the gap are thinned (proximity) and the
+    // columns beside it lowered (front rounds); everywhere else they are whole.
+    PrepareParams pp;
+    pp.cad.size = 0.05;
+    const SurfaceMesh s = prepare_surface(example_data("two_spheres_narrow_gap.geo"), pp);
+    HybridReport rep;
+    const VolumeMesh m = build_hybrid_mesh(s, params(30, 1e-4), nullptr, &rep);
+    EXPECT_EQ(m.prisms.size(), 30u * static_cast<std::size_t>(s.num_faces()));
+    EXPECT_GT(rep.thinned_nodes, 0);
+    EXPECT_LT(rep.thinned_nodes, s.num_points() / 4);
+    EXPECT_LT(rep.min_thickness_share, 0.1);
+    expect_valid_case("two_spheres", s, m, rep);
+}
+
+TEST(HybridCases, Naca0012BetweenWallsWithThirtyLayers) {
+    // Internal flow, every patch a wall; the wing's and the tunnel walls' layers meet at the
+    // junctions. It used to stop in TetGen ("the boundary intersects itself", no place).
+    const SurfaceMesh s = prepare_surface(example_data("naca0012_wing_between_walls.geo"), {});
+    HybridReport rep;
+    const VolumeMesh m = build_hybrid_mesh(s, params(30, 1e-4), nullptr, &rep);
+    EXPECT_GT(rep.thinned_nodes, 0);
+    expect_valid_case("naca0012_walls", s, m, rep);
+}
+
 }  // namespace
 }  // namespace strata

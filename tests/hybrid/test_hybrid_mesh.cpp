@@ -4,6 +4,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/validate.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/primitives.h>
 #include <strata/geometry/topology.h>
@@ -179,27 +180,41 @@ TEST(HybridMesh, OpenSurfaceThatIsNotAHalfModelIsRefusedClearly) {
     }
 }
 
-TEST(HybridMesh, CollidingLayersAreFoundBeforeTetgenWithTheirPlace) {
-    // Two unit spheres 0.1 apart, 0.2 of layers on each: the layer tops cross in the gap. The
-    // front check names layer-top faces there (x between 0.9 and 1.3), not TetGen's code 3.
-    SurfaceMesh s = icosphere(Vec3::Zero(), 1.0, 3, {"a", PatchKind::Wall});
-    const SurfaceMesh b = icosphere(Vec3(2.1, 0, 0), 1.0, 3, {"b", PatchKind::Wall});
-    const Index n = s.num_points();
-    s.patches.push_back(b.patches[0]);
-    s.points.insert(s.points.end(), b.points.begin(), b.points.end());
-    for (Index f = 0; f < b.num_faces(); ++f)
-        s.add_face({b.face_node(f, 0) + n, b.face_node(f, 1) + n, b.face_node(f, 2) + n}, 1);
+/// Two unit spheres (patches "a", "b"), the second at \p dx along x.
+SurfaceMesh two_unit_spheres(double dx) {
+    return test::merged(icosphere(Vec3::Zero(), 1.0, 3, {"a", PatchKind::Wall}),
+                        icosphere(Vec3(dx, 0, 0), 1.0, 3, {"b", PatchKind::Wall}));
+}
+
+TEST(HybridMesh, LayersInANarrowGapAreThinnedUntilTheFrontIsClear) {
+    // Two unit spheres 0.1 apart, 0.2 of layers asked on each: the proximity limit thins the
+    // columns facing each other across the gap, the front check lowers the ones beside it
+    // that still collide, and the mesh is valid; away from the gap the layers are whole.
+    const SurfaceMesh s = two_unit_spheres(2.1);
     HybridParams p;
     p.layers.distribution.layers = 10;
     p.layers.distribution.first_height = 0.02;
     p.layers.distribution.growth = 1.0;
-    const std::string m = test::error_message<TopologyError>([&] { build_hybrid_mesh(s, p); });
-    EXPECT_NE(m.find("intersects itself"), std::string::npos) << m;
-    EXPECT_NE(m.find("patch 'layer_top') at (1."), std::string::npos) << m;
-    EXPECT_EQ(m.find("TetGen"), std::string::npos) << m;
-    // 0.04 of layers on each leaves them apart: a valid mesh.
+    HybridReport r;
+    const VolumeMesh m = build_hybrid_mesh(s, p, nullptr, &r);
+    EXPECT_TRUE(validate_mesh(m).ok());
+    EXPECT_GT(r.thinned_nodes, 0);
+    EXPECT_LT(r.min_thickness_share, 0.25);          // 0.45 of the 0.1 gap is 0.045 of the 0.2 asked
+    EXPECT_LT(r.thinned_nodes, s.num_points() / 4);  // only around the gap
+    // With proximity off, the front rounds alone resolve it.
+    p.layers.proximity = ProximityMode::Off;
+    HybridReport off;
+    EXPECT_TRUE(validate_mesh(build_hybrid_mesh(s, p, nullptr, &off)).ok());
+    EXPECT_GT(off.front_rounds, 0);
+    EXPECT_GT(off.front_lowered_nodes, 0);
+}
+
+TEST(HybridMesh, OverlappingBodiesAreRefusedBeforeTheLayers) {
+    HybridParams p;
     p.layers.distribution.layers = 2;
-    EXPECT_NO_THROW(build_hybrid_mesh(s, p));
+    p.layers.distribution.first_height = 0.01;
+    test::expect_error<InputError>([&] { build_hybrid_mesh(two_unit_spheres(1.5), p); },
+                                   {"the surface intersects itself", "patch 'a'", "patch 'b'", "CadParams::fuse"});
 }
 
 /// Cancels once \p stop_stage has reported a fraction of at least \p stop_at; records every

@@ -47,19 +47,28 @@ TEST(PlaneMesh, SquareWithHoleKeepsEveryLoopPoint) {
 TEST(PlaneMesh, CrossingLoopIsRefusedWithItsPlace) {
     // A bow tie: the loop crosses itself at (1, 1, 0).
     const std::vector<Vec3> p = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {2, 2, 0}};
-    test::expect_error<TopologyError>([&] { mesh_plane_region(p, {{0, 1, 2, 3}}, kOrigin, kNormal, "bow tie"); },
-                                      {"bow tie", "crosses or overlaps itself at (1, 1, 0)"});
+    test::expect_error<TopologyError>(
+        [&] {
+            mesh_plane_region(p, {{0, 1, 2, 3}}, kOrigin, kNormal, "bow tie");
+        },
+        {"bow tie", "crosses or overlaps itself at (1, 1, 0)"});
 }
 
 TEST(PlaneMesh, TJunctionAndTouchingLoopsAreRefused) {
     // A hole whose corner lies on the outer loop's edge (a T-junction).
     const std::vector<Vec3> t = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {2, 0, 0}, {3, 1, 0}, {1, 1, 0}};
     test::expect_error<TopologyError>(
-        [&] { mesh_plane_region(t, {{0, 1, 2, 3}, {4, 6, 5}}, kOrigin, kNormal, "t"); }, {"at (2, 0, 0)"});
+        [&] {
+            mesh_plane_region(t, {{0, 1, 2, 3}, {4, 6, 5}}, kOrigin, kNormal, "t");
+        },
+        {"at (2, 0, 0)"});
     // A hole touching the outer loop at a corner through a second point at the same place.
     const std::vector<Vec3> c = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {0, 0, 0}, {1, 2, 0}, {2, 1, 0}};
     test::expect_error<TopologyError>(
-        [&] { mesh_plane_region(c, {{0, 1, 2, 3}, {4, 5, 6}}, kOrigin, kNormal, "c"); }, {"coincide at (0, 0, 0)"});
+        [&] {
+            mesh_plane_region(c, {{0, 1, 2, 3}, {4, 5, 6}}, kOrigin, kNormal, "c");
+        },
+        {"coincide at (0, 0, 0)"});
 }
 
 }  // namespace

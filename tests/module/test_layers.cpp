@@ -313,17 +313,17 @@ SurfaceMesh needle_cube(double h, int count) {
     const Index b0 = node(0, 0, 0), b1 = node(0, L, 0), b2 = node(L, L, 0), b3 = node(L, 0, 0);
     const Index t1 = node(0, L, L), t2 = node(L, L, L), t3 = node(L, 0, L), t0 = node(0, 0, L);
     const Index apex = node(L / 2, L, L);
-    tri(b0, b1, b2), tri(b0, b2, b3);                              // bottom
-    tri(b3, b2, t2), tri(b3, t2, t3);                              // x = L
-    tri(b1, b0, t0), tri(b1, t0, t1);                              // x = 0
-    tri(b2, b1, t1), tri(b2, t1, apex), tri(b2, apex, t2);         // y = L, split at the apex
-    std::vector<Index> edge{t0};  // the top front edge
+    tri(b0, b1, b2), tri(b0, b2, b3);                       // bottom
+    tri(b3, b2, t2), tri(b3, t2, t3);                       // x = L
+    tri(b1, b0, t0), tri(b1, t0, t1);                       // x = 0
+    tri(b2, b1, t1), tri(b2, t1, apex), tri(b2, apex, t2);  // y = L, split at the apex
+    std::vector<Index> edge{t0};                            // the top front edge
     for (int i = 1; i <= count && i * h < L; ++i) edge.push_back(node(i * h, 0, L));
     if (edge.back() != t3) edge.push_back(t3);
     const int n = static_cast<int>(edge.size()) - 1;
-    for (int i = 0; i < n; ++i) tri(b0, edge[i + 1], edge[i]);     // y = 0: needles from b0
+    for (int i = 0; i < n; ++i) tri(b0, edge[i + 1], edge[i]);  // y = 0: needles from b0
     tri(b0, b3, t3);
-    for (int i = 0; i < n; ++i) tri(edge[i], edge[i + 1], apex);   // top: needles to the apex
+    for (int i = 0; i < n; ++i) tri(edge[i], edge[i + 1], apex);  // top: needles to the apex
     tri(t0, apex, t1), tri(t3, t2, apex);
     return orient_surface(m);
 }

@@ -25,8 +25,8 @@ struct ValidationReport {
         std::string worst_cell;
     };
     std::array<TypeQuality, 4> by_type;
-    double cell_volume = 0.0;          ///< Σ cell volumes
-    double boundary_volume = 0.0;      ///< volume enclosed by the boundary faces
+    double cell_volume = 0.0;      ///< Σ cell volumes
+    double boundary_volume = 0.0;  ///< volume enclosed by the boundary faces
     Index interior_faces = 0;
     Index boundary_faces = 0;
     /// One line per problem found (at most a few per kind, then a count), each naming the

@@ -6,6 +6,7 @@
 
 #include <strata/core/surface_mesh.h>
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -25,6 +26,16 @@ struct FacePair {
 /// (CGAL's Epick kernel) on a box-intersection broad phase; sorted by (a, b); at most
 /// \p max_pairs (0: all).
 std::vector<FacePair> self_intersections(const SurfaceMesh& mesh, std::size_t max_pairs = 0);
+
+/// A triangle of a surface mesh: its node ids and the face it belongs to.
+struct SurfaceTriangle {
+    std::array<Index, 3> v;
+    Index face = kNone;
+};
+
+/// The triangles of \p mesh for geometric queries: a triangle as it is, a quad a b c d as
+/// a b c and a c d; triangles whose corners are collinear (exactly) are left out.
+std::vector<SurfaceTriangle> surface_triangles(const SurfaceMesh& mesh);
 
 /// "face 12 (patch 'layer_top') at (x, y, z)": for messages about the pairs above.
 std::string describe_face(const SurfaceMesh& mesh, Index f);

@@ -2,6 +2,7 @@
 /// \file
 /// Unit node normals of a surface mesh.
 
+#include <strata/core/enum_names.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/core/types.h>
 
@@ -48,10 +49,15 @@ enum class NormalMethod {
                     ///< or better on symmetric stencils and at umbilic points. Corners with a
                     ///< zero-length edge are skipped (a node with no other corner gets (0,0,0))
 };
-/// "area", "angle", "robust", "max".
-std::string_view to_string(NormalMethod m);
+/// The methods' names, in enum order: "area", "angle", "robust", "max".
+inline constexpr EnumNames<NormalMethod, 4> kNormalMethodNames{{"area", "angle", "robust", "max"}};
+inline std::string_view to_string(NormalMethod m) {
+    return kNormalMethodNames.name(m);
+}
 /// Inverse of to_string (case-insensitive); throws InputError naming \p text and the choices.
-NormalMethod parse_normal_method(std::string_view text);
+inline NormalMethod parse_normal_method(std::string_view text) {
+    return kNormalMethodNames.parse(text, "LayerParams::normals");
+}
 
 /// The unit vector maximising the minimum dot product with \p directions (unit vectors; zero
 /// vectors are ignored): the axis of their smallest enclosing cone, computed as MaxMinDot does

@@ -20,8 +20,8 @@ struct TetFillParams {
     /// Jacobian) at no measurable cost; tetrahedra whose four corners are all on the layer top
     /// cannot be improved without points on it, which -Y forbids.
     double max_dihedral = 150.0;
-    bool refine = true;         ///< add interior Steiner points for quality and size (never on the boundary)
-    double max_volume = 0.0;    ///< global volume bound per tetrahedron (-a); 0 = none
+    bool refine = true;       ///< add interior Steiner points for quality and size (never on the boundary)
+    double max_volume = 0.0;  ///< global volume bound per tetrahedron (-a); 0 = none
     /// Size grading: target edge length grows linearly with distance from the boundary faces
     /// whose patch is not Farfield (the layer top): h(d) = h_wall + growth × d, capped at the
     /// farfield's own edge length. 0 = no sizing field (TetGen's quality bound alone

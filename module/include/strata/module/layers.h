@@ -8,10 +8,22 @@
 #include <strata/core/volume_mesh.h>
 #include <strata/geometry/normals.h>
 #include <strata/module/distribution.h>
+#include <strata/module/proximity.h>
 
 #include <vector>
 
 namespace strata {
+
+/// What the layers do where the flow domain along a node's marching direction is shorter
+/// than they need (a narrow gap, a facing wall, a nearby symmetry or farfield patch).
+enum class ProximityMode {
+    Off,    ///< march the full thickness everywhere (colliding layers are reported before TetGen)
+    Scale,  ///< scale the node's layer heights down to its limit (thinner layers, all of them)
+};
+
+std::string_view to_string(ProximityMode mode);
+/// "off" or "scale"; InputError naming LayerParams::proximity otherwise.
+ProximityMode parse_proximity_mode(std::string_view text);
 
 /// Parameters of layer generation. Lengths in model units.
 struct LayerParams {
@@ -36,6 +48,15 @@ struct LayerParams {
     /// (LayerStats::held_nodes counts them). Only where smoothing runs (smoothing, max_sweeps
     /// > 0): plain extrusion stays the bare reference mesh. Never with keep_invalid.
     bool hold_back = true;
+    /// Proximity limiting (proximity.h): each node's total thickness at most a share of the
+    /// distance to the first surface along its marching direction, smoothed along the wall.
+    ProximityMode proximity = ProximityMode::Scale;
+    ProximityParams proximity_limits;
+    /// Empty, or one per node of the surface given to extrude_layers: a further bound on the
+    /// node's total thickness (infinity: none), smoothed along the wall like the proximity
+    /// limit and applied by scaling whatever the proximity mode. build_hybrid_mesh lowers it
+    /// where the layer front intersects itself.
+    std::vector<double> node_thickness_limit;
     /// Threads of the smoothing and the normals (0: OpenMP's default); the layers are the same for
     /// any count. For extrude_layers called alone: build_hybrid_mesh sets it from HybridParams::threads.
     int threads = 0;
@@ -69,11 +90,13 @@ public:
     /// The outermost level as a surface for the next stage: the wall's faces and patches, node i
     /// of it being top_node(i) (top.points[i] = mesh.points[top_node(i)]).
     SurfaceMesh top;
-    std::vector<LayerStats> stats;  ///< one per layer
-    std::vector<Index> input_node;  ///< wall node → node of the input surface
-    Index top_patch = kNone;        ///< the patch of mesh.boundary ("layer_top") holding the outermost level
-    Index unsmoothed_nodes = 0;     ///< nodes extruded along their normal without smoothing (sharp convex edges,
-                                    ///< open-edge corners, degenerate stencils: ends of needle triangles)
+    std::vector<LayerStats> stats;     ///< one per layer
+    std::vector<Index> input_node;     ///< wall node → node of the input surface
+    Index top_patch = kNone;           ///< the patch of mesh.boundary ("layer_top") holding the outermost level
+    Index unsmoothed_nodes = 0;        ///< nodes extruded along their normal without smoothing (sharp convex edges,
+                                       ///< open-edge corners, degenerate stencils: ends of needle triangles)
+    Index thinned_nodes = 0;           ///< nodes whose layers were scaled down by the proximity limit
+    double min_thickness_share = 1.0;  ///< the smallest share of the asked thickness a node got
 
     Index wall_nodes() const { return wall_nodes_; }
     /// Levels above the wall.

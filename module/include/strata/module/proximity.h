@@ -1,0 +1,46 @@
+#pragma once
+/// \file
+/// How far the flow domain reaches from each wall node along its marching direction before
+/// another surface (a facing wall, the node's own body across a gap, a symmetry, farfield or
+/// outflow patch), and the layer thickness that leaves room there. The rays: ray_cast.h (one
+/// AABB tree of the whole surface, built once; the same result for any thread count).
+
+#include <strata/core/surface_mesh.h>
+
+#include <limits>
+#include <vector>
+
+namespace strata {
+
+/// What a wall node's ray met first.
+struct ProximityHit {
+    double distance = std::numeric_limits<double>::infinity();  ///< along the unit direction; inf: nothing
+    bool wall = false;                                            ///< a wall face (its layers grow too)
+};
+
+/// For wall node i at \p origins[i] (node \p surface_node[i] of \p surface), the first face of
+/// \p surface along the unit vector \p directions[i]. Faces incident to the node are skipped
+/// (the ray starts on them), and so are faces parallel to the ray (a node marching in a
+/// symmetry plane sees that plane edge-on). Quads count as their two triangles.
+std::vector<ProximityHit> cast_proximity_rays(const SurfaceMesh& surface, const std::vector<Index>& surface_node,
+                                              const std::vector<Vec3>& origins, const std::vector<Vec3>& directions,
+                                              int threads);
+
+/// How much of the distance to the first surface a node's layers may fill.
+struct ProximityParams {
+    double facing_wall = 0.45;  ///< against a wall whose layers grow towards them (both sides: 0.9 in all)
+    double other_patch = 0.9;   ///< against a symmetry, farfield or other patch (nothing grows from it)
+    /// How fast the limit may rise along the wall, in thickness per unit of wall distance, so
+    /// neighbouring columns differ gently (the Poisson smoothing needs a smooth front).
+    double slope = 0.25;
+};
+
+/// The largest layer thickness at each node of \p wall (its nodes are the origins above):
+/// the hit distance times the share for what was hit, then lowered wherever a neighbour's
+/// limit plus slope × the edge length between them is smaller (a Lipschitz envelope over the
+/// wall's edges, computed exactly by a Dijkstra sweep). \p extra (empty, or one per wall
+/// node) bounds a node further before the envelope is taken. Infinity where nothing limits.
+std::vector<double> thickness_limits(const SurfaceMesh& wall, const std::vector<ProximityHit>& hits,
+                                     const ProximityParams& params, const std::vector<double>& extra = {});
+
+}  // namespace strata
