@@ -13,6 +13,7 @@
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/io/formats.h>
+#include <strata/io/write_report.h>
 #include <strata/io/write_surface.h>
 #include <strata/io/write_volume.h>
 #include <strata/module/layers.h>
@@ -338,12 +339,27 @@ void print_layer_table(const strata::LayerMesh& lm) {
     print_thinned(lm.thinned_nodes, lm.min_thickness_share);
 }
 
+/// The coverage table: per wall patch, the columns at full thickness and why the others are not.
+void print_coverage(const strata::LayerReport& r) {
+    std::printf("coverage: %d layers asked, %.4g thick (first %.3g); per wall patch, the thickness reached:\n",
+                r.layers, r.thickness, r.first_height);
+    std::printf("  %-24s %7s %7s %6s %7s %7s   short: %9s %6s %9s\n", "patch", "faces", "nodes", "full", "mean", "min",
+                "proximity", "front", "held back");
+    for (const strata::PatchCoverage& c : r.patches)
+        std::printf("  %-24s %7d %7d %5.1f%% %6.1f%% %6.1f%%          %9d %6d %9d\n", c.name.c_str(),
+                    static_cast<int>(c.faces), static_cast<int>(c.nodes),
+                    c.nodes > 0 ? 100.0 * static_cast<double>(c.full_nodes) / static_cast<double>(c.nodes) : 100.0,
+                    100.0 * c.mean_share, 100.0 * c.min_share, static_cast<int>(c.proximity), static_cast<int>(c.front),
+                    static_cast<int>(c.held_back));
+}
+
 void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridReport& hr) {
     double jmin = 1.0;
     for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
     std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
     print_held_back(hr.layer_stats);
     print_thinned(hr.thinned_nodes, hr.min_thickness_share);
+    print_coverage(hr.coverage);
     if (hr.front_rounds > 0)
         std::printf("front: the layer top intersected itself; %d column lowerings in %d rounds fixed it\n",
                     static_cast<int>(hr.front_lowered_nodes), hr.front_rounds);
@@ -369,9 +385,15 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     }
 }
 
+std::vector<std::string> with_report(std::vector<std::string> files, const std::string& output) {
+    files.push_back(strata::report_path(output));
+    return files;
+}
+
 void print_written(const std::vector<std::string>& files) {
     std::string list;
-    for (std::size_t i = 0; i < files.size(); ++i) list += (i == 0 ? "" : " and ") + files[i];
+    for (std::size_t i = 0; i < files.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == files.size() ? " and " : ", ") + files[i];
     std::printf("wrote %s\n", list.c_str());
 }
 
@@ -424,14 +446,17 @@ int run_layers(const Common& c, const LayerOptions& o) {
     const strata::ValidationReport v =
         strata::require_valid_mesh(lm.mesh, c.input, {.threads = lp.threads, .progress = &terminal});
     strata::write_volume(lm.mesh, c.output, s.msh_version, &terminal);
+    const strata::LayerReport coverage = strata::layer_report(lm);
+    strata::write_layer_report(coverage, strata::report_path(c.output));
     if (c.quiet) return 0;
     print_surface_summary(s.surface, s.report);
     print_layer_table(lm);
+    print_coverage(coverage);
     std::printf("cells: %zu hexahedra, %zu prisms; min scaled Jacobian %.3f; volume %.6g\n", lm.mesh.hexes.size(),
                 lm.mesh.prisms.size(), v.min_scaled_jacobian, v.cell_volume);
     std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", s.seconds, t_layers,
                 seconds_since(t2));
-    print_written(strata::volume_output_files(c.output));
+    print_written(with_report(strata::volume_output_files(c.output), c.output));
     return 0;
 }
 
@@ -446,6 +471,7 @@ int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo) {
     const strata::VolumeMesh mesh = strata::build_hybrid_mesh(s.surface, hp, &terminal, &hr);
     const auto t1 = std::chrono::steady_clock::now();
     strata::write_volume(mesh, c.output, s.msh_version, &terminal);
+    strata::write_layer_report(hr.coverage, strata::report_path(c.output));
     const double t_write = seconds_since(t1);
     if (c.quiet) return 0;
     print_surface_summary(s.surface, s.report);
@@ -453,7 +479,7 @@ int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo) {
     std::printf(
         "time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f s\n",
         s.seconds, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
-    print_written(strata::volume_output_files(c.output));
+    print_written(with_report(strata::volume_output_files(c.output), c.output));
     return 0;
 }
 

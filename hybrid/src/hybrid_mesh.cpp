@@ -240,6 +240,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     rep.unsmoothed_nodes = lm.unsmoothed_nodes;
     rep.thinned_nodes = lm.thinned_nodes;
     rep.min_thickness_share = lm.min_thickness_share;
+    rep.coverage = layer_report(lm);
     rep.remeshed_patches = outer.remeshed;
 
     // Region to fill: between the pyramid-capped layer top and the outer boundary.

@@ -348,7 +348,8 @@ Vec3 corner_direction(const Marcher& mc, const std::vector<Vec3>& r, Index i, do
 /// small), and even plain extrusion crosses columns there by layer 5. Returns the number of
 /// nodes held back: 0, with \p r1 untouched, when no cell inverted. A node whose corners span
 /// a hemisphere has no valid direction and is left as it is (the validity check reports it).
-Index hold_back_folds(const Marcher& mc, const std::vector<Vec3>& r0, double dk, std::vector<Vec3>& r1) {
+Index hold_back_folds(const Marcher& mc, const std::vector<Vec3>& r0, double dk, std::vector<Vec3>& r1,
+                      std::vector<char>& ever_held) {
     constexpr double kHoldShrink = 0.8;  // height factor per round (0.5 lost twice the thickness on the M6)
     constexpr int kHoldRounds = 100;     // 0.8^100 ≈ 2e-10 of the layer height
     const SurfaceMesh& wall = mc.wall;
@@ -401,6 +402,7 @@ Index hold_back_folds(const Marcher& mc, const std::vector<Vec3>& r0, double dk,
                 dir[i] = corner_direction(mc, r0, i, min_dot);
                 if (!(min_dot > 0.0)) continue;
                 held[i] = 1;
+                ever_held[static_cast<std::size_t>(i)] = 1;
                 ++count;
             } else {
                 scale[i] *= kHoldShrink;
@@ -429,9 +431,11 @@ constexpr EnumNames<ProximityMode, 2> kProximityModeNames{{"off", "scale"}};
 
 /// Per node, the share of the layer heights that fits the proximity limit (1: the full
 /// \p thickness fits). Directions: the level-0 marching directions.
-std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, const Marcher& mc, double thickness) {
+std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, const Marcher& mc, double thickness,
+                                    std::vector<Shortfall>& reason) {
     const auto nw = static_cast<std::size_t>(w.mesh.num_points());
     std::vector<double> scale(nw, 1.0);
+    reason.assign(nw, Shortfall::None);
     const std::vector<double>& by_input = mc.params.node_thickness_limit;
     if ((mc.params.proximity == ProximityMode::Off && by_input.empty()) || !(thickness > 0.0)) return scale;
     if (!by_input.empty() && by_input.size() != surface.points.size())
@@ -444,12 +448,19 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
     if (!by_input.empty())
         for (std::size_t i = 0; i < nw; ++i) extra.push_back(by_input[static_cast<std::size_t>(w.input_node[i])]);
     const std::vector<double> limit = thickness_limits(w.mesh, hits, mc.params.proximity_limits, extra);
-    for (std::size_t i = 0; i < nw; ++i)
-        if (limit[i] < thickness) scale[i] = limit[i] / thickness;
+    // Which bound holds: the proximity limit alone, or the extra (front) bound below it.
+    const std::vector<double> by_proximity =
+        extra.empty() ? limit : thickness_limits(w.mesh, hits, mc.params.proximity_limits);
+    for (std::size_t i = 0; i < nw; ++i) {
+        if (!(limit[i] < thickness)) continue;
+        scale[i] = limit[i] / thickness;
+        reason[i] = limit[i] < by_proximity[i] ? Shortfall::Front : Shortfall::Proximity;
+    }
     return scale;
 }
 
-Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParams& params, double thickness) {
+Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParams& params, double thickness,
+                     std::vector<Shortfall>& scale_reason) {
     Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}};
     const NodeRings rings = node_rings(w.mesh);
     {
@@ -465,7 +476,7 @@ Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParam
     freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st, mc.threads);
     freeze_degenerate_nodes(mc);
     mc.control_functions();
-    mc.height_scale = proximity_scale(surface, w, mc, thickness);
+    mc.height_scale = proximity_scale(surface, w, mc, thickness, scale_reason);
     return mc;
 }
 
@@ -708,11 +719,16 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     const Wall w = extract_wall(surface);
     double thickness = 0.0;
     for (int k = 0; k < params.distribution.layers; ++k) thickness += delta[static_cast<std::size_t>(k)];
-    const Marcher mc = make_marcher(surface, w, params, thickness);
+    std::vector<Shortfall> scale_reason;
+    const Marcher mc = make_marcher(surface, w, params, thickness, scale_reason);
     const Index nw = w.mesh.num_points();
     LayerMesh out(nw, params.distribution.layers);
     out.input_node = w.input_node;
     for (Index i = 0; i < nw; ++i) out.unsmoothed_nodes += mc.st.valid[i] ? 0 : 1;
+    out.asked_thickness = thickness;
+    out.held_back.assign(static_cast<std::size_t>(nw), 0);
+    out.height_scale = mc.height_scale;
+    out.scale_reason = std::move(scale_reason);
     for (Index i = 0; i < nw; ++i) {
         const double share = mc.height_scale[static_cast<std::size_t>(i)];
         if (share < 1.0) ++out.thinned_nodes;
@@ -733,7 +749,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         const std::vector<Vec3> n0 = reference_level(mc, r0, dk, r1);
         // 2. Poisson smoothing of level 1; where its cells would still invert, hold it back.
         stats.sweeps = smooth_level(mc, r0, dk, dk1, r1);
-        if (holds) stats.held_nodes = hold_back_folds(mc, r0, dk, r1);
+        if (holds) stats.held_nodes = hold_back_folds(mc, r0, dk, r1, out.held_back);
         out.mesh.points.insert(out.mesh.points.end(), r1.begin(), r1.end());
         check_layer(w, params, k, r0, r1, n0, stats, out);
         // 3. Level 1 becomes the wall of the next layer.
@@ -743,6 +759,63 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     add_cells(w, out);
     add_boundary_and_top(surface, w, out);
     return out;
+}
+
+LayerReport layer_report(const LayerMesh& lm) {
+    LayerReport r;
+    r.layers = lm.layers();
+    r.first_height = lm.stats.empty() ? 0.0 : lm.stats.front().height;
+    r.thickness = lm.asked_thickness;
+    const Index nw = lm.wall_nodes();
+    // Thickness reached: the length of each column.
+    std::vector<double> share(static_cast<std::size_t>(nw), 1.0);
+    std::vector<Shortfall> why(static_cast<std::size_t>(nw), Shortfall::None);
+    for (Index i = 0; i < nw; ++i) {
+        double length = 0.0;
+        for (int k = 0; k < lm.layers(); ++k)
+            length += (lm.mesh.points[lm.level_node(k + 1, i)] - lm.mesh.points[lm.level_node(k, i)]).norm();
+        const auto u = static_cast<std::size_t>(i);
+        share[u] = r.thickness > 0.0 ? length / r.thickness : 1.0;
+        if (u < lm.held_back.size() && lm.held_back[u])
+            why[u] = Shortfall::HeldBack;
+        else if (u < lm.scale_reason.size())
+            why[u] = lm.scale_reason[u];
+        if (why[u] == Shortfall::None) continue;
+        r.short_nodes.push_back(
+            {lm.input_node.empty() ? i : lm.input_node[u], lm.mesh.points[lm.level_node(0, i)], share[u], why[u]});
+    }
+    // Per patch of the wall: its faces, and its nodes once each.
+    const SurfaceMesh& wall = lm.top;
+    r.patches.resize(wall.patches.size());
+    for (std::size_t p = 0; p < wall.patches.size(); ++p) r.patches[p].name = wall.patches[p].name;
+    std::vector<std::pair<Index, Index>> patch_node;  // (patch, node), then sorted and unique
+    for (Index f = 0; f < wall.num_faces(); ++f) {
+        ++r.patches[static_cast<std::size_t>(wall.face_patch[f])].faces;
+        for (const Index* v = wall.face_begin(f); v != wall.face_end(f); ++v)
+            patch_node.emplace_back(wall.face_patch[f], *v);
+    }
+    std::sort(patch_node.begin(), patch_node.end());
+    patch_node.erase(std::unique(patch_node.begin(), patch_node.end()), patch_node.end());
+    std::vector<double> sum(wall.patches.size(), 0.0);
+    for (const auto& [patch, node] : patch_node) {
+        const auto p = static_cast<std::size_t>(patch);
+        const auto u = static_cast<std::size_t>(node);
+        PatchCoverage& c = r.patches[p];
+        ++c.nodes;
+        sum[p] += share[u];
+        c.min_share = std::min(c.min_share, share[u]);
+        c.full_nodes += why[u] == Shortfall::None;
+        c.proximity += why[u] == Shortfall::Proximity;
+        c.front += why[u] == Shortfall::Front;
+        c.held_back += why[u] == Shortfall::HeldBack;
+    }
+    for (std::size_t p = 0; p < r.patches.size(); ++p)
+        if (r.patches[p].nodes > 0) r.patches[p].mean_share = sum[p] / static_cast<double>(r.patches[p].nodes);
+    // Patches without wall faces (the wall's own table lists them all) are left out.
+    r.patches.erase(
+        std::remove_if(r.patches.begin(), r.patches.end(), [](const PatchCoverage& c) { return c.faces == 0; }),
+        r.patches.end());
+    return r;
 }
 
 }  // namespace strata

@@ -190,7 +190,15 @@ TEST(Cli, LayersOnQuadSphere) {
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("12288 hexahedra"), std::string::npos) << r.out;  // 1536 quads × 8 layers
     EXPECT_NE(r.out.find("min SJ"), std::string::npos) << r.out;
-    EXPECT_EQ(files_in(dir), std::vector<std::string>{"layers.msh"});
+    std::vector<std::string> files = files_in(dir);
+    std::sort(files.begin(), files.end());
+    EXPECT_EQ(files, (std::vector<std::string>{"layers.msh", "layers.msh.report.json"}));
+    // The coverage report: the table on stdout, the same in JSON next to the mesh; nothing
+    // limited a sphere's columns.
+    EXPECT_NE(r.out.find("coverage: 8 layers asked"), std::string::npos) << r.out;
+    const std::string json = slurp(dir.file("layers.msh.report.json"));
+    for (const char* key : {"\"layers\": 8", "\"nodes\": 289, \"full_nodes\": 289", "\"short_nodes\": []"})
+        EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
 }
 
 TEST(Cli, LayersBadInputsFailCleanly) {
@@ -219,7 +227,7 @@ TEST(Cli, MeshSphereToCobaltAndMsh) {
         EXPECT_NE(r.out.find(word), std::string::npos) << word << "\n" << r.out;
     CliResult m = strata_cli(dir, "mesh '" + example_data("sphere.stl") + "' -o s.msh" + common);
     ASSERT_EQ(m.code, 0) << m.err;
-    const std::vector<std::string> expected{"s.cgr", "s.cgr.bc", "s.msh"};
+    const std::vector<std::string> expected{"s.cgr", "s.cgr.bc", "s.cgr.report.json", "s.msh", "s.msh.report.json"};
     std::vector<std::string> got = files_in(dir);
     std::sort(got.begin(), got.end());
     EXPECT_EQ(got, expected);
@@ -235,7 +243,9 @@ TEST(Cli, MeshBoxDomainRemeshesTheSidesTheLayersEndOn) {
     EXPECT_NE(r.out.find("planes re-meshed around the layers' sides: surface_1, surface_2, surface_4, surface_6"),
               std::string::npos)
         << r.out;
-    EXPECT_EQ(files_in(dir), std::vector<std::string>{"box.su2"});
+    std::vector<std::string> files = files_in(dir);
+    std::sort(files.begin(), files.end());
+    EXPECT_EQ(files, (std::vector<std::string>{"box.su2", "box.su2.report.json"}));
 }
 
 TEST(Cli, MeshBadInputsFailCleanly) {

@@ -201,6 +201,20 @@ TEST(HybridMesh, LayersInANarrowGapAreThinnedUntilTheFrontIsClear) {
     EXPECT_GT(r.thinned_nodes, 0);
     EXPECT_LT(r.min_thickness_share, 0.25);          // 0.45 of the 0.1 gap is 0.045 of the 0.2 asked
     EXPECT_LT(r.thinned_nodes, s.num_points() / 4);  // only around the gap
+    // The coverage report: per sphere, most columns full, the short ones thinned by proximity
+    // or lowered for the front, each listed once with its place.
+    ASSERT_EQ(r.coverage.patches.size(), 2u);
+    Index short_count = 0;
+    for (const PatchCoverage& c : r.coverage.patches) {
+        EXPECT_EQ(c.nodes, s.num_points() / 2);
+        EXPECT_GT(c.full_nodes, c.nodes / 2);
+        EXPECT_GT(c.proximity, 0);
+        EXPECT_EQ(c.full_nodes + c.proximity + c.front + c.held_back, c.nodes);
+        EXPECT_LT(c.min_share, 0.25);
+        short_count += c.nodes - c.full_nodes;
+    }
+    EXPECT_EQ(static_cast<Index>(r.coverage.short_nodes.size()), short_count);
+    for (const ShortNode& n : r.coverage.short_nodes) EXPECT_LT(std::abs(n.position.x() - 1.05), 1.0);
     // With proximity off, the front rounds alone resolve it.
     p.layers.proximity = ProximityMode::Off;
     HybridReport off;

@@ -57,7 +57,8 @@ TEST(Proximity, OwnFacesAndEdgeOnFacesAreSkipped) {
     const SurfaceMesh s = icosphere(Vec3::Zero(), 1.0, 2, {"s", PatchKind::Wall});
     std::vector<Index> node;
     std::vector<Vec3> origin, dir;
-    for (Index i = 0; i < s.num_points(); ++i) node.push_back(i), origin.push_back(s.points[i]), dir.push_back(s.points[i]);
+    for (Index i = 0; i < s.num_points(); ++i)
+        node.push_back(i), origin.push_back(s.points[i]), dir.push_back(s.points[i]);
     for (const ProximityHit& h : cast_proximity_rays(s, node, origin, dir, 0)) EXPECT_TRUE(std::isinf(h.distance));
     // Inward rays cross the sphere: the far side, at the diameter.
     for (Vec3& d : dir) d = -d;

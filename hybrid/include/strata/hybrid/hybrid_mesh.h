@@ -29,6 +29,7 @@ struct HybridReport {
     Index thinned_nodes = 0;           ///< nodes whose layers were scaled down (proximity, front rounds)
     double min_thickness_share = 1.0;  ///< the smallest share of the asked thickness a node got
     int front_rounds = 0;              ///< rounds of lowering columns where the front intersected itself
+    LayerReport coverage;              ///< per wall patch, the thickness reached and why not (layer_report)
     Index front_lowered_nodes = 0;     ///< column lowerings over those rounds
     std::vector<Index>
         remeshed_patches;  ///< patches (of the result's boundary) re-meshed around the layers' side faces

@@ -3,6 +3,7 @@
 /// The boundary-layer module: Poisson marching extrusion of prism and hexahedron layers
 /// (Thompson, Chalasani & Soni; ALGORITHM.md).
 
+#include <strata/core/layer_report.h>
 #include <strata/core/progress.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/core/volume_mesh.h>
@@ -90,13 +91,17 @@ public:
     /// The outermost level as a surface for the next stage: the wall's faces and patches, node i
     /// of it being top_node(i) (top.points[i] = mesh.points[top_node(i)]).
     SurfaceMesh top;
-    std::vector<LayerStats> stats;     ///< one per layer
-    std::vector<Index> input_node;     ///< wall node → node of the input surface
-    Index top_patch = kNone;           ///< the patch of mesh.boundary ("layer_top") holding the outermost level
-    Index unsmoothed_nodes = 0;        ///< nodes extruded along their normal without smoothing (sharp convex edges,
-                                       ///< open-edge corners, degenerate stencils: ends of needle triangles)
-    Index thinned_nodes = 0;           ///< nodes whose layers were scaled down by the proximity limit
-    double min_thickness_share = 1.0;  ///< the smallest share of the asked thickness a node got
+    std::vector<LayerStats> stats;        ///< one per layer
+    std::vector<Index> input_node;        ///< wall node → node of the input surface
+    Index top_patch = kNone;              ///< the patch of mesh.boundary ("layer_top") holding the outermost level
+    Index unsmoothed_nodes = 0;           ///< nodes extruded along their normal without smoothing (sharp convex edges,
+                                          ///< open-edge corners, degenerate stencils: ends of needle triangles)
+    Index thinned_nodes = 0;              ///< nodes whose layers were scaled down by the proximity limit
+    double min_thickness_share = 1.0;     ///< the smallest share of the asked thickness a node got
+    double asked_thickness = 0.0;         ///< the sum of the layer heights asked
+    std::vector<double> height_scale;     ///< per wall node, the share of the layer heights it marched
+    std::vector<Shortfall> scale_reason;  ///< per wall node, why that share is below 1 (Proximity or Front)
+    std::vector<char> held_back;          ///< per wall node, 1 if some layer held it back (hold_back)
 
     Index wall_nodes() const { return wall_nodes_; }
     /// Levels above the wall.
@@ -112,6 +117,13 @@ private:
     Index wall_nodes_ = 0;
     int layers_ = 0;
 };
+
+/// The coverage report of \p lm (layer_report.h): per wall patch (the patches of lm.top), the
+/// thickness each column reached (its length) against lm.asked_thickness, and every node
+/// that something limited, with the reason: HeldBack where a layer held it back (lowered
+/// where cells would have inverted), else the reason its heights were scaled. A column that
+/// nothing limited counts as full even where smoothing left it a little shorter or longer.
+LayerReport layer_report(const LayerMesh& lm);
 
 /// Extrude \p wall (oriented, normals into the flow; faces on Wall patches are extruded).
 /// Open boundaries of the wall keep their nodes on the planar non-wall patches they meet (a

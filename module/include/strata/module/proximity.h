@@ -15,7 +15,7 @@ namespace strata {
 /// What a wall node's ray met first.
 struct ProximityHit {
     double distance = std::numeric_limits<double>::infinity();  ///< along the unit direction; inf: nothing
-    bool wall = false;                                            ///< a wall face (its layers grow too)
+    bool wall = false;                                          ///< a wall face (its layers grow too)
 };
 
 /// For wall node i at \p origins[i] (node \p surface_node[i] of \p surface), the first face of

@@ -1,0 +1,11 @@
+#include <strata/core/enum_names.h>
+#include <strata/core/layer_report.h>
+
+namespace strata {
+
+std::string_view to_string(Shortfall reason) {
+    static constexpr EnumNames<Shortfall, 4> kNames{{"none", "proximity", "front", "held back"}};
+    return kNames.name(reason);
+}
+
+}  // namespace strata

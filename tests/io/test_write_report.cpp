@@ -1,0 +1,72 @@
+// The layer coverage report as JSON (io/write_report.h): content, escaping, atomic writing.
+
+#include <strata/core/error.h>
+#include <strata/io/write_report.h>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+#include <fstream>
+#include <sstream>
+
+namespace strata {
+namespace {
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+TEST(WriteLayerReport, PatchesAndShortNodesWithEscapedNames) {
+    LayerReport r;
+    r.layers = 30;
+    r.first_height = 1e-4;
+    r.thickness = 0.125;
+    PatchCoverage c;
+    c.name = "wing \"upper\"\\tip\n";
+    c.faces = 10, c.nodes = 12, c.full_nodes = 9, c.mean_share = 0.9, c.min_share = 0.25, c.proximity = 2, c.front = 1;
+    r.patches.push_back(c);
+    r.short_nodes.push_back({7, Vec3(1, 2, 3), 0.25, Shortfall::Proximity});
+    r.short_nodes.push_back({8, Vec3(1, 2, 4), 0.5, Shortfall::HeldBack});
+    test::ScratchDir dir("write_report");
+    const std::string path = report_path(dir.file("m.cgr"));
+    EXPECT_EQ(path, dir.file("m.cgr.report.json"));
+    write_layer_report(r, path);
+    const std::string json = slurp(path);
+    for (const char* part : {"\"layers\": 30", "\"first_height\": 0.0001", "\"thickness\": 0.125",
+                             "\"name\": \"wing \\\"upper\\\"\\\\tip\\n\"", "\"faces\": 10", "\"full_nodes\": 9",
+                             "\"min_share\": 0.25", "\"short\": {\"proximity\": 2, \"front\": 1, \"held_back\": 0}",
+                             "{\"node\": 7, \"position\": [1, 2, 3], \"share\": 0.25, \"reason\": \"proximity\"}",
+                             "\"reason\": \"held back\""})
+        EXPECT_NE(json.find(part), std::string::npos) << part << "\n" << json;
+    // Balanced brackets: one object, two arrays, each patch and node an object.
+    int depth = 0, objects = 0;
+    bool in_string = false;
+    for (std::size_t i = 0; i < json.size(); ++i) {
+        const char ch = json[i];
+        if (in_string) {
+            if (ch == '\\')
+                ++i;
+            else if (ch == '"')
+                in_string = false;
+            continue;
+        }
+        if (ch == '"') in_string = true;
+        if (ch == '{' || ch == '[') ++depth, objects += ch == '{';
+        if (ch == '}' || ch == ']') --depth;
+        ASSERT_GE(depth, 0);
+    }
+    EXPECT_EQ(depth, 0);
+    EXPECT_EQ(objects, 1 + 2 + 2);  // the report, the patch and its "short", two nodes
+}
+
+TEST(WriteLayerReport, MissingDirectoryIsAnInputErrorAndLeavesNothing) {
+    test::expect_error<InputError>([] { write_layer_report({}, "/nonexistent_dir_for_strata/m.report.json"); },
+                                   {"/nonexistent_dir_for_strata"});
+}
+
+}  // namespace
+}  // namespace strata
