@@ -304,8 +304,8 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
 void print_thinned(strata::Index nodes, double min_share) {
     if (nodes == 0) return;
     std::printf(
-        "proximity: layers thinned at %d wall nodes, down to %.1f %% of the thickness asked, where the domain is "
-        "narrower than the layers need (a gap, a facing wall, a nearby plane)\n",
+        "thinned: layers scaled down at %d wall nodes, down to %.1f %% of the thickness asked (the coverage table "
+        "says why)\n",
         static_cast<int>(nodes), 100.0 * min_share);
 }
 
@@ -353,6 +353,9 @@ void print_coverage(const strata::LayerReport& r) {
                     static_cast<int>(c.held_back));
 }
 
+/// Scaled Jacobian below which the summary warns that a solver may not use the cells.
+constexpr double kSolverQuality = 0.01;
+
 void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridReport& hr) {
     double jmin = 1.0;
     for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
@@ -361,8 +364,10 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     print_thinned(hr.thinned_nodes, hr.min_thickness_share);
     print_coverage(hr.coverage);
     if (hr.front_rounds > 0)
-        std::printf("front: the layer top intersected itself; %d column lowerings in %d rounds fixed it\n",
-                    static_cast<int>(hr.front_lowered_nodes), hr.front_rounds);
+        std::printf(
+            "front: %d column lowerings in %d rounds where the layers folded, left no room for a pyramid or "
+            "their top intersected itself\n",
+            static_cast<int>(hr.front_lowered_nodes), hr.front_rounds);
     if (!hr.remeshed_patches.empty()) {
         std::string names;
         for (strata::Index p : hr.remeshed_patches)
@@ -383,6 +388,11 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
         std::printf("  %-12s min scaled Jacobian %.3g (%s)\n", (std::string(strata::to_string(t)) + ":").c_str(),
                     q.min_scaled_jacobian, q.worst_cell.c_str());
     }
+    if (hr.validation.min_scaled_jacobian < kSolverQuality)
+        std::printf(
+            "warning: cells below a scaled Jacobian of %g, which a solver may reject or converge poorly on; "
+            "the worst is %s\n",
+            kSolverQuality, hr.validation.worst_cell.c_str());
 }
 
 std::vector<std::string> with_report(std::vector<std::string> files, const std::string& output) {

@@ -218,12 +218,42 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     SurfaceMesh region;
     Index top_patch = kNone;
     const Index farfield_patch = has_outer ? kNone : static_cast<Index>(surface.patches.size());
+    std::vector<double>& limit = layer_params.node_thickness_limit;
+    double asked = 0.0;  // the thickness asked: the sum of the layer heights
+    {
+        const std::vector<double> heights = layer_heights(params.layers.distribution);
+        for (int k = 0; k < params.layers.distribution.layers; ++k) asked += heights[static_cast<std::size_t>(k)];
+    }
     for (int round = 0;; ++round) {
         auto t0 = std::chrono::steady_clock::now();
-        lm = extrude_layers(surface, layer_params, progress);
+        try {
+            lm = extrude_layers(surface, layer_params, progress);
+        } catch (const LocalTopologyError& e) {  // a fold: lower the layers there and march again
+            rep.seconds_layers += seconds_since(t0);
+            if (round == kFrontRounds) throw;
+            const double to = e.reached() > 0.0 ? 0.7 * e.reached() : 0.5 * asked;
+            for (const Index n : e.nodes())
+                limit[static_cast<std::size_t>(n)] = std::min(limit[static_cast<std::size_t>(n)], to);
+            rep.front_lowered_nodes += static_cast<Index>(e.nodes().size());
+            rep.front_rounds = round + 1;
+            continue;
+        }
         rep.seconds_layers += seconds_since(t0);
         t0 = std::chrono::steady_clock::now();
-        pyr = build_pyramids(lm.top, params.pyramids, progress);
+        try {
+            pyr = build_pyramids(lm.top, params.pyramids, progress);
+        } catch (const LocalTopologyError& e) {  // no room for a pyramid: lower its quad's columns
+            rep.seconds_pyramids += seconds_since(t0);
+            if (round == kFrontRounds) throw;
+            for (const Index w : e.nodes()) {
+                const double reached = (lm.mesh.points[lm.top_node(w)] - lm.mesh.points[lm.level_node(0, w)]).norm();
+                double& l = limit[static_cast<std::size_t>(lm.input_node[static_cast<std::size_t>(w)])];
+                l = std::min(l, 0.5 * reached);
+            }
+            rep.front_lowered_nodes += static_cast<Index>(e.nodes().size());
+            rep.front_rounds = round + 1;
+            continue;
+        }
         rep.seconds_pyramids += seconds_since(t0);
         t0 = std::chrono::steady_clock::now();
         outer = outer_part(surface, lm, has_outer, params.farfield);
@@ -232,8 +262,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         rep.seconds_tets += seconds_since(t0);
         if (pairs.empty()) break;
         if (round == kFrontRounds) throw_front_intersects(region, pairs, round);
-        rep.front_lowered_nodes +=
-            lower_colliding_columns(region, top_patch, pairs, lm, pyr, layer_params.node_thickness_limit);
+        rep.front_lowered_nodes += lower_colliding_columns(region, top_patch, pairs, lm, pyr, limit);
         rep.front_rounds = round + 1;
     }
     rep.layer_stats = lm.stats;

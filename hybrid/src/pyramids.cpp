@@ -620,13 +620,14 @@ void Builder::fail(Index k, const Failure& why, double h) const {
         case Failure::None:
             break;
     }
-    throw TopologyError("pyramids: quad " + std::to_string(p.face) + " of the layer top (centroid " +
-                        format_point(p.c) + ", mean edge " + format_number(p.size) +
-                        ") cannot be capped with a pyramid: " + reason + ", even with the apex at " + format_number(h) +
-                        " (min_height " + format_number(params_.min_height) + " x shortest edge " +
-                        format_number(p.shortest) +
-                        "). The layer top leaves no room there: use fewer layers or a smaller total "
-                        "layer thickness, or a smaller pyramid min_height");
+    throw LocalTopologyError("pyramids: quad " + std::to_string(p.face) + " of the layer top (centroid " +
+                                 format_point(p.c) + ", mean edge " + format_number(p.size) +
+                                 ") cannot be capped with a pyramid: " + reason + ", even with the apex at " +
+                                 format_number(h) + " (min_height " + format_number(params_.min_height) +
+                                 " x shortest edge " + format_number(p.shortest) +
+                                 "). The layer top leaves no room there: use fewer layers or a smaller total "
+                                 "layer thickness, or a smaller pyramid min_height",
+                             std::vector<Index>(p.v.begin(), p.v.end()));
 }
 
 PyramidLayer Builder::run() {

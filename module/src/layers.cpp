@@ -620,11 +620,19 @@ void check_layer(const Wall& w, const LayerParams& params, int k, const std::vec
                                                     "); the layers fold there: use fewer layers or a smaller total "
                                                     "thickness, more LayerParams::sweeps, or keep "
                                                     "LayerParams::concave on";
-    throw TopologyError("layer " + std::to_string(k + 1) + " of " + std::to_string(out.layers()) + ": the " +
-                        (w.mesh.face_size(f) == 3 ? "prism" : "hexahedron") + " over wall face " +
-                        std::to_string(w.input_face[static_cast<std::size_t>(f)]) + " (patch '" +
-                        w.mesh.patches[static_cast<std::size_t>(w.mesh.face_patch[f])].name + "') at " +
-                        format_point(face_centroid(w.mesh, r0, f)) + what);
+    const std::string message = "layer " + std::to_string(k + 1) + " of " + std::to_string(out.layers()) + ": the " +
+                                (w.mesh.face_size(f) == 3 ? "prism" : "hexahedron") + " over wall face " +
+                                std::to_string(w.input_face[static_cast<std::size_t>(f)]) + " (patch '" +
+                                w.mesh.patches[static_cast<std::size_t>(w.mesh.face_patch[f])].name + "') at " +
+                                format_point(face_centroid(w.mesh, r0, f)) + what;
+    if (std::isnan(jmin)) throw TopologyError(message);
+    std::vector<Index> nodes;  // the folding cell's wall nodes, as nodes of the input surface
+    double reached = std::numeric_limits<double>::infinity();  // the layers below it, at its lowest corner
+    for (const Index* v = w.mesh.face_begin(f); v != w.mesh.face_end(f); ++v) {
+        nodes.push_back(w.input_node[static_cast<std::size_t>(*v)]);
+        reached = std::min(reached, (r0[*v] - out.mesh.points[static_cast<std::size_t>(*v)]).norm());
+    }
+    throw LocalTopologyError(message, std::move(nodes), std::isfinite(reached) ? reached : 0.0);
 }
 
 /// The cells in Gmsh order (bottom face = wall orientation, whose normal points into the cell).

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 namespace strata {
 namespace {
@@ -142,25 +143,19 @@ TEST(HybridCases, BodyFinInABoxWhoseSidesAreFarfield) {
     expect_valid_case("body_fin_box", s, m, rep);
 }
 
-TEST(HybridCases, WingFuselageFusedFromTwoSolids) {
+/// The glider: wing and fuselage fused from two overlapping solids.
+SurfaceMesh wing_fuselage() {
     PrepareParams pp;
     pp.cad.fuse = true;
-    const SurfaceMesh s = prepare_surface(example_data("wing_fuselage.step"), pp);
+    return prepare_surface(example_data("wing_fuselage.step"), pp);
+}
+
+TEST(HybridCases, WingFuselageFusedFromTwoSolids) {
+    const SurfaceMesh s = wing_fuselage();
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(5, 0.05), nullptr, &rep);
     EXPECT_GT(m.prisms.size(), 0u);
     expect_valid_case("wing_fuselage", s, m, rep);
-}
-
-TEST(HybridCases, MixedQuadTriangleOneraM6HasEveryCellType) {
-    const SurfaceMesh s = prepare_surface(example_data("onera_m6_mixed_quadtri.msh"), {});
-    HybridReport rep;
-    const VolumeMesh m = build_hybrid_mesh(s, params(5, 0.01), nullptr, &rep);
-    EXPECT_GT(m.hexes.size(), 0u);
-    EXPECT_GT(m.prisms.size(), 0u);
-    EXPECT_EQ(m.pyramids.size(), m.hexes.size() / 5);  // one per quad of the outermost layer
-    EXPECT_GT(m.tets.size(), 0u);
-    expect_valid_case("m6_mixed", s, m, rep);
 }
 
 TEST(HybridCases, TwoSpheresWithAGapOfATenthOfTheLayers) {
@@ -187,6 +182,37 @@ TEST(HybridCases, Naca0012BetweenWallsWithThirtyLayers) {
     const VolumeMesh m = build_hybrid_mesh(s, params(30, 1e-4), nullptr, &rep);
     EXPECT_GT(rep.thinned_nodes, 0);
     expect_valid_case("naca0012_walls", s, m, rep);
+}
+
+TEST(HybridCases, WingFuselageWithThirtyLayersIsLoweredWhereItFolds) {
+    // 30 layers used to fold at layer 28 beside the wing-body junction and stop. The columns
+    // there are lowered and the layers marched again; the coverage report says where.
+    const SurfaceMesh s = wing_fuselage();
+    HybridReport rep;
+    const VolumeMesh m = build_hybrid_mesh(s, params(30, 0.1), nullptr, &rep);
+    EXPECT_GT(rep.front_rounds, 0);
+    Index short_nodes = 0;
+    for (const PatchCoverage& c : rep.coverage.patches) short_nodes += c.front + c.held_back;
+    EXPECT_GT(short_nodes, 0);
+    expect_valid_case("wing_fuselage_30", s, m, rep);
+}
+
+TEST(HybridCases, MixedQuadTriangleOneraM6HasEveryCellType) {
+    // 5 layers, and 10, which used to leave no room for a pyramid at the wing tip and stop
+    // there: the columns there are lowered and the layers marched again.
+    const SurfaceMesh s = prepare_surface(example_data("onera_m6_mixed_quadtri.msh"), {});
+    for (const auto& [layers, first_height] : {std::pair{5, 0.01}, std::pair{10, 0.08}}) {
+        HybridReport rep;
+        const VolumeMesh m = build_hybrid_mesh(s, params(layers, first_height), nullptr, &rep);
+        EXPECT_GT(m.hexes.size(), 0u);
+        EXPECT_GT(m.prisms.size(), 0u);
+        EXPECT_EQ(m.pyramids.size(), m.hexes.size() / static_cast<std::size_t>(layers));  // one per top quad
+        EXPECT_GT(m.tets.size(), 0u);
+        if (layers == 10) {
+            EXPECT_GT(rep.front_rounds, 0);
+        }
+        expect_valid_case("m6_mixed_" + std::to_string(layers), s, m, rep);
+    }
 }
 
 }  // namespace

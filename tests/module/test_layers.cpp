@@ -200,11 +200,27 @@ TEST(Layers, InvertedCellIsReportedWithItsLocation) {
     try {
         extrude_layers(wall, p);
         FAIL() << "plain extrusion into the concave corner should fold";
-    } catch (const TopologyError& e) {
+    } catch (const LocalTopologyError& e) {
         const std::string msg = e.what();
         EXPECT_NE(msg.find("layer "), std::string::npos) << msg;
         EXPECT_NE(msg.find("would invert"), std::string::npos) << msg;
         EXPECT_NE(msg.find(" at ("), std::string::npos) << msg;
+        // The folding cell's corners, as nodes of the surface given, and how far the layers got.
+        ASSERT_GE(e.nodes().size(), 3u);
+        std::vector<char> on_wall(static_cast<std::size_t>(wall.num_points()), 0);
+        for (Index f = 0; f < wall.num_faces(); ++f)
+            if (wall.patches[static_cast<std::size_t>(wall.face_patch[f])].kind == PatchKind::Wall)
+                for (const Index* v = wall.face_begin(f); v != wall.face_end(f); ++v)
+                    on_wall[static_cast<std::size_t>(*v)] = 1;
+        for (const Index n : e.nodes()) {
+            ASSERT_LT(n, wall.num_points());
+            EXPECT_TRUE(on_wall[static_cast<std::size_t>(n)]) << n;
+        }
+        double total = 0.0;
+        const std::vector<double> heights = layer_heights(p.distribution);
+        for (int k = 0; k < p.distribution.layers; ++k) total += heights[static_cast<std::size_t>(k)];
+        EXPECT_GT(e.reached(), 0.0);
+        EXPECT_LT(e.reached(), total);
     }
 }
 

@@ -3,8 +3,12 @@
 /// Strata's exceptions. Every message names the file, entity, face or node concerned and
 /// says what to do; the CLI prints what() on one line and exits non-zero.
 
+#include <strata/core/types.h>
+
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace strata {
 
@@ -25,6 +29,22 @@ public:
 class TopologyError : public Error {
 public:
     using Error::Error;
+};
+
+/// A TopologyError at a known place of a surface: the nodes of the faces involved (in the
+/// numbering of the surface the throwing stage was given), so that a caller can act there
+/// (build_hybrid_mesh lowers the layers at those nodes and tries again).
+class LocalTopologyError : public TopologyError {
+public:
+    LocalTopologyError(const std::string& what, std::vector<Index> nodes, double reached = 0.0)
+        : TopologyError(what), nodes_(std::move(nodes)), reached_(reached) {}
+    const std::vector<Index>& nodes() const { return nodes_; }
+    /// How far the layers got there before it failed (0: not known).
+    double reached() const { return reached_; }
+
+private:
+    std::vector<Index> nodes_;
+    double reached_ = 0.0;
 };
 
 /// A third-party library (Gmsh, OpenCASCADE, TetGen) failed; the message carries its text.

@@ -131,7 +131,8 @@ LayerReport layer_report(const LayerMesh& lm);
 /// no such patch, in the plane of the open boundary loop if it is planar. Per layer, the paper's three steps: the
 /// locally orthogonal reference levels (Eqs. 11–12), Poisson smoothing of the middle level (Eq. 3), which then
 /// becomes the next wall. Throws TopologyError naming the layer, face and position of the first cell that would
-/// invert or whose quality cannot be computed. \p progress: stage "layers", checked after every layer.
+/// invert (a LocalTopologyError carrying its wall nodes as nodes of \p wall) or whose quality cannot be computed. \p
+/// progress: stage "layers", checked after every layer.
 LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, Progress* progress = nullptr);
 
 }  // namespace strata
