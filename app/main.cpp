@@ -93,6 +93,8 @@ const std::vector<std::pair<std::string, std::string>> kFlagOfParameter = {
     {"LayerParams::hold_back", "--no-hold-back"},
     {"LayerParams::normals", "--normals"},
     {"LayerParams::proximity", "--proximity"},
+    {"LayerParams::min_quality", "--min-quality"},
+    {"LayerParams::max_turn_deg", "--max-turn"},
     {"LayerParams::threads", "--threads"},
     {"HybridParams::threads", "--threads"},
     {"FarfieldParams::shape", "--farfield"},
@@ -226,11 +228,19 @@ void add_layer_options(CLI::App& cmd, LayerOptions& o) {
                  "no control functions (Phi, Psi from the wall; Theta from the distribution)");
     cmd.add_flag("--no-concave", o.no_concave, "no extra smoothing in concave regions");
     cmd.add_flag("--no-hold-back", o.no_hold_back,
-                 "where a layer's cells would invert, stop with an error instead of holding the layer back there");
+                 "with --min-quality 0: where a layer's cells would invert, stop with an error instead of holding "
+                 "the layer back there");
+    cmd.add_option("--min-quality", p.min_quality,
+                   "a column stops where a cell it would make has a scaled Jacobian below this share of what its "
+                   "wall face allows; 0: no local stopping (every column gets every layer, a fold is an error)")
+        ->capture_default_str();
+    cmd.add_option("--max-turn", p.max_turn_deg, "a column stops where it would turn more than this, degrees")
+        ->capture_default_str();
     cmd.add_option("--normals", o.normals, "node normals: robust, area (the paper's), angle, max")
         ->capture_default_str();
     cmd.add_option("--proximity", o.proximity,
-                   "where the domain is narrower than the layers need: scale (thinner layers there) or off")
+                   "where the domain is narrower than the layers need: stop (fewer layers there, the first height "
+                   "kept), scale (thinner layers there) or off")
         ->capture_default_str();
     cmd.add_option("--threads", p.threads, "threads (0: all cores); the output is the same for any count")
         ->capture_default_str();
@@ -324,12 +334,18 @@ void print_held_back(const std::vector<strata::LayerStats>& stats) {
 }
 
 void print_layer_table(const strata::LayerMesh& lm) {
-    std::printf("layer  height       min SJ  mean SJ  max orth  mean orth  sweeps\n");
+    std::printf("layer  height       min SJ  mean SJ  max orth  mean orth  sweeps  columns  stopped  steps  step SJ\n");
     for (std::size_t k = 0; k < lm.stats.size(); ++k) {
         const strata::LayerStats& s = lm.stats[k];
-        std::printf("%5zu  %-11.4g  %6.3f  %7.3f  %7.1f°  %8.2f°  %6d\n", k + 1, s.height, s.min_scaled_jacobian,
-                    s.mean_scaled_jacobian, s.max_orthogonality_deg, s.mean_orthogonality_deg, s.sweeps);
+        std::printf("%5zu  %-11.4g  %6.3f  %7.3f  %7.1f°  %8.2f°  %6d  %7d  %7d  %5d  %7.3g\n", k + 1, s.height,
+                    s.min_scaled_jacobian, s.mean_scaled_jacobian, s.max_orthogonality_deg, s.mean_orthogonality_deg,
+                    s.sweeps, static_cast<int>(s.columns), static_cast<int>(s.stopped_nodes),
+                    static_cast<int>(s.transition_cells), s.transition_cells > 0 ? s.min_transition_jacobian : 1.0);
     }
+    std::printf(
+        "  (columns: wall nodes with the layer; stopped: columns ending below it; steps: cells closing the steps "
+        "where they end, pyramids, side-on prisms, tetrahedra; their apex at a stopped column sees the step's thin "
+        "side edge-on, hence step SJ about layer height / edge length)\n");
     if (lm.unsmoothed_nodes > 0)
         std::printf(
             "note: %d nodes (sharp convex edges, corners of open edges, ends of needle triangles) were extruded along "
@@ -339,22 +355,55 @@ void print_layer_table(const strata::LayerMesh& lm) {
     print_thinned(lm.thinned_nodes, lm.min_thickness_share);
 }
 
-/// The coverage table: per wall patch, the columns at full thickness and why the others are not.
+/// The coverage table: per wall patch, the columns with every layer at full thickness, the
+/// layers reached and why the others fell short.
 void print_coverage(const strata::LayerReport& r) {
-    std::printf("coverage: %d layers asked, %.4g thick (first %.3g); per wall patch, the thickness reached:\n",
+    using strata::Shortfall;
+    std::printf("coverage: %d layers asked, %.4g thick (first %.3g); per wall patch, what the columns reached:\n",
                 r.layers, r.thickness, r.first_height);
-    std::printf("  %-24s %7s %7s %6s %7s %7s   short: %9s %6s %9s\n", "patch", "faces", "nodes", "full", "mean", "min",
-                "proximity", "front", "held back");
-    for (const strata::PatchCoverage& c : r.patches)
-        std::printf("  %-24s %7d %7d %5.1f%% %6.1f%% %6.1f%%          %9d %6d %9d\n", c.name.c_str(),
-                    static_cast<int>(c.faces), static_cast<int>(c.nodes),
-                    c.nodes > 0 ? 100.0 * static_cast<double>(c.full_nodes) / static_cast<double>(c.nodes) : 100.0,
-                    100.0 * c.mean_share, 100.0 * c.min_share, static_cast<int>(c.proximity), static_cast<int>(c.front),
-                    static_cast<int>(c.held_back));
+    std::printf("  %-20s %7s %7s %6s %6s %6s %6s %6s  short: %5s %5s %5s %5s %5s %5s %5s\n", "patch", "faces", "nodes",
+                "full", "all L", "mean L", "min L", "thick", "prox", "front", "held", "qual", "turn", "nbrs", "nan");
+    for (const strata::PatchCoverage& c : r.patches) {
+        const double n = c.nodes > 0 ? static_cast<double>(c.nodes) : 1.0;
+        std::printf(
+            "  %-20s %7d %7d %5.1f%% %5.1f%% %6.1f %6d %5.1f%%         %5d %5d %5d %5d %5d %5d %5d\n", c.name.c_str(),
+            static_cast<int>(c.faces), static_cast<int>(c.nodes), 100.0 * static_cast<double>(c.full_nodes) / n,
+            100.0 * static_cast<double>(c.all_layers) / n, c.mean_layers, c.min_layers, 100.0 * c.mean_share,
+            static_cast<int>(c.short_nodes(Shortfall::Proximity)), static_cast<int>(c.short_nodes(Shortfall::Front)),
+            static_cast<int>(c.short_nodes(Shortfall::HeldBack)), static_cast<int>(c.short_nodes(Shortfall::Quality)),
+            static_cast<int>(c.short_nodes(Shortfall::Turning)), static_cast<int>(c.short_nodes(Shortfall::Neighbours)),
+            static_cast<int>(c.short_nodes(Shortfall::NonFinite)));
+    }
+    std::printf(
+        "  (full: every layer at the thickness asked; all L: every layer; thick: mean thickness reached; short: "
+        "nodes by why their column fell short, in OUT.report.json with positions)\n");
 }
 
 /// Scaled Jacobian below which the summary warns that a solver may not use the cells.
 constexpr double kSolverQuality = 0.01;
+
+/// The cells by type, the validation's figures, the worst cell of each type, and a warning
+/// below what a solver can use.
+void print_cells(const strata::VolumeMesh& mesh, const strata::ValidationReport& v) {
+    std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n",
+                mesh.hexes.size(), mesh.prisms.size(), mesh.pyramids.size(), mesh.tets.size(),
+                static_cast<int>(mesh.num_cells()), mesh.points.size());
+    std::printf("valid: min scaled Jacobian %.3g (%s), volume %.6g (boundary %.6g)\n", v.min_scaled_jacobian,
+                v.worst_cell.c_str(), v.cell_volume, v.boundary_volume);
+    // Per cell type, hexahedra first (the order of the cells line), the worst cell of each.
+    for (const strata::CellType t :
+         {strata::CellType::Hex, strata::CellType::Prism, strata::CellType::Pyramid, strata::CellType::Tet}) {
+        const auto& q = v.by_type[static_cast<std::size_t>(t)];
+        if (mesh.num_cells(t) == 0) continue;
+        std::printf("  %-12s min scaled Jacobian %.3g (%s)\n", (std::string(strata::to_string(t)) + ":").c_str(),
+                    q.min_scaled_jacobian, q.worst_cell.c_str());
+    }
+    if (v.min_scaled_jacobian < kSolverQuality)
+        std::printf(
+            "warning: cells below a scaled Jacobian of %g, which a solver may reject or converge poorly on; "
+            "the worst is %s\n",
+            kSolverQuality, v.worst_cell.c_str());
+}
 
 void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridReport& hr) {
     double jmin = 1.0;
@@ -374,25 +423,7 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
             names += (names.empty() ? "" : ", ") + mesh.boundary.patches[static_cast<std::size_t>(p)].name;
         std::printf("planes re-meshed around the layers' sides: %s\n", names.c_str());
     }
-    std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n",
-                mesh.hexes.size(), mesh.prisms.size(), mesh.pyramids.size(), mesh.tets.size(),
-                static_cast<int>(mesh.num_cells()), mesh.points.size());
-    std::printf("valid: min scaled Jacobian %.3f (%s), volume %.6g (boundary %.6g)\n",
-                hr.validation.min_scaled_jacobian, hr.validation.worst_cell.c_str(), hr.validation.cell_volume,
-                hr.validation.boundary_volume);
-    // Per cell type, hexahedra first (the order of the cells line), the worst cell of each.
-    for (const strata::CellType t :
-         {strata::CellType::Hex, strata::CellType::Prism, strata::CellType::Pyramid, strata::CellType::Tet}) {
-        const auto& q = hr.validation.by_type[static_cast<std::size_t>(t)];
-        if (mesh.num_cells(t) == 0) continue;
-        std::printf("  %-12s min scaled Jacobian %.3g (%s)\n", (std::string(strata::to_string(t)) + ":").c_str(),
-                    q.min_scaled_jacobian, q.worst_cell.c_str());
-    }
-    if (hr.validation.min_scaled_jacobian < kSolverQuality)
-        std::printf(
-            "warning: cells below a scaled Jacobian of %g, which a solver may reject or converge poorly on; "
-            "the worst is %s\n",
-            kSolverQuality, hr.validation.worst_cell.c_str());
+    print_cells(mesh, hr.validation);
 }
 
 std::vector<std::string> with_report(std::vector<std::string> files, const std::string& output) {
@@ -462,8 +493,7 @@ int run_layers(const Common& c, const LayerOptions& o) {
     print_surface_summary(s.surface, s.report);
     print_layer_table(lm);
     print_coverage(coverage);
-    std::printf("cells: %zu hexahedra, %zu prisms; min scaled Jacobian %.3f; volume %.6g\n", lm.mesh.hexes.size(),
-                lm.mesh.prisms.size(), v.min_scaled_jacobian, v.cell_volume);
+    print_cells(lm.mesh, v);
     std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", s.seconds, t_layers,
                 seconds_since(t2));
     print_written(with_report(strata::volume_output_files(c.output), c.output));

@@ -4,7 +4,8 @@
 namespace strata {
 
 std::string_view to_string(Shortfall reason) {
-    static constexpr EnumNames<Shortfall, 4> kNames{{"none", "proximity", "front", "held back"}};
+    static constexpr EnumNames<Shortfall, kShortfalls> kNames{
+        {"none", "proximity", "front", "held back", "quality", "turning", "neighbours", "non-finite"}};
     return kNames.name(reason);
 }
 

@@ -121,6 +121,10 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
     const Index first_new = static_cast<Index>(lm.mesh.points.size());
     auto node = [&](Index i) { return i < nt ? lm.top_node(i) : first_new + (i - nt); };
     mesh.points.insert(mesh.points.end(), fill.points.begin() + nt, fill.points.end());
+    // The layers' own cells first (where columns stop unevenly they hold pyramids and
+    // tetrahedra closing the steps), then the stages'.
+    mesh.tets = lm.mesh.tets;
+    mesh.pyramids = lm.mesh.pyramids;
     mesh.prisms = lm.mesh.prisms;
     mesh.hexes = lm.mesh.hexes;
     append_cells(mesh.pyramids, pyr.pyramids, node);
@@ -133,6 +137,15 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
         if (lb.face_patch[f] >= static_cast<Index>(patches.size()))
             throw TopologyError("assembling the hybrid mesh: the layers end on an open edge with no patch beside it");
         mesh.boundary.add_face(lb.face_begin(f), lb.face_size(f), lb.face_patch[f]);
+    }
+    // Wall faces where no column grew: the front there is the wall itself (reversed: out of the fluid).
+    for (Index f = 0; f < lm.top.num_faces(); ++f) {
+        if (lm.face_layers[static_cast<std::size_t>(f)] > 0) continue;
+        Index v[4];
+        const Index n = lm.top.face_size(f);
+        v[0] = lm.top_node(lm.top.face_node(f, 0));
+        for (Index i = 1; i < n; ++i) v[i] = lm.top_node(lm.top.face_node(f, n - i));
+        mesh.boundary.add_face(v, n, lm.top.face_patch[f]);
     }
     for (Index f = 0; f < region.num_faces(); ++f) {
         if (region.face_patch[f] == top_patch) continue;

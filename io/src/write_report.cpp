@@ -65,17 +65,21 @@ void write_layer_report(const LayerReport& r, const std::string& path) {
             const PatchCoverage& c = r.patches[i];
             out << (i ? ",\n" : "\n") << "    {\"name\": " << quoted(c.name) << ", \"faces\": " << c.faces
                 << ", \"nodes\": " << c.nodes << ", \"full_nodes\": " << c.full_nodes
-                << ", \"mean_share\": " << number(c.mean_share) << ", \"min_share\": " << number(c.min_share)
-                << ", \"short\": {\"proximity\": " << c.proximity << ", \"front\": " << c.front
-                << ", \"held_back\": " << c.held_back << "}}";
+                << ", \"all_layers\": " << c.all_layers << ", \"mean_share\": " << number(c.mean_share)
+                << ", \"min_share\": " << number(c.min_share) << ", \"mean_layers\": " << number(c.mean_layers)
+                << ", \"min_layers\": " << c.min_layers << ", \"short\": {";
+            for (std::size_t k = 1; k < kShortfalls; ++k)  // every reason but None, by name
+                out << (k > 1 ? ", " : "") << quoted(std::string(to_string(static_cast<Shortfall>(k)))) << ": "
+                    << c.short_by[k];
+            out << "}}";
         }
         out << (r.patches.empty() ? "],\n" : "\n  ],\n") << "  \"short_nodes\": [";
         for (std::size_t i = 0; i < r.short_nodes.size(); ++i) {
             const ShortNode& n = r.short_nodes[i];
             out << (i ? ",\n" : "\n") << "    {\"node\": " << n.node << ", \"position\": [" << number(n.position.x())
                 << ", " << number(n.position.y()) << ", " << number(n.position.z())
-                << "], \"share\": " << number(n.share) << ", \"reason\": " << quoted(std::string(to_string(n.reason)))
-                << "}";
+                << "], \"share\": " << number(n.share) << ", \"layers\": " << n.layers
+                << ", \"reason\": " << quoted(std::string(to_string(n.reason))) << "}";
         }
         out << (r.short_nodes.empty() ? "]\n}\n" : "\n  ]\n}\n");
         if (!out.flush()) throw InputError(path + ": writing the layer report failed (disk full?)");

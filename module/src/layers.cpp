@@ -14,6 +14,8 @@
 #include <strata/module/proximity.h>
 #include <strata/module/stencil.h>
 
+#include "columns.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -427,15 +429,53 @@ namespace {
 
 /// Everything fixed for the whole extrusion: the planes and lines open-boundary nodes keep to,
 /// the stencils, the nodes extruded without smoothing, the control functions.
-constexpr EnumNames<ProximityMode, 2> kProximityModeNames{{"off", "scale"}};
+constexpr EnumNames<ProximityMode, 3> kProximityModeNames{{"off", "scale", "stop"}};
+
+/// Lower \p levels until the ends of every wall edge differ by at most one (a breadth-first
+/// sweep from the lowest), the lowered nodes taking the reason of the node that lowered them.
+void levels_differ_by_one(const SurfaceMesh& wall, std::vector<int>& levels, std::vector<Shortfall>& reason) {
+    const EdgeTable edges = edge_table(wall);
+    std::vector<std::vector<Index>> adjacent(levels.size());
+    for (const auto& e : edges.nodes) {
+        adjacent[static_cast<std::size_t>(e[0])].push_back(e[1]);
+        adjacent[static_cast<std::size_t>(e[1])].push_back(e[0]);
+    }
+    std::vector<Index> order(levels.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Index>(i);
+    std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) {
+        return levels[static_cast<std::size_t>(a)] < levels[static_cast<std::size_t>(b)];
+    });
+    // Levels are small integers: buckets by level give a Dijkstra sweep in linear time.
+    std::vector<std::vector<Index>> bucket(static_cast<std::size_t>(*std::max_element(levels.begin(), levels.end())) +
+                                           2);
+    for (const Index i : order) bucket[static_cast<std::size_t>(levels[static_cast<std::size_t>(i)])].push_back(i);
+    for (std::size_t l = 0; l < bucket.size(); ++l)
+        for (std::size_t q = 0; q < bucket[l].size(); ++q) {
+            const Index i = bucket[l][q];
+            if (static_cast<std::size_t>(levels[static_cast<std::size_t>(i)]) != l) continue;  // stale
+            for (const Index j : adjacent[static_cast<std::size_t>(i)]) {
+                int& lj = levels[static_cast<std::size_t>(j)];
+                if (lj <= static_cast<int>(l) + 1) continue;
+                lj = static_cast<int>(l) + 1;
+                reason[static_cast<std::size_t>(j)] = reason[static_cast<std::size_t>(i)];
+                bucket[l + 1].push_back(j);
+            }
+        }
+}
 
 /// Per node, the share of the layer heights that fits the proximity limit (1: the full
-/// \p thickness fits). Directions: the level-0 marching directions.
-std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, const Marcher& mc, double thickness,
-                                    std::vector<Shortfall>& reason) {
+/// \p thickness fits), or in Stop mode 1 and (\p max_levels) the layers that fit it, with why.
+/// Directions: the level-0 marching directions.
+std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, const Marcher& mc,
+                                    const std::vector<double>& delta, std::vector<Shortfall>& reason,
+                                    std::vector<int>& max_levels) {
     const auto nw = static_cast<std::size_t>(w.mesh.num_points());
+    const int layers = mc.params.distribution.layers;
+    double thickness = 0.0;
+    for (int k = 0; k < layers; ++k) thickness += delta[static_cast<std::size_t>(k)];
     std::vector<double> scale(nw, 1.0);
     reason.assign(nw, Shortfall::None);
+    max_levels.assign(nw, layers);
     const std::vector<double>& by_input = mc.params.node_thickness_limit;
     if ((mc.params.proximity == ProximityMode::Off && by_input.empty()) || !(thickness > 0.0)) return scale;
     if (!by_input.empty() && by_input.size() != surface.points.size())
@@ -453,14 +493,27 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
         extra.empty() ? limit : thickness_limits(w.mesh, hits, mc.params.proximity_limits);
     for (std::size_t i = 0; i < nw; ++i) {
         if (!(limit[i] < thickness)) continue;
-        scale[i] = limit[i] / thickness;
         reason[i] = limit[i] < by_proximity[i] ? Shortfall::Front : Shortfall::Proximity;
+        if (mc.params.proximity != ProximityMode::Stop) {
+            scale[i] = limit[i] / thickness;
+            continue;
+        }
+        int n = 0;  // the layers whose heights add up to the limit at most
+        for (double sum = delta[0]; n < layers && sum <= limit[i]; sum += delta[static_cast<std::size_t>(++n)]) {
+        }
+        max_levels[i] = n;
+    }
+    if (mc.params.proximity == ProximityMode::Stop) {
+        levels_differ_by_one(w.mesh, max_levels, reason);
+        for (std::size_t i = 0; i < nw; ++i)
+            if (max_levels[i] == layers) reason[i] = Shortfall::None;
     }
     return scale;
 }
 
-Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParams& params, double thickness,
-                     std::vector<Shortfall>& scale_reason) {
+Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParams& params,
+                     const std::vector<double>& delta, std::vector<Shortfall>& scale_reason,
+                     std::vector<int>& max_levels) {
     Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}};
     const NodeRings rings = node_rings(w.mesh);
     {
@@ -476,7 +529,7 @@ Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParam
     freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st, mc.threads);
     freeze_degenerate_nodes(mc);
     mc.control_functions();
-    mc.height_scale = proximity_scale(surface, w, mc, thickness, scale_reason);
+    mc.height_scale = proximity_scale(surface, w, mc, delta, scale_reason, max_levels);
     return mc;
 }
 
@@ -577,85 +630,112 @@ int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, doub
     return sweep;
 }
 
-/// The quality of layer k (the cells between levels k and k + 1 of \p out, whose points are
-/// r0 and r1), pushed onto out.stats. A cell with a scaled Jacobian ≤ 0 or one that cannot be
-/// computed (NaN: coordinates out of range) stops the extrusion with a TopologyError naming it,
-/// unless LayerParams::keep_invalid.
-void check_layer(const Wall& w, const LayerParams& params, int k, const std::vector<Vec3>& r0,
-                 const std::vector<Vec3>& r1, const std::vector<Vec3>& n0, LayerStats stats, LayerMesh& out) {
-    const std::vector<Vec3>& pts = out.mesh.points;
-    double jmin = 1.0, jsum = 0.0, omax = 0.0, osum = 0.0;
-    Index worst = kNone;
-    for (Index f = 0; f < w.mesh.num_faces(); ++f) {
-        const Index* v = w.mesh.face_begin(f);
-        auto at = [&](int level, int c) { return out.level_node(k + level, v[c]); };
-        const double j =
-            w.mesh.face_size(f) == 3
-                ? prism_min_scaled_jacobian(pts, {at(0, 0), at(0, 1), at(0, 2), at(1, 0), at(1, 1), at(1, 2)})
-                : hex_min_scaled_jacobian(
-                      pts, {at(0, 0), at(0, 1), at(0, 2), at(0, 3), at(1, 0), at(1, 1), at(1, 2), at(1, 3)});
-        if (std::isnan(j)) {  // sticky: a NaN anywhere is the layer's worst
-            if (!std::isnan(jmin)) jmin = j, worst = f;
-        } else if (!std::isnan(jmin) && (j < jmin || worst == kNone)) {
-            jmin = std::min(jmin, j), worst = j <= jmin ? f : worst;
-        }
-        jsum += j;
+/// With stopping off (LayerParams::min_quality 0): the first cell of layer \p k whose columns all
+/// go on and that would invert, or whose quality cannot be computed (NaN: coordinates out of
+/// range), stops the extrusion with a TopologyError naming it, unless LayerParams::keep_invalid.
+void check_folds(const Wall& w, const LayerParams& params, int k, const Columns& col, const std::vector<Vec3>& r1) {
+    if (params.keep_invalid) return;
+    double jmin = 1.0;
+    Index f = kNone;
+    for (Index g = 0; g < col.faces.count(); ++g) {
+        const auto& v = col.faces.nodes[static_cast<std::size_t>(g)];
+        bool all = true;
+        for (int c = 0; c < col.faces.size[static_cast<std::size_t>(g)]; ++c)
+            all &= col.active[static_cast<std::size_t>(v[static_cast<std::size_t>(c)])] != 0;
+        if (!all) continue;
+        const double j = column_cell_jacobian(col, g, r1);
+        if (std::isnan(j) || (!std::isnan(jmin) && j < jmin)) jmin = j, f = g;
+        if (std::isnan(j)) break;  // sticky: a NaN is the worst
     }
-    for (std::size_t i = 0; i < r0.size(); ++i) {
-        const Vec3 e = r1[i] - r0[i];
-        const double ang = std::acos(std::clamp(e.normalized().dot(n0[i]), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-        omax = std::max(omax, ang);
-        osum += ang;
-    }
-    stats.min_scaled_jacobian = jmin;
-    stats.mean_scaled_jacobian = jsum / static_cast<double>(w.mesh.num_faces());
-    stats.max_orthogonality_deg = omax;
-    stats.mean_orthogonality_deg = osum / static_cast<double>(r0.size());
-    out.stats.push_back(stats);
-    if (jmin > 0.0 || params.keep_invalid) return;
-    const Index f = worst;
+    if (jmin > 0.0) return;
+    const Index wf = f < w.mesh.num_faces() ? f : kNone;  // split halves: name the layer only
     const std::string what = std::isnan(jmin) ? " has a quality that cannot be computed (a non-finite coordinate: the "
                                                 "model's coordinates or the layer heights are out of range)"
                                               : " would invert (min scaled Jacobian " + format_number(jmin) +
-                                                    "); the layers fold there: use fewer layers or a smaller total "
-                                                    "thickness, more LayerParams::sweeps, or keep "
-                                                    "LayerParams::concave on";
-    const std::string message = "layer " + std::to_string(k + 1) + " of " + std::to_string(out.layers()) + ": the " +
-                                (w.mesh.face_size(f) == 3 ? "prism" : "hexahedron") + " over wall face " +
-                                std::to_string(w.input_face[static_cast<std::size_t>(f)]) + " (patch '" +
-                                w.mesh.patches[static_cast<std::size_t>(w.mesh.face_patch[f])].name + "') at " +
-                                format_point(face_centroid(w.mesh, r0, f)) + what;
+                                                    "); the layers fold there: keep LayerParams::min_quality above 0 "
+                                                    "so the columns stop there, use fewer layers or a smaller total "
+                                                    "thickness, or keep LayerParams::concave on";
+    const auto& v = col.faces.nodes[static_cast<std::size_t>(f)];
+    const int n = col.faces.size[static_cast<std::size_t>(f)];
+    Vec3 centre = Vec3::Zero();
+    for (int c = 0; c < n; ++c) centre += col.top[static_cast<std::size_t>(v[static_cast<std::size_t>(c)])];
+    centre /= n;
+    const std::string message =
+        "layer " + std::to_string(k + 1) + " of " + std::to_string(params.distribution.layers) + ": the " +
+        (n == 3 ? "prism" : "hexahedron") + " over wall face " +
+        (wf != kNone ? std::to_string(w.input_face[static_cast<std::size_t>(wf)]) : std::string("(part of a quad)")) +
+        " (patch '" + w.mesh.patches[static_cast<std::size_t>(col.faces.patch[static_cast<std::size_t>(f)])].name +
+        "') at " + format_point(centre) + what;
     if (std::isnan(jmin)) throw TopologyError(message);
     std::vector<Index> nodes;  // the folding cell's wall nodes, as nodes of the input surface
     double reached = std::numeric_limits<double>::infinity();  // the layers below it, at its lowest corner
-    for (const Index* v = w.mesh.face_begin(f); v != w.mesh.face_end(f); ++v) {
-        nodes.push_back(w.input_node[static_cast<std::size_t>(*v)]);
-        reached = std::min(reached, (r0[*v] - out.mesh.points[static_cast<std::size_t>(*v)]).norm());
+    for (int c = 0; c < n; ++c) {
+        const auto i = static_cast<std::size_t>(v[static_cast<std::size_t>(c)]);
+        nodes.push_back(w.input_node[i]);
+        reached = std::min(reached, (col.top[i] - w.mesh.points[i]).norm());
     }
     throw LocalTopologyError(message, std::move(nodes), std::isfinite(reached) ? reached : 0.0);
 }
 
-/// The cells in Gmsh order (bottom face = wall orientation, whose normal points into the cell).
-void add_cells(const Wall& w, LayerMesh& out) {
-    for (int k = 0; k < out.layers(); ++k)
-        for (Index f = 0; f < w.mesh.num_faces(); ++f) {
-            const Index* v = w.mesh.face_begin(f);
-            auto at = [&](int level, int c) { return out.level_node(k + level, v[c]); };
-            if (w.mesh.face_size(f) == 3)
-                out.mesh.prisms.push_back({at(0, 0), at(0, 1), at(0, 2), at(1, 0), at(1, 1), at(1, 2)});
-            else
-                out.mesh.hexes.push_back(
-                    {at(0, 0), at(0, 1), at(0, 2), at(0, 3), at(1, 0), at(1, 1), at(1, 2), at(1, 3)});
-        }
+/// Orthogonality of layer \p k's columns that go on: the angle between each one's segment and the
+/// normal it started along.
+void layer_orthogonality(const Columns& col, int k, const std::vector<Vec3>& r0, const std::vector<Vec3>& r1,
+                         const std::vector<Vec3>& n0, LayerStats& stats) {
+    double omax = 0.0, osum = 0.0;
+    Index count = 0;
+    for (std::size_t i = 0; i < r0.size(); ++i) {
+        if (col.levels[i] != k + 1) continue;
+        const Vec3 e = r1[i] - r0[i];
+        const double ang = std::acos(std::clamp(e.normalized().dot(n0[i]), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+        omax = std::max(omax, ang);
+        osum += ang;
+        ++count;
+    }
+    stats.max_orthogonality_deg = omax;
+    stats.mean_orthogonality_deg = count > 0 ? osum / static_cast<double>(count) : 0.0;
+    stats.columns = count;
 }
 
-/// The side faces of the layers on the wall's open edges, each on the patch of the input face
-/// across the open edge if there is one (a symmetry plane of a half model), else on one
-/// "layer_side" patch.
-void add_side_faces(const SurfaceMesh& surface, const Wall& w, LayerMesh& out) {
-    SurfaceMesh& bnd = out.mesh.boundary;
+/// Not one column got a layer: a TopologyError with why, by how many nodes, and where the first is.
+[[noreturn]] void throw_no_layers(const Wall& w, const Columns& col) {
+    std::array<Index, kShortfalls> count{};
+    std::array<Index, kShortfalls> first{};
+    first.fill(kNone);
+    for (std::size_t i = 0; i < col.reason.size(); ++i) {
+        const auto r = static_cast<std::size_t>(col.reason[i]);
+        if (count[r]++ == 0) first[r] = static_cast<Index>(i);
+    }
+    std::string why;
+    for (std::size_t r = 0; r < kShortfalls; ++r)
+        if (count[r] > 0)
+            why += (why.empty() ? "" : ", ") + std::to_string(count[r]) + " " +
+                   std::string(to_string(static_cast<Shortfall>(r))) + " (the first at " +
+                   format_point(w.mesh.points[static_cast<std::size_t>(first[r])]) + ")";
+    // The sharpest wall corner: needle triangles make cells no marching can keep usable.
+    double sharpest = 180.0;
+    Vec3 where = Vec3::Zero();
+    for (Index f = 0; f < w.mesh.num_faces(); ++f)
+        for (Index c = 0, n = w.mesh.face_size(f); c < n; ++c) {
+            const Vec3& o = w.mesh.points[w.mesh.face_node(f, c)];
+            const Vec3 a = w.mesh.points[w.mesh.face_node(f, (c + 1) % n)] - o;
+            const Vec3 b = w.mesh.points[w.mesh.face_node(f, (c + n - 1) % n)] - o;
+            const double angle = std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;
+            if (angle < sharpest) sharpest = angle, where = o;
+        }
+    const std::string needles = sharpest < 5.0 ? "; the wall has needle faces (a corner of " +
+                                                     format_number(sharpest, 3) + " degrees at " + format_point(where) +
+                                                     "): remesh the surface into well-shaped faces"
+                                               : "";
+    throw TopologyError("no wall node could grow a single layer; the columns stopped for: " + why + needles +
+                        ". Quality: the first layer's cells would be poor (a smaller first height, a finer surface, "
+                        "or a lower LayerParams::min_quality); proximity: the gaps are narrower than the first layer");
+}
+
+/// Per edge of the wall's open boundary loops, in order, the patch of the input face across it
+/// if that face is not a wall (a symmetry plane of a half model), else kNone ("layer_side").
+std::vector<Index> side_patches(const SurfaceMesh& surface, const Wall& w) {
     const EdgeTable in_edges = edge_table(surface);
-    Index side_patch = kNone;
+    std::vector<Index> out;
     for (Index l = 0; l < w.loops.rows(); ++l) {
         const Index m = w.loops.row_size(l);
         for (Index i = 0; i < m; ++i) {
@@ -670,43 +750,10 @@ void add_side_faces(const SurfaceMesh& surface, const Wall& w, LayerMesh& out) {
                     if (surface.patches[static_cast<std::size_t>(surface.face_patch[*f])].kind != PatchKind::Wall)
                         patch = surface.face_patch[*f];
             }
-            if (patch == kNone) {
-                if (side_patch == kNone) {
-                    side_patch = static_cast<Index>(bnd.patches.size());
-                    bnd.patches.push_back({"layer_side", PatchKind::Other});
-                }
-                patch = side_patch;
-            }
-            for (int k = 0; k < out.layers(); ++k)
-                bnd.add_face(
-                    {out.level_node(k, a), out.level_node(k, b), out.level_node(k + 1, b), out.level_node(k + 1, a)},
-                    patch);
+            out.push_back(patch);
         }
     }
-}
-
-/// The boundary: the wall (reversed: out of the layers), the top (top_patch), and side faces on
-/// open edges; then the outermost level as a surface for the next stage.
-void add_boundary_and_top(const SurfaceMesh& surface, const Wall& w, LayerMesh& out) {
-    SurfaceMesh& bnd = out.mesh.boundary;
-    bnd.patches = w.mesh.patches;
-    out.top_patch = static_cast<Index>(bnd.patches.size());
-    bnd.patches.push_back({"layer_top", PatchKind::Other});
-    SurfaceMesh reversed = w.mesh;
-    flip_faces(reversed);
-    for (Index f = 0; f < reversed.num_faces(); ++f)
-        bnd.add_face(reversed.face_begin(f), reversed.face_size(f), reversed.face_patch[f]);
-    for (Index f = 0; f < w.mesh.num_faces(); ++f) {
-        Index v[4];
-        const Index n = w.mesh.face_size(f);
-        for (Index i = 0; i < n; ++i) v[i] = out.top_node(w.mesh.face_node(f, i));
-        bnd.add_face(v, n, out.top_patch);
-    }
-    if (w.loops.rows() > 0) add_side_faces(surface, w, out);
-
-    out.top = w.mesh;
-    for (Index i = 0; i < w.mesh.num_points(); ++i)
-        out.top.points[static_cast<std::size_t>(i)] = out.mesh.points[out.top_node(i)];
+    return out;
 }
 
 }  // namespace
@@ -724,48 +771,96 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     if (params.sweeps < 0)
         throw InputError("LayerParams::sweeps = " + std::to_string(params.sweeps) +
                          ": need 0 or more sweeps per layer");
+    if (!(params.min_quality >= 0.0 && params.min_quality < 1.0))
+        throw InputError("LayerParams::min_quality = " + format_number(params.min_quality) +
+                         ": need a scaled Jacobian in [0, 1) (0: no local stopping)");
+    if (!(params.max_turn_deg > 0.0))
+        throw InputError("LayerParams::max_turn_deg = " + format_number(params.max_turn_deg) +
+                         ": need an angle above 0 degrees");
     const Wall w = extract_wall(surface);
+    const int layers = params.distribution.layers;
     double thickness = 0.0;
-    for (int k = 0; k < params.distribution.layers; ++k) thickness += delta[static_cast<std::size_t>(k)];
+    for (int k = 0; k < layers; ++k) thickness += delta[static_cast<std::size_t>(k)];
     std::vector<Shortfall> scale_reason;
-    const Marcher mc = make_marcher(surface, w, params, thickness, scale_reason);
     const Index nw = w.mesh.num_points();
-    LayerMesh out(nw, params.distribution.layers);
+    LayerMesh out(nw, layers);
+    Columns col(w.mesh, layers, out.mesh.points);
+    const Marcher mc = make_marcher(surface, w, params, delta, scale_reason, col.max_levels);
     out.input_node = w.input_node;
     for (Index i = 0; i < nw; ++i) out.unsmoothed_nodes += mc.st.valid[i] ? 0 : 1;
     out.asked_thickness = thickness;
     out.held_back.assign(static_cast<std::size_t>(nw), 0);
     out.height_scale = mc.height_scale;
-    out.scale_reason = std::move(scale_reason);
     for (Index i = 0; i < nw; ++i) {
-        const double share = mc.height_scale[static_cast<std::size_t>(i)];
+        const auto u = static_cast<std::size_t>(i);
+        if (col.max_levels[u] < layers) col.limit[u] = scale_reason[u];  // Stop mode: the levels say it
+        if (col.max_levels[u] < layers) scale_reason[u] = Shortfall::None;
+        const double share = mc.height_scale[u];
         if (share < 1.0) ++out.thinned_nodes;
         out.min_thickness_share = std::min(out.min_thickness_share, share);
     }
-    out.mesh.points.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(out.layers() + 1));
+    out.scale_reason = std::move(scale_reason);
+    out.mesh.points.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(layers + 1));
     out.mesh.points.insert(out.mesh.points.end(), w.mesh.points.begin(), w.mesh.points.end());
     report(progress, "layers", 0.0);
 
+    // Stopping: on unless turned off (min_quality 0) or for diagnostics (keep_invalid).
+    const StopRules rules{params.min_quality, params.max_turn_deg, params.min_quality > 0.0 && !params.keep_invalid};
     const bool holds =
         params.hold_back && params.smoothing && std::max(params.max_sweeps, params.sweeps) > 0 && !params.keep_invalid;
     std::vector<Vec3> r0 = w.mesh.points, r1(r0.size());
-    for (int k = 0; k < out.layers(); ++k) {
+    std::vector<char> held(static_cast<std::size_t>(nw));
+    out.stats.assign(static_cast<std::size_t>(layers), LayerStats{});
+    for (int k = 0; k < layers; ++k) {
         const double dk = delta[static_cast<std::size_t>(k)], dk1 = delta[static_cast<std::size_t>(k) + 1];
-        LayerStats stats;
+        LayerStats& stats = out.stats[static_cast<std::size_t>(k)];
         stats.height = dk;
+        if (std::none_of(col.active.begin(), col.active.end(), [](char a) { return a != 0; })) continue;
         // 1. The locally orthogonal reference mesh: level 1 along the normals (level 2 in step 2).
         const std::vector<Vec3> n0 = reference_level(mc, r0, dk, r1);
-        // 2. Poisson smoothing of level 1; where its cells would still invert, hold it back.
+        // 2. Poisson smoothing of level 1 over every node (stopped ones as ghosts); where its
+        // cells would still invert, hold it back.
         stats.sweeps = smooth_level(mc, r0, dk, dk1, r1);
-        if (holds) stats.held_nodes = hold_back_folds(mc, r0, dk, r1, out.held_back);
-        out.mesh.points.insert(out.mesh.points.end(), r1.begin(), r1.end());
-        check_layer(w, params, k, r0, r1, n0, stats, out);
-        // 3. Level 1 becomes the wall of the next layer.
+        std::fill(held.begin(), held.end(), 0);
+        if (rules.quality) {
+            // 3. The columns whose cells are usable go on to level k + 1, the others stop; then
+            // the stopped ones' ghosts are held back where they would fold, so the level the
+            // next layer starts from stays sound (the moving ones keep what was judged).
+            stats.stopped_nodes = stop_columns(col, rules, k, r1);
+            for (Index i = 0; i < nw; ++i)
+                if (col.levels[static_cast<std::size_t>(i)] == k + 1)
+                    out.mesh.points.push_back(r1[static_cast<std::size_t>(i)]);
+            if (holds) {
+                const std::vector<Vec3> judged = r1;
+                hold_back_folds(mc, r0, dk, r1, held);
+                for (Index i = 0; i < nw; ++i)
+                    if (col.levels[static_cast<std::size_t>(i)] == k + 1)
+                        r1[static_cast<std::size_t>(i)] = judged[static_cast<std::size_t>(i)];
+            }
+        } else {
+            // 3. Stopping off: every column goes on (but for limits), held back where it would fold.
+            if (holds) hold_back_folds(mc, r0, dk, r1, held);
+            check_folds(w, params, k, col, r1);
+            stats.stopped_nodes = stop_columns(col, rules, k, r1);
+            for (Index i = 0; i < nw; ++i) {
+                const auto u = static_cast<std::size_t>(i);
+                if (col.levels[u] != k + 1) continue;
+                out.mesh.points.push_back(r1[u]);
+                if (held[u]) out.held_back[u] = 1, ++stats.held_nodes;
+            }
+        }
+        layer_orthogonality(col, k, r0, r1, n0, stats);
+        // 4. Level 1 becomes the wall of the next layer (for every node: the ghosts march on).
         std::swap(r0, r1);
-        report(progress, "layers", static_cast<double>(k + 1) / out.layers());
+        report(progress, "layers", static_cast<double>(k + 1) / layers);
     }
-    add_cells(w, out);
-    add_boundary_and_top(surface, w, out);
+    if (std::all_of(col.levels.begin(), col.levels.end(), [](int l) { return l == 0; })) throw_no_layers(w, col);
+    out.set_columns(col.levels);
+    out.stop_reason.assign(static_cast<std::size_t>(nw), Shortfall::None);
+    for (Index i = 0; i < nw; ++i)
+        if (col.levels[static_cast<std::size_t>(i)] < layers)
+            out.stop_reason[static_cast<std::size_t>(i)] = col.reason[static_cast<std::size_t>(i)];
+    build_layer_cells(col, w.mesh, w.loops, side_patches(surface, w), out);
     return out;
 }
 
@@ -775,22 +870,25 @@ LayerReport layer_report(const LayerMesh& lm) {
     r.first_height = lm.stats.empty() ? 0.0 : lm.stats.front().height;
     r.thickness = lm.asked_thickness;
     const Index nw = lm.wall_nodes();
-    // Thickness reached: the length of each column.
+    // Thickness reached: the length of each column; why it fell short: it stopped, else it
+    // was held back, else it was thinned.
     std::vector<double> share(static_cast<std::size_t>(nw), 1.0);
     std::vector<Shortfall> why(static_cast<std::size_t>(nw), Shortfall::None);
     for (Index i = 0; i < nw; ++i) {
         double length = 0.0;
-        for (int k = 0; k < lm.layers(); ++k)
+        for (int k = 0; k < lm.node_layers(i); ++k)
             length += (lm.mesh.points[lm.level_node(k + 1, i)] - lm.mesh.points[lm.level_node(k, i)]).norm();
         const auto u = static_cast<std::size_t>(i);
         share[u] = r.thickness > 0.0 ? length / r.thickness : 1.0;
-        if (u < lm.held_back.size() && lm.held_back[u])
+        if (u < lm.stop_reason.size() && lm.stop_reason[u] != Shortfall::None)
+            why[u] = lm.stop_reason[u];
+        else if (u < lm.held_back.size() && lm.held_back[u])
             why[u] = Shortfall::HeldBack;
         else if (u < lm.scale_reason.size())
             why[u] = lm.scale_reason[u];
         if (why[u] == Shortfall::None) continue;
-        r.short_nodes.push_back(
-            {lm.input_node.empty() ? i : lm.input_node[u], lm.mesh.points[lm.level_node(0, i)], share[u], why[u]});
+        r.short_nodes.push_back({lm.input_node.empty() ? i : lm.input_node[u], lm.mesh.points[lm.level_node(0, i)],
+                                 share[u], lm.node_layers(i), why[u]});
     }
     // Per patch of the wall: its faces, and its nodes once each.
     const SurfaceMesh& wall = lm.top;
@@ -804,21 +902,27 @@ LayerReport layer_report(const LayerMesh& lm) {
     }
     std::sort(patch_node.begin(), patch_node.end());
     patch_node.erase(std::unique(patch_node.begin(), patch_node.end()), patch_node.end());
-    std::vector<double> sum(wall.patches.size(), 0.0);
+    std::vector<double> sum(wall.patches.size(), 0.0), layer_sum(wall.patches.size(), 0.0);
+    for (PatchCoverage& c : r.patches) c.min_layers = lm.layers();
     for (const auto& [patch, node] : patch_node) {
         const auto p = static_cast<std::size_t>(patch);
         const auto u = static_cast<std::size_t>(node);
         PatchCoverage& c = r.patches[p];
+        const int levels = lm.node_layers(node);
         ++c.nodes;
         sum[p] += share[u];
+        layer_sum[p] += levels;
         c.min_share = std::min(c.min_share, share[u]);
+        c.min_layers = std::min(c.min_layers, levels);
+        c.all_layers += levels == lm.layers();
         c.full_nodes += why[u] == Shortfall::None;
-        c.proximity += why[u] == Shortfall::Proximity;
-        c.front += why[u] == Shortfall::Front;
-        c.held_back += why[u] == Shortfall::HeldBack;
+        ++c.short_by[static_cast<std::size_t>(why[u])];
     }
     for (std::size_t p = 0; p < r.patches.size(); ++p)
-        if (r.patches[p].nodes > 0) r.patches[p].mean_share = sum[p] / static_cast<double>(r.patches[p].nodes);
+        if (r.patches[p].nodes > 0) {
+            r.patches[p].mean_share = sum[p] / static_cast<double>(r.patches[p].nodes);
+            r.patches[p].mean_layers = layer_sum[p] / static_cast<double>(r.patches[p].nodes);
+        }
     // Patches without wall faces (the wall's own table lists them all) are left out.
     r.patches.erase(
         std::remove_if(r.patches.begin(), r.patches.end(), [](const PatchCoverage& c) { return c.faces == 0; }),

@@ -210,9 +210,12 @@ TEST(Cli, LayersBadInputsFailCleanly) {
                          "overdetermined");
     expect_clean_failure(in + " --layers 5 --first-height 1e-2 --thickness 0.01", "thickness", "thin");
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --normals sideways", "sideways", "normals");
-    // Plain extrusion into the notched box's concave corner folds: reported, nothing written.
+    expect_clean_failure(in + " --layers 5 --first-height 1e-3 --min-quality 1.5", "--min-quality", "quality");
+    // Plain extrusion into the notched box's concave corner folds: with local stopping off,
+    // reported, nothing written.
     expect_clean_failure("layers '" + example_data("bl3d_4_box_notch_concave_corner.brep") +
                              "' -o out.msh --layers 20 --first-height 5e-4 --growth 1.15 --sweeps 0 --max-sweeps 0 "
+                             "--min-quality 0 "
                              "--patch surface_1=farfield --patch surface_2=farfield --patch surface_3=farfield "
                              "--patch surface_4=farfield --patch surface_6=farfield",
                          "would invert", "folds");

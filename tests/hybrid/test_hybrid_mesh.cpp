@@ -195,6 +195,7 @@ TEST(HybridMesh, LayersInANarrowGapAreThinnedUntilTheFrontIsClear) {
     p.layers.distribution.layers = 10;
     p.layers.distribution.first_height = 0.02;
     p.layers.distribution.growth = 1.0;
+    p.layers.proximity = ProximityMode::Scale;
     HybridReport r;
     const VolumeMesh m = build_hybrid_mesh(s, p, nullptr, &r);
     EXPECT_TRUE(validate_mesh(m).ok());
@@ -208,8 +209,11 @@ TEST(HybridMesh, LayersInANarrowGapAreThinnedUntilTheFrontIsClear) {
     for (const PatchCoverage& c : r.coverage.patches) {
         EXPECT_EQ(c.nodes, s.num_points() / 2);
         EXPECT_GT(c.full_nodes, c.nodes / 2);
-        EXPECT_GT(c.proximity, 0);
-        EXPECT_EQ(c.full_nodes + c.proximity + c.front + c.held_back, c.nodes);
+        EXPECT_GT(c.short_nodes(Shortfall::Proximity), 0);
+        EXPECT_EQ(c.full_nodes + c.short_nodes(Shortfall::Proximity) + c.short_nodes(Shortfall::Front) +
+                      c.short_nodes(Shortfall::HeldBack) + c.short_nodes(Shortfall::Quality) +
+                      c.short_nodes(Shortfall::Neighbours),
+                  c.nodes);
         EXPECT_LT(c.min_share, 0.25);
         short_count += c.nodes - c.full_nodes;
     }

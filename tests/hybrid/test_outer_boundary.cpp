@@ -149,11 +149,30 @@ TEST(OuterBoundary, CurvedPatchMeetingTheWallsIsRefusedByName) {
     }
 }
 
-TEST(OuterBoundary, LayersTallerThanTheDomainAreRefused) {
+TEST(OuterBoundary, LayersTallerThanTheDomainStopBelowTheLidOrAreRefused) {
     test::ScratchDir dir("outer_thick");
     const SurfaceMesh s = prepare_surface(test::box_domain_geo(dir, 0.05, 0.02), {});
+    // 0.082 of layers in a box 0.05 high: with proximity (stop, the default) the columns end at
+    // the last layer under 0.9 of the lid's distance, the first height kept; the mesh is whole.
+    HybridReport rep;
+    const VolumeMesh m = build_hybrid_mesh(s, box_params(), nullptr, &rep);
+    ASSERT_TRUE(rep.validation.ok());
+    EXPECT_NEAR(rep.validation.cell_volume, 0.05, 1e-9);
+    EXPECT_EQ(rep.layer_stats.front().height, 0.005);
+    Index by_proximity = 0;
+    int fewest = 8;
+    for (const PatchCoverage& c : rep.coverage.patches) {
+        by_proximity += c.short_nodes(Shortfall::Proximity);
+        fewest = std::min(fewest, c.min_layers);
+    }
+    EXPECT_GT(by_proximity, 0);
+    EXPECT_LT(fewest, 8);
+    for (const ShortNode& n : rep.coverage.short_nodes) EXPECT_LT(n.share * 0.082, 0.9 * 0.05 + 1e-12);
+    // Without proximity limiting, the layers would cross the lid: refused before TetGen.
+    HybridParams off = box_params();
+    off.layers.proximity = ProximityMode::Off;
     try {
-        build_hybrid_mesh(s, box_params());  // 0.082 of layers in a box 0.05 high
+        build_hybrid_mesh(s, off);
         FAIL() << "layers beyond the lid must be refused";
     } catch (const TopologyError& e) {
         EXPECT_NE(std::string(e.what()).find("thinner layers"), std::string::npos) << e.what();

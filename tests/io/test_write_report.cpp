@@ -27,20 +27,28 @@ TEST(WriteLayerReport, PatchesAndShortNodesWithEscapedNames) {
     r.thickness = 0.125;
     PatchCoverage c;
     c.name = "wing \"upper\"\\tip\n";
-    c.faces = 10, c.nodes = 12, c.full_nodes = 9, c.mean_share = 0.9, c.min_share = 0.25, c.proximity = 2, c.front = 1;
+    c.faces = 10, c.nodes = 12, c.full_nodes = 9, c.mean_share = 0.9, c.min_share = 0.25;
+    c.short_by[static_cast<std::size_t>(Shortfall::Proximity)] = 2;
+    c.short_by[static_cast<std::size_t>(Shortfall::Front)] = 1;
+    c.short_by[static_cast<std::size_t>(Shortfall::Quality)] = 3;
+    c.min_layers = 4, c.mean_layers = 12.5, c.all_layers = 8;
     r.patches.push_back(c);
-    r.short_nodes.push_back({7, Vec3(1, 2, 3), 0.25, Shortfall::Proximity});
-    r.short_nodes.push_back({8, Vec3(1, 2, 4), 0.5, Shortfall::HeldBack});
+    r.short_nodes.push_back({7, Vec3(1, 2, 3), 0.25, 30, Shortfall::Proximity});
+    r.short_nodes.push_back({8, Vec3(1, 2, 4), 0.5, 4, Shortfall::HeldBack});
     test::ScratchDir dir("write_report");
     const std::string path = report_path(dir.file("m.cgr"));
     EXPECT_EQ(path, dir.file("m.cgr.report.json"));
     write_layer_report(r, path);
     const std::string json = slurp(path);
-    for (const char* part : {"\"layers\": 30", "\"first_height\": 0.0001", "\"thickness\": 0.125",
-                             "\"name\": \"wing \\\"upper\\\"\\\\tip\\n\"", "\"faces\": 10", "\"full_nodes\": 9",
-                             "\"min_share\": 0.25", "\"short\": {\"proximity\": 2, \"front\": 1, \"held_back\": 0}",
-                             "{\"node\": 7, \"position\": [1, 2, 3], \"share\": 0.25, \"reason\": \"proximity\"}",
-                             "\"reason\": \"held back\""})
+    for (const char* part :
+         {"\"layers\": 30", "\"first_height\": 0.0001", "\"thickness\": 0.125",
+          "\"name\": \"wing \\\"upper\\\"\\\\tip\\n\"", "\"faces\": 10", "\"full_nodes\": 9", "\"min_share\": 0.25",
+          "\"short\": {\"proximity\": 2, \"front\": 1, \"held back\": 0, \"quality\": 3, \"turning\": 0, "
+          "\"neighbours\": 0, \"non-finite\": 0}",
+          "\"min_layers\": 4", "\"mean_layers\": 12.5", "\"all_layers\": 8",
+          "{\"node\": 7, \"position\": [1, 2, 3], \"share\": 0.25, \"layers\": 30, "
+          "\"reason\": \"proximity\"}",
+          "\"reason\": \"held back\""})
         EXPECT_NE(json.find(part), std::string::npos) << part << "\n" << json;
     // Balanced brackets: one object, two arrays, each patch and node an object.
     int depth = 0, objects = 0;

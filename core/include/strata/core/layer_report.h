@@ -7,6 +7,8 @@
 
 #include <strata/core/types.h>
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -14,14 +16,20 @@
 
 namespace strata {
 
-/// Why a column did not reach the thickness asked.
+/// Why a column did not reach the thickness asked: it stopped below the layers asked (the
+/// reasons a column stops, LayerParams) or its layers were thinned.
 enum class Shortfall : std::uint8_t {
-    None,       ///< nothing limited it (smoothing may leave it a few per cent off)
-    Proximity,  ///< thinned to fit the distance to a facing wall or patch (LayerParams::proximity)
-    Front,      ///< lowered where the layer front intersected itself
-    HeldBack,   ///< lowered where its cells would have inverted (LayerParams::hold_back)
+    None,        ///< nothing limited it (smoothing may leave it a few per cent off)
+    Proximity,   ///< fewer or thinner layers to fit the distance to a facing wall or patch
+    Front,       ///< lowered where the layer front intersected itself or left no room for a pyramid
+    HeldBack,    ///< lowered where its cells would have inverted (LayerParams::hold_back)
+    Quality,     ///< stopped: a cell it would make falls below LayerParams::min_quality
+    Turning,     ///< stopped: its column would turn more than LayerParams::max_turn_deg
+    Neighbours,  ///< stopped: with its neighbours stopped, the cell closing the step would be unusable
+    NonFinite,   ///< stopped: its next position could not be computed
 };
-/// "none", "proximity", "front", "held back".
+inline constexpr std::size_t kShortfalls = 8;
+/// "none", "proximity", "front", "held back", "quality", "turning", "neighbours", "non-finite".
 std::string_view to_string(Shortfall reason);
 
 /// One wall patch.
@@ -30,9 +38,13 @@ struct PatchCoverage {
     Index faces = 0;
     Index nodes = 0;          ///< wall nodes on the patch (a node on two patches counts in both)
     Index full_nodes = 0;     ///< nodes whose column nothing limited
+    Index all_layers = 0;     ///< nodes with every layer asked (possibly thinner)
     double mean_share = 1.0;  ///< mean thickness reached / asked over the patch's nodes
     double min_share = 1.0;
-    Index proximity = 0, front = 0, held_back = 0;  ///< nodes short, by reason
+    double mean_layers = 0.0;  ///< layers reached, mean over the patch's nodes
+    int min_layers = 0;
+    std::array<Index, kShortfalls> short_by{};  ///< nodes short, by reason (index: Shortfall)
+    Index short_nodes(Shortfall reason) const { return short_by[static_cast<std::size_t>(reason)]; }
 };
 
 /// A wall node whose column fell short.
@@ -40,11 +52,12 @@ struct ShortNode {
     Index node = kNone;  ///< wall node id (the node of the input surface: input_node)
     Vec3 position = Vec3::Zero();
     double share = 1.0;  ///< thickness reached / asked
+    int layers = 0;      ///< layers reached
     Shortfall reason = Shortfall::None;
 };
 
 struct LayerReport {
-    int layers = 0;             ///< layers asked (every column has them all; some thinner)
+    int layers = 0;             ///< layers asked
     double first_height = 0.0;  ///< asked
     double thickness = 0.0;     ///< asked: the sum of the layer heights
     std::vector<PatchCoverage> patches;

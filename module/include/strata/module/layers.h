@@ -11,6 +11,7 @@
 #include <strata/module/distribution.h>
 #include <strata/module/proximity.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace strata {
@@ -20,10 +21,12 @@ namespace strata {
 enum class ProximityMode {
     Off,    ///< march the full thickness everywhere (colliding layers are reported before TetGen)
     Scale,  ///< scale the node's layer heights down to its limit (thinner layers, all of them)
+    Stop,   ///< keep the layer heights (the first height is the y+ asked) and stop the column
+            ///< at the last layer that fits its limit: fewer layers where the gap is narrow
 };
 
 std::string_view to_string(ProximityMode mode);
-/// "off" or "scale"; InputError naming LayerParams::proximity otherwise.
+/// "off", "scale" or "stop"; InputError naming LayerParams::proximity otherwise.
 ProximityMode parse_proximity_mode(std::string_view text);
 
 /// Parameters of layer generation. Lengths in model units.
@@ -50,8 +53,17 @@ struct LayerParams {
     /// > 0): plain extrusion stays the bare reference mesh. Never with keep_invalid.
     bool hold_back = true;
     /// Proximity limiting (proximity.h): each node's total thickness at most a share of the
-    /// distance to the first surface along its marching direction, smoothed along the wall.
-    ProximityMode proximity = ProximityMode::Scale;
+    /// distance to the first surface along its marching direction, smoothed along the wall; in
+    /// Stop mode neighbouring columns then differ by at most one layer.
+    ProximityMode proximity = ProximityMode::Stop;
+    /// Local stopping: a column stops (its node gets no further level) when a cell it would
+    /// make has a scaled Jacobian below this, or cannot be computed. Where columns stop
+    /// unevenly, the cells over a face close the step (ALGORITHM.md, "Local stopping"). 0 turns
+    /// stopping off: every column marches every layer and a fold is an error.
+    double min_quality = 0.2;
+    /// A column also stops where its next segment would turn more than this (degrees) from
+    /// its previous one: the front folding over.
+    double max_turn_deg = 60.0;
     ProximityParams proximity_limits;
     /// Empty, or one per node of the surface given to extrude_layers: a further bound on the
     /// node's total thickness (infinity: none), smoothed along the wall like the proximity
@@ -62,8 +74,8 @@ struct LayerParams {
     /// any count. For extrude_layers called alone: build_hybrid_mesh sets it from HybridParams::threads.
     int threads = 0;
     /// Diagnostics only: return layers with inverted cells instead of throwing (the stats
-    /// then show min_scaled_jacobian ≤ 0), as marched: nothing is held back. Never used for a
-    /// mesh that is written.
+    /// then show min_scaled_jacobian ≤ 0), as marched: nothing is held back or stopped. Never
+    /// used for a mesh that is written.
     bool keep_invalid = false;
 };
 
@@ -74,55 +86,81 @@ struct LayerStats {
     double mean_scaled_jacobian = 0.0;
     double max_orthogonality_deg = 0.0;  ///< largest angle between a layer edge and the wall-side face normal
     double mean_orthogonality_deg = 0.0;
-    int sweeps = 0;        ///< sweeps done
-    Index held_nodes = 0;  ///< nodes held back (lowered, unsmoothed) to keep the layer valid
+    int sweeps = 0;                        ///< sweeps done
+    Index held_nodes = 0;                  ///< nodes held back (lowered, unsmoothed) to keep the layer valid
+    Index columns = 0;                     ///< wall nodes that have this layer
+    Index stopped_nodes = 0;               ///< columns that stopped below this layer (had the one before)
+    Index transition_cells = 0;            ///< cells of the layer closing a step: pyramids, prisms on their side
+    double min_transition_jacobian = 1.0;  ///< their smallest scaled Jacobian
 };
 
 /// The layers: a volume mesh of prisms (on triangles) and hexahedra (on quads) over the wall
-/// faces, level by level. Other stages reach its nodes through the accessors, never through the
-/// numbering itself (columns will not all have the same number of levels).
+/// faces, level by level, columns of different heights where they stopped (LayerParams::
+/// min_quality, proximity). Other stages reach its nodes through the accessors, never through
+/// the numbering itself. The numbering: level 0 is the wall (node i is wall node i), then each
+/// level holds the nodes of the columns that reach it, in wall order, so full columns give
+/// level_node(k, i) = k × wall_nodes() + i.
 class LayerMesh {
 public:
     LayerMesh() = default;
-    /// Layers over \p wall_nodes wall nodes, \p layers levels above the wall.
-    LayerMesh(Index wall_nodes, int layers) : wall_nodes_(wall_nodes), layers_(layers) {}
+    /// Layers over \p wall_nodes wall nodes, \p layers levels above the wall, every column full.
+    LayerMesh(Index wall_nodes, int layers);
 
     VolumeMesh mesh;  ///< boundary: the wall patches, side faces on open-boundary patches, and top_patch
-    /// The outermost level as a surface for the next stage: the wall's faces and patches, node i
-    /// of it being top_node(i) (top.points[i] = mesh.points[top_node(i)]).
+    /// The front for the next stage: each face the layers stand on (the wall's faces, quads
+    /// split in two where their columns stop unevenly) with every node at the top of its
+    /// column (top.points[i] = mesh.points[top_node(i)]), on the wall's patches.
     SurfaceMesh top;
-    std::vector<LayerStats> stats;        ///< one per layer
+    std::vector<int> face_layers;         ///< per face of top, the layers of cells over it
+    std::vector<LayerStats> stats;        ///< one per layer asked
     std::vector<Index> input_node;        ///< wall node → node of the input surface
     Index top_patch = kNone;              ///< the patch of mesh.boundary ("layer_top") holding the outermost level
     Index unsmoothed_nodes = 0;           ///< nodes extruded along their normal without smoothing (sharp convex edges,
                                           ///< open-edge corners, degenerate stencils: ends of needle triangles)
     Index thinned_nodes = 0;              ///< nodes whose layers were scaled down by the proximity limit
     double min_thickness_share = 1.0;     ///< the smallest share of the asked thickness a node got
-    double asked_thickness = 0.0;         ///< the sum of the layer heights asked
+    double asked_thickness = 0.0;         ///< the sum of the layer heights
     std::vector<double> height_scale;     ///< per wall node, the share of the layer heights it marched
     std::vector<Shortfall> scale_reason;  ///< per wall node, why that share is below 1 (Proximity or Front)
+    std::vector<Shortfall> stop_reason;   ///< per wall node, why its column stopped below layers() (None: it did not)
     std::vector<char> held_back;          ///< per wall node, 1 if some layer held it back (hold_back)
 
     Index wall_nodes() const { return wall_nodes_; }
-    /// Levels above the wall.
+    /// Levels asked above the wall: the tallest a column can be.
     int layers() const { return layers_; }
-    /// The node of mesh.points that wall node \p i has on level \p k (0: the wall itself).
-    Index level_node(int k, Index i) const { return static_cast<Index>(k) * wall_nodes_ + i; }
-    /// The node of wall node \p i on the outermost level.
-    Index top_node(Index i) const { return level_node(layers_, i); }
+    /// Levels above the wall that wall node \p i has.
+    int node_layers(Index i) const {
+        return node_layers_.empty() ? layers_ : node_layers_[static_cast<std::size_t>(i)];
+    }
+    /// The node of mesh.points that wall node \p i has on level \p k (0: the wall itself; above
+    /// the node's column, its top).
+    Index level_node(int k, Index i) const {
+        if (ids_.empty()) return static_cast<Index>(k) * wall_nodes_ + i;
+        return ids_[static_cast<std::size_t>(std::min(k, node_layers(i))) * static_cast<std::size_t>(wall_nodes_) +
+                    static_cast<std::size_t>(i)];
+    }
+    /// The node of wall node \p i at the top of its column.
+    Index top_node(Index i) const { return level_node(node_layers(i), i); }
     /// The level of node \p node of mesh.points.
-    int level_of(Index node) const { return static_cast<int>(node / wall_nodes_); }
+    int level_of(Index node) const;
+    /// Number the nodes for columns of \p node_layers levels (one per wall node, 0..layers()),
+    /// level by level as above; mesh.points must hold them in that order.
+    void set_columns(std::vector<int> node_layers);
 
 private:
     Index wall_nodes_ = 0;
     int layers_ = 0;
+    std::vector<int> node_layers_;    ///< empty: every column full
+    std::vector<Index> ids_;          ///< (layers + 1) × wall_nodes, level-major; empty: every column full
+    std::vector<Index> level_start_;  ///< first node of each level, and the node count last
 };
 
 /// The coverage report of \p lm (layer_report.h): per wall patch (the patches of lm.top), the
-/// thickness each column reached (its length) against lm.asked_thickness, and every node
-/// that something limited, with the reason: HeldBack where a layer held it back (lowered
-/// where cells would have inverted), else the reason its heights were scaled. A column that
-/// nothing limited counts as full even where smoothing left it a little shorter or longer.
+/// layers and thickness each column reached (its length) against lm.asked_thickness, and
+/// every node that something limited, with the reason: why it stopped if it did, else
+/// HeldBack where a layer held it back (lowered where cells would have inverted), else the
+/// reason its heights were scaled. A column that nothing limited counts as full even where
+/// smoothing left it a little shorter or longer.
 LayerReport layer_report(const LayerMesh& lm);
 
 /// Extrude \p wall (oriented, normals into the flow; faces on Wall patches are extruded).
@@ -130,8 +168,11 @@ LayerReport layer_report(const LayerMesh& lm);
 /// symmetry or outflow plane, a box side; along the line where two such planes meet), or, with
 /// no such patch, in the plane of the open boundary loop if it is planar. Per layer, the paper's three steps: the
 /// locally orthogonal reference levels (Eqs. 11–12), Poisson smoothing of the middle level (Eq. 3), which then
-/// becomes the next wall. Throws TopologyError naming the layer, face and position of the first cell that would
-/// invert (a LocalTopologyError carrying its wall nodes as nodes of \p wall) or whose quality cannot be computed. \p
+/// becomes the next wall. Then each column that would make a cell below LayerParams::min_quality (or turn,
+/// reach its proximity limit, or leave the finite range) stops; the whole level is still marched (the stopped
+/// nodes as ghosts the stencils see, ALGORITHM.md), only the columns that go on get nodes. With min_quality 0,
+/// throws TopologyError naming the layer, face and position of the first cell that would invert (a
+/// LocalTopologyError carrying its wall nodes as nodes of \p wall) or whose quality cannot be computed. \p
 /// progress: stage "layers", checked after every layer.
 LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, Progress* progress = nullptr);
 

@@ -1,0 +1,489 @@
+// The columns of the layers, where they stop, and the cells of a ragged LayerMesh: columns.h.
+
+#include "columns.h"
+
+#include <strata/core/cell_quality.h>
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace strata {
+
+ColumnFaces::ColumnFaces(const SurfaceMesh& wall) {
+    const auto n = static_cast<std::size_t>(wall.num_faces());
+    nodes.resize(n);
+    size.resize(n);
+    patch.resize(n);
+    for (Index f = 0; f < wall.num_faces(); ++f) {
+        const auto u = static_cast<std::size_t>(f);
+        size[u] = static_cast<std::uint8_t>(wall.face_size(f));
+        patch[u] = wall.face_patch[f];
+        nodes[u] = {kNone, kNone, kNone, kNone};
+        std::copy(wall.face_begin(f), wall.face_end(f), nodes[u].begin());
+    }
+}
+
+void ColumnFaces::split(Index f, int c) {
+    const auto u = static_cast<std::size_t>(f);
+    const std::array<Index, 4> v = nodes[u];
+    auto at = [&](int i) { return v[static_cast<std::size_t>((c + i) % 4)]; };
+    nodes[u] = {at(0), at(1), at(2), kNone};
+    size[u] = 3;
+    nodes.push_back({at(0), at(2), at(3), kNone});
+    size.push_back(3);
+    patch.push_back(patch[u]);
+}
+
+Columns::Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& mesh_points)
+    : faces(wall), points(&mesh_points) {
+    const auto n = static_cast<std::size_t>(wall.num_points());
+    point.assign(n * (static_cast<std::size_t>(layers) + 1), kNone);
+    for (std::size_t i = 0; i < n; ++i) point[i] = static_cast<Index>(i);
+    levels.assign(n, 0);
+    max_levels.assign(n, layers);
+    limit.assign(n, Shortfall::None);
+    active.assign(n, 1);
+    reason.assign(n, Shortfall::None);
+    top = wall.points;
+    below = wall.points;
+}
+
+namespace {
+
+/// The smallest sine of a corner angle of the polygon \p x (n corners).
+double corner_sines(const std::array<Vec3, 4>& x, int n) {
+    double q = 1.0;
+    for (int c = 0; c < n; ++c) {
+        const Vec3& o = x[static_cast<std::size_t>(c)];
+        const Vec3 a = x[static_cast<std::size_t>((c + 1) % n)] - o;
+        const Vec3 b = x[static_cast<std::size_t>((c + n - 1) % n)] - o;
+        const double l = a.norm() * b.norm();
+        q = std::min(q, l > 0.0 ? a.cross(b).norm() / l : 0.0);
+    }
+    return q;
+}
+
+}  // namespace
+
+double face_corner_quality(const Columns& col, Index f) {
+    const auto u = static_cast<std::size_t>(f);
+    std::array<Vec3, 4> x;
+    for (int c = 0; c < col.faces.size[u]; ++c)
+        x[static_cast<std::size_t>(c)] =
+            col.top[static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)])];
+    return corner_sines(x, col.faces.size[u]);
+}
+
+Vec3 Columns::at_level(Index i, int level) const {
+    const auto u = static_cast<std::size_t>(i);
+    const int l = std::min(level, levels[u]);
+    return (*points)[static_cast<std::size_t>(point[static_cast<std::size_t>(l) * levels.size() + u])];
+}
+
+namespace {
+
+/// The corners (positions or node ids, T) of the cell over column face \p f from \p lo (each node's top) to \p hi, its
+/// columns that stop (\p moving[c] = 0) collapsed to their top: a prism or hexahedron when all
+/// move, a pyramid on the side face of the two that move in a triangle, a tetrahedron on the
+/// segment of the one that moves in a triangle, a prism lying on its side over the two
+/// adjacent ones that move in a quad. Gmsh order; \p type says which. False where no standard
+/// cell closes the step (one, three or two opposite columns moving in a quad: split it first)
+/// or nothing moves.
+template <class T, class Lo, class Hi>
+bool closing_cell(const ColumnFaces& faces, Index f, const bool* moving, Lo&& lo, Hi&& hi, CellType& type,
+                  std::array<T, 8>& p) {
+    const auto u = static_cast<std::size_t>(f);
+    const auto& v = faces.nodes[u];
+    const int n = faces.size[u];
+    int m = 0;
+    for (int c = 0; c < n; ++c) m += moving[c] ? 1 : 0;
+    if (m == n) {
+        for (int c = 0; c < n; ++c) p[static_cast<std::size_t>(c)] = lo(v[static_cast<std::size_t>(c)]);
+        for (int c = 0; c < n; ++c) p[static_cast<std::size_t>(c + n)] = hi(v[static_cast<std::size_t>(c)]);
+        type = n == 3 ? CellType::Prism : CellType::Hex;
+        return true;
+    }
+    if (n == 3 && m == 1) {  // the moving column's segment and the stopped two: a tetrahedron
+        int c = 0;
+        while (!moving[c]) ++c;
+        auto at = [&](int i) { return v[static_cast<std::size_t>((c + i) % 3)]; };
+        p[0] = lo(at(0)), p[1] = lo(at(1)), p[2] = lo(at(2)), p[3] = hi(at(0));
+        type = CellType::Tet;
+        return true;
+    }
+    if (m != 2) return false;
+    // The first moving corner j whose successor moves too: the side face j, j + 1 stays.
+    int j = -1;
+    for (int c = 0; c < n && j < 0; ++c)
+        if (moving[c] && moving[(c + 1) % n]) j = c;
+    if (j < 0) return false;  // two opposite corners of a quad
+    auto at = [&](int i) { return v[static_cast<std::size_t>((j + i) % n)]; };
+    if (n == 3) {  // base: the side face p, q (normal towards the stopped apex s)
+        p[0] = lo(at(0)), p[1] = hi(at(0)), p[2] = hi(at(1)), p[3] = lo(at(1)), p[4] = lo(at(2));
+        type = CellType::Pyramid;
+        return true;
+    }
+    // Quad p, q, s, t with s, t stopped: triangles (p, t, p') and (q, s, q').
+    p[0] = lo(at(0)), p[1] = lo(at(3)), p[2] = hi(at(0)), p[3] = lo(at(1)), p[4] = lo(at(2)), p[5] = hi(at(1));
+    type = CellType::Prism;
+    return true;
+}
+
+/// The scaled Jacobian of a cell from closing_cell (\p full: every column moves), and (\p
+/// moving_min) its smallest over the corners at nodes of moving columns: a stopped column's
+/// corner sees the thin side face of the step edge-on, its value about layer height / edge
+/// length however good the step, so the steepness of a step is judged at the others.
+double closing_quality(CellType type, bool full, const std::array<Vec3, 8>& p, double& moving_min) {
+    const std::vector<Vec3> pts(p.begin(), p.begin() + cell_corners(type));
+    static constexpr std::array<Index, 8> kId{0, 1, 2, 3, 4, 5, 6, 7};
+    const double all = min_scaled_jacobian(pts, kId.data(), type);
+    moving_min = all;
+    if (full) return all;
+    auto corner = [&](int o, int a, int b, int c) {
+        return corner_scaled_jacobian(pts[static_cast<std::size_t>(o)], pts[static_cast<std::size_t>(a)],
+                                      pts[static_cast<std::size_t>(b)], pts[static_cast<std::size_t>(c)]);
+    };
+    if (type == CellType::Tet) {  // corners 0 and 3: the moving column (as cell_quality.h)
+        moving_min = std::min(corner(0, 1, 2, 3), corner(3, 0, 2, 1));
+        return all;
+    }
+    if (type == CellType::Pyramid) {  // base corners: the moving columns
+        moving_min = 1.0;
+        for (int i = 0; i < 4; ++i) moving_min = std::min(moving_min, corner(i, (i + 1) % 4, (i + 3) % 4, 4));
+        return all;
+    }
+    // The side-on prism p, t, p', q, s, q': corners p (0), p' (2), q (3), q' (5), as cell_quality.h.
+    moving_min = std::min({corner(0, 1, 2, 3), corner(2, 0, 1, 5), corner(3, 5, 4, 0), corner(5, 4, 3, 2)});
+    return all;
+}
+
+/// Whether the closing cell of \p type at \p p is usable: every corner positive, the corners of
+/// moving columns at least min_quality times \p face_quality (the best a cell on the face can be).
+bool usable(CellType type, bool full, const std::array<Vec3, 8>& p, double face_quality, const StopRules& rules) {
+    double moving_min = 0.0;
+    const double all = closing_quality(type, full, p, moving_min);
+    return all > 0.0 && !(moving_min < rules.min_quality * face_quality);
+}
+
+/// Whether splitting quad \p f through its corner \p c keeps every cell below level \p k usable
+/// (they were judged as the quad's; two prisms of a warped hexahedron can invert).
+bool split_keeps_cells(const Columns& col, Index f, int c, int k, const StopRules& rules) {
+    const auto& q = col.faces.nodes[static_cast<std::size_t>(f)];
+    auto at = [&](int i) { return q[static_cast<std::size_t>((c + i) % 4)]; };
+    const std::array<std::array<Index, 3>, 2> tris{{{at(0), at(1), at(2)}, {at(0), at(2), at(3)}}};
+    ColumnFaces one(SurfaceMesh{});
+    one.nodes.push_back({});
+    one.size.push_back(3);
+    one.patch.push_back(0);
+    for (int j = 0; j < k; ++j)
+        for (const auto& t : tris) {
+            bool moving[3];
+            int m = 0;
+            for (int i = 0; i < 3; ++i)
+                m += (moving[i] = col.levels[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])] > j) ? 1 : 0;
+            if (m == 0) continue;
+            one.nodes[0] = {t[0], t[1], t[2], kNone};
+            auto lo = [&](Index i) { return col.at_level(i, j); };
+            auto hi = [&](Index i) { return col.at_level(i, j + 1); };
+            CellType type{};
+            std::array<Vec3, 8> p{};
+            if (!closing_cell(one, 0, moving, lo, hi, type, p)) return false;
+            const double fq = corner_sines({lo(t[0]), lo(t[1]), lo(t[2]), Vec3::Zero()}, 3);
+            if (!usable(type, m == 3, p, fq, rules)) return false;
+        }
+    return true;
+}
+
+/// Whether each corner of column face \p f moves on, by \p moving per wall node.
+std::array<bool, 4> moving_corners(const ColumnFaces& faces, Index f, const std::vector<char>& moving) {
+    std::array<bool, 4> m{false, false, false, false};
+    const auto u = static_cast<std::size_t>(f);
+    for (int c = 0; c < faces.size[u]; ++c)
+        m[static_cast<std::size_t>(c)] =
+            moving[static_cast<std::size_t>(faces.nodes[u][static_cast<std::size_t>(c)])] != 0;
+    return m;
+}
+
+/// The angle in degrees between \p a and \p b (0 where either vanishes).
+double angle_deg(const Vec3& a, const Vec3& b) {
+    const double l = a.norm() * b.norm();
+    if (!(l > 0.0)) return 0.0;
+    return std::acos(std::clamp(a.dot(b) / l, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+/// Stop wall node \p i (if it still moves) for \p why; true if it did move.
+bool stop(Columns& col, std::vector<char>& go, Index i, Shortfall why) {
+    auto& g = go[static_cast<std::size_t>(i)];
+    if (!g) return false;
+    g = 0;
+    col.reason[static_cast<std::size_t>(i)] = why;
+    return true;
+}
+
+/// Close every step the stops so far leave, stopping more columns where it cannot be closed
+/// with usable cells, until nothing changes (only ever stopping: it ends).
+void close_steps(Columns& col, const StopRules& rules, int k, const std::vector<Vec3>& next, std::vector<char>& go) {
+    auto lo = [&](Index i) { return col.top[static_cast<std::size_t>(i)]; };
+    auto hi = [&](Index i) { return go[static_cast<std::size_t>(i)] ? next[static_cast<std::size_t>(i)] : lo(i); };
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (Index f = 0; f < col.faces.count(); ++f) {
+            const auto u = static_cast<std::size_t>(f);
+            const int n = col.faces.size[u];
+            const std::array<bool, 4> m = moving_corners(col.faces, f, go);
+            const int moving = static_cast<int>(std::count(m.begin(), m.begin() + n, true));
+            if (moving == 0 || moving == n) continue;
+            const bool adjacent_pair = moving == 2 && m[0] != m[2];  // not 0 and 2, not 1 and 3
+            if (n == 4 && !adjacent_pair) {
+                // One, three or two opposite moving: split along a diagonal (either leaves
+                // triangles every step of which a cell closes), the first that keeps the cells
+                // below usable; with neither, the quad's columns stop.
+                int c = 0;
+                while (m[static_cast<std::size_t>(c)] ||
+                       (moving == 1 && m[static_cast<std::size_t>((c + 3) % 4)] == false))
+                    ++c;  // a stopped corner; with one moving, the one after it
+                if (!split_keeps_cells(col, f, c, k, rules)) c = (c + 1) % 4;
+                if (split_keeps_cells(col, f, c, k, rules)) {
+                    col.faces.split(f, c);
+                } else {
+                    for (int i = 0; i < 4; ++i)
+                        stop(col, go, col.faces.nodes[u][static_cast<std::size_t>(i)], Shortfall::Neighbours);
+                }
+                changed = true;
+                continue;
+            }
+            CellType type{};
+            std::array<Vec3, 8> p{};
+            // As for whole cells, relative to the best a cell on the face can be.
+            if (closing_cell(col.faces, f, m.data(), lo, hi, type, p) &&
+                usable(type, false, p, face_corner_quality(col, f), rules))
+                continue;
+            for (int c = 0; c < n; ++c)
+                changed |= stop(col, go, col.faces.nodes[u][static_cast<std::size_t>(c)], Shortfall::Neighbours);
+        }
+    }
+}
+
+}  // namespace
+
+double column_cell_jacobian(const Columns& col, Index f, const std::vector<Vec3>& next) {
+    static constexpr std::array<bool, 4> kAll{true, true, true, true};
+    CellType type{};
+    std::array<Vec3, 8> p{};
+    auto lo = [&](Index i) { return col.top[static_cast<std::size_t>(i)]; };
+    auto hi = [&](Index i) { return next[static_cast<std::size_t>(i)]; };
+    closing_cell(col.faces, f, kAll.data(), lo, hi, type, p);
+    double unused = 0.0;
+    return closing_quality(type, true, p, unused);
+}
+
+Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vector<Vec3>& next) {
+    const Index nw = static_cast<Index>(col.levels.size());
+    std::vector<char> go = col.active;
+    for (Index i = 0; i < nw; ++i) {
+        const auto u = static_cast<std::size_t>(i);
+        if (!go[u]) continue;
+        if (k >= col.max_levels[u]) {
+            stop(col, go, i, col.limit[u] == Shortfall::None ? Shortfall::Proximity : col.limit[u]);
+        } else if (!next[u].allFinite()) {
+            stop(col, go, i, Shortfall::NonFinite);
+        } else if (rules.quality && k > 0 &&
+                   angle_deg(next[u] - col.top[u], col.top[u] - col.below[u]) > rules.max_turn_deg) {
+            stop(col, go, i, Shortfall::Turning);
+        }
+    }
+    if (rules.quality)
+        for (Index f = 0; f < col.faces.count(); ++f) {
+            const auto u = static_cast<std::size_t>(f);
+            const int n = col.faces.size[u];
+            const std::array<bool, 4> m = moving_corners(col.faces, f, col.active);
+            if (std::count(m.begin(), m.begin() + n, true) != n) continue;  // a step: close_steps judges it
+            bool finite = true;
+            for (int c = 0; c < n; ++c)
+                finite &= next[static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)])].allFinite();
+            // Relative to the right cell on the same face: a needle triangle's cells are as good
+            // as the face allows, and only what the marching does to them stops a column.
+            const double q = finite ? column_cell_jacobian(col, f, next) : std::nan("");
+            if (q >= rules.min_quality * face_corner_quality(col, f)) continue;
+            for (int c = 0; c < n; ++c)
+                stop(col, go, col.faces.nodes[u][static_cast<std::size_t>(c)], Shortfall::Quality);
+        }
+    close_steps(col, rules, k, next, go);
+    Index stopped = 0, materialised = 0;  // the caller appends next[i] of the moving nodes in order
+    for (Index i = 0; i < nw; ++i) {
+        const auto u = static_cast<std::size_t>(i);
+        if (col.active[u] && !go[u]) ++stopped;
+        if (!go[u]) continue;
+        col.point[static_cast<std::size_t>(k + 1) * static_cast<std::size_t>(nw) + u] =
+            static_cast<Index>(col.points->size() + static_cast<std::size_t>(materialised++));
+        col.below[u] = col.top[u];
+        col.top[u] = next[u];
+        col.levels[u] = k + 1;
+    }
+    col.active = std::move(go);
+    return stopped;
+}
+
+namespace {
+
+/// The cells of layer \p k over column face \p f (none where its columns have stopped), in the
+/// numbering of \p out; their quality into \p stats.
+void add_layer_cells(const Columns& col, Index f, int k, LayerMesh& out, LayerStats& stats, double& jsum, Index& full) {
+    const auto u = static_cast<std::size_t>(f);
+    const int n = col.faces.size[u];
+    std::array<bool, 4> m{};
+    for (int c = 0; c < n; ++c)
+        m[static_cast<std::size_t>(c)] =
+            col.levels[static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)])] > k;
+    const int moving = static_cast<int>(std::count(m.begin(), m.begin() + n, true));
+    if (moving == 0) return;
+    CellType type{};
+    std::array<Index, 8> id{};
+    auto lo = [&](Index i) { return out.level_node(k, i); };
+    auto hi = [&](Index i) { return out.level_node(k + 1, i); };
+    if (!closing_cell(col.faces, f, m.data(), lo, hi, type, id))
+        throw TopologyError("internal: layer " + std::to_string(k + 1) +
+                            " has a step over a wall face that no cell closes");
+    const std::vector<Vec3>& pts = out.mesh.points;
+    const double j = min_scaled_jacobian(pts, id.data(), type);
+    if (moving == n) {
+        stats.min_scaled_jacobian = std::isnan(j) || std::isnan(stats.min_scaled_jacobian)
+                                        ? std::nan("")
+                                        : std::min(stats.min_scaled_jacobian, j);
+        jsum += j;
+        ++full;
+    } else {
+        ++stats.transition_cells;
+        stats.min_transition_jacobian = std::min(stats.min_transition_jacobian, j);
+    }
+    switch (type) {
+        case CellType::Prism:
+            out.mesh.prisms.push_back({id[0], id[1], id[2], id[3], id[4], id[5]});
+            break;
+        case CellType::Hex:
+            out.mesh.hexes.push_back({id[0], id[1], id[2], id[3], id[4], id[5], id[6], id[7]});
+            break;
+        case CellType::Pyramid:
+            out.mesh.pyramids.push_back({id[0], id[1], id[2], id[3], id[4]});
+            break;
+        case CellType::Tet:
+            out.mesh.tets.push_back({id[0], id[1], id[2], id[3]});
+            break;
+    }
+    ++out.face_layers[u];
+}
+
+}  // namespace
+
+void build_layer_cells(const Columns& col, const SurfaceMesh& wall, const Csr& loops,
+                       const std::vector<Index>& edge_patch, LayerMesh& out) {
+    const ColumnFaces& faces = col.faces;
+    out.face_layers.assign(static_cast<std::size_t>(faces.count()), 0);
+    for (int k = 0; k < out.layers(); ++k) {
+        LayerStats& s = out.stats[static_cast<std::size_t>(k)];
+        s.min_scaled_jacobian = 1.0;
+        double jsum = 0.0;
+        Index full = 0;
+        for (Index f = 0; f < faces.count(); ++f) add_layer_cells(col, f, k, out, s, jsum, full);
+        s.mean_scaled_jacobian = full > 0 ? jsum / static_cast<double>(full) : 0.0;
+    }
+
+    // The boundary: the wall reversed (out of the layers), the top, the side faces on open edges.
+    SurfaceMesh& bnd = out.mesh.boundary;
+    bnd.patches = wall.patches;
+    out.top_patch = static_cast<Index>(bnd.patches.size());
+    bnd.patches.push_back({"layer_top", PatchKind::Other});
+    // A face no column over grew from carries no cell: neither its wall nor its top is a face of
+    // the layers (build_hybrid_mesh keeps it as wall).
+    for (Index f = 0; f < faces.count(); ++f) {
+        if (out.face_layers[static_cast<std::size_t>(f)] == 0) continue;
+        const auto& v = faces.nodes[static_cast<std::size_t>(f)];
+        const Index n = faces.size[static_cast<std::size_t>(f)];
+        Index r[4];
+        r[0] = v[0];
+        for (Index i = 1; i < n; ++i) r[i] = v[static_cast<std::size_t>(n - i)];
+        bnd.add_face(r, n, faces.patch[static_cast<std::size_t>(f)]);
+    }
+    for (Index f = 0; f < faces.count(); ++f) {
+        if (out.face_layers[static_cast<std::size_t>(f)] == 0) continue;
+        const auto& v = faces.nodes[static_cast<std::size_t>(f)];
+        const Index n = faces.size[static_cast<std::size_t>(f)];
+        Index t[4];
+        for (Index i = 0; i < n; ++i) t[i] = out.top_node(v[static_cast<std::size_t>(i)]);
+        bnd.add_face(t, n, out.top_patch);
+    }
+    Index side_patch = kNone, edge = 0;
+    for (Index l = 0; l < loops.rows(); ++l) {
+        const Index m = loops.row_size(l);
+        for (Index i = 0; i < m; ++i, ++edge) {
+            const Index a = loops.row_begin(l)[i], b = loops.row_begin(l)[(i + 1) % m];
+            Index patch = edge_patch[static_cast<std::size_t>(edge)];
+            if (patch == kNone) {
+                if (side_patch == kNone) {
+                    side_patch = static_cast<Index>(bnd.patches.size());
+                    bnd.patches.push_back({"layer_side", PatchKind::Other});
+                }
+                patch = side_patch;
+            }
+            for (int k = 0; k < out.layers(); ++k) {
+                const bool ma = out.node_layers(a) > k, mb = out.node_layers(b) > k;
+                const Index a0 = out.level_node(k, a), b0 = out.level_node(k, b);
+                const Index a1 = out.level_node(k + 1, a), b1 = out.level_node(k + 1, b);
+                if (ma && mb)
+                    bnd.add_face({a0, b0, b1, a1}, patch);
+                else if (ma)
+                    bnd.add_face({a0, b0, a1}, patch);
+                else if (mb)
+                    bnd.add_face({a0, b0, b1}, patch);
+            }
+        }
+    }
+
+    // The front: the column faces at the top of their columns.
+    out.top = SurfaceMesh{};
+    out.top.patches = wall.patches;
+    out.top.points.resize(static_cast<std::size_t>(wall.num_points()));
+    for (Index i = 0; i < wall.num_points(); ++i)
+        out.top.points[static_cast<std::size_t>(i)] = out.mesh.points[static_cast<std::size_t>(out.top_node(i))];
+    for (Index f = 0; f < faces.count(); ++f)
+        out.top.add_face(faces.nodes[static_cast<std::size_t>(f)].data(), faces.size[static_cast<std::size_t>(f)],
+                         faces.patch[static_cast<std::size_t>(f)]);
+}
+
+}  // namespace strata
+
+namespace strata {
+
+LayerMesh::LayerMesh(Index wall_nodes, int layers) : wall_nodes_(wall_nodes), layers_(layers) {}
+
+int LayerMesh::level_of(Index node) const {
+    if (level_start_.empty()) return static_cast<int>(node / wall_nodes_);
+    const auto it = std::upper_bound(level_start_.begin(), level_start_.end(), node);
+    return static_cast<int>(it - level_start_.begin()) - 1;
+}
+
+void LayerMesh::set_columns(std::vector<int> node_layers) {
+    const auto nw = static_cast<std::size_t>(wall_nodes_);
+    if (node_layers.size() != nw)
+        throw InputError("LayerMesh::set_columns: " + std::to_string(node_layers.size()) + " column heights for " +
+                         std::to_string(nw) + " wall nodes");
+    if (std::all_of(node_layers.begin(), node_layers.end(), [&](int l) { return l == layers_; })) {
+        node_layers_.clear(), ids_.clear(), level_start_.clear();  // full columns: k × nw + i
+        return;
+    }
+    node_layers_ = std::move(node_layers);
+    ids_.assign((static_cast<std::size_t>(layers_) + 1) * nw, kNone);
+    level_start_.assign(static_cast<std::size_t>(layers_) + 2, 0);
+    Index next = 0;
+    for (int k = 0; k <= layers_; ++k) {
+        level_start_[static_cast<std::size_t>(k)] = next;
+        const std::size_t row = static_cast<std::size_t>(k) * nw;
+        for (std::size_t i = 0; i < nw; ++i) ids_[row + i] = node_layers_[i] >= k ? next++ : ids_[row - nw + i];
+    }
+    level_start_.back() = next;
+}
+
+}  // namespace strata

@@ -1,0 +1,84 @@
+#pragma once
+// Private to the layer module: the columns of the layers and where they stop (LayerParams::
+// min_quality, max_turn_deg, the proximity limit), the faces they stand on, and the cells,
+// boundary and front of a ragged LayerMesh. ALGORITHM.md, "Local stopping", says why.
+
+#include <strata/core/layer_report.h>
+#include <strata/core/surface_mesh.h>
+#include <strata/module/layers.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace strata {
+
+/// The faces the columns stand on: the wall's faces, a quad split into two triangles (through
+/// a node that stopped) where three of its columns go on, so every step can be closed by
+/// standard cells.
+struct ColumnFaces {
+    std::vector<std::array<Index, 4>> nodes;
+    std::vector<std::uint8_t> size;  ///< 3 or 4
+    std::vector<Index> patch;
+
+    explicit ColumnFaces(const SurfaceMesh& wall);
+    Index count() const { return static_cast<Index>(size.size()); }
+    /// Quad \p f becomes the triangle (c, c+1, c+2) and a new face (c, c+2, c+3), c its corner \p c.
+    void split(Index f, int c);
+};
+
+/// The columns' state while the layers march.
+struct Columns {
+    ColumnFaces faces;
+    std::vector<int> levels;        ///< per wall node, the levels it has so far
+    std::vector<int> max_levels;    ///< per wall node, the most it may have (proximity in Stop mode)
+    std::vector<Shortfall> limit;   ///< per wall node, what set max_levels below the layers (Proximity, Front)
+    std::vector<char> active;       ///< per wall node, 1 while it marches
+    std::vector<Shortfall> reason;  ///< per wall node, why it stopped below the layers asked
+    std::vector<Vec3> top;          ///< per wall node, its highest node's position
+    std::vector<Vec3> below;        ///< per wall node, the position one level under top (the wall: top)
+    /// Node of *points of wall node i on level l (≤ levels[i]): point[l × wall nodes + i].
+    std::vector<Index> point;
+    const std::vector<Vec3>* points;  ///< the layers' points so far (LayerMesh::mesh.points)
+
+    /// \p mesh_points: where the levels go, level 0 (the wall) first; the caller appends each
+    /// level's moving nodes in wall order after stop_columns.
+    Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& mesh_points);
+    /// Position of wall node \p i on \p level (its top above its column).
+    Vec3 at_level(Index i, int level) const;
+};
+
+/// What stopping needs to know besides the columns.
+struct StopRules {
+    double min_quality = 0.2;
+    double max_turn_deg = 60.0;
+    bool quality = true;  ///< stop on min_quality and max_turn_deg (off: only limits and non-finite)
+};
+
+/// Decide which columns go on from level \p k to k + 1, \p next holding the marched level k + 1
+/// of every node (ghosts too). A column stops at its max_levels, where its position is not
+/// finite, where a cell of its own over a face whose columns all go on would be below
+/// min_quality times face_corner_quality (the best a cell on that face can be) or it would
+/// turn more than max_turn_deg; then, until nothing changes, where the
+/// cell closing a step would be unusable (a triangle with one column going on, a quad with one or
+/// two opposite ones; a pyramid or side-on prism with a corner of a moving node below min_quality
+/// or any corner not positive), splitting quads with three moving columns. Returns the columns
+/// that stopped.
+Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vector<Vec3>& next);
+
+/// The smallest sine of a corner angle of column face \p f at its nodes' tops: the scaled
+/// Jacobian of the right prism or hexahedron on it, the best a cell over it can have.
+double face_corner_quality(const Columns& col, Index f);
+
+/// Scaled Jacobian of the cell column face \p f would make between its nodes' tops and \p next,
+/// every column going on (a prism or hexahedron, as cell_quality.h measures them).
+double column_cell_jacobian(const Columns& col, Index f, const std::vector<Vec3>& next);
+
+/// The cells, boundary (the wall reversed, the top on top_patch, side faces over the wall's
+/// open edges \p loops) and front (top, face_layers) of \p out, whose points hold every level
+/// and whose columns are numbered (set_columns). \p edge_patch: per edge of \p loops in order
+/// (loop by loop, node i to i + 1), the patch of its side faces, kNone for one "layer_side".
+void build_layer_cells(const Columns& col, const SurfaceMesh& wall, const Csr& loops,
+                       const std::vector<Index>& edge_patch, LayerMesh& out);
+
+}  // namespace strata
