@@ -1,5 +1,6 @@
 // Proximity of the flow domain along each wall node's marching direction: proximity.h.
 
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/ray_cast.h>
 #include <strata/geometry/topology.h>
 #include <strata/module/proximity.h>
@@ -22,6 +23,9 @@ std::vector<ProximityHit> cast_proximity_rays(const SurfaceMesh& surface, const 
         hits[i].distance = rays[i].distance;
         const Index patch = surface.face_patch[rays[i].face];
         hits[i].wall = surface.patches[static_cast<std::size_t>(patch)].kind == PatchKind::Wall;
+        const Vec3 n = face_area_vector(surface, rays[i].face);
+        const double len = n.norm() * directions[i].norm();
+        hits[i].facing = len > 0.0 ? -n.dot(directions[i]) / len : 1.0;
     }
     return hits;
 }
@@ -31,7 +35,7 @@ std::vector<double> thickness_limits(const SurfaceMesh& wall, const std::vector<
     const std::size_t n = static_cast<std::size_t>(wall.num_points());
     std::vector<double> limit(n, std::numeric_limits<double>::infinity());
     for (std::size_t i = 0; i < n; ++i)
-        if (std::isfinite(hits[i].distance))
+        if (std::isfinite(hits[i].distance) && !(hits[i].facing < params.min_facing))
             limit[i] = (hits[i].wall ? params.facing_wall : params.other_patch) * hits[i].distance;
     if (!extra.empty())
         for (std::size_t i = 0; i < n; ++i) limit[i] = std::min(limit[i], extra[i]);

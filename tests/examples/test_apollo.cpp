@@ -125,6 +125,9 @@ TEST(Apollo, LayersValidAndExitNodesStayInTheirPlane) {
     const LayerParams params = apollo_layer_params();
     const LayerMesh lm = extrude_layers(wall, params);
     ASSERT_EQ(lm.layers(), 30);
+    for (const ShortNode& n : layer_report(lm).short_nodes)
+        std::printf("short: node %d at (%g %g %g) %d layers, %s\n", static_cast<int>(n.node), n.position.x(),
+                    n.position.y(), n.position.z(), n.layers, std::string(to_string(n.reason)).c_str());
     EXPECT_EQ(lm.mesh.hexes.size(), 30u * 1580u);
     EXPECT_EQ(lm.mesh.prisms.size(), 30u * 20u);
     EXPECT_EQ(lm.unsmoothed_nodes, 0);

@@ -39,19 +39,20 @@ std::vector<std::string> names(const SurfaceMesh& s, const std::vector<Index>& p
     return out;
 }
 
-/// The wall faces of \p s as sorted corner coordinates, for comparing two meshes' walls.
-std::vector<std::vector<std::array<double, 3>>> wall_faces(const std::vector<Vec3>& points, const SurfaceMesh& s) {
-    std::vector<std::vector<std::array<double, 3>>> out;
+/// The wall of \p s: its nodes' coordinates (sorted) and its area, for comparing two meshes'
+/// walls (the layers may split a wall quad in two where their columns stop unevenly).
+std::pair<std::vector<std::array<double, 3>>, double> wall_of(const std::vector<Vec3>& points, const SurfaceMesh& s) {
+    std::vector<std::array<double, 3>> nodes;
+    double area = 0.0;
     for (Index f = 0; f < s.num_faces(); ++f) {
         if (s.patches[static_cast<std::size_t>(s.face_patch[f])].kind != PatchKind::Wall) continue;
-        std::vector<std::array<double, 3>> corners;
+        area += face_area_vector(s, points, f).norm();
         for (const Index* v = s.face_begin(f); v != s.face_end(f); ++v)
-            corners.push_back({points[*v].x(), points[*v].y(), points[*v].z()});
-        std::sort(corners.begin(), corners.end());
-        out.push_back(corners);
+            nodes.push_back({points[*v].x(), points[*v].y(), points[*v].z()});
     }
-    std::sort(out.begin(), out.end());
-    return out;
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    return {nodes, area};
 }
 
 /// The checks every case ends with; prints the figures for the record. The cells fill the
@@ -62,7 +63,10 @@ void expect_valid_case(const std::string& name, const SurfaceMesh& input, const 
                        const HybridReport& rep) {
     EXPECT_EQ(rep.validation.cells, m.num_cells()) << name;
     EXPECT_GT(rep.validation.min_scaled_jacobian, 0.0) << name;
-    EXPECT_EQ(wall_faces(m.points, m.boundary), wall_faces(input.points, input)) << name;
+    const auto [mesh_nodes, mesh_area] = wall_of(m.points, m.boundary);
+    const auto [input_nodes, input_area] = wall_of(input.points, input);
+    EXPECT_EQ(mesh_nodes, input_nodes) << name;
+    EXPECT_NEAR(mesh_area, input_area, 1e-6 * input_area) << name;
     double expected = -test::enclosed_volume(input);
     const Index far = find_patch(m.boundary, "farfield");
     if (far != kNone && find_patch(input, "farfield") == kNone) {  // generated: its own faces
@@ -158,19 +162,31 @@ TEST(HybridCases, WingFuselageFusedFromTwoSolids) {
     expect_valid_case("wing_fuselage", s, m, rep);
 }
 
+/// Wall nodes short of every layer, by reason, over all patches.
+Index short_by(const HybridReport& rep, Shortfall reason) {
+    Index n = 0;
+    for (const PatchCoverage& c : rep.coverage.patches) n += c.short_nodes(reason);
+    return n;
+}
+
 TEST(HybridCases, TwoSpheresWithAGapOfATenthOfTheLayers) {
     // Issue 9's first case: 30 layers, growth 1.2, first height 1e-4 of the diameter, a gap of
-    // a tenth of the thickness asked. The layers across the gap are thinned (proximity) and the
-    // columns beside it lowered (front rounds); everywhere else they are whole.
+    // a tenth of the thickness asked. Across the gap the columns have fewer layers (proximity,
+    // the first height kept, neighbours within one layer); everywhere else they are whole.
     PrepareParams pp;
     pp.cad.size = 0.05;
     const SurfaceMesh s = prepare_surface(example_data("two_spheres_narrow_gap.geo"), pp);
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(30, 1e-4), nullptr, &rep);
-    EXPECT_EQ(m.prisms.size(), 30u * static_cast<std::size_t>(s.num_faces()));
-    EXPECT_GT(rep.thinned_nodes, 0);
-    EXPECT_LT(rep.thinned_nodes, s.num_points() / 4);
-    EXPECT_LT(rep.min_thickness_share, 0.1);
+    EXPECT_DOUBLE_EQ(rep.layer_stats.front().height, 1e-4);
+    EXPECT_GT(short_by(rep, Shortfall::Proximity), 0);
+    // Neighbouring columns differ by at most one layer: from the gap's 6 or so layers to the
+    // 30 asked takes some 24 rings of nodes, about half of each sphere (measured 1429 of 3168).
+    EXPECT_LT(short_by(rep, Shortfall::Proximity), s.num_points() * 6 / 10);
+    int fewest = 30;
+    for (const PatchCoverage& c : rep.coverage.patches) fewest = std::min(fewest, c.min_layers);
+    EXPECT_LT(fewest, 20);
+    EXPECT_GT(m.pyramids.size(), 0u);  // the steps
     expect_valid_case("two_spheres", s, m, rep);
 }
 
@@ -180,37 +196,34 @@ TEST(HybridCases, Naca0012BetweenWallsWithThirtyLayers) {
     const SurfaceMesh s = prepare_surface(example_data("naca0012_wing_between_walls.geo"), {});
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(30, 1e-4), nullptr, &rep);
-    EXPECT_GT(rep.thinned_nodes, 0);
+    EXPECT_GT(short_by(rep, Shortfall::Proximity), 0);
     expect_valid_case("naca0012_walls", s, m, rep);
 }
 
-TEST(HybridCases, WingFuselageWithThirtyLayersIsLoweredWhereItFolds) {
+TEST(HybridCases, WingFuselageWithThirtyLayersStopsWhereItWouldFold) {
     // 30 layers used to fold at layer 28 beside the wing-body junction and stop. The columns
-    // there are lowered and the layers marched again; the coverage report says where.
+    // there stop before their cells get poor; the coverage report says where and why.
     const SurfaceMesh s = wing_fuselage();
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(30, 0.1), nullptr, &rep);
-    EXPECT_GT(rep.front_rounds, 0);
     Index short_nodes = 0;
     for (const PatchCoverage& c : rep.coverage.patches) short_nodes += c.nodes - c.full_nodes;
     EXPECT_GT(short_nodes, 0);
+    EXPECT_GE(short_nodes, static_cast<Index>(rep.coverage.short_nodes.size()));  // a node on two patches: twice
     expect_valid_case("wing_fuselage_30", s, m, rep);
 }
 
 TEST(HybridCases, MixedQuadTriangleOneraM6HasEveryCellType) {
     // 5 layers, and 10, which used to leave no room for a pyramid at the wing tip and stop
-    // there: the columns there are lowered and the layers marched again.
+    // there: the columns there stop, their steps closed by pyramids and tetrahedra.
     const SurfaceMesh s = prepare_surface(example_data("onera_m6_mixed_quadtri.msh"), {});
     for (const auto& [layers, first_height] : {std::pair{5, 0.01}, std::pair{10, 0.08}}) {
         HybridReport rep;
         const VolumeMesh m = build_hybrid_mesh(s, params(layers, first_height), nullptr, &rep);
         EXPECT_GT(m.hexes.size(), 0u);
         EXPECT_GT(m.prisms.size(), 0u);
-        EXPECT_EQ(m.pyramids.size(), m.hexes.size() / static_cast<std::size_t>(layers));  // one per top quad
+        EXPECT_GT(m.pyramids.size(), m.hexes.size() / static_cast<std::size_t>(layers) / 2);  // on the top quads
         EXPECT_GT(m.tets.size(), 0u);
-        if (layers == 10) {
-            EXPECT_GT(rep.front_rounds, 0);
-        }
         expect_valid_case("m6_mixed_" + std::to_string(layers), s, m, rep);
     }
 }

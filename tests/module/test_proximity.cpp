@@ -52,6 +52,29 @@ TEST(Proximity, FacingPlateAtItsDistanceAndKind) {
     }
 }
 
+TEST(Proximity, ObliqueHitsAtConcaveCornersDoNotLimit) {
+    // The upper plate tilted by 70° about the x axis (a concave corner, like the Apollo base
+    // and nozzle): the rays meet it at cos 70° = 0.34 and the layers merge there instead of
+    // colliding: no limit. Tilted by 30° (a wedge-shaped gap): cos 30° = 0.87, limited.
+    for (const auto& [deg, limited] : {std::pair{70.0, false}, std::pair{30.0, true}}) {
+        SurfaceMesh m = facing_plates(2.0, PatchKind::Wall);
+        const double a = deg * std::acos(-1.0) / 180.0;
+        for (Index i = 121; i < m.num_points(); ++i) {  // the upper plate's nodes, turned about y = 5, z = 2
+            Vec3& x = m.points[static_cast<std::size_t>(i)];
+            const double y = x.y() - 5.0, z = x.z() - 2.0;
+            x = Vec3(x.x(), 5.0 + std::cos(a) * y - std::sin(a) * z, 2.0 + std::sin(a) * y + std::cos(a) * z);
+        }
+        const std::vector<ProximityHit> hits = rays_up(m, 121);
+        const ProximityHit& centre = hits[60];  // (5, 5, 0): meets the plate at (5, 5, 2)
+        ASSERT_TRUE(std::isfinite(centre.distance)) << deg;
+        EXPECT_NEAR(centre.distance, 2.0, 1e-9) << deg;
+        EXPECT_NEAR(centre.facing, std::cos(a), 1e-9) << deg;
+        const std::vector<double> limit = thickness_limits(test::quad_grid(10, 10), hits, {});
+        EXPECT_EQ(std::isfinite(limit[60]), limited) << deg;
+        if (limited) EXPECT_LE(limit[60], 0.45 * 2.0 + 1e-12);
+    }
+}
+
 TEST(Proximity, OwnFacesAndEdgeOnFacesAreSkipped) {
     // Outward rays from a closed sphere meet nothing; its own incident faces are not hits.
     const SurfaceMesh s = icosphere(Vec3::Zero(), 1.0, 2, {"s", PatchKind::Wall});

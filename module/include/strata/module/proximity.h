@@ -16,6 +16,10 @@ namespace strata {
 struct ProximityHit {
     double distance = std::numeric_limits<double>::infinity();  ///< along the unit direction; inf: nothing
     bool wall = false;                                          ///< a wall face (its layers grow too)
+    /// How squarely the ray meets the face: −(unit face normal) · direction, 1 head-on, near 0
+    /// at a grazing hit (face normals point into the flow, so a ray through the flow meets
+    /// them from the front).
+    double facing = 1.0;
 };
 
 /// For wall node i at \p origins[i] (node \p surface_node[i] of \p surface), the first face of
@@ -33,13 +37,20 @@ struct ProximityParams {
     /// How fast the limit may rise along the wall, in thickness per unit of wall distance, so
     /// neighbouring columns differ gently (the Poisson smoothing needs a smooth front).
     double slope = 0.25;
+    /// Hits less square than this (ProximityHit::facing, the cosine of the angle between the ray
+    /// and the face's normal) do not limit: two walls meeting at a concave corner of 60° or more
+    /// (a wing-body junction, the Apollo base and nozzle) see each other obliquely, and their
+    /// layers merge there under the Poisson smoothing's concave terms instead of colliding; a
+    /// narrow gap or a thin wedge sees its other side nearly head-on. The front check before
+    /// TetGen catches what this lets through.
+    double min_facing = 0.5;
 };
 
 /// The largest layer thickness at each node of \p wall (its nodes are the origins above):
-/// the hit distance times the share for what was hit, then lowered wherever a neighbour's
-/// limit plus slope × the edge length between them is smaller (a Lipschitz envelope over the
-/// wall's edges, computed exactly by a Dijkstra sweep). \p extra (empty, or one per wall
-/// node) bounds a node further before the envelope is taken. Infinity where nothing limits.
+/// the hit distance times the share for what was hit (hits below min_facing ignored), then lowered wherever a
+/// neighbour's limit plus slope × the edge length between them is smaller (a Lipschitz envelope over the wall's edges,
+/// computed exactly by a Dijkstra sweep). \p extra (empty, or one per wall node) bounds a node further before the
+/// envelope is taken. Infinity where nothing limits.
 std::vector<double> thickness_limits(const SurfaceMesh& wall, const std::vector<ProximityHit>& hits,
                                      const ProximityParams& params, const std::vector<double>& extra = {});
 
