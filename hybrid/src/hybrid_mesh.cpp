@@ -10,6 +10,7 @@
 #include <strata/hybrid/outer_boundary.h>
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 
 namespace strata {
@@ -20,8 +21,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 /// One point inside each cavity that the layer top encloses (a closed component of it, i.e. a
-/// body not cut by a plane): the centroid of the first-layer cell on the component's first
-/// face. Components ending on a plane open onto the outside of the region and need none.
+/// body not cut by a plane): the centroid of the first-layer cell on the component's first face
+/// whose columns all have a layer; where none has (no column of the body grew), a point just
+/// behind its first face, inside the body. Components ending on a plane open onto the outside
+/// of the region and need none.
 std::vector<Vec3> points_in_layers(const LayerMesh& lm) {
     Index nc = 0;
     const std::vector<Index> comp = face_components(lm.top, &nc);
@@ -30,17 +33,34 @@ std::vector<Vec3> points_in_layers(const LayerMesh& lm) {
     for (Index e = 0; e < static_cast<Index>(et.nodes.size()); ++e)
         if (et.faces.row_size(e) == 1)
             open[static_cast<std::size_t>(comp[static_cast<std::size_t>(*et.faces.row_begin(e))])] = 1;
-    std::vector<Vec3> holes;
-    std::vector<char> done(static_cast<std::size_t>(nc), 0);
+    std::vector<Vec3> hole(static_cast<std::size_t>(nc), Vec3::Zero());
+    std::vector<char> found(static_cast<std::size_t>(nc), 0);  // 0 none, 1 behind a face, 2 in a cell
     for (Index f = 0; f < lm.top.num_faces(); ++f) {
         const std::size_t c = static_cast<std::size_t>(comp[static_cast<std::size_t>(f)]);
-        if (open[c] || done[c]) continue;
-        done[c] = 1;
-        Vec3 x = Vec3::Zero();
-        for (const Index* v = lm.top.face_begin(f); v != lm.top.face_end(f); ++v)
-            x += lm.mesh.points[lm.level_node(0, *v)] + lm.mesh.points[lm.level_node(1, *v)];
-        holes.push_back(x / (2.0 * static_cast<double>(lm.top.face_size(f))));
+        if (open[c] || found[c] == 2) continue;
+        bool full = true;
+        for (const Index* v = lm.top.face_begin(f); v != lm.top.face_end(f); ++v) full &= lm.node_layers(*v) >= 1;
+        Vec3 wall = Vec3::Zero(), first = Vec3::Zero();
+        for (const Index* v = lm.top.face_begin(f); v != lm.top.face_end(f); ++v) {
+            wall += lm.mesh.points[lm.level_node(0, *v)];
+            first += lm.mesh.points[lm.level_node(1, *v)];
+        }
+        const double n = static_cast<double>(lm.top.face_size(f));
+        if (full) {
+            hole[c] = (wall + first) / (2.0 * n), found[c] = 2;
+        } else if (!found[c]) {  // behind the wall face (its normal points into the flow)
+            const Index* v = lm.top.face_begin(f);
+            Vec3 a = Vec3::Zero();
+            for (Index i = 1; i + 1 < lm.top.face_size(f); ++i)
+                a += 0.5 *
+                     (lm.mesh.points[lm.level_node(0, v[i])] - lm.mesh.points[lm.level_node(0, v[0])])
+                         .cross(lm.mesh.points[lm.level_node(0, v[i + 1])] - lm.mesh.points[lm.level_node(0, v[0])]);
+            if (a.norm() > 0.0) hole[c] = wall / n - 1e-3 * std::sqrt(a.norm()) * a.normalized(), found[c] = 1;
+        }
     }
+    std::vector<Vec3> holes;
+    for (std::size_t c = 0; c < hole.size(); ++c)
+        if (found[c]) holes.push_back(hole[c]);
     return holes;
 }
 

@@ -165,7 +165,23 @@ double closing_quality(CellType type, bool full, const std::array<Vec3, 8>& p, d
 bool usable(CellType type, bool full, const std::array<Vec3, 8>& p, double face_quality, const StopRules& rules) {
     double moving_min = 0.0;
     const double all = closing_quality(type, full, p, moving_min);
-    return all > 0.0 && !(moving_min < rules.min_quality * face_quality);
+    if (!(all > 0.0) || moving_min < rules.min_quality * face_quality) return false;
+    if (full) return true;
+    // The stopped corners see the step's side edge-on: at best about segment / distance (the
+    // segments' length over their distance from the stopped node). Judged relative to that,
+    // so a step whose apex lies nearly in its base's plane stops the columns too.
+    double seg = 0.0, dist = 0.0;
+    const std::array<std::pair<int, int>, 3> segments =
+        type == CellType::Pyramid ? std::array<std::pair<int, int>, 3>{{{0, 1}, {3, 2}, {0, 1}}}
+        : type == CellType::Tet   ? std::array<std::pair<int, int>, 3>{{{0, 3}, {0, 3}, {0, 3}}}
+                                  : std::array<std::pair<int, int>, 3>{{{0, 2}, {3, 5}, {0, 2}}};
+    const Vec3 apex = type == CellType::Pyramid ? p[4] : type == CellType::Tet ? p[1] : p[1];
+    for (const auto& [a, b] : segments) {
+        seg = std::max(seg, (p[static_cast<std::size_t>(b)] - p[static_cast<std::size_t>(a)]).norm());
+        dist = std::max(dist, (p[static_cast<std::size_t>(a)] - apex).norm());
+    }
+    const double ideal = dist > 0.0 ? std::min(1.0, seg / dist) : 0.0;
+    return !(all < rules.min_quality * ideal * face_quality);
 }
 
 /// Whether splitting quad \p f through its corner \p c keeps every cell below level \p k usable

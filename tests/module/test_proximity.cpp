@@ -71,7 +71,9 @@ TEST(Proximity, ObliqueHitsAtConcaveCornersDoNotLimit) {
         EXPECT_NEAR(centre.facing, std::cos(a), 1e-9) << deg;
         const std::vector<double> limit = thickness_limits(test::quad_grid(10, 10), hits, {});
         EXPECT_EQ(std::isfinite(limit[60]), limited) << deg;
-        if (limited) EXPECT_LE(limit[60], 0.45 * 2.0 + 1e-12);
+        if (limited) {
+            EXPECT_LE(limit[60], 0.45 * 2.0 + 1e-12);
+        }
     }
 }
 

@@ -1,0 +1,150 @@
+// Local layer stopping and the ragged LayerMesh (module/src/columns.{h,cpp}, through
+// extrude_layers): a column limited to fewer layers on a flat plate of triangles and of quads,
+// the cells closing its steps, the level-major numbering, neighbours within one layer, and the
+// same bytes for any thread count.
+
+#include <strata/core/face_geometry.h>
+#include <strata/core/validate.h>
+#include <strata/module/layers.h>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+#include <cmath>
+#include <limits>
+
+namespace strata {
+namespace {
+
+/// The 10 × 10 quad plate, or each quad split into two triangles.
+SurfaceMesh plate(bool triangles) {
+    SurfaceMesh q = test::quad_grid(10, 10, 0.1);
+    if (!triangles) return q;
+    SurfaceMesh t;
+    t.patches = q.patches;
+    t.points = q.points;
+    for (Index f = 0; f < q.num_faces(); ++f) {
+        const Index* v = q.face_begin(f);
+        t.add_face({v[0], v[1], v[2]}, 0);
+        t.add_face({v[0], v[2], v[3]}, 0);
+    }
+    return t;
+}
+
+/// 8 layers of 0.01 (0.08 in all); the centre node (5, 5) limited to 0.025 (two layers).
+LayerParams limited_centre(const SurfaceMesh& wall) {
+    LayerParams p;
+    p.distribution.layers = 8;
+    p.distribution.first_height = 0.01;
+    p.distribution.growth = 1.0;
+    p.proximity = ProximityMode::Stop;
+    p.node_thickness_limit.assign(wall.points.size(), std::numeric_limits<double>::infinity());
+    p.node_thickness_limit[5 * 11 + 5] = 0.025;
+    return p;
+}
+
+TEST(Columns, FullColumnsKeepTheUniformNumbering) {
+    const SurfaceMesh wall = plate(true);
+    LayerParams p = limited_centre(wall);
+    p.node_thickness_limit.clear();
+    const LayerMesh lm = extrude_layers(wall, p);
+    const Index nw = lm.wall_nodes();
+    for (Index i = 0; i < nw; ++i) {
+        EXPECT_EQ(lm.node_layers(i), 8);
+        for (int k = 0; k <= 8; ++k) EXPECT_EQ(lm.level_node(k, i), k * nw + i);
+    }
+    EXPECT_EQ(lm.mesh.prisms.size(), 8u * static_cast<std::size_t>(wall.num_faces()));
+    EXPECT_TRUE(lm.mesh.pyramids.empty());
+    EXPECT_TRUE(lm.mesh.tets.empty());
+}
+
+TEST(Columns, AStoppedColumnOnTrianglesIsClosedByPyramidsAndItsNeighboursStepDownByOne) {
+    const SurfaceMesh wall = plate(true);
+    const LayerMesh lm = extrude_layers(wall, limited_centre(wall));
+    const ValidationReport v = validate_mesh(lm.mesh);
+    ASSERT_TRUE(v.ok()) << v.problems.front();
+    const Index centre = 5 * 11 + 5;
+    EXPECT_EQ(lm.node_layers(centre), 2);                                           // 0.02 ≤ 0.025 < 0.03
+    EXPECT_EQ(lm.stop_reason[static_cast<std::size_t>(centre)], Shortfall::Front);  // an extra (front) limit
+    // Neighbours within one layer of each other along every edge; the ring around the centre at 3.
+    for (Index f = 0; f < wall.num_faces(); ++f)
+        for (Index c = 0; c < 3; ++c) {
+            const Index a = wall.face_node(f, c), b = wall.face_node(f, (c + 1) % 3);
+            EXPECT_LE(std::abs(lm.node_layers(a) - lm.node_layers(b)), 1) << a << " " << b;
+        }
+    EXPECT_EQ(lm.node_layers(centre + 1), 3);
+    // Numbering: level-major, a column above its top is its top, level_of inverts it.
+    const Index nw = lm.wall_nodes();
+    Index expected = nw;
+    for (int k = 1; k <= 8; ++k)
+        for (Index i = 0; i < nw; ++i) {
+            const Index id = lm.level_node(k, i);
+            if (k <= lm.node_layers(i)) {
+                EXPECT_EQ(id, expected++) << k << " " << i;
+            } else {
+                EXPECT_EQ(id, lm.top_node(i));
+            }
+            EXPECT_EQ(lm.level_of(id), std::min(k, lm.node_layers(i)));
+        }
+    EXPECT_EQ(static_cast<std::size_t>(expected), lm.mesh.points.size());
+    // The steps: pyramids whose apex is a stopped column's top; every face has cells; the top
+    // is the wall's faces at the columns' tops.
+    EXPECT_GT(lm.mesh.pyramids.size(), 0u);
+    std::vector<char> is_top(lm.mesh.points.size(), 0);
+    for (Index i = 0; i < nw; ++i) is_top[static_cast<std::size_t>(lm.top_node(i))] = 1;
+    for (const auto& pyr : lm.mesh.pyramids) EXPECT_TRUE(is_top[static_cast<std::size_t>(pyr[4])]);
+    for (const int n : lm.face_layers) EXPECT_GE(n, 2);
+    ASSERT_EQ(lm.top.num_faces(), wall.num_faces());
+    for (Index i = 0; i < nw; ++i)
+        EXPECT_EQ(lm.top.points[static_cast<std::size_t>(i)], lm.mesh.points[static_cast<std::size_t>(lm.top_node(i))]);
+    // The step cells' worst is reported per layer, and it is above zero.
+    Index steps = 0;
+    for (const LayerStats& s : lm.stats) {
+        steps += s.transition_cells;
+        if (s.transition_cells > 0) {
+            EXPECT_GT(s.min_transition_jacobian, 0.0);
+        }
+    }
+    EXPECT_EQ(steps, static_cast<Index>(lm.mesh.pyramids.size() + lm.mesh.tets.size()));
+    // The report: the centre short for the front limit, its ring for the same reason (lowered by it).
+    const LayerReport r = layer_report(lm);
+    ASSERT_EQ(r.patches.size(), 1u);
+    EXPECT_EQ(r.patches[0].min_layers, 2);
+    EXPECT_LT(r.patches[0].all_layers, r.patches[0].nodes);
+    EXPECT_GT(r.patches[0].short_nodes(Shortfall::Front), 0);
+}
+
+TEST(Columns, AStoppedColumnOnQuadsSplitsItsQuadsAndKeepsHexahedraElsewhere) {
+    const SurfaceMesh wall = plate(false);
+    const LayerMesh lm = extrude_layers(wall, limited_centre(wall));
+    const ValidationReport v = validate_mesh(lm.mesh);
+    ASSERT_TRUE(v.ok()) << v.problems.front();
+    EXPECT_GT(lm.mesh.hexes.size(), 0u);
+    EXPECT_GT(lm.mesh.prisms.size(), 0u);  // the split quads' columns
+    EXPECT_GT(lm.top.num_faces(), wall.num_faces());
+    EXPECT_GT(lm.top.num_triangles(), 0);
+    // The boundary's wall is the plate's area, split or not.
+    double area = 0.0;
+    for (Index f = 0; f < lm.mesh.boundary.num_faces(); ++f)
+        if (lm.mesh.boundary.patches[static_cast<std::size_t>(lm.mesh.boundary.face_patch[f])].kind == PatchKind::Wall)
+            area += face_area_vector(lm.mesh.boundary, lm.mesh.points, f).norm();
+    EXPECT_NEAR(area, 1.0, 1e-12);
+}
+
+TEST(Columns, SameBytesForAnyThreadCount) {
+    const SurfaceMesh wall = plate(false);
+    LayerParams p = limited_centre(wall);
+    p.threads = 1;
+    const LayerMesh one = extrude_layers(wall, p);
+    p.threads = 2;
+    const LayerMesh two = extrude_layers(wall, p);
+    EXPECT_EQ(one.mesh.points, two.mesh.points);
+    EXPECT_EQ(one.mesh.hexes, two.mesh.hexes);
+    EXPECT_EQ(one.mesh.prisms, two.mesh.prisms);
+    EXPECT_EQ(one.mesh.pyramids, two.mesh.pyramids);
+    EXPECT_EQ(one.mesh.tets, two.mesh.tets);
+}
+
+}  // namespace
+}  // namespace strata
