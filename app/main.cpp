@@ -232,7 +232,8 @@ void add_layer_options(CLI::App& cmd, LayerOptions& o) {
                  "the layer back there");
     cmd.add_option("--min-quality", p.min_quality,
                    "a column stops where a cell it would make has a scaled Jacobian below this share of what its "
-                   "wall face allows; 0: no local stopping (every column gets every layer, a fold is an error)")
+                   "wall face allows; 0: no local stopping (every column gets every layer, held back where it "
+                   "would fold; a fold that holding back cannot save is an error)")
         ->capture_default_str();
     cmd.add_option("--max-turn", p.max_turn_deg, "a column stops where it would turn more than this, degrees")
         ->capture_default_str();
