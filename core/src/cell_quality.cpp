@@ -25,7 +25,12 @@ double corner_scaled_jacobian(const Vec3& o, const Vec3& a, const Vec3& b, const
     return e1.cross(e2).dot(e3) / l;
 }
 
-double tet_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 4>& v) {
+namespace {
+
+// The cell measures on any P with p[i] a Vec3 (the mesh's points, or a cell's own corners).
+
+template <class P>
+double tet_min(const P& p, const std::array<Index, 4>& v) {
     // Every corner of a tetrahedron sees the same signed volume; only the scaling differs.
     const Vec3 &a = p[v[0]], &b = p[v[1]], &c = p[v[2]], &d = p[v[3]];
     double j = corner_scaled_jacobian(a, b, c, d);
@@ -34,7 +39,8 @@ double tet_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Inde
     return worse(j, corner_scaled_jacobian(d, a, c, b));
 }
 
-double pyramid_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 5>& v) {
+template <class P>
+double pyramid_min(const P& p, const std::array<Index, 5>& v) {
     // Base corners: next base node, previous base node, apex. The apex has four edges; it is
     // measured once per base corner i with its edges to i+1, i and i−1.
     double j = 1.0;
@@ -45,12 +51,10 @@ double pyramid_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<
     return j;
 }
 
-namespace {
-
 /// Prisms (n = 3) and hexahedra (n = 4): bottom corners 0..n−1 with edges to the next and
 /// previous bottom corner and up the column; top corners n..2n−1 the same, seen from above.
-template <std::size_t N>
-double extruded_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, N>& v) {
+template <class P, std::size_t N>
+double extruded_min(const P& p, const std::array<Index, N>& v) {
     constexpr int n = static_cast<int>(N) / 2;
     double j = 1.0;
     for (int i = 0; i < n; ++i) {
@@ -61,39 +65,53 @@ double extruded_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array
     return j;
 }
 
+template <std::size_t N>
+std::array<Index, N> first(const Index* v) {
+    std::array<Index, N> a;
+    std::copy(v, v + N, a.begin());
+    return a;
+}
+
+template <class P>
+double cell_min(const P& p, const Index* v, CellType t) {
+    switch (t) {
+        case CellType::Tet:
+            return tet_min(p, first<4>(v));
+        case CellType::Pyramid:
+            return pyramid_min(p, first<5>(v));
+        case CellType::Prism:
+            return extruded_min(p, first<6>(v));
+        case CellType::Hex:
+            return extruded_min(p, first<8>(v));
+    }
+    return 0.0;
+}
+
 }  // namespace
 
+double tet_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 4>& v) {
+    return tet_min(p, v);
+}
+
+double pyramid_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 5>& v) {
+    return pyramid_min(p, v);
+}
+
 double prism_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 6>& v) {
-    return extruded_min_scaled_jacobian(p, v);
+    return extruded_min(p, v);
 }
 
 double hex_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 8>& v) {
-    return extruded_min_scaled_jacobian(p, v);
+    return extruded_min(p, v);
 }
-
-namespace {
-
-template <std::size_t N, class F>
-double on_array(const std::vector<Vec3>& p, const Index* v, F&& f) {
-    std::array<Index, N> a;
-    std::copy(v, v + N, a.begin());
-    return f(p, a);
-}
-
-}  // namespace
 
 double min_scaled_jacobian(const std::vector<Vec3>& p, const Index* v, CellType t) {
-    switch (t) {
-        case CellType::Tet:
-            return on_array<4>(p, v, tet_min_scaled_jacobian);
-        case CellType::Pyramid:
-            return on_array<5>(p, v, pyramid_min_scaled_jacobian);
-        case CellType::Prism:
-            return on_array<6>(p, v, prism_min_scaled_jacobian);
-        case CellType::Hex:
-            return on_array<8>(p, v, hex_min_scaled_jacobian);
-    }
-    return 0.0;
+    return cell_min(p, v, t);
+}
+
+double min_scaled_jacobian(const Vec3* corners, CellType t) {
+    static constexpr std::array<Index, 8> kIdentity{0, 1, 2, 3, 4, 5, 6, 7};
+    return cell_min(corners, kIdentity.data(), t);
 }
 
 }  // namespace strata

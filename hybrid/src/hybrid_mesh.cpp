@@ -40,22 +40,17 @@ std::vector<Vec3> points_in_layers(const LayerMesh& lm) {
         if (open[c] || found[c] == 2) continue;
         bool full = true;
         for (const Index* v = lm.top.face_begin(f); v != lm.top.face_end(f); ++v) full &= lm.node_layers(*v) >= 1;
-        Vec3 wall = Vec3::Zero(), first = Vec3::Zero();
-        for (const Index* v = lm.top.face_begin(f); v != lm.top.face_end(f); ++v) {
-            wall += lm.mesh.points[lm.level_node(0, *v)];
-            first += lm.mesh.points[lm.level_node(1, *v)];
-        }
-        const double n = static_cast<double>(lm.top.face_size(f));
         if (full) {
-            hole[c] = (wall + first) / (2.0 * n), found[c] = 2;
+            Vec3 x = Vec3::Zero();
+            for (const Index* v = lm.top.face_begin(f); v != lm.top.face_end(f); ++v)
+                x += lm.mesh.points[lm.level_node(0, *v)] + lm.mesh.points[lm.level_node(1, *v)];
+            hole[c] = x / (2.0 * static_cast<double>(lm.top.face_size(f))), found[c] = 2;
         } else if (!found[c]) {  // behind the wall face (its normal points into the flow)
-            const Index* v = lm.top.face_begin(f);
-            Vec3 a = Vec3::Zero();
-            for (Index i = 1; i + 1 < lm.top.face_size(f); ++i)
-                a += 0.5 *
-                     (lm.mesh.points[lm.level_node(0, v[i])] - lm.mesh.points[lm.level_node(0, v[0])])
-                         .cross(lm.mesh.points[lm.level_node(0, v[i + 1])] - lm.mesh.points[lm.level_node(0, v[0])]);
-            if (a.norm() > 0.0) hole[c] = wall / n - 1e-3 * std::sqrt(a.norm()) * a.normalized(), found[c] = 1;
+            // Level 0 is the wall, node i being wall node i: the top's faces on mesh.points are the wall's.
+            const Vec3 a = face_area_vector(lm.top, lm.mesh.points, f);
+            if (a.norm() > 0.0)
+                hole[c] = face_centroid(lm.top, lm.mesh.points, f) - 1e-3 * std::sqrt(a.norm()) * a.normalized(),
+                found[c] = 1;
         }
     }
     std::vector<Vec3> holes;

@@ -48,7 +48,6 @@ Columns::Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& m
     active.assign(n, 1);
     reason.assign(n, Shortfall::None);
     top = wall.points;
-    below = wall.points;
 }
 
 namespace {
@@ -85,19 +84,15 @@ Vec3 Columns::at_level(Index i, int level) const {
 
 namespace {
 
-/// The corners (positions or node ids, T) of the cell over column face \p f from \p lo (each node's top) to \p hi, its
-/// columns that stop (\p moving[c] = 0) collapsed to their top: a prism or hexahedron when all
-/// move, a pyramid on the side face of the two that move in a triangle, a tetrahedron on the
-/// segment of the one that moves in a triangle, a prism lying on its side over the two
-/// adjacent ones that move in a quad. Gmsh order; \p type says which. False where no standard
-/// cell closes the step (one, three or two opposite columns moving in a quad: split it first)
-/// or nothing moves.
+/// The corners (positions or node ids, T) of the cell over the column face \p v (\p n nodes) from \p lo (each node's
+/// top) to \p hi, its columns that stop (\p moving[c] = 0) collapsed to their top: a prism or hexahedron when all move,
+/// a pyramid on the side face of the two that move in a triangle, a tetrahedron on the segment of the one that moves in
+/// a triangle, a prism lying on its side over the two adjacent ones that move in a quad. Gmsh order; \p type says
+/// which. False where no standard cell closes the step (one, three or two opposite columns moving in a quad: split it
+/// first) or nothing moves.
 template <class T, class Lo, class Hi>
-bool closing_cell(const ColumnFaces& faces, Index f, const bool* moving, Lo&& lo, Hi&& hi, CellType& type,
+bool closing_cell(const std::array<Index, 4>& v, int n, const bool* moving, Lo&& lo, Hi&& hi, CellType& type,
                   std::array<T, 8>& p) {
-    const auto u = static_cast<std::size_t>(f);
-    const auto& v = faces.nodes[u];
-    const int n = faces.size[u];
     int m = 0;
     for (int c = 0; c < n; ++c) m += moving[c] ? 1 : 0;
     if (m == n) {
@@ -137,9 +132,8 @@ bool closing_cell(const ColumnFaces& faces, Index f, const bool* moving, Lo&& lo
 /// corner sees the thin side face of the step edge-on, its value about layer height / edge
 /// length however good the step, so the steepness of a step is judged at the others.
 double closing_quality(CellType type, bool full, const std::array<Vec3, 8>& p, double& moving_min) {
-    const std::vector<Vec3> pts(p.begin(), p.begin() + cell_corners(type));
-    static constexpr std::array<Index, 8> kId{0, 1, 2, 3, 4, 5, 6, 7};
-    const double all = min_scaled_jacobian(pts, kId.data(), type);
+    const std::array<Vec3, 8>& pts = p;
+    const double all = min_scaled_jacobian(pts.data(), type);
     moving_min = all;
     if (full) return all;
     auto corner = [&](int o, int a, int b, int c) {
@@ -189,11 +183,7 @@ bool usable(CellType type, bool full, const std::array<Vec3, 8>& p, double face_
 bool split_keeps_cells(const Columns& col, Index f, int c, int k, const StopRules& rules) {
     const auto& q = col.faces.nodes[static_cast<std::size_t>(f)];
     auto at = [&](int i) { return q[static_cast<std::size_t>((c + i) % 4)]; };
-    const std::array<std::array<Index, 3>, 2> tris{{{at(0), at(1), at(2)}, {at(0), at(2), at(3)}}};
-    ColumnFaces one(SurfaceMesh{});
-    one.nodes.push_back({});
-    one.size.push_back(3);
-    one.patch.push_back(0);
+    const std::array<std::array<Index, 4>, 2> tris{{{at(0), at(1), at(2), kNone}, {at(0), at(2), at(3), kNone}}};
     for (int j = 0; j < k; ++j)
         for (const auto& t : tris) {
             bool moving[3];
@@ -201,12 +191,11 @@ bool split_keeps_cells(const Columns& col, Index f, int c, int k, const StopRule
             for (int i = 0; i < 3; ++i)
                 m += (moving[i] = col.levels[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])] > j) ? 1 : 0;
             if (m == 0) continue;
-            one.nodes[0] = {t[0], t[1], t[2], kNone};
             auto lo = [&](Index i) { return col.at_level(i, j); };
             auto hi = [&](Index i) { return col.at_level(i, j + 1); };
             CellType type{};
             std::array<Vec3, 8> p{};
-            if (!closing_cell(one, 0, moving, lo, hi, type, p)) return false;
+            if (!closing_cell(t, 3, moving, lo, hi, type, p)) return false;
             const double fq = corner_sines({lo(t[0]), lo(t[1]), lo(t[2]), Vec3::Zero()}, 3);
             if (!usable(type, m == 3, p, fq, rules)) return false;
         }
@@ -274,7 +263,7 @@ void close_steps(Columns& col, const StopRules& rules, int k, const std::vector<
             CellType type{};
             std::array<Vec3, 8> p{};
             // As for whole cells, relative to the best a cell on the face can be.
-            if (closing_cell(col.faces, f, m.data(), lo, hi, type, p) &&
+            if (closing_cell(col.faces.nodes[u], n, m.data(), lo, hi, type, p) &&
                 usable(type, false, p, face_corner_quality(col, f), rules))
                 continue;
             for (int c = 0; c < n; ++c)
@@ -291,7 +280,8 @@ double column_cell_jacobian(const Columns& col, Index f, const std::vector<Vec3>
     std::array<Vec3, 8> p{};
     auto lo = [&](Index i) { return col.top[static_cast<std::size_t>(i)]; };
     auto hi = [&](Index i) { return next[static_cast<std::size_t>(i)]; };
-    closing_cell(col.faces, f, kAll.data(), lo, hi, type, p);
+    closing_cell(col.faces.nodes[static_cast<std::size_t>(f)], col.faces.size[static_cast<std::size_t>(f)], kAll.data(),
+                 lo, hi, type, p);
     double unused = 0.0;
     return closing_quality(type, true, p, unused);
 }
@@ -307,7 +297,7 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
         } else if (!next[u].allFinite()) {
             stop(col, go, i, Shortfall::NonFinite);
         } else if (rules.quality && k > 0 &&
-                   angle_deg(next[u] - col.top[u], col.top[u] - col.below[u]) > rules.max_turn_deg) {
+                   angle_deg(next[u] - col.top[u], col.top[u] - col.at_level(i, k - 1)) > rules.max_turn_deg) {
             stop(col, go, i, Shortfall::Turning);
         }
     }
@@ -335,7 +325,6 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
         if (!go[u]) continue;
         col.point[static_cast<std::size_t>(k + 1) * static_cast<std::size_t>(nw) + u] =
             static_cast<Index>(col.points->size() + static_cast<std::size_t>(materialised++));
-        col.below[u] = col.top[u];
         col.top[u] = next[u];
         col.levels[u] = k + 1;
     }
@@ -360,7 +349,7 @@ void add_layer_cells(const Columns& col, Index f, int k, LayerMesh& out, LayerSt
     std::array<Index, 8> id{};
     auto lo = [&](Index i) { return out.level_node(k, i); };
     auto hi = [&](Index i) { return out.level_node(k + 1, i); };
-    if (!closing_cell(col.faces, f, m.data(), lo, hi, type, id))
+    if (!closing_cell(col.faces.nodes[u], n, m.data(), lo, hi, type, id))
         throw TopologyError("internal: layer " + std::to_string(k + 1) +
                             " has a step over a wall face that no cell closes");
     const std::vector<Vec3>& pts = out.mesh.points;

@@ -440,15 +440,11 @@ void levels_differ_by_one(const SurfaceMesh& wall, std::vector<int>& levels, std
         adjacent[static_cast<std::size_t>(e[0])].push_back(e[1]);
         adjacent[static_cast<std::size_t>(e[1])].push_back(e[0]);
     }
-    std::vector<Index> order(levels.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Index>(i);
-    std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) {
-        return levels[static_cast<std::size_t>(a)] < levels[static_cast<std::size_t>(b)];
-    });
     // Levels are small integers: buckets by level give a Dijkstra sweep in linear time.
     std::vector<std::vector<Index>> bucket(static_cast<std::size_t>(*std::max_element(levels.begin(), levels.end())) +
                                            2);
-    for (const Index i : order) bucket[static_cast<std::size_t>(levels[static_cast<std::size_t>(i)])].push_back(i);
+    for (std::size_t i = 0; i < levels.size(); ++i)
+        bucket[static_cast<std::size_t>(levels[i])].push_back(static_cast<Index>(i));
     for (std::size_t l = 0; l < bucket.size(); ++l)
         for (std::size_t q = 0; q < bucket[l].size(); ++q) {
             const Index i = bucket[l][q];
@@ -822,32 +818,27 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         // cells would still invert, hold it back.
         stats.sweeps = smooth_level(mc, r0, dk, dk1, r1);
         std::fill(held.begin(), held.end(), 0);
-        if (rules.quality) {
-            // 3. The columns whose cells are usable go on to level k + 1, the others stop; then
-            // the stopped ones' ghosts are held back where they would fold, so the level the
-            // next layer starts from stays sound (the moving ones keep what was judged).
-            stats.stopped_nodes = stop_columns(col, rules, k, r1);
-            for (Index i = 0; i < nw; ++i)
-                if (col.levels[static_cast<std::size_t>(i)] == k + 1)
-                    out.mesh.points.push_back(r1[static_cast<std::size_t>(i)]);
-            if (holds) {
-                const std::vector<Vec3> judged = r1;
-                hold_back_folds(mc, r0, dk, r1, held);
-                for (Index i = 0; i < nw; ++i)
-                    if (col.levels[static_cast<std::size_t>(i)] == k + 1)
-                        r1[static_cast<std::size_t>(i)] = judged[static_cast<std::size_t>(i)];
-            }
-        } else {
-            // 3. Stopping off: every column goes on (but for limits), held back where it would fold.
+        // 3. The columns whose cells are usable go on to level k + 1, the others stop. Stopping
+        // off: every column goes on (but for limits), held back where it would fold.
+        if (!rules.quality) {
             if (holds) hold_back_folds(mc, r0, dk, r1, held);
             check_folds(w, params, k, col, r1);
-            stats.stopped_nodes = stop_columns(col, rules, k, r1);
-            for (Index i = 0; i < nw; ++i) {
-                const auto u = static_cast<std::size_t>(i);
-                if (col.levels[u] != k + 1) continue;
-                out.mesh.points.push_back(r1[u]);
-                if (held[u]) out.held_back[u] = 1, ++stats.held_nodes;
-            }
+        }
+        stats.stopped_nodes = stop_columns(col, rules, k, r1);
+        for (Index i = 0; i < nw; ++i) {
+            const auto u = static_cast<std::size_t>(i);
+            if (col.levels[u] != k + 1) continue;
+            out.mesh.points.push_back(r1[u]);
+            if (held[u]) out.held_back[u] = 1, ++stats.held_nodes;
+        }
+        if (rules.quality && holds) {
+            // The stopped columns' ghosts are held back where they would fold, so the level the
+            // next layer starts from stays sound; the moving ones keep what was judged.
+            const std::vector<Vec3> judged = r1;
+            hold_back_folds(mc, r0, dk, r1, held);
+            for (Index i = 0; i < nw; ++i)
+                if (col.levels[static_cast<std::size_t>(i)] == k + 1)
+                    r1[static_cast<std::size_t>(i)] = judged[static_cast<std::size_t>(i)];
         }
         layer_orthogonality(col, k, r0, r1, n0, stats);
         // 4. Level 1 becomes the wall of the next layer (for every node: the ghosts march on).

@@ -131,3 +131,16 @@ TEST(ScaledJacobian, ACornerThatCannotBeComputedMakesTheCellNaN) {
     EXPECT_TRUE(std::isnan(prism_min_scaled_jacobian(p, {0, 1, 2, 3, 4, 5})));
     EXPECT_TRUE(std::isnan(min_scaled_jacobian(p, std::array<Index, 6>{0, 1, 2, 3, 4, 5}.data(), CellType::Prism)));
 }
+
+TEST(ScaledJacobian, CellGivenByItsCornersMeasuresAsByIds) {
+    // A sheared hexahedron, its corners picked out of a larger array in an order of their own.
+    const std::vector<Vec3> p{{9, 9, 9}, {0, 0, 0},   {1, 0, 0},   {1.2, 1, 0}, {0.1, 1, 0},
+                              {0, 0, 1}, {1, 0.1, 1}, {1, 1, 1.3}, {0, 1, 1}};
+    const std::array<Index, 8> ids{1, 2, 3, 4, 5, 6, 7, 8};
+    std::array<Vec3, 8> corners;
+    for (std::size_t i = 0; i < 8; ++i) corners[i] = p[static_cast<std::size_t>(ids[i])];
+    for (const CellType t : kCellTypes)
+        EXPECT_EQ(min_scaled_jacobian(corners.data(), t), min_scaled_jacobian(p, ids.data(), t)) << to_string(t);
+    EXPECT_LT(min_scaled_jacobian(corners.data(), CellType::Hex), 1.0);
+    EXPECT_GT(min_scaled_jacobian(corners.data(), CellType::Hex), 0.0);
+}

@@ -23,5 +23,7 @@ double prism_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<In
 double hex_min_scaled_jacobian(const std::vector<Vec3>& p, const std::array<Index, 8>& v);
 /// The cell's value for a cell of type \p t with corners \p v (cell_corners(t) of them).
 double min_scaled_jacobian(const std::vector<Vec3>& p, const Index* v, CellType t);
+/// The same for a cell given by its cell_corners(t) corner positions \p corners, in order.
+double min_scaled_jacobian(const Vec3* corners, CellType t);
 
 }  // namespace strata
