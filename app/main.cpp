@@ -95,6 +95,7 @@ const std::vector<std::pair<std::string, std::string>> kFlagOfParameter = {
     {"LayerParams::proximity", "--proximity"},
     {"LayerParams::min_quality", "--min-quality"},
     {"LayerParams::max_turn_deg", "--max-turn"},
+    {"LayerParams::fan_angle_deg", "--fan-angle"},
     {"LayerParams::threads", "--threads"},
     {"HybridParams::threads", "--threads"},
     {"FarfieldParams::shape", "--farfield"},
@@ -237,6 +238,11 @@ void add_layer_options(CLI::App& cmd, LayerOptions& o) {
         ->capture_default_str();
     cmd.add_option("--max-turn", p.max_turn_deg, "a column stops where it would turn more than this, degrees")
         ->capture_default_str();
+    cmd.add_option("--fan-angle", p.fan_angle_deg,
+                   "a fan of columns (one per side, more between) at convex edges whose faces turn by this many "
+                   "degrees or more, and the convex edges that close their chains; 0: no fans")
+        ->check(CLI::Range(0.0, 180.0))
+        ->capture_default_str();
     cmd.add_option("--normals", o.normals, "node normals: robust, area (the paper's), angle, max")
         ->capture_default_str();
     cmd.add_option("--proximity", o.proximity,
@@ -334,6 +340,13 @@ void print_held_back(const std::vector<strata::LayerStats>& stats) {
             first, layers, most);
 }
 
+/// The fans at sharp convex edges, if any.
+void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners) {
+    if (edges > 0)
+        std::printf("fans: %d sharp convex edges, %d wall nodes with a column per side and between (%d corners)\n",
+                    static_cast<int>(edges), static_cast<int>(nodes), static_cast<int>(corners));
+}
+
 void print_layer_table(const strata::LayerMesh& lm) {
     std::printf("layer  height       min SJ  mean SJ  max orth  mean orth  sweeps  columns  stopped  steps  step SJ\n");
     for (std::size_t k = 0; k < lm.stats.size(); ++k) {
@@ -347,6 +360,7 @@ void print_layer_table(const strata::LayerMesh& lm) {
         "  (columns: wall nodes with the layer; stopped: columns ending below it; steps: cells closing the steps "
         "where they end, pyramids, side-on prisms, tetrahedra; their apex at a stopped column sees the step's thin "
         "side edge-on, hence step SJ about layer height / edge length)\n");
+    print_fans(lm.fan_edges, lm.fan_nodes, lm.fan_corners);
     if (lm.unsmoothed_nodes > 0)
         std::printf(
             "note: %d nodes (sharp convex edges, corners of open edges, ends of needle triangles) were extruded along "
@@ -410,6 +424,12 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     double jmin = 1.0;
     for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
     std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
+    print_fans(hr.fan_edges, hr.fan_nodes, hr.fan_corners);
+    if (hr.fans_dropped > 0)
+        std::printf(
+            "note: no fan at %d wall nodes where a fan's face on the layer top could not be capped with a pyramid "
+            "(its columns twist: the wall there is small against the layers' thickness)\n",
+            static_cast<int>(hr.fans_dropped));
     print_held_back(hr.layer_stats);
     print_thinned(hr.thinned_nodes, hr.min_thickness_share);
     print_coverage(hr.coverage);

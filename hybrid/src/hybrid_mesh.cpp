@@ -273,6 +273,18 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         } catch (const LocalTopologyError& e) {  // no room for a pyramid: lower its quad's columns
             rep.seconds_pyramids += seconds_since(t0);
             if (round == kFrontRounds) throw;
+            // A face of a fan (its columns twist from one end to the other where the wall is
+            // small against the layers): no fan on its nodes.
+            bool fan = false;
+            for (const Index w : e.nodes()) fan |= !lm.fan_column.empty() && lm.fan_column[static_cast<std::size_t>(w)];
+            if (fan) {
+                if (layer_params.no_fan_nodes.empty()) layer_params.no_fan_nodes.assign(surface.points.size(), 0);
+                for (const Index w : e.nodes())
+                    layer_params.no_fan_nodes[static_cast<std::size_t>(lm.input_node[static_cast<std::size_t>(w)])] = 1;
+                rep.fans_dropped += static_cast<Index>(e.nodes().size());
+                rep.front_rounds = round + 1;
+                continue;
+            }
             for (const Index w : e.nodes()) {
                 const double reached = (lm.mesh.points[lm.top_node(w)] - lm.mesh.points[lm.level_node(0, w)]).norm();
                 double& l = limit[static_cast<std::size_t>(lm.input_node[static_cast<std::size_t>(w)])];
@@ -295,6 +307,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     }
     rep.layer_stats = lm.stats;
     rep.unsmoothed_nodes = lm.unsmoothed_nodes;
+    rep.fan_edges = lm.fan_edges, rep.fan_nodes = lm.fan_nodes, rep.fan_corners = lm.fan_corners;
     rep.thinned_nodes = lm.thinned_nodes;
     rep.min_thickness_share = lm.min_thickness_share;
     rep.coverage = layer_report(lm);

@@ -1,6 +1,7 @@
 // The columns of the layers, where they stop, and the cells of a ragged LayerMesh: columns.h.
 
 #include "columns.h"
+#include "fans.h"
 
 #include <strata/core/cell_quality.h>
 #include <strata/core/error.h>
@@ -222,7 +223,7 @@ double angle_deg(const Vec3& a, const Vec3& b) {
 /// Stop wall node \p i (if it still moves) for \p why; true if it did move.
 bool stop(Columns& col, std::vector<char>& go, Index i, Shortfall why) {
     auto& g = go[static_cast<std::size_t>(i)];
-    if (!g) return false;
+    if (!g || (!col.pinned.empty() && col.pinned[static_cast<std::size_t>(i)])) return false;
     g = 0;
     col.reason[static_cast<std::size_t>(i)] = why;
     return true;
@@ -349,10 +350,10 @@ void add_layer_cells(const Columns& col, Index f, int k, LayerMesh& out, LayerSt
     std::array<Index, 8> id{};
     auto lo = [&](Index i) { return out.level_node(k, i); };
     auto hi = [&](Index i) { return out.level_node(k + 1, i); };
-    if (!closing_cell(col.faces.nodes[u], n, m.data(), lo, hi, type, id))
+    const std::vector<Vec3>& pts = out.mesh.points;
+    if (!closing_cell(col.faces.nodes[u], n, m.data(), lo, hi, type, id) || !collapse_cell(type, id))
         throw TopologyError("internal: layer " + std::to_string(k + 1) +
                             " has a step over a wall face that no cell closes");
-    const std::vector<Vec3>& pts = out.mesh.points;
     const double j = min_scaled_jacobian(pts, id.data(), type);
     if (moving == n) {
         stats.min_scaled_jacobian = std::isnan(j) || std::isnan(stats.min_scaled_jacobian)
@@ -403,14 +404,22 @@ void build_layer_cells(const Columns& col, const SurfaceMesh& wall, const Csr& l
     bnd.patches.push_back({"layer_top", PatchKind::Other});
     // A face no column over grew from carries no cell: neither its wall nor its top is a face of
     // the layers (build_hybrid_mesh keeps it as wall).
+    // A face of a fan collapses on the wall (its nodes' columns start at one node): only its
+    // distinct nodes make a face, if three or more.
+    auto add_distinct = [&](Index* v, Index n, Index patch) {
+        Index m = 0;
+        for (Index i = 0; i < n; ++i)
+            if (v[i] != v[(i + n - 1) % n]) v[m++] = v[i];
+        if (m >= 3) bnd.add_face(v, m, patch);
+    };
     for (Index f = 0; f < faces.count(); ++f) {
         if (out.face_layers[static_cast<std::size_t>(f)] == 0) continue;
         const auto& v = faces.nodes[static_cast<std::size_t>(f)];
         const Index n = faces.size[static_cast<std::size_t>(f)];
         Index r[4];
-        r[0] = v[0];
-        for (Index i = 1; i < n; ++i) r[i] = v[static_cast<std::size_t>(n - i)];
-        bnd.add_face(r, n, faces.patch[static_cast<std::size_t>(f)]);
+        r[0] = out.level_node(0, v[0]);
+        for (Index i = 1; i < n; ++i) r[i] = out.level_node(0, v[static_cast<std::size_t>(n - i)]);
+        add_distinct(r, n, faces.patch[static_cast<std::size_t>(f)]);
     }
     for (Index f = 0; f < faces.count(); ++f) {
         if (out.face_layers[static_cast<std::size_t>(f)] == 0) continue;
@@ -418,7 +427,7 @@ void build_layer_cells(const Columns& col, const SurfaceMesh& wall, const Csr& l
         const Index n = faces.size[static_cast<std::size_t>(f)];
         Index t[4];
         for (Index i = 0; i < n; ++i) t[i] = out.top_node(v[static_cast<std::size_t>(i)]);
-        bnd.add_face(t, n, out.top_patch);
+        add_distinct(t, n, out.top_patch);
     }
     Index side_patch = kNone, edge = 0;
     for (Index l = 0; l < loops.rows(); ++l) {
@@ -470,12 +479,12 @@ int LayerMesh::level_of(Index node) const {
     return static_cast<int>(it - level_start_.begin()) - 1;
 }
 
-void LayerMesh::set_columns(std::vector<int> node_layers) {
+void LayerMesh::set_columns(std::vector<int> node_layers, std::vector<Index> base) {
     const auto nw = static_cast<std::size_t>(wall_nodes_);
-    if (node_layers.size() != nw)
-        throw InputError("LayerMesh::set_columns: " + std::to_string(node_layers.size()) + " column heights for " +
-                         std::to_string(nw) + " wall nodes");
-    if (std::all_of(node_layers.begin(), node_layers.end(), [&](int l) { return l == layers_; })) {
+    if (node_layers.size() != nw || (!base.empty() && base.size() != nw))
+        throw InputError("LayerMesh::set_columns: " + std::to_string(node_layers.size()) + " column heights and " +
+                         std::to_string(base.size()) + " bases for " + std::to_string(nw) + " wall nodes");
+    if (base.empty() && std::all_of(node_layers.begin(), node_layers.end(), [&](int l) { return l == layers_; })) {
         node_layers_.clear(), ids_.clear(), level_start_.clear();  // full columns: k × nw + i
         return;
     }
@@ -486,7 +495,12 @@ void LayerMesh::set_columns(std::vector<int> node_layers) {
     for (int k = 0; k <= layers_; ++k) {
         level_start_[static_cast<std::size_t>(k)] = next;
         const std::size_t row = static_cast<std::size_t>(k) * nw;
-        for (std::size_t i = 0; i < nw; ++i) ids_[row + i] = node_layers_[i] >= k ? next++ : ids_[row - nw + i];
+        for (std::size_t i = 0; i < nw; ++i) {
+            if (k == 0 && !base.empty() && base[i] != static_cast<Index>(i))
+                ids_[i] = base[i];  // a fan's column: from its wall node
+            else
+                ids_[row + i] = node_layers_[i] >= k ? next++ : ids_[row - nw + i];
+        }
     }
     level_start_.back() = next;
 }

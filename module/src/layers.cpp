@@ -15,6 +15,7 @@
 #include <strata/module/stencil.h>
 
 #include "columns.h"
+#include "fans.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -222,6 +223,10 @@ struct Marcher {
     /// Per node, the share of every layer height it marches (below 1 where the proximity
     /// limit leaves less room than the layers ask; LayerParams::proximity).
     std::vector<double> height_scale;
+    /// Per node, empty or a fixed marching direction (the columns of a fan, fans.h); zero: none.
+    std::vector<Vec3> fixed;
+    /// Per face, empty or 1 for a face of a fan (zero area on the wall; its cells are built to shape).
+    std::vector<char> fan_face;
 
     Vec3 at(const std::vector<Vec3>& r, const StencilPoint& p) const {
         return p.mirror == kNone ? r[p.node] : planes[p.mirror].reflect(r[p.node]);
@@ -247,6 +252,8 @@ struct Marcher {
                 if (t.norm() > 1e-12) n[i] = t.normalized();
             } else if (node_line[i] != Vec3::Zero()) {
                 n[i] = node_line[i];
+            } else if (!fixed.empty() && fixed[i] != Vec3::Zero()) {
+                n[i] = fixed[i];
             }
         return n;
     }
@@ -357,11 +364,14 @@ Index hold_back_folds(const Marcher& mc, const std::vector<Vec3>& r0, double dk,
     const SurfaceMesh& wall = mc.wall;
     const Index nw = wall.num_points(), nf = wall.num_faces();
     std::vector<Index> check;  // faces to (re)check this round
+    // A fan's faces have no area on the wall: their cells are shaped by construction.
+    auto fan = [&](Index f) { return !mc.fan_face.empty() && mc.fan_face[static_cast<std::size_t>(f)] != 0; };
     for (Index f = 0; f < nf; ++f)
-        if (cell_jacobian(wall, f, r0, r1) <= 0.0) check.push_back(f);
+        if (!fan(f) && cell_jacobian(wall, f, r0, r1) <= 0.0) check.push_back(f);
     if (check.empty()) return 0;
-    check.resize(static_cast<std::size_t>(nf));
-    for (Index f = 0; f < nf; ++f) check[static_cast<std::size_t>(f)] = f;
+    check.clear();
+    for (Index f = 0; f < nf; ++f)
+        if (!fan(f)) check.push_back(f);
 
     std::vector<char> held(static_cast<std::size_t>(nw), 0);
     std::vector<double> scale(static_cast<std::size_t>(nw), 1.0);
@@ -415,7 +425,7 @@ Index hold_back_folds(const Marcher& mc, const std::vector<Vec3>& r0, double dk,
         check.clear();
         for (const Index i : moved)
             for (const Index* f = mc.vf.row_begin(i); f != mc.vf.row_end(i); ++f)
-                if (face_round[static_cast<std::size_t>(*f)] != round) {
+                if (!fan(*f) && face_round[static_cast<std::size_t>(*f)] != round) {
                     face_round[static_cast<std::size_t>(*f)] = round;
                     check.push_back(*f);
                 }
@@ -507,10 +517,11 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
     return scale;
 }
 
-Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParams& params,
+Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const FanWall& fans, const LayerParams& params,
                      const std::vector<double>& delta, std::vector<Shortfall>& scale_reason,
                      std::vector<int>& max_levels) {
-    Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}};
+    Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}, {}, {}};
+    if (!fans.empty()) mc.fixed = fans.direction, mc.fan_face = fans.fan_face;
     const NodeRings rings = node_rings(w.mesh);
     {
         const std::vector<Vec3> n = node_normals(w.mesh, w.mesh.points, mc.vf, params.normals, mc.threads);
@@ -524,6 +535,9 @@ Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const LayerParam
     mc.st = build_stencils(w.mesh, rings, mc.node_plane, mc.planes);
     freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st, mc.threads);
     freeze_degenerate_nodes(mc);
+    // A fan's columns march along their fixed directions, unsmoothed.
+    for (std::size_t i = 0; i < mc.fixed.size(); ++i)
+        if (mc.fixed[i] != Vec3::Zero()) mc.st.valid[i] = 0;
     mc.control_functions();
     mc.height_scale = proximity_scale(surface, w, mc, delta, scale_reason, max_levels);
     return mc;
@@ -773,7 +787,26 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     if (!(params.max_turn_deg > 0.0))
         throw InputError("LayerParams::max_turn_deg = " + format_number(params.max_turn_deg) +
                          ": need an angle above 0 degrees");
-    const Wall w = extract_wall(surface);
+    Wall w = extract_wall(surface);
+    const Index nwall = w.mesh.num_points();
+    // Fans at sharp convex edges (fans.h): with local stopping, where smoothing runs.
+    FanWall fans;
+    if (params.min_quality > 0.0 && !params.keep_invalid && params.smoothing) {
+        std::vector<char> excluded;
+        if (!params.no_fan_nodes.empty()) {
+            if (params.no_fan_nodes.size() != surface.points.size())
+                throw InputError("LayerParams::no_fan_nodes has " + std::to_string(params.no_fan_nodes.size()) +
+                                 " values for a surface of " + std::to_string(surface.points.size()) + " nodes");
+            for (const Index i : w.input_node) excluded.push_back(params.no_fan_nodes[static_cast<std::size_t>(i)]);
+        }
+        fans = build_fans(w.mesh, w.loops, params.fan_angle_deg, excluded);
+    }
+    if (!fans.empty()) {
+        for (Index i = nwall; i < fans.mesh.num_points(); ++i)
+            w.input_node.push_back(w.input_node[static_cast<std::size_t>(fans.base[static_cast<std::size_t>(i)])]);
+        w.input_face.resize(static_cast<std::size_t>(fans.mesh.num_faces()), kNone);
+        w.mesh = std::move(fans.mesh);
+    }
     const int layers = params.distribution.layers;
     double thickness = 0.0;
     for (int k = 0; k < layers; ++k) thickness += delta[static_cast<std::size_t>(k)];
@@ -781,7 +814,17 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     const Index nw = w.mesh.num_points();
     LayerMesh out(nw, layers);
     Columns col(w.mesh, layers, out.mesh.points);
-    const Marcher mc = make_marcher(surface, w, params, delta, scale_reason, col.max_levels);
+    const Marcher mc = make_marcher(surface, w, fans, params, delta, scale_reason, col.max_levels);
+    if (!fans.empty()) {
+        // A fan's columns start at their wall node, and each gets its first layer.
+        for (Index i = nwall; i < nw; ++i)
+            col.point[static_cast<std::size_t>(i)] = fans.base[static_cast<std::size_t>(i)];
+        col.pinned.assign(static_cast<std::size_t>(nw), 0);
+        for (Index i = 0; i < nw; ++i)
+            col.pinned[static_cast<std::size_t>(i)] = fans.direction[static_cast<std::size_t>(i)] != Vec3::Zero();
+        out.fan_edges = fans.fan_edges, out.fan_nodes = fans.fan_nodes, out.fan_corners = fans.corners;
+        out.fan_column = col.pinned;
+    }
     out.input_node = w.input_node;
     for (Index i = 0; i < nw; ++i) out.unsmoothed_nodes += mc.st.valid[i] ? 0 : 1;
     out.asked_thickness = thickness;
@@ -797,7 +840,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     }
     out.scale_reason = std::move(scale_reason);
     out.mesh.points.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(layers + 1));
-    out.mesh.points.insert(out.mesh.points.end(), w.mesh.points.begin(), w.mesh.points.end());
+    out.mesh.points.insert(out.mesh.points.end(), w.mesh.points.begin(), w.mesh.points.begin() + nwall);
     report(progress, "layers", 0.0);
 
     // Stopping: on unless turned off (min_quality 0) or for diagnostics (keep_invalid).
@@ -825,6 +868,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
             check_folds(w, params, k, col, r1);
         }
         stats.stopped_nodes = stop_columns(col, rules, k, r1);
+        col.pinned.clear();
         for (Index i = 0; i < nw; ++i) {
             const auto u = static_cast<std::size_t>(i);
             if (col.levels[u] != k + 1) continue;
@@ -846,7 +890,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         report(progress, "layers", static_cast<double>(k + 1) / layers);
     }
     if (std::all_of(col.levels.begin(), col.levels.end(), [](int l) { return l == 0; })) throw_no_layers(w, col);
-    out.set_columns(col.levels);
+    out.set_columns(col.levels, fans.empty() ? std::vector<Index>{} : fans.base);
     out.stop_reason.assign(static_cast<std::size_t>(nw), Shortfall::None);
     for (Index i = 0; i < nw; ++i)
         if (col.levels[static_cast<std::size_t>(i)] < layers)

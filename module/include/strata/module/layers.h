@@ -64,6 +64,16 @@ struct LayerParams {
     /// A column also stops where its next segment would turn more than this (degrees) from
     /// its previous one: the front folding over.
     double max_turn_deg = 60.0;
+    /// Fans (ALGORITHM.md, "Fans"): at a convex edge whose faces turn by this many degrees or
+    /// more (a sharp trailing edge, a thin fin's tip), and at the convex edges of 30° or more
+    /// that close its chain, each node gets a column per side of the edge and columns between
+    /// them, at most 90° apart, so the cells beside the edge stay near-orthogonal where one
+    /// direction per node would cap them near cos(turn / 2) (0.26 at 150°). 0: no fans. Only
+    /// with local stopping (min_quality > 0). ALGORITHM.md says why 150° and not lower.
+    double fan_angle_deg = 150.0;
+    /// Empty, or one per node of the surface given to extrude_layers: 1 where no fan may be
+    /// (build_hybrid_mesh marks the nodes of a fan whose face on the layer top no pyramid can cap).
+    std::vector<char> no_fan_nodes;
     ProximityParams proximity_limits;
     /// Empty, or one per node of the surface given to extrude_layers: a further bound on the
     /// node's total thickness (infinity: none), smoothed along the wall like the proximity
@@ -124,6 +134,10 @@ public:
     std::vector<Shortfall> scale_reason;  ///< per wall node, why that share is below 1 (Proximity or Front)
     std::vector<Shortfall> stop_reason;   ///< per wall node, why its column stopped below layers() (None: it did not)
     std::vector<char> held_back;          ///< per wall node, 1 if some layer held it back (hold_back)
+    Index fan_edges = 0;                  ///< edges of the input wall with a fan (LayerParams::fan_angle_deg)
+    Index fan_nodes = 0;                  ///< nodes of the input wall split into a fan's columns
+    Index fan_corners = 0;                ///< of those, corners where three or more fan edges meet
+    std::vector<char> fan_column;         ///< empty, or per wall node 1 for a column of a fan
 
     Index wall_nodes() const { return wall_nodes_; }
     /// Levels asked above the wall: the tallest a column can be.
@@ -144,8 +158,10 @@ public:
     /// The level of node \p node of mesh.points.
     int level_of(Index node) const;
     /// Number the nodes for columns of \p node_layers levels (one per wall node, 0..layers()),
-    /// level by level as above; mesh.points must hold them in that order.
-    void set_columns(std::vector<int> node_layers);
+    /// level by level as above; mesh.points must hold them in that order. \p base: empty, or
+    /// per wall node the node its column starts at on level 0, the wall nodes with base[i] = i
+    /// first (a fan's columns share their wall node): level 0 then holds only those.
+    void set_columns(std::vector<int> node_layers, std::vector<Index> base = {});
 
 private:
     Index wall_nodes_ = 0;

@@ -1,0 +1,460 @@
+// Fans at sharp convex edges and corners: fans.h.
+
+#include "fans.h"
+
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
+#include <strata/geometry/normals.h>
+#include <strata/geometry/topology.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <numeric>
+
+namespace strata {
+namespace {
+
+constexpr double kFeatureDeg = 30.0;  ///< convex edges that close a fan's chains (the M6 tip cap's turn 30-47°)
+constexpr double kWedgeDeg = 90.0;    ///< widest wedge between two columns of a fan
+/// Least det(a, b, c) of the directions of a corner's columns over each of its cells: below,
+/// the corner's cells would be flat (its sides' normals nearly in one plane), and the fan
+/// edge there that turns least is dropped. A box corner spans 1, a wing's trailing edge at
+/// its root 0.66.
+constexpr double kCornerSpan = 0.25;
+struct UnionFind {
+    std::vector<Index> parent;
+    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), Index{0}); }
+    Index find(Index x) {
+        while (parent[static_cast<std::size_t>(x)] != x)
+            x = parent[static_cast<std::size_t>(x)] =
+                parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+        return x;
+    }
+    void unite(Index a, Index b) {
+        a = find(a), b = find(b);
+        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+};
+
+Vec3 unit(const Vec3& v) {
+    const double l = v.norm();
+    return l > 0.0 ? Vec3(v / l) : Vec3::Zero();
+}
+
+/// Spherical interpolation from unit \p a to unit \p b (less than 180° apart).
+Vec3 slerp(const Vec3& a, const Vec3& b, double t) {
+    const double ang = std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+    if (ang < 1e-9) return a;
+    const double s = std::sin(ang);
+    return unit(std::sin((1.0 - t) * ang) / s * a + std::sin(t * ang) / s * b);
+}
+
+/// Whether face \p f goes from \p a to \p b.
+bool goes(const SurfaceMesh& m, Index f, Index a, Index b) {
+    const Index n = m.face_size(f);
+    for (Index c = 0; c < n; ++c)
+        if (m.face_node(f, c) == a && m.face_node(f, (c + 1) % n) == b) return true;
+    return false;
+}
+
+/// Unit vector in face \p f's plane, perpendicular to its edge (a, b), pointing into the face.
+Vec3 into_face(const SurfaceMesh& m, Index f, Index a, Index b) {
+    const Vec3 e = unit(m.points[b] - m.points[a]);
+    const Vec3 d = face_centroid(m, m.points, f) - m.points[a];
+    return unit(d - d.dot(e) * e);
+}
+
+}  // namespace
+
+namespace {
+
+/// Drop the fan edges at nodes with only one (such a node cannot be split) until none is left:
+/// the graph's 2-core. Returns the fan edges per node.
+std::vector<std::vector<Index>> prune(const EdgeTable& et, std::size_t un, std::vector<char>& keep) {
+    const auto ne = et.nodes.size();
+    std::vector<std::vector<Index>> at(un);
+    for (std::size_t e = 0; e < ne; ++e)
+        if (keep[e])
+            for (const Index v : et.nodes[e]) at[static_cast<std::size_t>(v)].push_back(static_cast<Index>(e));
+    std::vector<int> degree(un, 0);
+    std::vector<Index> queue;
+    for (std::size_t i = 0; i < un; ++i)
+        if ((degree[i] = static_cast<int>(at[i].size())) == 1) queue.push_back(static_cast<Index>(i));
+    while (!queue.empty()) {
+        const Index i = queue.back();
+        queue.pop_back();
+        for (const Index e : at[static_cast<std::size_t>(i)]) {
+            if (!keep[static_cast<std::size_t>(e)]) continue;
+            keep[static_cast<std::size_t>(e)] = 0;
+            for (const Index v : et.nodes[static_cast<std::size_t>(e)])
+                if (--degree[static_cast<std::size_t>(v)] == 1) queue.push_back(v);
+        }
+    }
+    for (std::size_t i = 0; i < un; ++i) {
+        auto& a = at[i];
+        a.erase(std::remove_if(a.begin(), a.end(), [&](Index e) { return !keep[static_cast<std::size_t>(e)]; }),
+                a.end());
+    }
+    return at;
+}
+
+/// The fan wall for the fan edges \p keep (a 2-core, \p at per node), or the fan edges to drop
+/// before trying again (\p bad, empty if none): where a corner's columns span too little
+/// (nearly in one plane: its cells would be flat), the corner's fan edge that turns least.
+FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector<char>& keep,
+                 const std::vector<std::vector<Index>>& at, const std::vector<double>& turn, std::vector<Index>& bad) {
+    FanWall out;
+    bad.clear();
+    const Index nn = wall.num_points(), nf = wall.num_faces();
+    const auto un = static_cast<std::size_t>(nn);
+    const auto ne = et.nodes.size();
+    for (std::size_t e = 0; e < ne; ++e) out.fan_edges += keep[e] ? 1 : 0;
+    // Wedges per edge: ceil(turn / 90°), the largest along the chain (runs through nodes with
+    // two fan edges) so that the columns between match along it.
+    std::vector<int> wedges(ne, 0);
+    {
+        UnionFind runs(ne);
+        for (std::size_t i = 0; i < un; ++i)
+            if (at[i].size() == 2) runs.unite(at[i][0], at[i][1]);
+        std::vector<double> worst(ne, 0.0);
+        for (std::size_t e = 0; e < ne; ++e)
+            if (keep[e]) {
+                double& w = worst[static_cast<std::size_t>(runs.find(static_cast<Index>(e)))];
+                w = std::max(w, turn[e]);
+            }
+        for (std::size_t e = 0; e < ne; ++e)
+            if (keep[e])
+                wedges[e] = std::max(
+                    1, static_cast<int>(std::ceil(
+                           worst[static_cast<std::size_t>(runs.find(static_cast<Index>(e)))] / kWedgeDeg - 1e-9)));
+    }
+
+    // Sectors: the faces round a fan node between two of its fan edges. The sector of the
+    // node's lowest face keeps the node's id, the others get new nodes.
+    const Csr vf = vertex_faces(wall);
+    auto edge_of = [&](Index a, Index b) {
+        const std::array<Index, 2> key{std::min(a, b), std::max(a, b)};
+        return static_cast<Index>(std::lower_bound(et.nodes.begin(), et.nodes.end(), key) - et.nodes.begin());
+    };
+    std::vector<std::array<Index, 4>> corner_node(static_cast<std::size_t>(nf));  // per face corner: its column
+    for (Index f = 0; f < nf; ++f) {
+        auto& c = corner_node[static_cast<std::size_t>(f)];
+        c = {kNone, kNone, kNone, kNone};
+        std::copy(wall.face_begin(f), wall.face_end(f), c.begin());
+    }
+    out.mesh.patches = wall.patches;
+    out.mesh.points = wall.points;
+    out.base.resize(un);
+    std::iota(out.base.begin(), out.base.end(), Index{0});
+    out.direction.assign(un, Vec3::Zero());
+    auto add_node = [&](Index i, const Vec3& dir) {
+        out.mesh.points.push_back(wall.points[i]);
+        out.base.push_back(i);
+        out.direction.push_back(dir);
+        return static_cast<Index>(out.mesh.points.size() - 1);
+    };
+    std::map<std::pair<Index, Index>, Index> sector_node;  // (node, a face of the sector) → column
+    for (Index i = 0; i < nn; ++i) {
+        if (at[static_cast<std::size_t>(i)].size() < 2) continue;
+        ++out.fan_nodes;
+        out.corners += at[static_cast<std::size_t>(i)].size() > 2 ? 1 : 0;
+        const Index* f0 = vf.row_begin(i);
+        const auto m = static_cast<std::size_t>(vf.row_size(i));
+        UnionFind sec(m);
+        for (std::size_t p = 0; p < m; ++p)
+            for (std::size_t q = p + 1; q < m; ++q) {
+                // Faces p and q share an edge at i that has no fan: one sector.
+                const Index fp = f0[p], fq = f0[q];
+                for (Index c = 0; c < wall.face_size(fp); ++c) {
+                    const Index x = wall.face_node(fp, c);
+                    if (x == i) continue;
+                    bool in_q = false;
+                    for (const Index* v = wall.face_begin(fq); v != wall.face_end(fq); ++v) in_q |= *v == x;
+                    const Index e = edge_of(i, x);
+                    if (in_q && static_cast<std::size_t>(e) < ne &&
+                        et.nodes[static_cast<std::size_t>(e)] == std::array<Index, 2>{std::min(i, x), std::max(i, x)} &&
+                        !keep[static_cast<std::size_t>(e)])
+                        sec.unite(static_cast<Index>(p), static_cast<Index>(q));
+                }
+            }
+        // Sector normals: the max-min direction of the corner normals at i of its faces.
+        std::map<Index, std::vector<Vec3>> corners_of;
+        for (std::size_t p = 0; p < m; ++p) {
+            const Index f = f0[p];
+            const Index n = wall.face_size(f);
+            for (Index c = 0; c < n; ++c)
+                if (wall.face_node(f, c) == i) {
+                    const Vec3& o = wall.points[i];
+                    corners_of[sec.find(static_cast<Index>(p))].push_back(
+                        unit((wall.points[wall.face_node(f, (c + 1) % n)] - o)
+                                 .cross(wall.points[wall.face_node(f, (c + n - 1) % n)] - o)));
+                }
+        }
+        bool first = true;
+        for (const auto& [root, corners] : corners_of) {
+            const Vec3 dir = unit(max_min_dot_direction(corners));
+            const Index id = first ? i : add_node(i, dir);
+            if (first) out.direction[static_cast<std::size_t>(i)] = dir;
+            first = false;
+            for (std::size_t p = 0; p < m; ++p)
+                if (sec.find(static_cast<Index>(p)) == root) {
+                    sector_node[{i, f0[p]}] = id;
+                    const Index f = f0[p];
+                    for (Index c = 0; c < wall.face_size(f); ++c)
+                        if (wall.face_node(f, c) == i)
+                            corner_node[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)] = id;
+                }
+        }
+    }
+
+    // The columns between: per fan edge and end, from the side of the face that goes from
+    // the edge's low node to its high one (f) to the other (g). A node with two fan edges
+    // shares them between both (its two sectors, in the order of their column ids).
+    std::map<Index, std::vector<Index>> shared;                 // node → columns from its lower sector column
+    std::map<std::pair<Index, Index>, std::vector<Index>> own;  // (node, edge) → columns from f's side
+    auto reference = [&](Index i, Index e, const Vec3& na, const Vec3& nb) {
+        const Index a = et.nodes[static_cast<std::size_t>(e)][0], b = et.nodes[static_cast<std::size_t>(e)][1];
+        const Index f = et.faces.row_begin(e)[0], g = et.faces.row_begin(e)[1];
+        (void)i;
+        return unit(na + nb - into_face(wall, f, a, b) - into_face(wall, g, a, b));
+    };
+    auto between = [&](Index i, const Vec3& na, const Vec3& nb, const Vec3& ref, int w) {
+        std::vector<Index> ids;
+        for (int q = 1; q < w; ++q) {
+            const double t = static_cast<double>(q) / w;
+            ids.push_back(add_node(i, t <= 0.5 ? slerp(na, ref, 2.0 * t) : slerp(ref, nb, 2.0 * t - 1.0)));
+        }
+        return ids;
+    };
+    auto sides = [&](Index e, Index& f, Index& g) {
+        const Index a = et.nodes[static_cast<std::size_t>(e)][0], b = et.nodes[static_cast<std::size_t>(e)][1];
+        f = et.faces.row_begin(e)[0], g = et.faces.row_begin(e)[1];
+        if (!goes(wall, f, a, b)) std::swap(f, g);
+    };
+    auto column_run = [&](Index i, Index e) {
+        Index f = kNone, g = kNone;
+        sides(e, f, g);
+        const Index sf = sector_node.at({i, f}), sg = sector_node.at({i, g});
+        const Vec3 &nf_ = out.direction[static_cast<std::size_t>(sf)],
+                   &ng = out.direction[static_cast<std::size_t>(sg)];
+        const int w = wedges[static_cast<std::size_t>(e)];
+        std::vector<Index> run{sf};
+        if (at[static_cast<std::size_t>(i)].size() == 2) {
+            const Index lo = std::min(sf, sg), hi = std::max(sf, sg);
+            auto it = shared.find(i);
+            if (it == shared.end()) {
+                const auto& es = at[static_cast<std::size_t>(i)];
+                const Vec3& nl = out.direction[static_cast<std::size_t>(lo)];
+                const Vec3& nh = out.direction[static_cast<std::size_t>(hi)];
+                const Vec3 ref = unit(reference(i, es[0], nl, nh) + reference(i, es[1], nl, nh));
+                it = shared.emplace(i, between(i, nl, nh, ref, w)).first;
+            }
+            std::vector<Index> mid = it->second;
+            if (sf != lo) std::reverse(mid.begin(), mid.end());
+            run.insert(run.end(), mid.begin(), mid.end());
+        } else {
+            auto it = own.find({i, e});
+            if (it == own.end())
+                it = own.emplace(std::make_pair(i, e), between(i, nf_, ng, reference(i, e, nf_, ng), w)).first;
+            run.insert(run.end(), it->second.begin(), it->second.end());
+        }
+        run.push_back(sg);
+        return run;
+    };
+
+    // The wall's faces with their corners' columns, then the fans' quads along each edge.
+    for (Index f = 0; f < nf; ++f)
+        out.mesh.add_face(corner_node[static_cast<std::size_t>(f)].data(), wall.face_size(f), wall.face_patch[f]);
+    out.fan_face.assign(static_cast<std::size_t>(nf), 0);
+    std::map<Index, std::vector<std::pair<Index, Index>>> corner_edges;  // corner node → directed column edges
+    for (std::size_t e = 0; e < ne; ++e) {
+        if (!keep[e]) continue;
+        const Index a = et.nodes[e][0], b = et.nodes[e][1];
+        const std::vector<Index> ra = column_run(a, static_cast<Index>(e)), rb = column_run(b, static_cast<Index>(e));
+        Index f = kNone, g = kNone;
+        sides(static_cast<Index>(e), f, g);
+        for (std::size_t q = 0; q + 1 < ra.size(); ++q) {
+            out.mesh.add_face({rb[q], ra[q], ra[q + 1], rb[q + 1]}, wall.face_patch[f]);
+            out.fan_face.push_back(1);
+            if (at[static_cast<std::size_t>(a)].size() > 2) corner_edges[a].push_back({ra[q], ra[q + 1]});
+            if (at[static_cast<std::size_t>(b)].size() > 2) corner_edges[b].push_back({rb[q + 1], rb[q]});
+        }
+    }
+    // At a corner the fans' quads leave a polygon of the node's columns open: close it (as
+    // triangles from its first column where it has more than four).
+    for (auto& [i, edges] : corner_edges) {
+        std::map<Index, Index> next;  // the polygon goes opposite to the quads' edges
+        for (const auto& [x, y] : edges) next[y] = x;
+        std::vector<Index> poly{next.begin()->first};
+        while (poly.size() <= edges.size()) {
+            const auto it = next.find(poly.back());
+            if (it == next.end()) break;
+            if (it->second == poly.front()) break;
+            poly.push_back(it->second);
+        }
+        if (poly.size() != edges.size())
+            throw TopologyError("internal: the fans at the corner " + std::to_string(i) +
+                                " do not close into one polygon");
+        const Index patch = wall.face_patch[vf.row_begin(i)[0]];
+        // On the wall the polygon's cells are a tetrahedron per triangle (the node, and the
+        // triangle's columns one step out), or a pyramid on a quad: each as good as the three
+        // directions it spans, det(a, b, c). A quad whose every corner spans well stays one;
+        // otherwise the fan of triangles whose worst triangle spans most.
+        const std::size_t p = poly.size();
+        auto span = [&](std::size_t a, std::size_t b, std::size_t c) {
+            const Vec3& x = out.direction[static_cast<std::size_t>(poly[a % p])];
+            const Vec3& y = out.direction[static_cast<std::size_t>(poly[b % p])];
+            const Vec3& z = out.direction[static_cast<std::size_t>(poly[c % p])];
+            return x.dot(y.cross(z));
+        };
+        double best = -2.0;
+        std::size_t from = 0;
+        for (std::size_t s = 0; s < p; ++s) {
+            double worst = 2.0;
+            for (std::size_t t = 1; t + 1 < p; ++t) worst = std::min(worst, span(s, s + t, s + t + 1));
+            if (worst > best) best = worst, from = s;
+        }
+        if (best < kCornerSpan) {
+            // Too flat: drop the corner's fan edge that turns least, and try again.
+            Index weakest = kNone;
+            for (const Index e : at[static_cast<std::size_t>(i)])
+                if (weakest == kNone || turn[static_cast<std::size_t>(e)] < turn[static_cast<std::size_t>(weakest)])
+                    weakest = e;
+            bad.push_back(weakest);  // one at a time: dropping it may leave the other corners sound
+            return out;
+        }
+        double quad = 2.0;
+        for (std::size_t c = 0; c < p; ++c) quad = std::min(quad, span(c + p - 1, c, c + 1));
+        if (p == 3 || (p == 4 && quad >= 0.5 * best && quad > 0.0)) {
+            out.mesh.add_face(poly.data(), static_cast<Index>(p), patch);
+            out.fan_face.push_back(1);
+        } else {
+            for (std::size_t t = 1; t + 1 < p; ++t) {
+                out.mesh.add_face({poly[from], poly[(from + t) % p], poly[(from + t + 1) % p]}, patch);
+                out.fan_face.push_back(1);
+            }
+        }
+    }
+    out.columns = out.mesh.num_points() - nn;
+    return out;
+}
+
+}  // namespace
+
+FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_deg, const std::vector<char>& excluded) {
+    FanWall out;
+    if (!(fan_angle_deg > 0.0)) return out;
+    const Index nn = wall.num_points(), nf = wall.num_faces();
+    const auto un = static_cast<std::size_t>(nn);
+    const EdgeTable et = edge_table(wall);
+    const auto ne = et.nodes.size();
+    std::vector<char> open(un, 0);
+    for (Index l = 0; l < loops.rows(); ++l)
+        for (const Index* v = loops.row_begin(l); v != loops.row_end(l); ++v) open[static_cast<std::size_t>(*v)] = 1;
+    for (std::size_t i = 0; i < excluded.size() && i < un; ++i) open[i] |= excluded[i];
+    std::vector<Vec3> normal(static_cast<std::size_t>(nf));
+    for (Index f = 0; f < nf; ++f) normal[static_cast<std::size_t>(f)] = unit(face_area_vector(wall, f));
+
+    // Convex edges turning 30° or more; those of their chains that hold an edge turning
+    // fan_angle_deg or more.
+    std::vector<double> turn(ne, 0.0);
+    std::vector<char> keep(ne, 0);
+    bool any_seed = false;
+    UnionFind chains(un);
+    for (std::size_t e = 0; e < ne; ++e) {
+        const Index a = et.nodes[e][0], b = et.nodes[e][1];
+        if (et.faces.row_size(static_cast<Index>(e)) != 2 || open[static_cast<std::size_t>(a)] ||
+            open[static_cast<std::size_t>(b)])
+            continue;
+        const Index f = et.faces.row_begin(static_cast<Index>(e))[0], g = et.faces.row_begin(static_cast<Index>(e))[1];
+        const Vec3 &nf_ = normal[static_cast<std::size_t>(f)], &ng = normal[static_cast<std::size_t>(g)];
+        if (nf_ == Vec3::Zero() || ng == Vec3::Zero()) continue;
+        const double t = std::acos(std::clamp(nf_.dot(ng), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+        const bool convex = (face_centroid(wall, wall.points, g) - wall.points[a]).dot(nf_) < 0.0 &&
+                            (face_centroid(wall, wall.points, f) - wall.points[a]).dot(ng) < 0.0;
+        if (!convex || t < kFeatureDeg) continue;
+        turn[e] = t;
+        keep[e] = 1;
+        chains.unite(a, b);
+        any_seed |= t >= fan_angle_deg;
+    }
+    if (!any_seed) return out;
+    std::vector<char> seeded(un, 0);
+    for (std::size_t e = 0; e < ne; ++e)
+        if (keep[e] && turn[e] >= fan_angle_deg) seeded[static_cast<std::size_t>(chains.find(et.nodes[e][0]))] = 1;
+    for (std::size_t e = 0; e < ne; ++e)
+        if (keep[e] && !seeded[static_cast<std::size_t>(chains.find(et.nodes[e][0]))]) keep[e] = 0;
+
+    // Each round drops one fan edge, so this ends.
+    for (;;) {
+        const std::vector<std::vector<Index>> at = prune(et, un, keep);
+        if (std::none_of(keep.begin(), keep.end(), [](char k) { return k != 0; })) return out;
+        std::vector<Index> bad;
+        FanWall fw = assemble(wall, et, keep, at, turn, bad);
+        if (bad.empty()) return fw;
+        for (const Index e : bad) keep[static_cast<std::size_t>(e)] = 0;
+    }
+}
+
+bool collapse_cell(CellType& type, std::array<Index, 8>& id) {
+    const int n = type == CellType::Tet ? 4 : type == CellType::Pyramid ? 5 : type == CellType::Prism ? 6 : 8;
+    std::vector<Index> distinct(id.begin(), id.begin() + n);
+    std::sort(distinct.begin(), distinct.end());
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    if (static_cast<int>(distinct.size()) == n) return true;
+    const std::array<Index, 8> v = id;
+    if (type == CellType::Prism && v[0] == v[1] && v[1] == v[2]) {  // the apex below the top
+        id = {v[3], v[5], v[4], v[0], kNone, kNone, kNone, kNone};
+        type = CellType::Tet;
+        return distinct.size() == 4;
+    }
+    if (distinct.size() == 4 && type != CellType::Hex) {
+        // Four distinct nodes of a prism or pyramid: a tetrahedron, its order from the cell's.
+        std::array<Index, 8> t{};
+        int k = 0;
+        for (int c = 0; c < n; ++c)
+            if (std::find(t.begin(), t.begin() + k, v[static_cast<std::size_t>(c)]) == t.begin() + k)
+                t[static_cast<std::size_t>(k++)] = v[static_cast<std::size_t>(c)];
+        type = CellType::Tet;
+        id = t;
+        return true;
+    }
+    if (type == CellType::Hex && distinct.size() == 5 && v[0] == v[1] && v[1] == v[2] && v[2] == v[3]) {
+        id = {v[4], v[7], v[6], v[5], v[0], kNone, kNone, kNone};  // the apex below the top
+        type = CellType::Pyramid;
+        return true;
+    }
+    if (type == CellType::Hex && distinct.size() == 6) {
+        if (v[0] == v[3] && v[1] == v[2]) {
+            id = {v[0], v[7], v[4], v[1], v[6], v[5], kNone, kNone};
+        } else if (v[0] == v[1] && v[2] == v[3]) {
+            id = {v[0], v[4], v[5], v[3], v[7], v[6], kNone, kNone};
+        } else {
+            return false;
+        }
+        type = CellType::Prism;
+        return true;
+    }
+    if (type == CellType::Prism && distinct.size() == 5) {
+        for (int c = 0; c < 3; ++c)
+            if (v[static_cast<std::size_t>(c)] == v[static_cast<std::size_t>(c + 3)]) {
+                // A collapsed vertical edge: a pyramid on the opposite side face.
+                const int a = (c + 1) % 3, b = (c + 2) % 3;
+                id = {v[static_cast<std::size_t>(a)],
+                      v[static_cast<std::size_t>(a + 3)],
+                      v[static_cast<std::size_t>(b + 3)],
+                      v[static_cast<std::size_t>(b)],
+                      v[static_cast<std::size_t>(c)],
+                      kNone,
+                      kNone,
+                      kNone};
+                type = CellType::Pyramid;
+                return true;
+            }
+    }
+    return false;
+}
+
+}  // namespace strata

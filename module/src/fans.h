@@ -1,0 +1,51 @@
+#pragma once
+// Private to the layer module: fans at sharp convex edges and corners (ALGORITHM.md, "Fans").
+// One marching direction per wall node caps the scaled Jacobian of the cells beside an edge
+// of turning angle t near cos(t / 2) (0.09 at a trailing edge whose faces turn 170°). A fan
+// node instead gets a column per side of its sharp edges (along that side's normal) and
+// columns between them; the wall given to the marching gets, along each sharp edge, a strip
+// of quads of zero area between those columns, and at a corner where three or more such
+// edges meet a polygon closing them. On the wall (level 0) all of a node's columns start at
+// the node itself, so the cells there collapse to standard ones (collapse_cell): wedges
+// (prisms) along the edges, a tetrahedron or pyramid at a corner; above, they are ordinary
+// prisms and hexahedra.
+
+#include <strata/core/cell_quality.h>
+#include <strata/core/surface_mesh.h>
+#include <strata/core/types.h>
+
+#include <array>
+#include <vector>
+
+namespace strata {
+
+struct FanWall {
+    SurfaceMesh mesh;             ///< the wall with its fan nodes split; its first faces are the wall's, in order
+    std::vector<Index> base;      ///< per node of mesh: the wall node it starts at (i for the wall's own nodes)
+    std::vector<Vec3> direction;  ///< per node of mesh: its fixed marching direction, zero for a node not in a fan
+    std::vector<char> fan_face;   ///< per face of mesh: 1 for a face of a fan (zero area on the wall)
+    Index fan_edges = 0;          ///< wall edges with a fan
+    Index fan_nodes = 0;          ///< wall nodes split into fans
+    Index corners = 0;            ///< of those, corners (three or more fan edges)
+    Index columns = 0;            ///< columns added (mesh nodes beyond the wall's)
+    bool empty() const { return fan_edges == 0; }
+};
+
+/// Fans on \p wall (oriented, normals into the flow): at every convex edge whose faces turn by
+/// \p fan_angle_deg or more, and at the convex edges turning 30° or more that are connected
+/// to one (so a trailing edge's fan closes into the tip's and root's edges), minus chains that
+/// end without closing (a node with a single fan edge cannot be split) and nodes on the
+/// wall's open boundary \p loops and the nodes \p excluded marks (empty or one per wall node),
+/// and the fan edges of corners whose sides' normals lie nearly in one plane. Each edge gets
+/// ceil(turn / 90°) wedges. Empty (fan_edges 0) if no edge qualifies or \p fan_angle_deg is 0.
+FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_deg, const std::vector<char>& excluded);
+
+/// A cell of \p type over node ids \p id (Gmsh order) some of which repeat (columns of a fan
+/// on the wall) as the standard cell of its distinct nodes: a hexahedron whose bottom is a
+/// collapsed edge pair becomes a prism, whose bottom is one node a pyramid; a prism or pyramid
+/// with four distinct nodes a tetrahedron; a prism with one collapsed vertical edge a
+/// pyramid; each oriented as the cell it collapses. In place; false for a pattern no standard
+/// cell represents.
+bool collapse_cell(CellType& type, std::array<Index, 8>& id);
+
+}  // namespace strata

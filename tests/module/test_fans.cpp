@@ -1,0 +1,227 @@
+// Fans at sharp convex edges and corners (module/src/fans.{h,cpp}, and through extrude_layers):
+// a blade whose edge turns 170°, closed by end caps, with and without fans; the cells a fan's
+// columns make on the wall; the same bytes for any thread count.
+
+#include <strata/core/cell_quality.h>
+#include <strata/core/error.h>
+#include <strata/core/validate.h>
+#include <strata/geometry/topology.h>
+#include <strata/module/layers.h>
+
+#include <gtest/gtest.h>
+
+#include "fans.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace strata {
+namespace {
+
+/// A blade along y (0..1, \p ny segments): its section a triangle of apex angle \p apex_deg
+/// with the sharp edge at x = 1 and the blunt base at x = 0, closed by triangular end caps;
+/// triangles, normals out of the blade.
+SurfaceMesh blade(int ny, double apex_deg) {
+    const double t = std::tan(0.5 * apex_deg * std::numbers::pi / 180.0);
+    SurfaceMesh m;
+    m.patches = {{"blade", PatchKind::Wall}};
+    for (int j = 0; j <= ny; ++j) {
+        const double y = static_cast<double>(j) / ny;
+        m.points.push_back(Vec3(0.0, y, -t));   // 3j: base, lower
+        m.points.push_back(Vec3(0.0, y, t));    // 3j + 1: base, upper
+        m.points.push_back(Vec3(1.0, y, 0.0));  // 3j + 2: the sharp edge
+    }
+    auto quad = [&](Index a, Index b, Index c, Index d) {
+        m.add_face({a, b, c}, 0);
+        m.add_face({a, c, d}, 0);
+    };
+    for (Index j = 0; j < ny; ++j) {
+        const Index bl = 3 * j, bu = bl + 1, a = bl + 2, n = 3;
+        quad(bu, a, a + n, bu + n);    // upper
+        quad(bl, bl + n, a + n, a);    // lower
+        quad(bl, bu, bu + n, bl + n);  // base
+    }
+    const Index e = 3 * static_cast<Index>(ny);
+    m.add_face({0, 2, 1}, 0);
+    m.add_face({e, e + 1, e + 2}, 0);
+    return m;
+}
+
+LayerParams blade_layers(double fan_angle) {
+    LayerParams p;
+    p.distribution.layers = 5;
+    p.distribution.first_height = 0.01;
+    p.distribution.growth = 1.2;
+    p.fan_angle_deg = fan_angle;
+    return p;
+}
+
+/// The smallest scaled Jacobian of the layers' cells of \p type (prisms and hexahedra: Prism).
+double layer_cell_quality(const LayerMesh& lm, CellType type = CellType::Prism) {
+    const ValidationReport v = validate_mesh(lm.mesh);
+    EXPECT_TRUE(v.ok()) << (v.problems.empty() ? std::string() : v.problems.front());
+    const double q = v.by_type[static_cast<std::size_t>(type)].min_scaled_jacobian;
+    return type == CellType::Prism ? std::min(q, v.by_type[static_cast<std::size_t>(CellType::Hex)].min_scaled_jacobian)
+                                   : q;
+}
+
+/// The smallest sine of a corner angle of \p wall's faces: the best a prism on them can be.
+double best_prism(const SurfaceMesh& wall) {
+    double q = 1.0;
+    for (Index f = 0; f < wall.num_faces(); ++f)
+        for (Index c = 0; c < 3; ++c) {
+            const Vec3& o = wall.points[wall.face_node(f, c)];
+            const Vec3 a = wall.points[wall.face_node(f, (c + 1) % 3)] - o,
+                       b = wall.points[wall.face_node(f, (c + 2) % 3)] - o;
+            q = std::min(q, a.cross(b).norm() / (a.norm() * b.norm()));
+        }
+    return q;
+}
+
+TEST(Fans, TheBladesEdgeAndTheLoopsClosingItGetFansAndItsCornersGetPolygons) {
+    const SurfaceMesh wall = blade(8, 10.0);
+    const FanWall fw = build_fans(wall, boundary_loops(wall), 120.0, {});
+    // The sharp edge (8 edges), the base's two edges (16) and the caps' three (6).
+    EXPECT_EQ(fw.fan_edges, 30);
+    EXPECT_EQ(fw.fan_nodes, wall.num_points());
+    EXPECT_EQ(fw.corners, 6);
+    // The sharp edge's nodes: two sides 170° apart, two wedges of 85° (one column between).
+    const Index edge_node = 3 * 4 + 2;
+    std::vector<Vec3> dirs;
+    for (Index i = 0; i < fw.mesh.num_points(); ++i)
+        if (fw.base[static_cast<std::size_t>(i)] == edge_node)
+            dirs.push_back(fw.direction[static_cast<std::size_t>(i)]);
+    ASSERT_EQ(dirs.size(), 3u);
+    for (const Vec3& d : dirs) EXPECT_NEAR(d.norm(), 1.0, 1e-12);
+    // One column along +x (between), the others along the faces' normals (±z, tilted by 5°).
+    int along_x = 0;
+    for (const Vec3& d : dirs) along_x += d.x() > 0.99 ? 1 : 0;
+    EXPECT_EQ(along_x, 1);
+    // The wall is still one closed, consistently oriented surface, its fan faces of zero area.
+    EXPECT_TRUE(boundary_loops(fw.mesh).rows() == 0);
+    Index fan_faces = 0;
+    for (const char f : fw.fan_face) fan_faces += f;
+    EXPECT_EQ(fw.mesh.num_faces(), wall.num_faces() + fan_faces);
+    // Two wedges per edge of the sharp edge (170°) and of the base (95°), one per cap edge (90°),
+    // and at each corner its polygon of four columns (a quad, or two triangles).
+    EXPECT_GE(fan_faces, 8 * 2 + 16 * 2 + 6 + 6);
+    EXPECT_LE(fan_faces, 8 * 2 + 16 * 2 + 6 + 12);
+    // Nothing to fan below the angle, or with the angle 0.
+    EXPECT_TRUE(build_fans(wall, boundary_loops(wall), 175.0, {}).empty());
+    EXPECT_TRUE(build_fans(wall, boundary_loops(wall), 0.0, {}).empty());
+}
+
+TEST(Fans, LiftTheQualityCapOfOneDirectionAtASharpEdge) {
+    const SurfaceMesh wall = blade(8, 10.0);
+    const LayerMesh with = extrude_layers(wall, blade_layers(120.0));
+    EXPECT_EQ(with.fan_edges, 30);
+    // With fans every column has every layer and every cell is near-orthogonal. With one
+    // direction per node, the sharp edge's cells are capped near cos(85°) and the base's and
+    // caps' near cos(45°) on faces that are needles across the blade: no column keeps a usable
+    // first cell, and the run says so.
+    for (Index i = 0; i < with.wall_nodes(); ++i) EXPECT_EQ(with.node_layers(i), 5) << i;
+    // The wedges (hexahedra) are near-orthogonal; the prisms as good as their (needle) faces allow.
+    EXPECT_GT(layer_cell_quality(with, CellType::Hex), 0.5);
+    EXPECT_GT(layer_cell_quality(with), 0.8 * best_prism(wall));
+    EXPECT_THROW(extrude_layers(wall, blade_layers(0.0)), TopologyError);
+    // A blunter blade (40°) without fans grows, its sharp edge's cells poor or its columns short.
+    const SurfaceMesh blunt = blade(8, 40.0);
+    const LayerMesh without = extrude_layers(blunt, blade_layers(0.0));
+    EXPECT_EQ(without.fan_edges, 0);
+    bool edge_short = false;
+    for (Index j = 0; j <= 8; ++j) edge_short |= without.node_layers(3 * j + 2) < 5;
+    EXPECT_TRUE(edge_short || layer_cell_quality(without) < 0.4 * best_prism(blunt));
+    const LayerMesh fanned = extrude_layers(blunt, blade_layers(120.0));
+    EXPECT_GT(layer_cell_quality(fanned, CellType::Hex), 0.5);
+    EXPECT_GT(layer_cell_quality(fanned), 0.8 * best_prism(blunt));
+    EXPECT_FALSE(with.mesh.hexes.empty());                               // the wedges above the wall
+    EXPECT_FALSE(with.mesh.tets.empty() && with.mesh.pyramids.empty());  // the corners on the wall
+    // The wall keeps its nodes: level 0 holds each once, the fans' columns start there.
+    for (Index i = 0; i < with.wall_nodes(); ++i) EXPECT_LT(with.level_node(0, i), wall.num_points());
+}
+
+TEST(Fans, TheSameBytesForAnyThreadCount) {
+    const SurfaceMesh wall = blade(8, 10.0);
+    LayerParams p = blade_layers(120.0);
+    p.threads = 1;
+    const LayerMesh a = extrude_layers(wall, p);
+    p.threads = 2;
+    const LayerMesh b = extrude_layers(wall, p);
+    EXPECT_EQ(a.mesh.points, b.mesh.points);
+    EXPECT_EQ(a.mesh.prisms, b.mesh.prisms);
+    EXPECT_EQ(a.mesh.hexes, b.mesh.hexes);
+    EXPECT_EQ(a.mesh.tets, b.mesh.tets);
+    EXPECT_EQ(a.mesh.pyramids, b.mesh.pyramids);
+}
+
+TEST(Fans, NoFanWhereTheNodesAreExcluded) {
+    const SurfaceMesh wall = blade(8, 10.0);
+    std::vector<char> excluded(static_cast<std::size_t>(wall.num_points()), 0);
+    excluded[2] = 1;  // a corner of the sharp edge: its chain cannot close there, nor anything through it
+    const FanWall fw = build_fans(wall, boundary_loops(wall), 120.0, excluded);
+    for (Index i = 0; i < fw.mesh.num_points(); ++i) EXPECT_FALSE(fw.base[static_cast<std::size_t>(i)] == 2 && i != 2);
+    EXPECT_LT(fw.fan_edges, 30);
+}
+
+/// A cell of \p type whose ids are \p id, over the unit cube's corners (Gmsh's hexahedron order).
+double quality(CellType type, const std::array<Index, 8>& id, const std::vector<Vec3>& p) {
+    return min_scaled_jacobian(p, id.data(), type);
+}
+
+TEST(Fans, CollapsedCellsBecomeStandardCellsOfPositiveVolume) {
+    // Corners: 0 at the origin (the wall node), 1..8 the tops of its columns.
+    const std::vector<Vec3> p{Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1),
+                              Vec3(0, 1, 1), Vec3(1, 0, 0), Vec3(1, 1, 0)};
+    {  // a hexahedron whose bottom is one node: a pyramid with its apex below the top
+        CellType t = CellType::Hex;
+        std::array<Index, 8> id{0, 0, 0, 0, 1, 2, 3, 4};
+        ASSERT_TRUE(collapse_cell(t, id));
+        EXPECT_EQ(t, CellType::Pyramid);
+        EXPECT_GT(quality(t, id, p), 0.0);
+    }
+    {  // bottom (0, 5, 5, 0): a wedge (prism) along x
+        CellType t = CellType::Hex;
+        std::array<Index, 8> id{0, 5, 5, 0, 1, 2, 3, 4};
+        ASSERT_TRUE(collapse_cell(t, id));
+        EXPECT_EQ(t, CellType::Prism);
+        EXPECT_GT(quality(t, id, p), 0.0);
+    }
+    {  // bottom (0, 0, 6, 6)... the other pairing: a wedge along the other diagonal pair
+        const std::vector<Vec3> q{Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(1, 0, 1),
+                                  Vec3(1, 1, 1), Vec3(0, 1, 1), Vec3(0, 1, 0)};
+        CellType t = CellType::Hex;
+        std::array<Index, 8> id{0, 0, 5, 5, 1, 2, 3, 4};
+        ASSERT_TRUE(collapse_cell(t, id));
+        EXPECT_EQ(t, CellType::Prism);
+        EXPECT_GT(quality(t, id, q), 0.0);
+    }
+    {  // a prism whose bottom is one node: a tetrahedron
+        CellType t = CellType::Prism;
+        std::array<Index, 8> id{0, 0, 0, 1, 2, 4, kNone, kNone};
+        ASSERT_TRUE(collapse_cell(t, id));
+        EXPECT_EQ(t, CellType::Tet);
+        EXPECT_GT(quality(t, id, p), 0.0);
+    }
+    {  // a prism with one vertical edge collapsed: a pyramid on the opposite side
+        const std::vector<Vec3> q{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 0, 1)};
+        CellType t = CellType::Prism;
+        std::array<Index, 8> id{0, 1, 2, 3, 4, 2, kNone, kNone};
+        ASSERT_TRUE(collapse_cell(t, id));
+        EXPECT_EQ(t, CellType::Pyramid);
+        EXPECT_GT(quality(t, id, q), 0.0);
+    }
+    {  // nothing to collapse: unchanged
+        CellType t = CellType::Tet;
+        std::array<Index, 8> id{0, 1, 2, 4, kNone, kNone, kNone, kNone};
+        ASSERT_TRUE(collapse_cell(t, id));
+        EXPECT_EQ(t, CellType::Tet);
+    }
+    {  // two nodes of a triangle side collapsed (no standard cell)
+        CellType t = CellType::Prism;
+        std::array<Index, 8> id{0, 0, 5, 1, 2, 3, kNone, kNone};
+        EXPECT_FALSE(collapse_cell(t, id));
+    }
+}
+
+}  // namespace
+}  // namespace strata
