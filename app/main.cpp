@@ -9,6 +9,8 @@
 #include <strata/core/error.h>
 #include <strata/core/progress.h>
 #include <strata/core/validate.h>
+#include <strata/geometry/check.h>
+#include <strata/geometry/intersections.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
@@ -24,6 +26,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -300,6 +303,21 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// Wall faces with a corner below this (degrees): a layer cell on one is below sin 5° = 0.09.
+constexpr double kNeedleDeg = 5.0;
+
+/// A warning where the wall has needle faces, which cap the layers whatever the marching does.
+void print_needles(const strata::SurfaceMesh& mesh) {
+    const strata::NeedleReport n = strata::needle_faces(mesh, kNeedleDeg, {strata::PatchKind::Wall});
+    if (n.needles == 0) return;
+    std::printf(
+        "warning: %d of %d wall faces are needles (a corner under %g degrees; the sharpest, %.3g degrees, on %s): "
+        "a layer cell on such a face has a scaled Jacobian of at most the sine of that corner (%.2g there); "
+        "remesh the surface into well-shaped faces (a finer CAD export, or Gmsh)\n",
+        static_cast<int>(n.needles), static_cast<int>(n.faces), kNeedleDeg, n.sharpest_deg,
+        strata::describe_face(mesh, n.worst_face).c_str(), std::sin(n.sharpest_deg * 3.141592653589793 / 180.0));
+}
+
 void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep) {
     const strata::Csr loops = strata::boundary_loops(mesh);
     std::printf("surface: %d nodes, %d triangles, %d quadrilaterals, %d patches\n", static_cast<int>(mesh.num_points()),
@@ -315,6 +333,7 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
         "re-oriented\n",
         static_cast<int>(rep.orient.components), static_cast<int>(rep.orient.closed_components),
         static_cast<int>(loops.rows()), static_cast<int>(rep.merged_nodes), static_cast<int>(rep.orient.flipped_faces));
+    print_needles(mesh);
 }
 
 /// Where layers were held back to stay valid (LayerParams::hold_back), so the user knows they are thinner there.

@@ -6,7 +6,9 @@
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 namespace strata {
@@ -72,6 +74,32 @@ void check_surface(const SurfaceMesh& mesh, const std::string& source) {
                             "; an edge may bound at most two faces: fix the surface in the CAD tool or merge "
                             "the duplicate faces");
     }
+}
+
+NeedleReport needle_faces(const SurfaceMesh& mesh, double min_angle_deg, const std::vector<PatchKind>& kinds) {
+    NeedleReport r;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const PatchKind kind = mesh.patches[static_cast<std::size_t>(mesh.face_patch[f])].kind;
+        if (!kinds.empty() && std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) continue;
+        ++r.faces;
+        const Index n = mesh.face_size(f);
+        double sharpest = 180.0;
+        Index corner = 0;
+        for (Index c = 0; c < n; ++c) {
+            const Vec3& o = mesh.points[mesh.face_node(f, c)];
+            const Vec3 a = mesh.points[mesh.face_node(f, (c + 1) % n)] - o;
+            const Vec3 b = mesh.points[mesh.face_node(f, (c + n - 1) % n)] - o;
+            const double angle = std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;
+            if (angle < sharpest) sharpest = angle, corner = c;
+        }
+        if (sharpest < min_angle_deg) ++r.needles;
+        if (sharpest < r.sharpest_deg) {
+            r.sharpest_deg = sharpest;
+            r.worst_face = f;
+            r.where = mesh.points[mesh.face_node(f, corner)];
+        }
+    }
+    return r;
 }
 
 }  // namespace strata

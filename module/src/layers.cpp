@@ -906,24 +906,37 @@ LayerReport layer_report(const LayerMesh& lm) {
     r.thickness = lm.asked_thickness;
     const Index nw = lm.wall_nodes();
     // Thickness reached: the length of each column; why it fell short: it stopped, else it
-    // was held back, else it was thinned.
+    // was held back, else it was thinned. A wall node with a fan (several columns) counts once,
+    // as its shortest column.
     std::vector<double> share(static_cast<std::size_t>(nw), 1.0);
+    std::vector<int> levels(static_cast<std::size_t>(nw), lm.layers());
     std::vector<Shortfall> why(static_cast<std::size_t>(nw), Shortfall::None);
+    auto base = [&](Index i) { return lm.level_node(0, i); };  // the wall node a column starts at
     for (Index i = 0; i < nw; ++i) {
         double length = 0.0;
         for (int k = 0; k < lm.node_layers(i); ++k)
             length += (lm.mesh.points[lm.level_node(k + 1, i)] - lm.mesh.points[lm.level_node(k, i)]).norm();
         const auto u = static_cast<std::size_t>(i);
-        share[u] = r.thickness > 0.0 ? length / r.thickness : 1.0;
+        Shortfall w = Shortfall::None;
         if (u < lm.stop_reason.size() && lm.stop_reason[u] != Shortfall::None)
-            why[u] = lm.stop_reason[u];
+            w = lm.stop_reason[u];
         else if (u < lm.held_back.size() && lm.held_back[u])
-            why[u] = Shortfall::HeldBack;
+            w = Shortfall::HeldBack;
         else if (u < lm.scale_reason.size())
-            why[u] = lm.scale_reason[u];
-        if (why[u] == Shortfall::None) continue;
-        r.short_nodes.push_back({lm.input_node.empty() ? i : lm.input_node[u], lm.mesh.points[lm.level_node(0, i)],
-                                 share[u], lm.node_layers(i), why[u]});
+            w = lm.scale_reason[u];
+        const auto b = static_cast<std::size_t>(base(i));
+        const double s = r.thickness > 0.0 ? length / r.thickness : 1.0;
+        if (b == u || lm.node_layers(i) < levels[b] || (lm.node_layers(i) == levels[b] && s < share[b])) {
+            levels[b] = lm.node_layers(i);
+            share[b] = s;
+            if (w != Shortfall::None || b == u) why[b] = w;
+        }
+    }
+    for (Index i = 0; i < nw; ++i) {
+        const auto u = static_cast<std::size_t>(i);
+        if (base(i) != i || why[u] == Shortfall::None) continue;
+        r.short_nodes.push_back(
+            {lm.input_node.empty() ? i : lm.input_node[u], lm.mesh.points[base(i)], share[u], levels[u], why[u]});
     }
     // Per patch of the wall: its faces, and its nodes once each.
     const SurfaceMesh& wall = lm.top;
@@ -931,9 +944,13 @@ LayerReport layer_report(const LayerMesh& lm) {
     for (std::size_t p = 0; p < wall.patches.size(); ++p) r.patches[p].name = wall.patches[p].name;
     std::vector<std::pair<Index, Index>> patch_node;  // (patch, node), then sorted and unique
     for (Index f = 0; f < wall.num_faces(); ++f) {
-        ++r.patches[static_cast<std::size_t>(wall.face_patch[f])].faces;
+        // A face of a fan has its nodes' columns start at one wall node: no face of the wall.
+        bool fan = false;
         for (const Index* v = wall.face_begin(f); v != wall.face_end(f); ++v)
-            patch_node.emplace_back(wall.face_patch[f], *v);
+            fan |= base(*v) == base(*(v + 1 == wall.face_end(f) ? wall.face_begin(f) : v + 1));
+        if (!fan) ++r.patches[static_cast<std::size_t>(wall.face_patch[f])].faces;
+        for (const Index* v = wall.face_begin(f); v != wall.face_end(f); ++v)
+            patch_node.emplace_back(wall.face_patch[f], base(*v));
     }
     std::sort(patch_node.begin(), patch_node.end());
     patch_node.erase(std::unique(patch_node.begin(), patch_node.end()), patch_node.end());
@@ -943,13 +960,13 @@ LayerReport layer_report(const LayerMesh& lm) {
         const auto p = static_cast<std::size_t>(patch);
         const auto u = static_cast<std::size_t>(node);
         PatchCoverage& c = r.patches[p];
-        const int levels = lm.node_layers(node);
+        const int node_levels = levels[u];
         ++c.nodes;
         sum[p] += share[u];
-        layer_sum[p] += levels;
+        layer_sum[p] += node_levels;
         c.min_share = std::min(c.min_share, share[u]);
-        c.min_layers = std::min(c.min_layers, levels);
-        c.all_layers += levels == lm.layers();
+        c.min_layers = std::min(c.min_layers, node_levels);
+        c.all_layers += node_levels == lm.layers();
         c.full_nodes += why[u] == Shortfall::None;
         ++c.short_by[static_cast<std::size_t>(why[u])];
     }

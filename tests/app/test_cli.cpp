@@ -201,6 +201,20 @@ TEST(Cli, LayersOnQuadSphere) {
         EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
 }
 
+// Issue 9's last case: an STL as a CAD tool exports it (OpenCASCADE's BRepMesh at 2 mm
+// deflection), 220 of its 1018 triangles needles: a valid mesh, and the summary names the
+// sharpest needle and says to remesh.
+TEST(Cli, NeedleStlGivesAValidMeshAndSaysRemesh) {
+    test::ScratchDir dir("cli_needles");
+    CliResult r = strata_cli(dir, "mesh '" + example_data("onera_m6_brepmesh_needles.stl") +
+                                      "' -o m6.cgr --layers 20 --first-height 0.1 --growth 1.2");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("220 of 1018 wall faces are needles"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("remesh the surface"), std::string::npos);
+    EXPECT_NE(r.out.find("valid: "), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir.file("m6.cgr")));
+}
+
 TEST(Cli, LayersBadInputsFailCleanly) {
     const std::string in = "layers '" + example_data("sphere_pyhyp_quads.msh") + "' -o out.msh";
     expect_clean_failure(in + " --first-height 1e-3", "--layers", "nolayers");

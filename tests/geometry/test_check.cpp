@@ -85,6 +85,30 @@ void expect_same_faces_up_to_orientation(const SurfaceMesh& a, const SurfaceMesh
 
 // ---------------------------------------------------------------- check_surface
 
+TEST(NeedleFaces, CountsFacesWithACornerBelowTheBoundAndNamesTheSharpest) {
+    SurfaceMesh m;
+    m.patches = {{"body", PatchKind::Wall}, {"plane", PatchKind::Symmetry}};
+    m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0),  Vec3(0, 1, 0),      // right isoceles: 45° corners
+                Vec3(2, 0, 0), Vec3(12, 0, 0), Vec3(12, 0.5, 0),   // a needle: atan(0.05) = 2.86°
+                Vec3(0, 0, 5), Vec3(10, 0, 5), Vec3(10, 0.1, 5)};  // sharper (0.57°), on the plane
+    m.add_face({0, 1, 2}, 0);
+    m.add_face({3, 4, 5}, 0);
+    m.add_face({6, 7, 8}, 1);
+    const NeedleReport all = needle_faces(m, 5.0);
+    EXPECT_EQ(all.faces, 3);
+    EXPECT_EQ(all.needles, 2);
+    EXPECT_EQ(all.worst_face, 2);
+    EXPECT_NEAR(all.sharpest_deg, std::atan(0.01) * 180.0 / std::numbers::pi, 1e-9);
+    EXPECT_EQ(all.where, m.points[6]);
+    const NeedleReport walls = needle_faces(m, 5.0, {PatchKind::Wall});
+    EXPECT_EQ(walls.faces, 2);
+    EXPECT_EQ(walls.needles, 1);
+    EXPECT_EQ(walls.worst_face, 1);
+    EXPECT_NEAR(walls.sharpest_deg, std::atan(0.05) * 180.0 / std::numbers::pi, 1e-9);
+    EXPECT_EQ(walls.where, m.points[3]);
+    EXPECT_EQ(needle_faces(m, 2.0, {PatchKind::Wall}).needles, 0);
+}
+
 TEST(CheckSurface, ValidMeshesPass) {
     EXPECT_NO_THROW(check_surface(quad_grid(4, 3), "grid"));
     EXPECT_NO_THROW(check_surface(sphere(), "sphere"));

@@ -134,6 +134,14 @@ TEST(Fans, LiftTheQualityCapOfOneDirectionAtASharpEdge) {
     const LayerMesh fanned = extrude_layers(blunt, blade_layers(120.0));
     EXPECT_GT(layer_cell_quality(fanned, CellType::Hex), 0.5);
     EXPECT_GT(layer_cell_quality(fanned), 0.8 * best_prism(blunt));
+    // The coverage report counts the wall's own faces and nodes, each node once (as its
+    // shortest column).
+    const LayerReport rep = layer_report(with);
+    ASSERT_EQ(rep.patches.size(), 1u);
+    EXPECT_EQ(rep.patches[0].faces, wall.num_faces());
+    EXPECT_EQ(rep.patches[0].nodes, wall.num_points());
+    EXPECT_EQ(rep.patches[0].all_layers, wall.num_points());
+    EXPECT_TRUE(rep.short_nodes.empty());
     EXPECT_FALSE(with.mesh.hexes.empty());                               // the wedges above the wall
     EXPECT_FALSE(with.mesh.tets.empty() && with.mesh.pyramids.empty());  // the corners on the wall
     // The wall keeps its nodes: level 0 holds each once, the fans' columns start there.

@@ -6,6 +6,7 @@
 #include <strata/core/surface_mesh.h>
 
 #include <string>
+#include <vector>
 
 namespace strata {
 
@@ -30,5 +31,21 @@ struct OrientReport {
 /// orientation of its faces. Throws TopologyError (naming an edge) where a component is not
 /// orientable (e.g. a Möbius strip). Requires check_surface to have passed.
 SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report = nullptr);
+
+/// Needle faces: faces with a corner sharper than a bound. A layer cell on a face can be no
+/// better than the sine of the face's sharpest corner (its scaled Jacobian at that corner), so
+/// such faces cap the layers whatever the marching does; a CAD tool's coarse STL export is
+/// full of them. Remeshing the surface is the remedy.
+struct NeedleReport {
+    Index faces = 0;              ///< faces counted (on the patches asked)
+    Index needles = 0;            ///< of which with a corner below the bound
+    double sharpest_deg = 180.0;  ///< the sharpest corner of all faces counted
+    Index worst_face = kNone;     ///< the face that has it
+    Vec3 where = Vec3::Zero();    ///< its corner's position
+};
+
+/// The needle faces of \p mesh among those on patches of a kind in \p kinds (all if empty):
+/// a corner below \p min_angle_deg degrees.
+NeedleReport needle_faces(const SurfaceMesh& mesh, double min_angle_deg, const std::vector<PatchKind>& kinds = {});
 
 }  // namespace strata
