@@ -8,6 +8,7 @@
 //   bench_layers            (build in Release: scripts/bench.sh)
 
 #include <strata/core/error.h>
+#include <strata/geometry/intersections.h>
 #include <strata/geometry/topology.h>
 #include <strata/module/layers.h>
 
@@ -73,9 +74,18 @@ struct Run {
     LayerMesh result;
 };
 
-Run time_extrusion(const SurfaceMesh& wall, int threads, int repeats, ProximityMode proximity = ProximityMode::Scale) {
+/// What the layer stage checks besides the marching: the proximity rays, and local stopping
+/// (each column's cells judged after every layer, the steps closed); without stopping, only
+/// the fold check every layer always had.
+struct Checks {
+    ProximityMode proximity = ProximityMode::Stop;  // the default
+    bool stopping = true;                           // LayerParams::min_quality 0.2 (the default), else 0
+};
+
+Run time_extrusion(const SurfaceMesh& wall, int threads, int repeats, Checks checks = {}) {
     LayerParams p;
-    p.proximity = proximity;
+    p.proximity = checks.proximity;
+    if (!checks.stopping) p.min_quality = 0.0, p.hold_back = false;
     p.distribution.layers = 10;
     p.distribution.kind = Distribution::Geometric;
     p.distribution.first_height = 1e-3;  // unit sphere
@@ -112,8 +122,8 @@ int main() {
     try {
         std::printf("bench_layers: %d layers x 10 sweeps, best of %d runs, %u hardware threads\n\n", kLayers, kRepeats,
                     std::thread::hardware_concurrency());
-        std::printf("%-26s %8s %8s %12s %14s %16s\n", "surface", "faces", "threads", "best [s]", "cells/s",
-                    "proximity cost");
+        std::printf("%-26s %8s %8s %12s %14s %12s %12s %12s %12s\n", "surface", "faces", "threads", "best [s]",
+                    "cells/s", "proximity", "stopping", "front test", "all checks");
         bool all_identical = true;
         std::vector<std::string> checks;
         for (const bool triangles : {false, true}) {
@@ -124,11 +134,27 @@ int main() {
             std::vector<Run> runs;
             for (const int threads : {1, 2}) {
                 runs.push_back(time_extrusion(wall, threads, kRepeats));
-                // The proximity rays (one AABB tree, one ray per node) against the same run without.
-                const double off = time_extrusion(wall, threads, kRepeats, ProximityMode::Off).best_seconds;
-                std::printf("%-26s %8d %8d %12.3f %14.4g %15.1f%%\n", name.c_str(), static_cast<int>(wall.num_faces()),
-                            threads, runs.back().best_seconds, cells / runs.back().best_seconds,
-                            100.0 * (runs.back().best_seconds / off - 1.0));
+                // What each check costs: the same run without the proximity rays (one AABB tree,
+                // one ray per node), without local stopping, and without both (the marching and
+                // the fold check alone, as before issue 9).
+                const double t = runs.back().best_seconds;
+                const double no_rays = time_extrusion(wall, threads, kRepeats, {ProximityMode::Off, true}).best_seconds;
+                const double no_stop =
+                    time_extrusion(wall, threads, kRepeats, {ProximityMode::Stop, false}).best_seconds;
+                const double none = time_extrusion(wall, threads, kRepeats, {ProximityMode::Off, false}).best_seconds;
+                // The front test build_hybrid_mesh runs before TetGen (exact self-intersection
+                // test of the layer top), once, as a share of the layer stage.
+                double front = 1e300;
+                for (int r = 0; r < kRepeats; ++r) {
+                    const auto t0 = std::chrono::steady_clock::now();
+                    if (!self_intersections(runs.back().result.top, 1, threads).empty())
+                        throw Error(name + ": the layer top intersects itself");
+                    front =
+                        std::min(front, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+                }
+                std::printf("%-26s %8d %8d %12.3f %14.4g %11.1f%% %11.1f%% %11.1f%% %11.1f%%\n", name.c_str(),
+                            static_cast<int>(wall.num_faces()), threads, t, cells / t, 100.0 * (t / no_rays - 1.0),
+                            100.0 * (t / no_stop - 1.0), 100.0 * front / t, 100.0 * ((t + front) / none - 1.0));
             }
             const std::vector<Vec3>& top = runs[0].result.top.points;
             if (!(top.front().norm() > 1.0))

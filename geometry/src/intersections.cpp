@@ -16,6 +16,7 @@
 #include "cgal_kernel.h"
 
 #include <strata/core/format.h>
+#include <strata/core/parallel.h>
 #include <strata/geometry/intersections.h>
 
 #include <CGAL/box_intersection_d.h>
@@ -23,6 +24,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <utility>
 
 namespace strata {
@@ -35,6 +37,11 @@ using cgal::Triangle;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
 
 using Tri = SurfaceTriangle;
+
+/// Below this many boxes the broad phase compares them all (CGAL's streaming cutoff, default
+/// 10): on an 82k-triangle sphere 1000 takes 0.056 s where 10 took 0.124 s (100: 0.081, 4000:
+/// 0.062), on 2 threads.
+constexpr std::ptrdiff_t kBoxCutoff = 1000;
 
 bool intersect(const Tri& s, const Tri& t, const std::vector<Point>& p) {
     std::array<int, 3> in_t{-1, -1, -1};  // for each corner of s, its position in t or -1
@@ -70,7 +77,7 @@ bool intersect(const Tri& s, const Tri& t, const std::vector<Point>& p) {
 
 }  // namespace
 
-std::vector<FacePair> self_intersections(const SurfaceMesh& mesh, std::size_t max_pairs) {
+std::vector<FacePair> self_intersections(const SurfaceMesh& mesh, std::size_t max_pairs, int threads) {
     std::vector<Point> p;
     p.reserve(mesh.points.size());
     for (const Vec3& x : mesh.points) p.push_back(point(x));
@@ -81,12 +88,28 @@ std::vector<FacePair> self_intersections(const SurfaceMesh& mesh, std::size_t ma
         const auto& v = tris[i].v;
         boxes.emplace_back(p[v[0]].bbox() + p[v[1]].bbox() + p[v[2]].bbox(), i);
     }
+    // Candidates from the broad phase, then the exact tests in parallel (each pair alone; the
+    // result is sorted, so it does not depend on the thread count).
+    std::vector<std::pair<std::size_t, std::size_t>> candidates;
+    CGAL::box_self_intersection_d(
+        boxes.begin(), boxes.end(),
+        [&](const Box& x, const Box& y) {
+            if (tris[x.info()].face != tris[y.info()].face) candidates.emplace_back(x.info(), y.info());
+        },
+        kBoxCutoff);
+    std::vector<char> hit(candidates.size(), 0);
+    const auto n = static_cast<std::ptrdiff_t>(candidates.size());
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads))
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+        const auto& [a, b] = candidates[static_cast<std::size_t>(i)];
+        hit[static_cast<std::size_t>(i)] = intersect(tris[a], tris[b], p) ? 1 : 0;
+    }
     std::vector<FacePair> pairs;
-    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-        const Tri &s = tris[x.info()], &t = tris[y.info()];
-        if (s.face == t.face) return;
-        if (intersect(s, t, p)) pairs.push_back({std::min(s.face, t.face), std::max(s.face, t.face)});
-    });
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+        if (hit[i]) {
+            const Index fa = tris[candidates[i].first].face, fb = tris[candidates[i].second].face;
+            pairs.push_back({std::min(fa, fb), std::max(fa, fb)});
+        }
     std::sort(pairs.begin(), pairs.end(),
               [](const FacePair& x, const FacePair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

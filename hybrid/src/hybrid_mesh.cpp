@@ -228,7 +228,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     HybridReport rep;
     bool has_outer = false;
     const SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, rep.closed_half_model);
-    if (const std::vector<FacePair> crossing = self_intersections(surface, 1); !crossing.empty())
+    if (const std::vector<FacePair> crossing = self_intersections(surface, 1, params.threads); !crossing.empty())
         throw InputError("the surface intersects itself: " + describe_face(surface, crossing[0].a) + " meets " +
                          describe_face(surface, crossing[0].b) +
                          "; overlapping bodies must be fused into one (CadParams::fuse) and a surface crossing "
@@ -298,7 +298,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         t0 = std::chrono::steady_clock::now();
         outer = outer_part(surface, lm, has_outer, params.farfield);
         region = region_to_fill(surface.patches, pyr, outer, farfield_patch, top_patch);
-        const std::vector<FacePair> pairs = self_intersections(region);
+        const std::vector<FacePair> pairs = self_intersections(region, 0, params.threads);
         rep.seconds_tets += seconds_since(t0);
         if (pairs.empty()) break;
         if (round == kFrontRounds) throw_front_intersects(region, pairs, round);

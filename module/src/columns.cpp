@@ -6,6 +6,7 @@
 #include <strata/core/cell_quality.h>
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/parallel.h>
 
 #include <algorithm>
 #include <cmath>
@@ -302,8 +303,12 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
             stop(col, go, i, Shortfall::Turning);
         }
     }
-    if (rules.quality)
-        for (Index f = 0; f < col.faces.count(); ++f) {
+    if (rules.quality) {
+        // Each face's cell judged alone (in parallel), then its columns stopped in face order.
+        const Index nf = col.faces.count();
+        std::vector<char> poor(static_cast<std::size_t>(nf), 0);
+#pragma omp parallel for schedule(static) num_threads(thread_count(rules.threads))
+        for (Index f = 0; f < nf; ++f) {
             const auto u = static_cast<std::size_t>(f);
             const int n = col.faces.size[u];
             const std::array<bool, 4> m = moving_corners(col.faces, f, col.active);
@@ -314,10 +319,14 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
             // Relative to the right cell on the same face: a needle triangle's cells are as good
             // as the face allows, and only what the marching does to them stops a column.
             const double q = finite ? column_cell_jacobian(col, f, next) : std::nan("");
-            if (q >= rules.min_quality * face_corner_quality(col, f)) continue;
-            for (int c = 0; c < n; ++c)
-                stop(col, go, col.faces.nodes[u][static_cast<std::size_t>(c)], Shortfall::Quality);
+            poor[u] = q >= rules.min_quality * face_corner_quality(col, f) ? 0 : 1;
         }
+        for (Index f = 0; f < nf; ++f)
+            if (poor[static_cast<std::size_t>(f)])
+                for (int c = 0; c < col.faces.size[static_cast<std::size_t>(f)]; ++c)
+                    stop(col, go, col.faces.nodes[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)],
+                         Shortfall::Quality);
+    }
     close_steps(col, rules, k, next, go);
     Index stopped = 0, materialised = 0;  // the caller appends next[i] of the moving nodes in order
     for (Index i = 0; i < nw; ++i) {

@@ -53,6 +53,7 @@ struct StopRules {
     double min_quality = 0.2;
     double max_turn_deg = 60.0;
     bool quality = true;  ///< stop on min_quality and max_turn_deg (off: only limits and non-finite)
+    int threads = 0;      ///< threads of the quality test (0: OpenMP's default); the result is the same for any count
 };
 
 /// Decide which columns go on from level \p k to k + 1, \p next holding the marched level k + 1

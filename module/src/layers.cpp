@@ -844,7 +844,8 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     report(progress, "layers", 0.0);
 
     // Stopping: on unless turned off (min_quality 0) or for diagnostics (keep_invalid).
-    const StopRules rules{params.min_quality, params.max_turn_deg, params.min_quality > 0.0 && !params.keep_invalid};
+    const StopRules rules{params.min_quality, params.max_turn_deg, params.min_quality > 0.0 && !params.keep_invalid,
+                          mc.threads};
     const bool holds =
         params.hold_back && params.smoothing && std::max(params.max_sweeps, params.sweeps) > 0 && !params.keep_invalid;
     std::vector<Vec3> r0 = w.mesh.points, r1(r0.size());

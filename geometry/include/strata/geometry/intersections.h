@@ -23,9 +23,10 @@ struct FacePair {
 /// ids: faces that cross or touch, coplanar faces that overlap across a shared edge or node,
 /// repeated faces. Quads are tested as their two triangles (split along the diagonal from
 /// their first node), degenerate triangles (collinear corners) are skipped. Exact predicates
-/// (CGAL's Epick kernel) on a box-intersection broad phase; sorted by (a, b); at most
-/// \p max_pairs (0: all).
-std::vector<FacePair> self_intersections(const SurfaceMesh& mesh, std::size_t max_pairs = 0);
+/// (CGAL's Epick kernel) on a box-intersection broad phase, the exact tests on \p threads
+/// threads (0: OpenMP's default; the result is the same for any count); sorted by (a, b); at
+/// most \p max_pairs (0: all).
+std::vector<FacePair> self_intersections(const SurfaceMesh& mesh, std::size_t max_pairs = 0, int threads = 0);
 
 /// A triangle of a surface mesh: its node ids and the face it belongs to.
 struct SurfaceTriangle {
