@@ -359,11 +359,24 @@ void print_held_back(const std::vector<strata::LayerStats>& stats) {
             first, layers, most);
 }
 
-/// The fans at sharp convex edges, if any.
-void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners) {
+/// The fans at sharp convex edges, if any, and the wall nodes where none could be built: its
+/// first cells would have been unusable (\p unusable), or its face on the layer top could not
+/// take a pyramid (\p uncapped, strata mesh only).
+void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners, strata::Index unusable,
+                strata::Index uncapped) {
     if (edges > 0)
         std::printf("fans: %d sharp convex edges, %d wall nodes with a column per side and between (%d corners)\n",
                     static_cast<int>(edges), static_cast<int>(nodes), static_cast<int>(corners));
+    if (unusable > 0)
+        std::printf(
+            "note: no fan at %d wall nodes where its first cells would have been unusable (a needle face or a "
+            "narrow gap beside it)\n",
+            static_cast<int>(unusable));
+    if (uncapped > 0)
+        std::printf(
+            "note: no fan at %d wall nodes where a fan's face on the layer top could not be capped with a pyramid "
+            "(its columns twist: the wall there is small against the layers' thickness)\n",
+            static_cast<int>(uncapped));
 }
 
 void print_layer_table(const strata::LayerMesh& lm) {
@@ -379,7 +392,7 @@ void print_layer_table(const strata::LayerMesh& lm) {
         "  (columns: wall nodes with the layer; stopped: columns ending below it; steps: cells closing the steps "
         "where they end, pyramids, side-on prisms, tetrahedra; their apex at a stopped column sees the step's thin "
         "side edge-on, hence step SJ about layer height / edge length)\n");
-    print_fans(lm.fan_edges, lm.fan_nodes, lm.fan_corners);
+    print_fans(lm.fan_edges, lm.fan_nodes, lm.fan_corners, lm.fans_dropped, 0);
     if (lm.unsmoothed_nodes > 0)
         std::printf(
             "note: %d nodes (sharp convex edges, corners of open edges, ends of needle triangles) were extruded along "
@@ -443,12 +456,7 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     double jmin = 1.0;
     for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
     std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
-    print_fans(hr.fan_edges, hr.fan_nodes, hr.fan_corners);
-    if (hr.fans_dropped > 0)
-        std::printf(
-            "note: no fan at %d wall nodes where a fan's face on the layer top could not be capped with a pyramid "
-            "(its columns twist: the wall there is small against the layers' thickness)\n",
-            static_cast<int>(hr.fans_dropped));
+    print_fans(hr.fan_edges, hr.fan_nodes, hr.fan_corners, hr.fans_unusable, hr.fans_dropped);
     print_held_back(hr.layer_stats);
     print_thinned(hr.thinned_nodes, hr.min_thickness_share);
     print_coverage(hr.coverage);

@@ -308,6 +308,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     rep.layer_stats = lm.stats;
     rep.unsmoothed_nodes = lm.unsmoothed_nodes;
     rep.fan_edges = lm.fan_edges, rep.fan_nodes = lm.fan_nodes, rep.fan_corners = lm.fan_corners;
+    rep.fans_unusable = lm.fans_dropped;
     rep.thinned_nodes = lm.thinned_nodes;
     rep.min_thickness_share = lm.min_thickness_share;
     rep.coverage = layer_report(lm);

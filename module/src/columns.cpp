@@ -224,7 +224,11 @@ double angle_deg(const Vec3& a, const Vec3& b) {
 /// Stop wall node \p i (if it still moves) for \p why; true if it did move.
 bool stop(Columns& col, std::vector<char>& go, Index i, Shortfall why) {
     auto& g = go[static_cast<std::size_t>(i)];
-    if (!g || (!col.pinned.empty() && col.pinned[static_cast<std::size_t>(i)])) return false;
+    if (!g) return false;
+    if (!col.pinned.empty() && col.pinned[static_cast<std::size_t>(i)]) {
+        col.pinned[static_cast<std::size_t>(i)] = 2;  // it would have stopped: the caller builds no fan there
+        return false;
+    }
     g = 0;
     col.reason[static_cast<std::size_t>(i)] = why;
     return true;

@@ -36,7 +36,9 @@ struct Columns {
     std::vector<char> active;       ///< per wall node, 1 while it marches
     std::vector<Shortfall> reason;  ///< per wall node, why it stopped below the layers asked
     std::vector<Vec3> top;          ///< per wall node, its highest node's position
-    std::vector<char> pinned;       ///< empty, or per wall node 1 where it cannot stop (a fan's column, first layer)
+    /// Empty, or per wall node 1 where it cannot stop (a fan's column, first layer); stop_columns
+    /// sets 2 where it would have stopped.
+    std::vector<char> pinned;
     /// Node of *points of wall node i on level l (≤ levels[i]): point[l × wall nodes + i].
     std::vector<Index> point;
     const std::vector<Vec3>* points;  ///< the layers' points so far (LayerMesh::mesh.points)

@@ -869,6 +869,22 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
             check_folds(w, params, k, col, r1);
         }
         stats.stopped_nodes = stop_columns(col, rules, k, r1);
+        if (k == 0 && std::find(col.pinned.begin(), col.pinned.end(), 2) != col.pinned.end()) {
+            // A fan whose first cells would be unusable (a needle face beside it, a gap
+            // narrower than the first layer): no fan at those wall nodes, and march again.
+            LayerParams again = params;
+            if (again.no_fan_nodes.empty()) again.no_fan_nodes.assign(surface.points.size(), 0);
+            Index dropped = 0;
+            for (Index i = 0; i < nw; ++i)
+                if (col.pinned[static_cast<std::size_t>(i)] == 2) {
+                    char& no = again.no_fan_nodes[static_cast<std::size_t>(w.input_node[static_cast<std::size_t>(i)])];
+                    dropped += no ? 0 : 1;
+                    no = 1;
+                }
+            LayerMesh retry = extrude_layers(surface, again, progress);
+            retry.fans_dropped += dropped;
+            return retry;
+        }
         col.pinned.clear();
         for (Index i = 0; i < nw; ++i) {
             const auto u = static_cast<std::size_t>(i);

@@ -13,6 +13,7 @@
 #include "fans.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace strata {
@@ -160,6 +161,23 @@ TEST(Fans, TheSameBytesForAnyThreadCount) {
     EXPECT_EQ(a.mesh.hexes, b.mesh.hexes);
     EXPECT_EQ(a.mesh.tets, b.mesh.tets);
     EXPECT_EQ(a.mesh.pyramids, b.mesh.pyramids);
+}
+
+TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
+    // The sharp edge's middle node may not have a single layer (its limit is below the first
+    // height): a fan there would have coincident columns on the front, so none is built there,
+    // the chain through it goes too, and the run says how many nodes lost their fan.
+    const SurfaceMesh wall = blade(8, 40.0);  // grows without fans too
+    LayerParams p = blade_layers(120.0);
+    p.node_thickness_limit.assign(static_cast<std::size_t>(wall.num_points()), std::numeric_limits<double>::infinity());
+    p.node_thickness_limit[3 * 4 + 2] = 0.005;
+    const LayerMesh lm = extrude_layers(wall, p);
+    EXPECT_GT(lm.fans_dropped, 0);
+    EXPECT_LT(lm.fan_edges, 30);
+    EXPECT_EQ(lm.node_layers(3 * 4 + 2), 0);
+    const ValidationReport v = validate_mesh(lm.mesh);
+    EXPECT_TRUE(v.ok()) << (v.problems.empty() ? std::string() : v.problems.front());
+    EXPECT_EQ(extrude_layers(wall, blade_layers(120.0)).fans_dropped, 0);
 }
 
 TEST(Fans, NoFanWhereTheNodesAreExcluded) {

@@ -27,8 +27,9 @@ struct HybridReport {
     std::vector<LayerStats> layer_stats;
     Index unsmoothed_nodes = 0;
     Index fan_edges = 0, fan_nodes = 0, fan_corners = 0;  ///< LayerMesh's: the fans at sharp convex edges
-    Index fans_dropped = 0;            ///< fan columns whose face on the layer top no pyramid could cap: no fan there
-    Index thinned_nodes = 0;           ///< nodes whose layers were scaled down (proximity, front rounds)
+    Index fans_dropped = 0;   ///< fan columns whose face on the layer top no pyramid could cap: no fan there
+    Index fans_unusable = 0;  ///< LayerMesh::fans_dropped: no fan where its first cells would have been unusable
+    Index thinned_nodes = 0;  ///< nodes whose layers were scaled down (proximity, front rounds)
     double min_thickness_share = 1.0;  ///< the smallest share of the asked thickness a node got
     int front_rounds = 0;              ///< rounds of lowering columns where the front intersected itself
     LayerReport coverage;              ///< per wall patch, the thickness reached and why not (layer_report)
