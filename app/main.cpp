@@ -303,18 +303,15 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// Wall faces with a corner below this (degrees): a layer cell on one is below sin 5° = 0.09.
-constexpr double kNeedleDeg = 5.0;
-
 /// A warning where the wall has needle faces, which cap the layers whatever the marching does.
 void print_needles(const strata::SurfaceMesh& mesh) {
-    const strata::NeedleReport n = strata::needle_faces(mesh, kNeedleDeg, {strata::PatchKind::Wall});
+    const strata::NeedleReport n = strata::needle_faces(mesh, strata::kNeedleCornerDeg, {strata::PatchKind::Wall});
     if (n.needles == 0) return;
     std::printf(
         "warning: %d of %d wall faces are needles (a corner under %g degrees; the sharpest, %.3g degrees, on %s): "
         "a layer cell on such a face has a scaled Jacobian of at most the sine of that corner (%.2g there); "
         "remesh the surface into well-shaped faces (a finer CAD export, or Gmsh)\n",
-        static_cast<int>(n.needles), static_cast<int>(n.faces), kNeedleDeg, n.sharpest_deg,
+        static_cast<int>(n.needles), static_cast<int>(n.faces), strata::kNeedleCornerDeg, n.sharpest_deg,
         strata::describe_face(mesh, n.worst_face).c_str(), std::sin(n.sharpest_deg * 3.141592653589793 / 180.0));
 }
 

@@ -89,6 +89,7 @@ NeedleReport needle_faces(const SurfaceMesh& mesh, double min_angle_deg, const s
             const Vec3& o = mesh.points[mesh.face_node(f, c)];
             const Vec3 a = mesh.points[mesh.face_node(f, (c + 1) % n)] - o;
             const Vec3 b = mesh.points[mesh.face_node(f, (c + n - 1) % n)] - o;
+            if (a.squaredNorm() == 0.0 || b.squaredNorm() == 0.0) continue;
             const double angle = std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;
             if (angle < sharpest) sharpest = angle, corner = c;
         }

@@ -176,6 +176,12 @@ Csr vertex_faces(const SurfaceMesh& mesh) {
     return r;
 }
 
+Index find_edge(const EdgeTable& edges, Index a, Index b) {
+    const std::array<Index, 2> key{std::min(a, b), std::max(a, b)};
+    const auto it = std::lower_bound(edges.nodes.begin(), edges.nodes.end(), key);
+    return it != edges.nodes.end() && *it == key ? static_cast<Index>(it - edges.nodes.begin()) : kNone;
+}
+
 EdgeTable edge_table(const SurfaceMesh& mesh) {
     require_valid_ids(mesh, "edge_table");
     const Index n = mesh.num_points();

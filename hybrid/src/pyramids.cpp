@@ -407,10 +407,7 @@ void Builder::build_neighbours() {
     across_.offsets.assign(1, 0);
     for (const Pyr& p : pyr_)
         for (int i = 0; i < 4; ++i) {
-            std::array<Index, 2> e{std::min(p.v[i], p.v[(i + 1) % 4]), std::max(p.v[i], p.v[(i + 1) % 4])};
-            const auto it = std::lower_bound(et.nodes.begin(), et.nodes.end(), e);
-            if (it != et.nodes.end() && *it == e) {
-                const Index ei = static_cast<Index>(it - et.nodes.begin());
+            if (const Index ei = find_edge(et, p.v[i], p.v[(i + 1) % 4]); ei != kNone) {
                 for (const Index* g = et.faces.row_begin(ei); g != et.faces.row_end(ei); ++g)
                     if (*g != p.face) across_.values.push_back(*g);
             }

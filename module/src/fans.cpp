@@ -134,10 +134,6 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
     // Sectors: the faces round a fan node between two of its fan edges. The sector of the
     // node's lowest face keeps the node's id, the others get new nodes.
     const Csr vf = vertex_faces(wall);
-    auto edge_of = [&](Index a, Index b) {
-        const std::array<Index, 2> key{std::min(a, b), std::max(a, b)};
-        return static_cast<Index>(std::lower_bound(et.nodes.begin(), et.nodes.end(), key) - et.nodes.begin());
-    };
     std::vector<std::array<Index, 4>> corner_node(static_cast<std::size_t>(nf));  // per face corner: its column
     for (Index f = 0; f < nf; ++f) {
         auto& c = corner_node[static_cast<std::size_t>(f)];
@@ -172,10 +168,8 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
                     if (x == i) continue;
                     bool in_q = false;
                     for (const Index* v = wall.face_begin(fq); v != wall.face_end(fq); ++v) in_q |= *v == x;
-                    const Index e = edge_of(i, x);
-                    if (in_q && static_cast<std::size_t>(e) < ne &&
-                        et.nodes[static_cast<std::size_t>(e)] == std::array<Index, 2>{std::min(i, x), std::max(i, x)} &&
-                        !keep[static_cast<std::size_t>(e)])
+                    const Index e = in_q ? find_edge(et, i, x) : kNone;
+                    if (e != kNone && !keep[static_cast<std::size_t>(e)])
                         sec.unite(static_cast<Index>(p), static_cast<Index>(q));
                 }
             }
@@ -214,10 +208,10 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
     // shares them between both (its two sectors, in the order of their column ids).
     std::map<Index, std::vector<Index>> shared;                 // node → columns from its lower sector column
     std::map<std::pair<Index, Index>, std::vector<Index>> own;  // (node, edge) → columns from f's side
-    auto reference = [&](Index i, Index e, const Vec3& na, const Vec3& nb) {
+    // The outward bisector of fan edge e's two sides at a node whose sector normals are na, nb.
+    auto reference = [&](Index e, const Vec3& na, const Vec3& nb) {
         const Index a = et.nodes[static_cast<std::size_t>(e)][0], b = et.nodes[static_cast<std::size_t>(e)][1];
         const Index f = et.faces.row_begin(e)[0], g = et.faces.row_begin(e)[1];
-        (void)i;
         return unit(na + nb - into_face(wall, f, a, b) - into_face(wall, g, a, b));
     };
     auto between = [&](Index i, const Vec3& na, const Vec3& nb, const Vec3& ref, int w) {
@@ -248,7 +242,7 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
                 const auto& es = at[static_cast<std::size_t>(i)];
                 const Vec3& nl = out.direction[static_cast<std::size_t>(lo)];
                 const Vec3& nh = out.direction[static_cast<std::size_t>(hi)];
-                const Vec3 ref = unit(reference(i, es[0], nl, nh) + reference(i, es[1], nl, nh));
+                const Vec3 ref = unit(reference(es[0], nl, nh) + reference(es[1], nl, nh));
                 it = shared.emplace(i, between(i, nl, nh, ref, w)).first;
             }
             std::vector<Index> mid = it->second;
@@ -257,7 +251,7 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
         } else {
             auto it = own.find({i, e});
             if (it == own.end())
-                it = own.emplace(std::make_pair(i, e), between(i, nf_, ng, reference(i, e, nf_, ng), w)).first;
+                it = own.emplace(std::make_pair(i, e), between(i, nf_, ng, reference(e, nf_, ng), w)).first;
             run.insert(run.end(), it->second.begin(), it->second.end());
         }
         run.push_back(sg);

@@ -9,6 +9,7 @@
 #include <strata/core/face_geometry.h>
 #include <strata/core/format.h>
 #include <strata/core/parallel.h>
+#include <strata/geometry/check.h>
 #include <strata/geometry/topology.h>
 #include <strata/module/layers.h>
 #include <strata/module/proximity.h>
@@ -722,20 +723,12 @@ void layer_orthogonality(const Columns& col, int k, const std::vector<Vec3>& r0,
                    std::string(to_string(static_cast<Shortfall>(r))) + " (the first at " +
                    format_point(w.mesh.points[static_cast<std::size_t>(first[r])]) + ")";
     // The sharpest wall corner: needle triangles make cells no marching can keep usable.
-    double sharpest = 180.0;
-    Vec3 where = Vec3::Zero();
-    for (Index f = 0; f < w.mesh.num_faces(); ++f)
-        for (Index c = 0, n = w.mesh.face_size(f); c < n; ++c) {
-            const Vec3& o = w.mesh.points[w.mesh.face_node(f, c)];
-            const Vec3 a = w.mesh.points[w.mesh.face_node(f, (c + 1) % n)] - o;
-            const Vec3 b = w.mesh.points[w.mesh.face_node(f, (c + n - 1) % n)] - o;
-            const double angle = std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;
-            if (angle < sharpest) sharpest = angle, where = o;
-        }
-    const std::string needles = sharpest < 5.0 ? "; the wall has needle faces (a corner of " +
-                                                     format_number(sharpest, 3) + " degrees at " + format_point(where) +
-                                                     "): remesh the surface into well-shaped faces"
-                                               : "";
+    const NeedleReport needle = needle_faces(w.mesh, kNeedleCornerDeg);
+    const std::string needles = needle.needles > 0
+                                    ? "; the wall has needle faces (a corner of " +
+                                          format_number(needle.sharpest_deg, 3) + " degrees at " +
+                                          format_point(needle.where) + "): remesh the surface into well-shaped faces"
+                                    : "";
     throw TopologyError("no wall node could grow a single layer; the columns stopped for: " + why + needles +
                         ". Quality: the first layer's cells would be poor (a smaller first height, a finer surface, "
                         "or a lower LayerParams::min_quality); proximity: the gaps are narrower than the first layer");
@@ -752,10 +745,7 @@ std::vector<Index> side_patches(const SurfaceMesh& surface, const Wall& w) {
             const Index a = w.loops.row_begin(l)[i], b = w.loops.row_begin(l)[(i + 1) % m];
             Index patch = kNone;
             const Index ia = w.input_node[static_cast<std::size_t>(a)], ib = w.input_node[static_cast<std::size_t>(b)];
-            const std::array<Index, 2> key{std::min(ia, ib), std::max(ia, ib)};
-            const auto it = std::lower_bound(in_edges.nodes.begin(), in_edges.nodes.end(), key);
-            if (it != in_edges.nodes.end() && *it == key) {
-                const Index e = static_cast<Index>(it - in_edges.nodes.begin());
+            if (const Index e = find_edge(in_edges, ia, ib); e != kNone) {
                 for (const Index* f = in_edges.faces.row_begin(e); f != in_edges.faces.row_end(e); ++f)
                     if (surface.patches[static_cast<std::size_t>(surface.face_patch[*f])].kind != PatchKind::Wall)
                         patch = surface.face_patch[*f];

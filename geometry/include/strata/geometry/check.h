@@ -44,8 +44,12 @@ struct NeedleReport {
     Vec3 where = Vec3::Zero();    ///< its corner's position
 };
 
+/// Below this corner angle (degrees) a face is a needle: a layer cell on it is below sin 5° = 0.09.
+inline constexpr double kNeedleCornerDeg = 5.0;
+
 /// The needle faces of \p mesh among those on patches of a kind in \p kinds (all if empty):
-/// a corner below \p min_angle_deg degrees.
+/// a corner below \p min_angle_deg degrees. Corners with an edge of zero length (a fan's faces
+/// on the layer module's wall) have no angle and are left out.
 NeedleReport needle_faces(const SurfaceMesh& mesh, double min_angle_deg, const std::vector<PatchKind>& kinds = {});
 
 }  // namespace strata

@@ -23,6 +23,8 @@ struct EdgeTable {
 };
 /// Edges sorted by (low, high) node id.
 EdgeTable edge_table(const SurfaceMesh& mesh);
+/// The edge of \p edges between nodes \p a and \p b (either order), kNone if there is none.
+Index find_edge(const EdgeTable& edges, Index a, Index b);
 
 /// Closed loops of boundary edges (edges with one face) of an open surface, each loop a
 /// node cycle in the direction of its face's orientation; empty for a closed surface.
