@@ -25,6 +25,10 @@
 // BackendError rather than risk that crash. tests/hybrid/test_tetgen_library.cpp checks the
 // loader; test_tetgen_fill.cpp a self-intersecting boundary (BackendError) and TetGen with
 // Gmsh's Delaunay and HXT meshers in one process, both orders.
+// Debian builds libtet with its assert()s on, and one that fails (seen: "ori4 != 0" in
+// scoutpoint, on a layer top with needle faces) would abort the process: libtet's
+// __assert_fail slots are redirected the same way, to a replacement that throws, and run()
+// reports the assertion as a BackendError.
 // Left as they are: on a failure TetGen leaks a few KB of its own (arraypools local to
 // recoverboundary; valgrind) and may print a line or two to stdout despite Q ("Found two
 // segments intersect each other.").
@@ -58,6 +62,20 @@ namespace {
 /// tetgenmesh destructor.
 [[noreturn]] void throwing_terminatetetgen(tetgenmesh* /*mesh*/, int code) {
     throw code;
+}
+
+/// An assert() of TetGen's that failed: its text, for the error message.
+struct FailedAssertion {
+    std::string text;
+};
+
+/// Replaces __assert_fail for libtet (Debian builds it with its assertions on; one that fails
+/// would abort the process): throw instead, unwinding TetGen like terminatetetgen does.
+[[noreturn]] void throwing_assert_fail(const char* assertion, const char* file, unsigned int line,
+                                       const char* /*function*/) {
+    std::string where = file != nullptr ? file : "tetgen";
+    if (const auto slash = where.rfind('/'); slash != std::string::npos) where.erase(0, slash + 1);
+    throw FailedAssertion{where + ":" + std::to_string(line) + ": " + (assertion != nullptr ? assertion : "")};
 }
 
 /// Point every GOT slot of the loaded object \p handle that binds \p symbol (JUMP_SLOT or
@@ -194,6 +212,8 @@ Library load(const Symbols& symbols) {
                            " (terminatetetgen) could be redirected in its library, so a TetGen failure would "
                            "crash the process instead of being reported; Strata supports Debian's libtet1.5 on "
                            "x86-64 and AArch64");
+    // Its internal checks too, where it has any (none if built with NDEBUG).
+    lib.assert_slots = replace_got_slots(handle, "__assert_fail", reinterpret_cast<void*>(&throwing_assert_fail));
     return lib;
 }
 
@@ -206,6 +226,13 @@ void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* bac
         lib.tetrahedralize(buf.data(), &in, &out, nullptr, background);
     } catch (int code) {
         throw BackendError(failure_message(code));
+    } catch (const FailedAssertion& a) {
+        throw BackendError(
+            "TetGen stopped on one of its internal checks (" + a.text +
+            "): it met a configuration it assumes cannot happen, usually boundary points exactly on another "
+            "boundary face's plane or nearly coincident (a needle or sliver face on the layer top, or layers "
+            "nearly touching); remesh the surface (needle faces) or change the layers (fewer or thinner) there, "
+            "and retry");
     } catch (const std::bad_alloc&) {
         throw BackendError(failure_message(1));
     }

@@ -29,6 +29,7 @@ using TetrahedralizeFn = void (*)(char*, tetgenio*, tetgenio*, tetgenio*, tetgen
 struct Library {
     TetrahedralizeFn tetrahedralize = nullptr;
     int replaced_slots = 0;  ///< terminatetetgen GOT slots pointed at the throwing replacement (≥ 1)
+    int assert_slots = 0;    ///< __assert_fail GOT slots pointed at a throwing replacement (0 if built with NDEBUG)
 };
 
 /// Load libtet privately (RTLD_LOCAL | RTLD_DEEPBIND) and point its terminatetetgen at a
