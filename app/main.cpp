@@ -81,6 +81,7 @@ const std::vector<std::pair<std::string, std::string>> kFlagOfParameter = {
     {"CadParams::elements", "--quads/--mixed"},
     {"CadParams::quad_surfaces", "--mixed"},
     {"CadParams::fuse", "--fuse"},
+    {"PrepareParams::internal_flow", "--internal"},
     {"DistributionParams::layers", "--layers"},
     {"DistributionParams::kind", "--distribution"},
     {"DistributionParams::first_height", "--first-height"},
@@ -165,6 +166,10 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
             ->expected(1, -1);
     q->excludes(m);
     cmd.add_flag("--fuse", cad.fuse, "fuse all solids into one body before meshing (CAD only)");
+    cmd.add_flag("--internal", c.prepare.internal_flow,
+                 "the fluid is inside the closed walls (a duct, a wind tunnel), not around them: layers grow "
+                 "inward from the outermost walls and outward from the bodies inside, and strata mesh fills the "
+                 "walls instead of adding a farfield");
     cmd.add_option("--patch", c.patches,
                    "set a patch's kind, NAME=KIND with KIND wall|symmetry|farfield|other (repeatable)");
 }
@@ -453,6 +458,9 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     double jmin = 1.0;
     for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
     std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
+    if (hr.internal_flow) std::printf("domain: inside the walls (internal flow), no farfield generated\n");
+    if (hr.closed_half_model)
+        std::printf("domain: a half model, closed by a generated half farfield and a symmetry plane\n");
     print_fans(hr.fan_edges, hr.fan_nodes, hr.fan_corners, hr.fans_unusable, hr.fans_dropped);
     print_held_back(hr.layer_stats);
     print_thinned(hr.thinned_nodes, hr.min_thickness_share);

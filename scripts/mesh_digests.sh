@@ -34,7 +34,7 @@ for ext in cgr msh; do
   run wing_fuselage mesh $data/wing_fuselage.step $ext --fuse --layers 5 --first-height 0.05
   run m6_mixed mesh $data/onera_m6_mixed_quadtri.msh $ext --layers 5 --first-height 0.01
   run two_spheres mesh $data/two_spheres_narrow_gap.geo $ext --size 0.05 --layers 30 --first-height 1e-4 --growth 1.2
-  run naca0012_walls mesh $data/naca0012_wing_between_walls.geo $ext --layers 30 --first-height 1e-4 --growth 1.2
+  run naca0012_walls mesh $data/naca0012_wing_between_walls.geo $ext --internal --layers 30 --first-height 1e-4 --growth 1.2
 done
 run readme_m6 mesh $data/onera_m6_sharp_te.stp cgr --size 30 --layers 20 --first-height 0.02 --growth 1.2
 run readme_m6_half mesh $data/onera_m6_pyhyp_quads.msh cgr --layers 20 --first-height 1e-5 --growth 1.15 --farfield box

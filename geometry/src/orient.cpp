@@ -142,8 +142,9 @@ Components consistent_orientation(const SurfaceMesh& mesh, const EdgeTable& edge
 
 /// Closed components that enclose the flow domain: those with a farfield face, and those that
 /// contain another component (its probe point, the centroid of its lowest face: a component
-/// inside a closed surface lies wholly inside it, as components do not intersect).
-std::vector<char> outer_components(const SurfaceMesh& mesh, const Components& comps) {
+/// inside a closed surface lies wholly inside it, as components do not intersect); with
+/// \p internal_flow also those that lie in no other closed component.
+std::vector<char> outer_components(const SurfaceMesh& mesh, const Components& comps, bool internal_flow) {
     std::vector<char> outer(static_cast<std::size_t>(comps.count), 0);
     for (Index f = 0; f < mesh.num_faces(); ++f) {
         const Index p = mesh.face_patch[f];
@@ -152,8 +153,9 @@ std::vector<char> outer_components(const SurfaceMesh& mesh, const Components& co
     }
     std::vector<Vec3> probe(static_cast<std::size_t>(comps.count));
     for (Index c = 0; c < comps.count; ++c) probe[c] = face_centroid(mesh, mesh.points, *comps.faces.row_begin(c));
+    std::vector<char> inside_another(static_cast<std::size_t>(comps.count), 0);
     for (Index c = 0; c < comps.count; ++c) {
-        if (!comps.closed[c] || outer[c]) continue;
+        if (!comps.closed[c]) continue;
         // Bounding box first: most pairs are rejected without touching the faces.
         BoundingBox box;
         box.min = box.max = mesh.points[mesh.face_node(*comps.faces.row_begin(c), 0)];
@@ -162,14 +164,18 @@ std::vector<char> outer_components(const SurfaceMesh& mesh, const Components& co
                 box.min = box.min.cwiseMin(mesh.points[*v]);
                 box.max = box.max.cwiseMax(mesh.points[*v]);
             }
-        for (Index d = 0; d < comps.count && !outer[c]; ++d) {
+        for (Index d = 0; d < comps.count; ++d) {
             if (d == c) continue;
+            if (outer[c] && !internal_flow) break;  // outer already; which others it holds does not matter
             const Vec3& p = probe[d];
             if ((p.array() < box.min.array()).any() || (p.array() > box.max.array()).any()) continue;
             if (std::abs(winding_number(mesh, comps.faces.row_begin(c), comps.faces.row_end(c), comps.flip, p)) > 0.5)
-                outer[c] = 1;
+                outer[c] = 1, inside_another[static_cast<std::size_t>(d)] = 1;
         }
     }
+    if (internal_flow)
+        for (Index c = 0; c < comps.count; ++c)
+            if (comps.closed[c] && !inside_another[static_cast<std::size_t>(c)]) outer[c] = 1;
     return outer;
 }
 
@@ -191,9 +197,16 @@ double enclosed_volume(const SurfaceMesh& mesh, const Components& comps, Index c
 
 }  // namespace
 
-SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report) {
+SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report, bool internal_flow) {
     const EdgeTable edges = edge_table(mesh);
     Components comps = consistent_orientation(mesh, edges);
+    if (internal_flow && std::none_of(comps.closed.begin(), comps.closed.end(), [](char c) { return c != 0; }))
+        throw InputError(
+            "internal flow (PrepareParams::internal_flow) asks for walls that enclose the fluid, but no part of the "
+            "surface is closed (" +
+            std::to_string(comps.count) +
+            " open components): close the duct with its inflow and outflow patches, or mesh the flow around "
+            "the surface without it");
 
     // Open components: the BFS root's orientation is arbitrary, the majority is what the user
     // meant (an already consistent surface stays untouched). A tie keeps the root's.
@@ -206,7 +219,7 @@ SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report) {
 
     // Closed components: outer surfaces point into the domain they enclose (negative volume),
     // bodies point outward into the flow (positive volume).
-    const std::vector<char> outer = outer_components(mesh, comps);
+    const std::vector<char> outer = outer_components(mesh, comps, internal_flow);
     Index num_closed = 0;
     for (Index c = 0; c < comps.count; ++c) {
         if (!comps.closed[c]) continue;

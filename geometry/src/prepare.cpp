@@ -67,7 +67,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     check_surface(merged, source);
     strata::report(progress, "surface", 0.8);
     OrientReport orient;
-    SurfaceMesh oriented = orient_surface(merged, &orient);
+    SurfaceMesh oriented = orient_surface(merged, &orient, params.internal_flow);
     if (report) {
         report->merged_nodes = merged_nodes;
         report->orient = orient;

@@ -59,16 +59,35 @@ std::vector<Vec3> points_in_layers(const LayerMesh& lm) {
     return holes;
 }
 
+/// Volume a closed surface encloses, signed by its orientation: negative when its normals
+/// point inward (the fluid inside, as orient_surface leaves a duct or a tunnel).
+double signed_enclosed_volume(const SurfaceMesh& s) {
+    Vec3 ref = Vec3::Zero();
+    for (const Vec3& p : s.points) ref += p;
+    if (!s.points.empty()) ref /= static_cast<double>(s.points.size());
+    double volume = 0.0;
+    for (Index f = 0; f < s.num_faces(); ++f)
+        volume += (face_centroid(s, s.points, f) - ref).dot(face_area_vector(s, f)) / 3.0;
+    return volume;
+}
+
 /// The domain the layers grow in: \p input itself if it is closed (walls inside farfield,
-/// symmetry or outflow patches, or walls alone), a half model (walls alone, open along one plane)
-/// closed by a generated half farfield and symmetry plane.
+/// symmetry or outflow patches, walls alone around a body, or walls alone around the fluid:
+/// internal flow), a half model (walls alone, open along one plane) closed by a generated half
+/// farfield and symmetry plane. \p has_outer: the input closes the fluid itself (no farfield
+/// to generate); \p internal: it does so with walls alone.
 SurfaceMesh closed_domain(const SurfaceMesh& input, const FarfieldParams& farfield, bool& has_outer,
-                          bool& closed_half_model) {
-    has_outer = false;
+                          bool& closed_half_model, bool& internal) {
+    has_outer = internal = false;
     for (Index f = 0; f < input.num_faces(); ++f)
         has_outer |= input.patches[static_cast<std::size_t>(input.face_patch[f])].kind != PatchKind::Wall;
     closed_half_model = false;
-    if (boundary_loops(input).rows() == 0) return input;
+    if (boundary_loops(input).rows() == 0) {
+        // Walls alone pointing inward on the whole: the fluid is inside them (orient_surface's
+        // internal flow), so there is no farfield to add.
+        if (!has_outer && signed_enclosed_volume(input) < 0.0) has_outer = internal = true;
+        return input;
+    }
     if (has_outer)
         throw InputError(
             "the fluid domain is open: its walls, symmetry, outflow and farfield patches must enclose it "
@@ -227,7 +246,8 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
                              HybridReport* report) {
     HybridReport rep;
     bool has_outer = false;
-    const SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, rep.closed_half_model);
+    const SurfaceMesh surface =
+        closed_domain(input, params.farfield, has_outer, rep.closed_half_model, rep.internal_flow);
     if (const std::vector<FacePair> crossing = self_intersections(surface, 1, params.threads); !crossing.empty())
         throw InputError("the surface intersects itself: " + describe_face(surface, crossing[0].a) + " meets " +
                          describe_face(surface, crossing[0].b) +

@@ -267,6 +267,27 @@ TEST(Cli, MeshBoxDomainRemeshesTheSidesTheLayersEndOn) {
     EXPECT_EQ(files, (std::vector<std::string>{"box.su2", "box.su2.report.json"}));
 }
 
+TEST(Cli, MeshInsideTheWallsWithInternal) {
+    // A spherical tank: with --internal the sphere's inside is the fluid, the layers grow
+    // inward and the tetrahedra fill the rest, no farfield; an open surface cannot hold a fluid.
+    test::ScratchDir dir("cli_mesh_internal");
+    CliResult r = strata_cli(dir, "mesh '" + example_data("sphere.stl") +
+                                      "' -o tank.msh --msh-version 2.2 --layers 5 --first-height 2e-3 --internal");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("domain: inside the walls (internal flow), no farfield generated"), std::string::npos)
+        << r.out;
+    const VolumeMesh m = read_volume_msh((dir.path() / "tank.msh").string());
+    EXPECT_GT(m.prisms.size(), 0u);
+    EXPECT_GT(m.tets.size(), 0u);
+    EXPECT_EQ(find_patch(m.boundary, "farfield"), kNone);
+    double outermost = 0.0;
+    for (const Vec3& p : m.points) outermost = std::max(outermost, p.norm());
+    EXPECT_LE(outermost, 1.0 + 1e-6);  // nothing outside the tank (sphere.stl: radius 1)
+    expect_clean_failure(
+        "mesh '" + test_data("cli_open_bent.stl") + "' -o out.cgr --layers 2 --first-height 1e-3 --internal",
+        "--internal", "internal_open");
+}
+
 TEST(Cli, MeshBadInputsFailCleanly) {
     // Open, but not along one plane: not a half model that could be closed.
     expect_clean_failure("mesh '" + test_data("cli_open_bent.stl") + "' -o out.cgr --layers 2 --first-height 1e-3",

@@ -309,6 +309,61 @@ TEST(OrientSurface, FarfieldSphereAlonePointsInward) {
     for (Index f = 0; f < o.num_faces(); ++f) EXPECT_LT(outwardness(o, f, Vec3::Zero()), 0.0);
 }
 
+TEST(OrientSurface, InternalFlowPointsTheOutermostWallsInward) {
+    // A duct or a tunnel: the fluid is inside the walls. Alone, the closed wall points inward;
+    // with bodies inside, they point outward into the fluid, the outermost wall inward, whatever
+    // the order of the components and however their faces start.
+    const SurfaceMesh alone = sphere(2, 3.0);
+    OrientReport rep;
+    const SurfaceMesh in = orient_surface(alone, &rep, true);
+    EXPECT_EQ(rep.flipped_faces, alone.num_faces());
+    for (Index f = 0; f < in.num_faces(); ++f) EXPECT_LT(outwardness(in, f, Vec3::Zero()), 0.0) << f;
+    for (bool inner_first : {true, false}) {
+        SurfaceMesh m;
+        m.patches.push_back({"body", PatchKind::Wall});
+        m.patches.push_back({"tunnel", PatchKind::Wall});
+        const Vec3 a(1.5, 0.5, 0.0), b(-1.5, -0.5, 0.5);
+        if (inner_first) {
+            add_icosphere(m, 1, 0.6, a, 0);
+            add_icosphere(m, 1, 0.6, b, 0);
+        }
+        add_icosphere(m, 2, 5.0, Vec3::Zero(), 1);
+        if (!inner_first) {
+            add_icosphere(m, 1, 0.6, a, 0);
+            add_icosphere(m, 1, 0.6, b, 0);
+        }
+        for (Index f = 0; f < m.num_faces(); f += 3) reverse_face(m, f);
+        const SurfaceMesh o = orient_surface(m, &rep, true);
+        EXPECT_EQ(rep.closed_components, 3);
+        for (Index f = 0; f < o.num_faces(); ++f) {
+            const Vec3 x = face_centroid(o, o.points, f);
+            if (o.face_patch[f] == 0)
+                EXPECT_GT(outwardness(o, f, (x - a).norm() < (x - b).norm() ? a : b), 0.0) << "body face " << f;
+            else
+                EXPECT_LT(outwardness(o, f, Vec3::Zero()), 0.0) << "tunnel face " << f;
+        }
+        // Without internal flow the same bodies side by side in nothing would point outward;
+        // here the tunnel holds them, so it points inward either way.
+        const SurfaceMesh ext = orient_surface(m, &rep);
+        for (Index f = 0; f < ext.num_faces(); ++f) {
+            if (ext.face_patch[f] == 1) {
+                EXPECT_LT(outwardness(ext, f, Vec3::Zero()), 0.0) << f;
+            }
+        }
+    }
+}
+
+TEST(OrientSurface, InternalFlowNeedsAClosedSurface) {
+    SurfaceMesh open = sphere();
+    open.face_offsets.pop_back();  // drop the last face: a hole
+    open.face_nodes.resize(static_cast<std::size_t>(open.face_offsets.back()));
+    open.face_patch.pop_back();
+    const std::string msg = message_of<InputError>([&] { orient_surface(open, nullptr, true); });
+    EXPECT_NE(msg.find("internal flow"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("no part of the surface is closed"), std::string::npos) << msg;
+    EXPECT_NO_THROW(orient_surface(open));
+}
+
 TEST(OrientSurface, MoebiusStripIsNotOrientable) {
     SurfaceMesh m;
     m.patches.push_back({"strip", PatchKind::Wall});

@@ -191,13 +191,22 @@ TEST(HybridCases, TwoSpheresWithAGapOfATenthOfTheLayers) {
 }
 
 TEST(HybridCases, Naca0012BetweenWallsWithThirtyLayers) {
-    // Internal flow, every patch a wall; the wing's and the tunnel walls' layers meet at the
-    // junctions. It used to stop in TetGen ("the boundary intersects itself", no place).
-    const SurfaceMesh s = prepare_surface(example_data("naca0012_wing_between_walls.geo"), {});
+    // Internal flow, every patch a wall: the fluid is the tunnel (20 x 10 x 20) minus the wing,
+    // whose root is on the tunnel's floor; the wing's and the walls' layers meet at the
+    // junctions. It used to stop in TetGen ("the boundary intersects itself", no place), then
+    // was meshed inside out (the tunnel taken for a body in a generated farfield).
+    PrepareParams pp;
+    pp.internal_flow = true;
+    const SurfaceMesh s = prepare_surface(example_data("naca0012_wing_between_walls.geo"), pp);
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(30, 1e-4), nullptr, &rep);
-    EXPECT_GT(short_by(rep, Shortfall::Proximity), 0);
+    EXPECT_TRUE(rep.internal_flow);
+    EXPECT_EQ(find_patch(m.boundary, "farfield"), kNone);
+    EXPECT_NEAR(rep.validation.cell_volume, 4000.0, 1.0);  // the wing's volume is 0.08
     expect_valid_case("naca0012_walls", s, m, rep);
+    // The tunnel alone, without internal flow, is a body: a farfield is generated around it.
+    const SurfaceMesh body = prepare_surface(example_data("naca0012_wing_between_walls.geo"), {});
+    EXPECT_GT(test::enclosed_volume(body), 3999.0);
 }
 
 TEST(HybridCases, WingFuselageWithThirtyLayersStopsWhereItWouldFold) {

@@ -27,10 +27,13 @@ struct OrientReport {
 /// Make every connected component consistently oriented (breadth-first from its lowest face),
 /// then orient closed components so normals point into the flow domain: a closed body that
 /// lies in no other component points outward; a closed surface that holds other components,
-/// or carries a farfield patch, points inward. An open component keeps the majority
+/// or carries a farfield patch, points inward. With \p internal_flow (the fluid is inside the
+/// walls: a duct, a wind tunnel) every closed component that lies in no other one points
+/// inward too, and the bodies inside it outward. An open component keeps the majority
 /// orientation of its faces. Throws TopologyError (naming an edge) where a component is not
-/// orientable (e.g. a Möbius strip). Requires check_surface to have passed.
-SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report = nullptr);
+/// orientable (e.g. a Möbius strip), InputError when \p internal_flow is asked of a surface
+/// with no closed component. Requires check_surface to have passed.
+SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report = nullptr, bool internal_flow = false);
 
 /// Needle faces: faces with a corner sharper than a bound. A layer cell on a face can be no
 /// better than the sine of the face's sharpest corner (its scaled Jacobian at that corner), so

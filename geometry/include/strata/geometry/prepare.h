@@ -18,6 +18,10 @@ struct PrepareParams {
     CadParams cad;                                               ///< used for CAD input only
     std::vector<std::pair<std::string, PatchKind>> patch_kinds;  ///< --patch NAME=KIND
     double merge_tolerance = 1e-9;                               ///< relative to the bounding-box diagonal
+    /// The fluid is inside the closed walls (a duct, a wind tunnel), not around them: the
+    /// outermost closed surface points inward (orient_surface), and build_hybrid_mesh fills it
+    /// instead of generating a farfield around it.
+    bool internal_flow = false;
 };
 
 /// What prepare_surface did, for the CLI's summary.

@@ -39,13 +39,17 @@ struct HybridReport {
     /// The input was a half model (walls open along one plane): a half farfield and a
     /// "symmetry" patch were generated; their patches follow the input's.
     bool closed_half_model = false;
+    /// The input's walls enclose the fluid (they point inward: PrepareParams::internal_flow), so
+    /// no farfield was generated.
+    bool internal_flow = false;
     ValidationReport validation;
     double seconds_layers = 0.0, seconds_pyramids = 0.0, seconds_tets = 0.0, seconds_validate = 0.0;
 };
 
 /// Build the hybrid mesh around the walls of \p surface (oriented; normals into the flow).
-/// The fluid domain is closed by the surface's own farfield patches if it has any, otherwise
-/// by a generated box or sphere. Cells: the layers' hexahedra and prisms, pyramids on the
+/// The fluid domain is closed by the surface's own farfield patches if it has any, or by its
+/// walls alone where they point inward (internal flow: a duct, a tunnel), otherwise by a
+/// generated box or sphere. Cells: the layers' hexahedra and prisms, pyramids on the
 /// quads of the outermost layer, tetrahedra beyond. Patches: the input's (walls, farfield,
 /// symmetry). The result passes require_valid_mesh (checked here; a failure throws).
 /// Walls may end on planar non-wall patches (a half model's symmetry plane, an outflow plane,
