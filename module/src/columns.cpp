@@ -7,6 +7,7 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/core/parallel.h>
+#include <strata/geometry/normals.h>
 
 #include <algorithm>
 #include <cmath>
@@ -50,19 +51,45 @@ Columns::Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& m
     active.assign(n, 1);
     reason.assign(n, Shortfall::None);
     top = wall.points;
+    reach = wall_reach(wall);
+}
+
+std::vector<double> wall_reach(const SurfaceMesh& wall) {
+    const auto n = static_cast<std::size_t>(wall.num_points());
+    std::vector<std::vector<Vec3>> normals(n);
+    for (Index f = 0; f < wall.num_faces(); ++f) {
+        const Vec3 a = face_area_vector(wall, f);
+        double edges2 = 0.0;
+        for (Index i = 0; i < wall.face_size(f); ++i)
+            edges2 += (wall.points[wall.face_node(f, (i + 1) % wall.face_size(f))] - wall.points[wall.face_node(f, i)])
+                          .squaredNorm();
+        if (!(a.norm() > 1e-12 * edges2)) continue;  // a fan's strip, a collapsed face: no direction of its own
+        for (const Index* v = wall.face_begin(f); v != wall.face_end(f); ++v)
+            normals[static_cast<std::size_t>(*v)].push_back(a.normalized());
+    }
+    std::vector<double> reach(n, 1.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (normals[i].empty()) continue;
+        double lowest = 1.0;
+        max_min_dot_direction(normals[i], &lowest);
+        reach[i] = std::clamp(lowest, kMinReach, 1.0);
+    }
+    return reach;
 }
 
 namespace {
 
-/// The smallest sine of a corner angle of the polygon \p x (n corners).
-double corner_sines(const std::array<Vec3, 4>& x, int n) {
+/// The smallest sine of a corner angle of the polygon \p x (n corners), each times its
+/// \p weight (1 if none).
+double corner_sines(const std::array<Vec3, 4>& x, int n, const std::array<double, 4>* weight = nullptr) {
     double q = 1.0;
     for (int c = 0; c < n; ++c) {
         const Vec3& o = x[static_cast<std::size_t>(c)];
         const Vec3 a = x[static_cast<std::size_t>((c + 1) % n)] - o;
         const Vec3 b = x[static_cast<std::size_t>((c + n - 1) % n)] - o;
         const double l = a.norm() * b.norm();
-        q = std::min(q, l > 0.0 ? a.cross(b).norm() / l : 0.0);
+        const double w = weight ? (*weight)[static_cast<std::size_t>(c)] : 1.0;
+        q = std::min(q, l > 0.0 ? w * a.cross(b).norm() / l : 0.0);
     }
     return q;
 }
@@ -72,10 +99,13 @@ double corner_sines(const std::array<Vec3, 4>& x, int n) {
 double face_corner_quality(const Columns& col, Index f) {
     const auto u = static_cast<std::size_t>(f);
     std::array<Vec3, 4> x;
-    for (int c = 0; c < col.faces.size[u]; ++c)
-        x[static_cast<std::size_t>(c)] =
-            col.top[static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)])];
-    return corner_sines(x, col.faces.size[u]);
+    std::array<double, 4> w{1.0, 1.0, 1.0, 1.0};
+    for (int c = 0; c < col.faces.size[u]; ++c) {
+        const auto v = static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)]);
+        x[static_cast<std::size_t>(c)] = col.at_level(static_cast<Index>(v), 0);  // on the wall
+        if (v < col.reach.size()) w[static_cast<std::size_t>(c)] = col.reach[v];
+    }
+    return corner_sines(x, col.faces.size[u], &w);
 }
 
 Vec3 Columns::at_level(Index i, int level) const {
@@ -198,7 +228,10 @@ bool split_keeps_cells(const Columns& col, Index f, int c, int k, const StopRule
             CellType type{};
             std::array<Vec3, 8> p{};
             if (!closing_cell(t, 3, moving, lo, hi, type, p)) return false;
-            const double fq = corner_sines({lo(t[0]), lo(t[1]), lo(t[2]), Vec3::Zero()}, 3);
+            const std::array<double, 4> w{col.reach[static_cast<std::size_t>(t[0])],
+                                          col.reach[static_cast<std::size_t>(t[1])],
+                                          col.reach[static_cast<std::size_t>(t[2])], 1.0};
+            const double fq = corner_sines({lo(t[0]), lo(t[1]), lo(t[2]), Vec3::Zero()}, 3, &w);
             if (!usable(type, m == 3, p, fq, rules)) return false;
         }
     return true;

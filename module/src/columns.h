@@ -36,6 +36,11 @@ struct Columns {
     std::vector<char> active;       ///< per wall node, 1 while it marches
     std::vector<Shortfall> reason;  ///< per wall node, why it stopped below the layers asked
     std::vector<Vec3> top;          ///< per wall node, its highest node's position
+    /// Per wall node, how squarely one direction can see all the wall faces around it (the
+    /// largest smallest cosine to their normals, wall_reach): 1 on a smooth wall, cos(turn/2) on
+    /// a sharp edge without a fan. A cell's corner there can be no better than this times the
+    /// sine of its face's angle, so face_corner_quality counts it.
+    std::vector<double> reach;
     /// Empty, or per wall node 1 where it cannot stop (a fan's column, first layer); stop_columns
     /// sets 2 where it would have stopped.
     std::vector<char> pinned;
@@ -69,9 +74,23 @@ struct StopRules {
 /// that stopped.
 Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vector<Vec3>& next);
 
-/// The smallest sine of a corner angle of column face \p f at its nodes' tops: the scaled
-/// Jacobian of the right prism or hexahedron on it, the best a cell over it can have.
+/// The best a cell over column face \p f can be: over its corners on the wall, the sine of
+/// the corner's angle (the scaled Jacobian of the right prism or hexahedron on it) times the
+/// corner node's reach (one direction per node: at a sharp edge without a fan no column stands
+/// square on both sides), the smallest. The wall's, not the tops': a front that the marching
+/// distorts must not lower the bar its own cells are judged by.
 double face_corner_quality(const Columns& col, Index f);
+
+/// Per node of \p wall, the largest smallest cosine between one direction and the unit normals
+/// of the faces around it (zero-area faces, such as a fan's strips, left out), at least
+/// kMinReach; 1 where no face counts.
+std::vector<double> wall_reach(const SurfaceMesh& wall);
+
+/// The reach below which a node counts as kMinReach (one direction within 60° of every face
+/// around it): a sharper edge without a fan lowers what its cells must reach by half at most,
+/// so its columns grow where the first cells are fair (a wing's trailing edge ending on a
+/// fuselage, where no fan can be built) and stop where the cells get worse than that.
+inline constexpr double kMinReach = 0.5;
 
 /// Scaled Jacobian of the cell column face \p f would make between its nodes' tops and \p next,
 /// every column going on (a prism or hexahedron, as cell_quality.h measures them).
