@@ -133,8 +133,8 @@ SurfaceMesh region_to_fill(const std::vector<Patch>& patches, const PyramidLayer
 /// The outer boundary of the fluid domain: the input's non-wall patches, re-meshed where the
 /// layers end on them, or a generated farfield (pointing into the fluid, as an input's would).
 OuterBoundary outer_part(const SurfaceMesh& surface, const LayerMesh& lm, bool has_outer,
-                         const FarfieldParams& farfield) {
-    if (has_outer) return outer_boundary(surface, lm);
+                         const FarfieldParams& farfield, double growth) {
+    if (has_outer) return outer_boundary(surface, lm, growth);
     OuterBoundary outer;
     outer.mesh = make_farfield(surface.points, farfield);
     flip_faces(outer.mesh);  // outward → into the fluid
@@ -316,7 +316,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         }
         rep.seconds_pyramids += seconds_since(t0);
         t0 = std::chrono::steady_clock::now();
-        outer = outer_part(surface, lm, has_outer, params.farfield);
+        outer = outer_part(surface, lm, has_outer, params.farfield, params.tets.growth);
         region = region_to_fill(surface.patches, pyr, outer, farfield_patch, top_patch);
         const std::vector<FacePair> pairs = self_intersections(region, 0, params.threads);
         rep.seconds_tets += seconds_since(t0);

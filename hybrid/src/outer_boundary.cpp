@@ -295,7 +295,7 @@ struct Builder {
     }
 
     /// Mesh re-meshed patch \p patch (planar, plane \p pl) inside \p loops.
-    void mesh_patch(Index patch, const PatchPlane& pl, const std::vector<std::vector<Index>>& loops) {
+    void mesh_patch(Index patch, const PatchPlane& pl, const std::vector<std::vector<Index>>& loops, double growth) {
         const std::string ctx = "re-meshing patch '" + patch_name(patch) + "' around the layers";
         for (const auto& loop : loops)
             for (Index p : loop) {
@@ -306,7 +306,10 @@ struct Builder {
                         std::to_string(off) + " off the plane" +
                         (out.top_node[static_cast<std::size_t>(p)] != kNone ? " (a node of the layer top)" : ""));
             }
-        const PlaneMesh pm = mesh_plane_region(out.mesh.points, loops, pl.point, pl.normal, ctx);
+        // Graded from the layer top (the tetrahedra's rule), not from the patch's own outline.
+        std::vector<char> top(out.mesh.points.size(), 0);
+        for (std::size_t p = 0; p < top.size(); ++p) top[p] = out.top_node[p] != kNone;
+        const PlaneMesh pm = mesh_plane_region(out.mesh.points, loops, pl.point, pl.normal, ctx, growth, top);
         // New points are appended in order, so their ids are the ones mesh_plane_region gave.
         for (const Vec3& x : pm.new_points) add_point(x, kNone);
         for (const auto& t : pm.triangles) out.mesh.add_face({t[0], t[1], t[2]}, patch);
@@ -315,7 +318,7 @@ struct Builder {
 
 }  // namespace
 
-OuterBoundary outer_boundary(const SurfaceMesh& surface, const LayerMesh& layers) {
+OuterBoundary outer_boundary(const SurfaceMesh& surface, const LayerMesh& layers, double growth) {
     Builder b(surface, layers);
     b.out.mesh.patches = surface.patches;
     // Patches that the walls touch.
@@ -341,7 +344,7 @@ OuterBoundary outer_boundary(const SurfaceMesh& surface, const LayerMesh& layers
         b.out.remeshed.push_back(p);
     }
     b.cut_patch_edges(remesh);
-    for (Index p : b.out.remeshed) b.mesh_patch(p, plane[static_cast<std::size_t>(p)], b.patch_loops(p));
+    for (Index p : b.out.remeshed) b.mesh_patch(p, plane[static_cast<std::size_t>(p)], b.patch_loops(p), growth);
     // The other non-wall patches as they are.
     for (Index f = 0; f < surface.num_faces(); ++f) {
         if (b.is_wall_face(f) || remesh[static_cast<std::size_t>(surface.face_patch[f])]) continue;

@@ -176,6 +176,16 @@ SizeField::SizeField(const SurfaceMesh& b, double growth, double max_volume)
     if (!wall_points_.empty()) tree_ = std::make_unique<Tree>(wall_points_, wall_size_);
 }
 
+SizeField::SizeField(std::vector<Vec3> points, std::vector<double> sizes, double growth)
+    : growth_(growth),
+      cap_(std::numeric_limits<double>::infinity()),
+      volume_edge_(std::numeric_limits<double>::infinity()),
+      node_size_(sizes),
+      wall_points_(std::move(points)),
+      wall_size_(std::move(sizes)) {
+    if (!wall_points_.empty()) tree_ = std::make_unique<Tree>(wall_points_, wall_size_);
+}
+
 SizeField::~SizeField() = default;
 
 double SizeField::boundary_size(Index i) const {

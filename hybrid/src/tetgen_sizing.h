@@ -35,6 +35,9 @@ public:
     /// -m sizes are spacings too (a point closer to a vertex than its size is rejected), so
     /// without the cap -a could not be met where h is larger.
     SizeField(const SurfaceMesh& boundary, double growth, double max_volume);
+    /// The same rule over given \p points and their \p sizes (no cap): a plane's loop points
+    /// and their spacing, for mesh_plane_region.
+    SizeField(std::vector<Vec3> points, std::vector<double> sizes, double growth);
     ~SizeField();
     SizeField(const SizeField&) = delete;
     SizeField& operator=(const SizeField&) = delete;

@@ -30,6 +30,8 @@ struct OuterBoundary {
 ///
 /// Throws InputError when such a patch is not planar, and TopologyError when the layers are
 /// too thick for the patch edge they march along (naming the patches and the position).
-OuterBoundary outer_boundary(const SurfaceMesh& surface, const LayerMesh& layers);
+/// \p growth: the re-meshed patches' size grows from their boundary at this rate at most
+/// (mesh_plane_region; pass TetFillParams::growth), 0 as Gmsh grades it.
+OuterBoundary outer_boundary(const SurfaceMesh& surface, const LayerMesh& layers, double growth = 0.0);
 
 }  // namespace strata
