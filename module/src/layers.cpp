@@ -498,6 +498,12 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
     // Which bound holds: the proximity limit alone, or the extra (front) bound below it.
     const std::vector<double> by_proximity =
         extra.empty() ? limit : thickness_limits(w.mesh, hits, mc.params.proximity_limits);
+    auto fitting = [&](double l) {  // the layers whose heights add up to l at most
+        int n = 0;
+        for (double sum = delta[0]; n < layers && sum <= l; sum += delta[static_cast<std::size_t>(++n)]) {
+        }
+        return n;
+    };
     for (std::size_t i = 0; i < nw; ++i) {
         if (!(limit[i] < thickness)) continue;
         reason[i] = limit[i] < by_proximity[i] ? Shortfall::Front : Shortfall::Proximity;
@@ -505,15 +511,24 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
             scale[i] = limit[i] / thickness;
             continue;
         }
-        int n = 0;  // the layers whose heights add up to the limit at most
-        for (double sum = delta[0]; n < layers && sum <= limit[i]; sum += delta[static_cast<std::size_t>(++n)]) {
-        }
-        max_levels[i] = n;
+        max_levels[i] = fitting(by_proximity[i]);
     }
     if (mc.params.proximity == ProximityMode::Stop) {
-        levels_differ_by_one(w.mesh, max_levels, reason);
-        for (std::size_t i = 0; i < nw; ++i)
+        // Neighbouring columns within one layer where proximity limits them (a gap, a facing
+        // wall); a front round's limits (lowered where the front met itself) only lower their
+        // own columns and those the envelope reaches: spread by whole layers per edge they
+        // would take every column of a coarse wall with them (the wing-fuselage's 355 nodes all
+        // fell to 1 % of the thickness after one round).
+        std::vector<Shortfall> prox_reason(nw, Shortfall::Proximity);
+        levels_differ_by_one(w.mesh, max_levels, prox_reason);
+        for (std::size_t i = 0; i < nw; ++i) {
+            if (reason[i] == Shortfall::None && max_levels[i] < layers) reason[i] = Shortfall::Proximity;
+            if (!extra.empty() && limit[i] < by_proximity[i]) {
+                const int n = fitting(limit[i]);
+                if (n < max_levels[i]) max_levels[i] = n, reason[i] = Shortfall::Front;
+            }
             if (max_levels[i] == layers) reason[i] = Shortfall::None;
+        }
     }
     return scale;
 }
@@ -613,17 +628,27 @@ Vec3 jacobi_update(const Marcher& mc, const Levels& lv, Index o, double theta) {
     return p;
 }
 
+/// How far the smoothing may move a node from where plain extrusion put it, in layer heights
+/// (of that node: scaled heights count scaled). The Poisson corrections that keep layers smooth
+/// and orthogonal move nodes a fraction of a layer height, those of concave corners a few; a
+/// node carried further is a divergent update, and its cells would stop its column or fold
+/// the front. Measured: at 2 the wing-fuselage's layer top intersected itself, from 10 to 40
+/// every case gives the same worst cells.
+constexpr double kMaxSmoothingMove = 10.0;
+
 /// Step 2 of a layer: point-Jacobi sweeps of the Poisson system over the middle level \p r1
 /// (each node's update reads only the previous iterate, so the result does not depend on the
 /// thread count), level 2 regenerated from it before every sweep (Eq. 12). At least
 /// LayerParams::sweeps sweeps, more (up to max_sweeps) while the largest update exceeds
-/// tolerance × δ_k. Returns the sweeps done.
+/// tolerance × δ_k; each update held within kMaxSmoothingMove layer heights of \p r1 as it came
+/// in (the extruded level). Returns the sweeps done.
 int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, double dk1, std::vector<Vec3>& r1) {
     const LayerParams& p = mc.params;
     const double theta = p.control_functions ? -2.0 * (dk1 - dk) / (dk + dk1) : 0.0;
     const int max_sweeps = p.smoothing ? std::max(p.max_sweeps, p.sweeps) : 0;
     const Index nw = mc.wall.num_points();
     std::vector<Vec3> r2(r1.size()), next(r1.size());
+    const std::vector<Vec3> ref = r1;  // the extruded level the smoothing corrects
     int sweep = 0;
     for (; sweep < max_sweeps; ++sweep) {
         const std::vector<Vec3> n1 = mc.normals(r1);
@@ -633,6 +658,12 @@ int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, doub
 #pragma omp parallel for num_threads(mc.threads) schedule(static) reduction(max : max_move)
         for (Index o = 0; o < nw; ++o) {
             next[o] = jacobi_update(mc, lv, o, theta);
+            // A node the sweeps carry away (a concave junction node whose update diverges: 60
+            // layer heights in one layer on the body-fin box, 250 beside the wing-fuselage's
+            // junction) is held within kMaxSmoothingMove layer heights of its extruded position.
+            const double reach = kMaxSmoothingMove * dk * mc.height_scale[o];
+            const Vec3 d = next[o] - ref[o];
+            if (d.squaredNorm() > reach * reach) next[o] = ref[o] + (reach / d.norm()) * d;
             max_move = std::max(max_move, (next[o] - r1[o]).norm());
         }
         std::swap(r1, next);

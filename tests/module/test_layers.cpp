@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <utility>
@@ -400,10 +401,25 @@ TEST(Layers, NeedleTrianglesNeverGiveANonFiniteCoordinate) {
             const ValidationReport vr = validate_mesh(lm.mesh);
             EXPECT_TRUE(vr.ok()) << h << " " << to_string(method) << (vr.problems.empty() ? "" : vr.problems[0]);
         }
-        // With local stopping, every column is on a needle whose cells no marching keeps
-        // usable: a clear error naming the needles and the remedy, never garbage.
-        test::expect_error<TopologyError>([&] { (void)extrude_layers(wall, geometric(10, 1e-4 * 0.9, 1.2)); },
-                                          {"no wall node could grow", "needle faces", "remesh the surface"});
+        // With local stopping: the columns whose cells stay as good as their needles allow
+        // grow (the smoothing held within reach of the extrusion, kMaxSmoothingMove), the others
+        // stop; valid layers, or, where no column can grow, a clear error naming the needles
+        // and the remedy. Never garbage.
+        try {
+            const LayerMesh lm = extrude_layers(wall, geometric(10, 1e-4 * 0.9, 1.2));
+            for (const Vec3& x : lm.mesh.points) ASSERT_TRUE(x.allFinite()) << h;
+            const ValidationReport vr = validate_mesh(lm.mesh);
+            EXPECT_TRUE(vr.ok()) << h << (vr.problems.empty() ? "" : vr.problems[0]);
+            Index grown = 0;
+            for (Index i = 0; i < lm.wall_nodes(); ++i) grown += lm.node_layers(i) > 0 ? 1 : 0;
+            std::printf("needles of %g: %d of %d wall nodes grew, min scaled Jacobian %.2e\n", h,
+                        static_cast<int>(grown), static_cast<int>(lm.wall_nodes()), vr.min_scaled_jacobian);
+            EXPECT_GT(grown, 0);
+        } catch (const TopologyError& e) {
+            const std::string msg = e.what();
+            for (const char* part : {"no wall node could grow", "needle faces", "remesh the surface"})
+                EXPECT_NE(msg.find(part), std::string::npos) << part << " not in: " << msg;
+        }
     }
 }
 
