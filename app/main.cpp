@@ -99,6 +99,7 @@ const std::vector<std::pair<std::string, std::string>> kFlagOfParameter = {
     {"LayerParams::proximity", "--proximity"},
     {"LayerParams::min_quality", "--min-quality"},
     {"LayerParams::max_turn_deg", "--max-turn"},
+    {"LayerParams::max_twist_deg", "--max-twist"},
     {"LayerParams::fan_angle_deg", "--fan-angle"},
     {"LayerParams::threads", "--threads"},
     {"HybridParams::threads", "--threads"},
@@ -245,6 +246,10 @@ void add_layer_options(CLI::App& cmd, LayerOptions& o) {
                    "would fold; a fold that holding back cannot save is an error)")
         ->capture_default_str();
     cmd.add_option("--max-turn", p.max_turn_deg, "a column stops where it would turn more than this, degrees")
+        ->capture_default_str();
+    cmd.add_option("--max-twist", p.max_twist_deg,
+                   "a column stops where a cell it would make has its top turned more than this about its axis "
+                   "against its bottom, degrees")
         ->capture_default_str();
     cmd.add_option("--fan-angle", p.fan_angle_deg,
                    "a fan of columns (one per side, more between) at convex edges whose faces turn by this many "
@@ -410,17 +415,19 @@ void print_coverage(const strata::LayerReport& r) {
     using strata::Shortfall;
     std::printf("coverage: %d layers asked, %.4g thick (first %.3g); per wall patch, what the columns reached:\n",
                 r.layers, r.thickness, r.first_height);
-    std::printf("  %-20s %7s %7s %6s %6s %6s %6s %6s  short: %5s %5s %5s %5s %5s %5s %5s\n", "patch", "faces", "nodes",
-                "full", "all L", "mean L", "min L", "thick", "prox", "front", "held", "qual", "turn", "nbrs", "nan");
+    std::printf("  %-20s %7s %7s %6s %6s %6s %6s %6s  short: %5s %5s %5s %5s %5s %5s %5s %5s\n", "patch", "faces",
+                "nodes", "full", "all L", "mean L", "min L", "thick", "prox", "front", "held", "qual", "turn", "twist",
+                "nbrs", "nan");
     for (const strata::PatchCoverage& c : r.patches) {
         const double n = c.nodes > 0 ? static_cast<double>(c.nodes) : 1.0;
         std::printf(
-            "  %-20s %7d %7d %5.1f%% %5.1f%% %6.1f %6d %5.1f%%         %5d %5d %5d %5d %5d %5d %5d\n", c.name.c_str(),
-            static_cast<int>(c.faces), static_cast<int>(c.nodes), 100.0 * static_cast<double>(c.full_nodes) / n,
-            100.0 * static_cast<double>(c.all_layers) / n, c.mean_layers, c.min_layers, 100.0 * c.mean_share,
-            static_cast<int>(c.short_nodes(Shortfall::Proximity)), static_cast<int>(c.short_nodes(Shortfall::Front)),
-            static_cast<int>(c.short_nodes(Shortfall::HeldBack)), static_cast<int>(c.short_nodes(Shortfall::Quality)),
-            static_cast<int>(c.short_nodes(Shortfall::Turning)), static_cast<int>(c.short_nodes(Shortfall::Neighbours)),
+            "  %-20s %7d %7d %5.1f%% %5.1f%% %6.1f %6d %5.1f%%         %5d %5d %5d %5d %5d %5d %5d %5d\n",
+            c.name.c_str(), static_cast<int>(c.faces), static_cast<int>(c.nodes),
+            100.0 * static_cast<double>(c.full_nodes) / n, 100.0 * static_cast<double>(c.all_layers) / n, c.mean_layers,
+            c.min_layers, 100.0 * c.mean_share, static_cast<int>(c.short_nodes(Shortfall::Proximity)),
+            static_cast<int>(c.short_nodes(Shortfall::Front)), static_cast<int>(c.short_nodes(Shortfall::HeldBack)),
+            static_cast<int>(c.short_nodes(Shortfall::Quality)), static_cast<int>(c.short_nodes(Shortfall::Turning)),
+            static_cast<int>(c.short_nodes(Shortfall::Twist)), static_cast<int>(c.short_nodes(Shortfall::Neighbours)),
             static_cast<int>(c.short_nodes(Shortfall::NonFinite)));
     }
     std::printf(

@@ -5,7 +5,7 @@ namespace strata {
 
 std::string_view to_string(Shortfall reason) {
     static constexpr EnumNames<Shortfall, kShortfalls> kNames{
-        {"none", "proximity", "front", "held back", "quality", "turning", "neighbours", "non-finite"}};
+        {"none", "proximity", "front", "held back", "quality", "turning", "twist", "neighbours", "non-finite"}};
     return kNames.name(reason);
 }
 

@@ -96,6 +96,25 @@ double corner_sines(const std::array<Vec3, 4>& x, int n, const std::array<double
 
 }  // namespace
 
+double cell_twist_deg(const std::array<Vec3, 4>& bottom, const std::array<Vec3, 4>& top, int n) {
+    Vec3 axis = Vec3::Zero();
+    for (int c = 0; c < n; ++c) axis += top[static_cast<std::size_t>(c)] - bottom[static_cast<std::size_t>(c)];
+    if (!(axis.norm() > 0.0)) return 0.0;
+    axis.normalize();
+    double sum = 0.0, weight = 0.0;
+    for (int c = 0; c < n; ++c) {
+        const auto a = static_cast<std::size_t>(c), b = static_cast<std::size_t>((c + 1) % n);
+        Vec3 eb = bottom[b] - bottom[a], et = top[b] - top[a];
+        eb -= eb.dot(axis) * axis;
+        et -= et.dot(axis) * axis;
+        const double w = eb.norm();
+        if (!(w > 0.0) || !(et.norm() > 0.0)) continue;
+        sum += w * std::atan2(eb.cross(et).dot(axis), eb.dot(et));
+        weight += w;
+    }
+    return weight > 0.0 ? std::abs(sum / weight) * 180.0 / std::numbers::pi : 0.0;
+}
+
 double face_corner_quality(const Columns& col, Index f) {
     const auto u = static_cast<std::size_t>(f);
     std::array<Vec3, 4> x;
@@ -357,12 +376,21 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
             // as the face allows, and only what the marching does to them stops a column.
             const double q = finite ? column_cell_jacobian(col, f, next) : std::nan("");
             poor[u] = q >= rules.min_quality * face_corner_quality(col, f) ? 0 : 1;
+            if (!poor[u]) {
+                std::array<Vec3, 4> bottom, top;
+                for (int c = 0; c < n; ++c) {
+                    const auto v = static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)]);
+                    bottom[static_cast<std::size_t>(c)] = col.top[v];
+                    top[static_cast<std::size_t>(c)] = next[v];
+                }
+                if (cell_twist_deg(bottom, top, n) > rules.max_twist_deg) poor[u] = 2;
+            }
         }
         for (Index f = 0; f < nf; ++f)
             if (poor[static_cast<std::size_t>(f)])
                 for (int c = 0; c < col.faces.size[static_cast<std::size_t>(f)]; ++c)
                     stop(col, go, col.faces.nodes[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)],
-                         Shortfall::Quality);
+                         poor[static_cast<std::size_t>(f)] == 2 ? Shortfall::Twist : Shortfall::Quality);
     }
     close_steps(col, rules, k, next, go);
     Index stopped = 0, materialised = 0;  // the caller appends next[i] of the moving nodes in order

@@ -59,20 +59,29 @@ struct Columns {
 struct StopRules {
     double min_quality = 0.2;
     double max_turn_deg = 60.0;
-    bool quality = true;  ///< stop on min_quality and max_turn_deg (off: only limits and non-finite)
+    double max_twist_deg = 30.0;
+    bool quality = true;  ///< stop on min_quality, max_turn_deg and max_twist_deg (off: only limits and non-finite)
     int threads = 0;      ///< threads of the quality test (0: OpenMP's default); the result is the same for any count
 };
 
 /// Decide which columns go on from level \p k to k + 1, \p next holding the marched level k + 1
 /// of every node (ghosts too). A column stops at its max_levels, where its position is not
 /// finite, where a cell of its own over a face whose columns all go on would be below
-/// min_quality times face_corner_quality (the best a cell on that face can be) or it would
-/// turn more than max_turn_deg; then, until nothing changes, where the
+/// min_quality times face_corner_quality (the best a cell on that face can be) or twist more
+/// than max_twist_deg (cell_twist_deg), or it would turn more than max_turn_deg; then, until
+/// nothing changes, where the
 /// cell closing a step would be unusable (a triangle with one column going on, a quad with one or
 /// two opposite ones; a pyramid or side-on prism with a corner of a moving node below min_quality
 /// or any corner not positive), splitting quads with three moving columns. Returns the columns
 /// that stopped.
 Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vector<Vec3>& next);
+
+/// How far the top face of a cell (corners \p top, \p n of them) is turned against its bottom
+/// face (\p bottom) about the cell's axis (the mean of its columns), in degrees: the mean of
+/// the signed angles from each bottom edge to its top edge seen along the axis, weighted by
+/// the edges' lengths there, as a magnitude. 0 for a cell whose top is its bottom moved or
+/// sheared, the rotation for a top turned rigidly about the axis.
+double cell_twist_deg(const std::array<Vec3, 4>& bottom, const std::array<Vec3, 4>& top, int n);
 
 /// The best a cell over column face \p f can be: over its corners on the wall, the sine of
 /// the corner's angle (the scaled Jacobian of the right prism or hexahedron on it) times the

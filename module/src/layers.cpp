@@ -808,6 +808,9 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     if (!(params.max_turn_deg > 0.0))
         throw InputError("LayerParams::max_turn_deg = " + format_number(params.max_turn_deg) +
                          ": need an angle above 0 degrees");
+    if (!(params.max_twist_deg > 0.0 && params.max_twist_deg <= 180.0))
+        throw InputError("LayerParams::max_twist_deg = " + format_number(params.max_twist_deg) +
+                         ": need an angle above 0 and at most 180 degrees");
     Wall w = extract_wall(surface);
     const Index nwall = w.mesh.num_points();
     // Fans at sharp convex edges (fans.h): with local stopping, where smoothing runs.
@@ -865,8 +868,8 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     report(progress, "layers", 0.0);
 
     // Stopping: on unless turned off (min_quality 0) or for diagnostics (keep_invalid).
-    const StopRules rules{params.min_quality, params.max_turn_deg, params.min_quality > 0.0 && !params.keep_invalid,
-                          mc.threads};
+    const StopRules rules{params.min_quality, params.max_turn_deg, params.max_twist_deg,
+                          params.min_quality > 0.0 && !params.keep_invalid, mc.threads};
     const bool holds =
         params.hold_back && params.smoothing && std::max(params.max_sweeps, params.sweeps) > 0 && !params.keep_invalid;
     std::vector<Vec3> r0 = w.mesh.points, r1(r0.size());

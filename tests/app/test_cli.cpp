@@ -227,6 +227,7 @@ TEST(Cli, LayersBadInputsFailCleanly) {
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --min-quality 1.5", "--min-quality", "quality");
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --max-turn 0", "--max-turn", "turn");
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --fan-angle 200", "--fan-angle", "fan");
+    expect_clean_failure(in + " --layers 5 --first-height 1e-3 --max-twist 0", "--max-twist", "twist");
     // Plain extrusion into the notched box's concave corner folds: with local stopping off,
     // reported, nothing written.
     expect_clean_failure("layers '" + example_data("bl3d_4_box_notch_concave_corner.brep") +

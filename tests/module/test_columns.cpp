@@ -9,11 +9,14 @@
 
 #include <gtest/gtest.h>
 
+#include "columns.h"
 #include "same_bytes.h"
 #include "test_support.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace strata {
 namespace {
@@ -43,6 +46,63 @@ LayerParams limited_centre(const SurfaceMesh& wall) {
     p.node_thickness_limit.assign(wall.points.size(), std::numeric_limits<double>::infinity());
     p.node_thickness_limit[5 * 11 + 5] = 0.025;
     return p;
+}
+
+/// \p x turned by \p deg about the vertical axis through \p centre.
+Vec3 turned(const Vec3& x, const Vec3& centre, double deg) {
+    const double a = deg * std::numbers::pi / 180.0;
+    const Vec3 d = x - centre;
+    return centre + Vec3(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y(), d.z());
+}
+
+TEST(Columns, TwistIsTheTopsTurnAboutTheCellsAxis) {
+    const std::array<Vec3, 4> quad{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
+    const Vec3 up(0, 0, 0.1), centre(0.5, 0.5, 0.1);
+    std::array<Vec3, 4> top;
+    for (int t : {-35, 0, 20}) {
+        for (std::size_t c = 0; c < 4; ++c) top[c] = turned(quad[c] + up, centre, t);
+        EXPECT_NEAR(cell_twist_deg(quad, top, 4), std::abs(t), 1e-9) << t;
+    }
+    // Moved aside or stretched: no twist. Sheared: the edges across the shear turn, the others
+    // not, so a shear of 0.3 counts as a few degrees (under atan 0.3 = 16.7).
+    for (std::size_t c = 0; c < 4; ++c) top[c] = quad[c] + up + Vec3(0.05, -0.02, 0.0);
+    EXPECT_NEAR(cell_twist_deg(quad, top, 4), 0.0, 1e-9);
+    for (std::size_t c = 0; c < 4; ++c) top[c] = 1.5 * quad[c] + up;
+    EXPECT_NEAR(cell_twist_deg(quad, top, 4), 0.0, 1e-9);
+    for (std::size_t c = 0; c < 4; ++c) top[c] = quad[c] + up + Vec3(0.3 * quad[c].y(), 0.0, 0.0);
+    EXPECT_GT(cell_twist_deg(quad, top, 4), 1.0);
+    EXPECT_LT(cell_twist_deg(quad, top, 4), 16.7);
+    // A triangle turned 40 degrees about its centroid, seen along a tilted axis.
+    const std::array<Vec3, 4> tri{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3::Zero()};
+    const Vec3 g(1.0 / 3.0, 1.0 / 3.0, 0.1);
+    for (std::size_t c = 0; c < 3; ++c) top[c] = turned(tri[c] + Vec3(0, 0, 0.1), g, 40);
+    EXPECT_NEAR(cell_twist_deg(tri, top, 3), 40.0, 1e-9);
+}
+
+TEST(Columns, ATwistedCellStopsItsColumns) {
+    // One quad whose next level is turned 40 degrees about its axis: a cell of fair scaled
+    // Jacobian for a rigid turn of a square, but twisted: its columns stop with that reason. At
+    // 20 degrees (under the 30 asked) they go on.
+    const SurfaceMesh wall = test::quad_grid(1, 1, 1.0);
+    for (const double deg : {20.0, 40.0}) {
+        std::vector<Vec3> points = wall.points;
+        Columns col(wall, 3, points);
+        std::vector<Vec3> next(wall.points.size());
+        Vec3 centre = Vec3::Zero();
+        for (const Vec3& x : wall.points) centre += x / 4.0;
+        for (std::size_t i = 0; i < next.size(); ++i)
+            next[i] = turned(wall.points[i] + Vec3(0, 0, 0.2), centre + Vec3(0, 0, 0.2), deg);
+        StopRules rules;
+        rules.min_quality = 0.05;
+        rules.max_twist_deg = 30.0;
+        const Index stopped = stop_columns(col, rules, 0, next);
+        if (deg < 30.0) {
+            EXPECT_EQ(stopped, 0);
+        } else {
+            EXPECT_EQ(stopped, 4);
+            for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(col.reason[i], Shortfall::Twist) << i;
+        }
+    }
 }
 
 TEST(Columns, FullColumnsKeepTheUniformNumbering) {

@@ -25,11 +25,13 @@ enum class Shortfall : std::uint8_t {
     HeldBack,    ///< lowered where its cells would have inverted (LayerParams::hold_back)
     Quality,     ///< stopped: a cell it would make falls below LayerParams::min_quality
     Turning,     ///< stopped: its column would turn more than LayerParams::max_turn_deg
+    Twist,       ///< stopped: a cell it would make twists more than LayerParams::max_twist_deg
     Neighbours,  ///< stopped: with its neighbours stopped, the cell closing the step would be unusable
     NonFinite,   ///< stopped: its next position could not be computed
 };
-inline constexpr std::size_t kShortfalls = 8;
-/// "none", "proximity", "front", "held back", "quality", "turning", "neighbours", "non-finite".
+inline constexpr std::size_t kShortfalls = 9;
+/// "none", "proximity", "front", "held back", "quality", "turning", "twist", "neighbours",
+/// "non-finite".
 std::string_view to_string(Shortfall reason);
 
 /// One wall patch.

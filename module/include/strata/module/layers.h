@@ -64,6 +64,10 @@ struct LayerParams {
     /// A column also stops where its next segment would turn more than this (degrees) from
     /// its previous one: the front folding over.
     double max_turn_deg = 60.0;
+    /// A column also stops where a cell it would make twists more than this (degrees): its top
+    /// face turned about the cell's axis against its bottom face (the mean of the angles its
+    /// edges turn, seen along the axis), which the scaled Jacobian of a prism hardly sees.
+    double max_twist_deg = 30.0;
     /// Fans (ALGORITHM.md, "Fans"): at a convex edge whose faces turn by this many degrees or
     /// more (a sharp trailing edge, a thin fin's tip), and at the convex edges of 30° or more
     /// that close its chain, each node gets a column per side of the edge and columns between
