@@ -7,6 +7,7 @@
 // written), a second Ctrl-C ends the program at once.
 
 #include <strata/core/error.h>
+#include <strata/core/format.h>
 #include <strata/core/progress.h>
 #include <strata/core/validate.h>
 #include <strata/geometry/check.h>
@@ -82,6 +83,8 @@ const std::vector<std::pair<std::string, std::string>> kFlagOfParameter = {
     {"CadParams::quad_surfaces", "--mixed"},
     {"CadParams::fuse", "--fuse"},
     {"PrepareParams::internal_flow", "--internal"},
+    {"PrepareParams::scale", "--scale"},
+    {"CadParams::units", "--units"},
     {"DistributionParams::layers", "--layers"},
     {"DistributionParams::kind", "--distribution"},
     {"DistributionParams::first_height", "--first-height"},
@@ -167,6 +170,12 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
             ->expected(1, -1);
     q->excludes(m);
     cmd.add_flag("--fuse", cad.fuse, "fuse all solids into one body before meshing (CAD only)");
+    cmd.add_option("--units", cad.units,
+                   "STEP and IGES only: read the model in this length unit (mm, cm, m, km, in, ft, ...); default: "
+                   "the unit the file declares. Every length option is in the unit the summary states");
+    cmd.add_option("--scale", c.prepare.scale,
+                   "multiply every coordinate by this after reading (any input; STL and MSH carry no unit)")
+        ->capture_default_str();
     cmd.add_flag("--internal", c.prepare.internal_flow,
                  "the fluid is inside the closed walls (a duct, a wind tunnel), not around them: layers grow "
                  "inward from the outermost walls and outward from the bodies inside, and strata mesh fills the "
@@ -197,11 +206,12 @@ strata::PrepareParams prepare_params(const Common& c) {
     }
     const strata::CadParams none;
     const bool cad_options = c.quads || !c.mixed.empty() || p.cad.fuse || p.cad.size != none.size ||
-                             p.cad.curvature_points != none.curvature_points || p.cad.size_min != none.size_min;
+                             p.cad.curvature_points != none.curvature_points || p.cad.size_min != none.size_min ||
+                             !p.cad.units.empty();
     if (!strata::is_cad_file(c.input) && cad_options)
         throw strata::InputError("'" + c.input +
-                                 "' is already a surface mesh: --size, --size-min, --curvature, --quads, --mixed and "
-                                 "--fuse apply to CAD input only; remove them");
+                                 "' is already a surface mesh: --size, --size-min, --curvature, --quads, --mixed, "
+                                 "--fuse and --units apply to CAD input only; remove them (--scale scales any input)");
     p.patch_kinds = parse_patch_options(c.patches);
     return p;
 }
@@ -325,6 +335,21 @@ void print_needles(const strata::SurfaceMesh& mesh) {
         strata::describe_face(mesh, n.worst_face).c_str(), std::sin(n.sharpest_deg * 3.141592653589793 / 180.0));
 }
 
+/// The unit the coordinates are in, and so every length option and figure.
+void print_units(const strata::PrepareReport& rep) {
+    std::string text;
+    if (rep.units.unit.empty())
+        text = "those of the file (it declares none)";
+    else if (rep.units.declared.empty())
+        text = rep.units.unit + " (the file declares no unit Strata knows: read as OpenCASCADE does, in mm)";
+    else if (rep.units.declared == rep.units.unit)
+        text = rep.units.unit + ", as the file declares";
+    else
+        text = rep.units.unit + ", converted from the file's " + rep.units.declared + " (--units)";
+    if (rep.scale != 1.0) text += ", then scaled by " + strata::format_number(rep.scale) + " (--scale)";
+    std::printf("units: %s; every length below and every length option is in them\n", text.c_str());
+}
+
 void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep) {
     const strata::Csr loops = strata::boundary_loops(mesh);
     std::printf("surface: %d nodes, %d triangles, %d quadrilaterals, %d patches\n", static_cast<int>(mesh.num_points()),
@@ -340,6 +365,7 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
         "re-oriented\n",
         static_cast<int>(rep.orient.components), static_cast<int>(rep.orient.closed_components),
         static_cast<int>(loops.rows()), static_cast<int>(rep.merged_nodes), static_cast<int>(rep.orient.flipped_faces));
+    print_units(rep);
     print_needles(mesh);
 }
 

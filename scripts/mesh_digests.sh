@@ -31,7 +31,7 @@ for ext in cgr msh; do
   run m6_step mesh $data/onera_m6_sharp_te.stp $ext --size 60 --layers 10 --first-height 0.02
   run hemisphere_cylinder mesh $data/hemisphere_cylinder_halfdomain.stp $ext "${hemi[@]}" --layers 15 --first-height 0.002
   run body_fin_box mesh $data/bl3d_5_body_fin_in_box.brep $ext "${box[@]}" --layers 20 --first-height 5e-4 --growth 1.15
-  run wing_fuselage mesh $data/wing_fuselage.step $ext --fuse --layers 5 --first-height 0.05
+  run wing_fuselage mesh $data/wing_fuselage.step $ext --fuse --layers 5 --first-height 5e-5
   run m6_mixed mesh $data/onera_m6_mixed_quadtri.msh $ext --layers 5 --first-height 0.01
   run two_spheres mesh $data/two_spheres_narrow_gap.geo $ext --size 0.05 --layers 30 --first-height 1e-4 --growth 1.2
   run naca0012_walls mesh $data/naca0012_wing_between_walls.geo $ext --internal --layers 30 --first-height 1e-4 --growth 1.2

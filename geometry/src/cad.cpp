@@ -4,6 +4,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
+#include <strata/io/cad_units.h>
 #include <strata/io/files.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
@@ -69,6 +70,9 @@ void validate(const CadParams& p) {
     if (p.size > 0.0 && p.size_min > p.size)
         throw InputError("CAD meshing: size_min (" + format_number(p.size_min) + ") is larger than size (" +
                          format_number(p.size) + "); give a smaller size_min");
+    if (!p.units.empty() && !parse_length_unit(p.units))
+        throw InputError("CadParams::units = '" + p.units + "': unknown length unit; use one of " +
+                         std::string(length_unit_names()));
     if (p.curvature_points < 0)
         throw InputError("CAD meshing: curvature_points must be >= 0 (0 = off), got " +
                          std::to_string(p.curvature_points));
@@ -239,7 +243,7 @@ bool is_cad_file(const std::string& path) {
     return format_of(path).has_value();
 }
 
-SurfaceMesh mesh_cad(const std::string& path, const CadParams& params) {
+SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units) {
     const std::optional<CadFormat> format = format_of(path);
     if (!format)
         throw InputError(path +
@@ -253,6 +257,28 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params) {
     GmshOptionScope options;  // declared after the session: restored while Gmsh is still locked
     options.save(kSavedOptions);
     options.save_string("Geometry.OCCTargetUnit");
+
+    // Units: OpenCASCADE converts STEP and IGES to millimetres; scaled back on import to the
+    // unit the file declares, or the one asked.
+    CadUnits read_in;
+    const bool has_unit = *format == CadFormat::Step || *format == CadFormat::Iges;
+    if (!has_unit && !params.units.empty())
+        throw InputError(path + ": a " + std::string(format_name(*format)) +
+                         " file declares no length unit, so CadParams::units (" + params.units +
+                         ") cannot convert it; its numbers are kept as they are (scale them with "
+                         "PrepareParams::scale)");
+    double scaling = 1.0;
+    if (has_unit) {
+        const std::optional<LengthUnit> declared = declared_length_unit(path);
+        const LengthUnit target =
+            params.units.empty() ? declared.value_or(LengthUnit{"mm", 1.0}) : *parse_length_unit(params.units);
+        read_in = {target.name, declared ? declared->name : ""};
+        scaling = 1.0 / target.millimetres;
+    }
+    gmsh_call("setting Gmsh option Geometry.OCCTargetUnit",
+              [] { gmsh::option::setString("Geometry.OCCTargetUnit", ""); });
+    set_number("Geometry.OCCScaling", scaling);
+    if (units) *units = read_in;
 
     load(path, *format);
 

@@ -1,4 +1,5 @@
 #include <strata/core/error.h>
+#include <strata/core/format.h>
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/prepare.h>
@@ -8,6 +9,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 namespace strata {
 namespace {
@@ -18,9 +20,9 @@ std::string lower(std::string s) {
 }
 
 /// The reader for \p path's extension: CAD through Gmsh (mesh_cad), STL and MSH through io/.
-SurfaceMesh read_any(const std::string& path, const CadParams& cad) {
+SurfaceMesh read_any(const std::string& path, const CadParams& cad, CadUnits* units) {
     check_input_file(path);
-    if (is_cad_file(path)) return mesh_cad(path, cad);
+    if (is_cad_file(path)) return mesh_cad(path, cad, units);
     const std::string ext = lower_extension(path);
     if (ext == ".stl") return read_stl(path);
     if (ext == ".msh") return read_msh(path);
@@ -57,6 +59,11 @@ void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::stri
 SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source, PrepareReport* report,
                          Progress* progress) {
     strata::report(progress, "surface", 0.6);
+    if (!(params.scale > 0.0) || !std::isfinite(params.scale))
+        throw InputError(source + ": PrepareParams::scale = " + format_number(params.scale) +
+                         ": need a positive, finite factor");
+    if (params.scale != 1.0)
+        for (Vec3& x : raw.points) x *= params.scale;
     assign_patch_kinds(raw, params.patch_kinds, source);
     // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
     if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
@@ -69,6 +76,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     OrientReport orient;
     SurfaceMesh oriented = orient_surface(merged, &orient, params.internal_flow);
     if (report) {
+        report->scale = params.scale;
         report->merged_nodes = merged_nodes;
         report->orient = orient;
     }
@@ -79,7 +87,11 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
 SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params, PrepareReport* report,
                             Progress* progress) {
     strata::report(progress, "surface", 0.0);
-    return prepare_mesh(read_any(path, params.cad), params, path, report, progress);
+    CadUnits units;
+    SurfaceMesh raw = read_any(path, params.cad, &units);
+    SurfaceMesh out = prepare_mesh(std::move(raw), params, path, report, progress);
+    if (report) report->units = units;
+    return out;
 }
 
 }  // namespace strata

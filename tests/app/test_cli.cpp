@@ -158,6 +158,29 @@ void expect_clean_failure(const std::string& args, const std::string& must_name,
     EXPECT_TRUE(files_in(dir).empty()) << args;
 }
 
+TEST(Cli, UnitsAreStatedAndConvertedOnRequest) {
+    // The STEP declares metres: read in metres, and the summary says so; --units mm converts;
+    // --scale scales any input; --units on a surface mesh is refused.
+    test::ScratchDir dir("cli_units");
+    CliResult r = strata_cli(dir, "surface '" + example_data("wing_fuselage.step") + "' -o m.msh --fuse");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("units: m, as the file declares"), std::string::npos) << r.out;
+    r = strata_cli(dir, "surface '" + example_data("wing_fuselage.step") + "' -o mm.msh --fuse --units mm");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("units: mm, converted from the file's m (--units)"), std::string::npos) << r.out;
+    r = strata_cli(dir, "surface '" + example_data("sphere.stl") + "' -o s.msh --scale 1000");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("then scaled by 1000 (--scale)"), std::string::npos) << r.out;
+    const SurfaceMesh s = read_msh((dir.path() / "s.msh").string());
+    double far = 0.0;
+    for (const Vec3& x : s.points) far = std::max(far, x.norm());
+    EXPECT_NEAR(far, 1000.0, 1e-3);  // sphere.stl: radius 1
+    expect_clean_failure("surface '" + example_data("sphere.stl") + "' -o s.msh --units m", "--units", "units_stl");
+    expect_clean_failure("surface '" + example_data("wing_fuselage.step") + "' -o s.msh --units parsec", "parsec",
+                         "units_unknown");
+    expect_clean_failure("surface '" + example_data("sphere.stl") + "' -o s.msh --scale 0", "--scale", "scale");
+}
+
 TEST(Cli, BadInputsFailCleanly) {
     const std::string out = " -o out.msh";
     expect_clean_failure("surface /nonexistent/wing.step" + out, "/nonexistent/wing.step", "missing");

@@ -2,6 +2,7 @@
 // files of tests/data. Closedness is computed here from edge use counts, independently of
 // topology.h, so these tests do not lean on another unit's code.
 #include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 #include <strata/geometry/cad.h>
 #include <strata/io/gmsh_session.h>
 
@@ -228,11 +229,54 @@ TEST(MeshCad, WingFuselageFusedIsOneClosedSurface) {
     EXPECT_LT(fused.patches.size(), apart.patches.size());  // the Boolean removed and merged faces
     EXPECT_LT(fused.num_faces(), apart.num_faces());        // the internal parts are gone
 
-    // The union spans both bodies; the STEP is in metres and comes out in mm.
+    // The union spans both bodies; the STEP is in metres and stays in metres (OpenCASCADE
+    // alone gives mm: it came out 1000 times larger).
     const Box3 b = bounds(fused);
-    EXPECT_NEAR(b.lo.y(), -400.0, 0.5);
-    EXPECT_NEAR(b.hi.y(), 400.0, 0.5);
-    EXPECT_NEAR(b.lo.x(), -137.85, 0.5);
+    EXPECT_NEAR(b.lo.y(), -0.4, 5e-4);
+    EXPECT_NEAR(b.hi.y(), 0.4, 5e-4);
+    EXPECT_NEAR(b.lo.x(), -0.13785, 5e-4);
+}
+
+TEST(MeshCad, StepAndIgesAreReadInTheUnitTheyDeclareOrTheOneAsked) {
+    // wing_fuselage.step declares metres, onera_m6_sharp_te.stp millimetres, the IGES box mm.
+    CadUnits u;
+    CadParams p;
+    const SurfaceMesh m = mesh_cad(example_data("wing_fuselage.step"), p, &u);
+    EXPECT_EQ(u.unit, "m");
+    EXPECT_EQ(u.declared, "m");
+    EXPECT_NEAR(bounds(m).hi.y(), 0.4, 5e-4);
+    p.units = "mm";
+    const SurfaceMesh mm = mesh_cad(example_data("wing_fuselage.step"), p, &u);
+    EXPECT_EQ(u.unit, "mm");
+    EXPECT_EQ(u.declared, "m");
+    EXPECT_NEAR(bounds(mm).hi.y(), 400.0, 0.5);
+    // The same model 1000 times larger, meshed alike (the default size is a share of the
+    // model's diagonal): as many faces, 10^6 times the area.
+    EXPECT_EQ(mm.num_faces(), m.num_faces());
+    double area_m = 0.0, area_mm = 0.0;
+    for (Index f = 0; f < m.num_faces(); ++f) area_m += face_area_vector(m, f).norm();
+    for (Index f = 0; f < mm.num_faces(); ++f) area_mm += face_area_vector(mm, f).norm();
+    EXPECT_NEAR(area_mm / area_m, 1e6, 1e3);
+    p.units = "in";
+    const SurfaceMesh in = mesh_cad(example_data("wing_fuselage.step"), p, &u);
+    EXPECT_NEAR(bounds(in).hi.y(), 400.0 / 25.4, 0.5 / 25.4);
+    mesh_cad(example_data("onera_m6_sharp_te.stp"), {}, &u);
+    EXPECT_EQ(u.unit, "mm");
+    EXPECT_EQ(u.declared, "mm");
+    const SurfaceMesh box = mesh_cad(test::test_data("cad_box_with_hole.igs"), {}, &u);
+    EXPECT_EQ(u.declared, "mm");
+    EXPECT_NEAR(bounds(box).hi.x(), 2.0, 1e-6);
+    p.units = "cm";
+    EXPECT_NEAR(bounds(mesh_cad(test::test_data("cad_box_with_hole.igs"), p, &u)).hi.x(), 0.2, 1e-7);
+    // No unit to convert from: refused, naming the file; an unknown unit: refused.
+    p.units = "m";
+    const std::string brep = error_text([&] { mesh_cad(example_data("bl3d_4_box_notch_concave_corner.brep"), p); });
+    EXPECT_NE(brep.find("declares no length unit"), std::string::npos) << brep;
+    EXPECT_NE(brep.find("bl3d_4_box_notch_concave_corner.brep"), std::string::npos) << brep;
+    p.units = "parsec";
+    const std::string unknown = error_text([&] { mesh_cad(example_data("wing_fuselage.step"), p); });
+    EXPECT_NE(unknown.find("parsec"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("mm, cm, m"), std::string::npos) << unknown;
 }
 
 /// A closed, well-formed surface with \p patches patches; its bounding box.

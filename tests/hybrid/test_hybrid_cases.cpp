@@ -157,7 +157,7 @@ SurfaceMesh wing_fuselage() {
 TEST(HybridCases, WingFuselageFusedFromTwoSolids) {
     const SurfaceMesh s = wing_fuselage();
     HybridReport rep;
-    const VolumeMesh m = build_hybrid_mesh(s, params(5, 0.05), nullptr, &rep);
+    const VolumeMesh m = build_hybrid_mesh(s, params(5, 5e-5), nullptr, &rep);  // metres, as the STEP declares
     EXPECT_GT(m.prisms.size(), 0u);
     expect_valid_case("wing_fuselage", s, m, rep);
 }
@@ -219,7 +219,7 @@ TEST(HybridCases, WingFuselageWithThirtyLayersStopsWhereItWouldFold) {
     // there stop before their cells get poor; the coverage report says where and why.
     const SurfaceMesh s = wing_fuselage();
     HybridReport rep;
-    const VolumeMesh m = build_hybrid_mesh(s, params(30, 0.1), nullptr, &rep);
+    const VolumeMesh m = build_hybrid_mesh(s, params(30, 1e-4), nullptr, &rep);
     Index short_nodes = 0;
     for (const PatchCoverage& c : rep.coverage.patches) short_nodes += c.nodes - c.full_nodes;
     EXPECT_GT(short_nodes, 0);

@@ -19,10 +19,10 @@ enum class SurfaceElements {
     Mixed,      ///< quads on CadParams::quad_surfaces, triangles elsewhere
 };
 
-/// Parameters of CAD surface meshing. Sizes are in the model's units, which for STEP and IGES
-/// are millimetres: OpenCASCADE converts every STEP/IGES file to mm whatever unit it declares
-/// (a STEP in metres comes out 1000 times larger; examples/data/wing_fuselage.step does).
-/// BREP and .geo have no units: their numbers are kept.
+/// Parameters of CAD surface meshing. Sizes are in the unit of the result: for STEP and IGES
+/// the unit the file declares (io/cad_units.h; OpenCASCADE alone would give millimetres
+/// whatever the file declares, and a STEP in metres came out 1000 times larger), or the one
+/// asked in \p units; BREP and .geo have no unit: their numbers are kept.
 ///
 /// A .geo script is the authority on its own mesh settings: point sizes, fields, Recombine
 /// Surface and the Mesh.* options it sets stand, unless a field here is away from its default
@@ -58,6 +58,16 @@ struct CadParams {
     /// surfaces, algorithm 8 on every surface). Quads come from recombination instead; a .geo
     /// that sets Mesh.Algorithm 7 or 8 gets 6.
     int algorithm = 6;
+    /// STEP and IGES only: the length unit of the result ("mm", "m", "in", ...; see
+    /// parse_length_unit); empty: the unit the file declares (millimetres if it declares none
+    /// Strata knows). InputError for an unknown unit, or for a BREP or .geo file (no unit).
+    std::string units;
+};
+
+/// What mesh_cad read the coordinates in.
+struct CadUnits {
+    std::string unit;      ///< the unit of the result ("m", "mm", ...); empty for BREP and .geo (none)
+    std::string declared;  ///< the unit the file declares; empty if none (or BREP, .geo)
 };
 
 /// Read \p path (.step/.stp, .iges/.igs, .brep/.brp, .geo; extension case-insensitive),
@@ -74,7 +84,7 @@ struct CadParams {
 /// Throws InputError for bad parameters, a missing, unreadable or corrupt file, or a model
 /// without surfaces (each naming the file); BackendError when Gmsh fails to mesh or leaves a
 /// surface without elements (naming the surface).
-SurfaceMesh mesh_cad(const std::string& path, const CadParams& params);
+SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units = nullptr);
 
 /// True for the extensions mesh_cad understands (case-insensitive); looks at the name only.
 bool is_cad_file(const std::string& path);

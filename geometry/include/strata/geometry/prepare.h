@@ -22,11 +22,16 @@ struct PrepareParams {
     /// outermost closed surface points inward (orient_surface), and build_hybrid_mesh fills it
     /// instead of generating a farfield around it.
     bool internal_flow = false;
+    /// Every coordinate multiplied by this after reading (any input, after CAD units): for a
+    /// surface mesh in another unit than wanted (STL and MSH carry none). Positive, finite.
+    double scale = 1.0;
 };
 
 /// What prepare_surface did, for the CLI's summary.
 struct PrepareReport {
     Index merged_nodes = 0;  ///< nodes removed by merging
+    CadUnits units;          ///< CAD input: the unit read in and the one the file declares
+    double scale = 1.0;      ///< PrepareParams::scale applied
     OrientReport orient;
 };
 
