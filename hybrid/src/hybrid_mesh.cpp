@@ -4,6 +4,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/format.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
@@ -128,6 +129,35 @@ SurfaceMesh region_to_fill(const std::vector<Patch>& patches, const PyramidLayer
     }
     flip_faces(region);  // the layer top and the outer boundary point into the fluid: out of the region
     return region;
+}
+
+/// Before any layer: the layers asked (\p asked thick) must fit between the body and the
+/// farfield build_hybrid_mesh generates around it, with the share proximity leaves any other
+/// patch (0.9); else an InputError with the numbers and the farfield size that would do. The
+/// farfield is convex about the body's bounding-box centre: its clearance is the least distance
+/// from that centre to a face's plane, less the farthest body point's distance from it.
+void check_layers_fit_farfield(const SurfaceMesh& surface, const FarfieldParams& farfield, double asked, double share) {
+    const SurfaceMesh far = make_farfield(surface.points, farfield);
+    const BoundingBox bb = bounding_box(surface.points);
+    const Vec3 c = 0.5 * (bb.min + bb.max);
+    double inscribed = std::numeric_limits<double>::infinity(), farthest = 0.0;
+    for (Index f = 0; f < far.num_faces(); ++f) {
+        const Vec3 n = face_area_vector(far, f);
+        if (n.norm() > 0.0)
+            inscribed = std::min(inscribed, std::abs((face_centroid(far, far.points, f) - c).dot(n.normalized())));
+    }
+    for (const Vec3& p : surface.points) farthest = std::max(farthest, (p - c).norm());
+    const double clearance = inscribed - farthest;
+    if (asked <= share * clearance) return;
+    // The inscribed radius grows with the size; the body does not.
+    const double needed = farfield.size * (asked / share + farthest) / inscribed;
+    throw InputError("the layers asked are " + format_number(asked, 4) + " thick, but the generated farfield (" +
+                     std::string(to_string(farfield.shape)) + ", FarfieldParams::size " +
+                     format_number(farfield.size, 4) + ": that many times the body's diagonal across) leaves " +
+                     format_number(std::max(clearance, 0.0), 4) +
+                     " between the body and it, of which layers may take " + format_number(share * 100.0, 3) +
+                     " %: enlarge FarfieldParams::size to " + format_number(std::ceil(needed * 10.0) / 10.0, 4) +
+                     " or more, or ask for thinner layers (fewer, a smaller first height or growth)");
 }
 
 /// The outer boundary of the fluid domain: the input's non-wall patches, re-meshed where the
@@ -272,6 +302,8 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         const std::vector<double> heights = layer_heights(params.layers.distribution);
         for (int k = 0; k < params.layers.distribution.layers; ++k) asked += heights[static_cast<std::size_t>(k)];
     }
+    if (!has_outer)
+        check_layers_fit_farfield(surface, params.farfield, asked, params.layers.proximity_limits.other_patch);
     for (int round = 0;; ++round) {
         auto t0 = std::chrono::steady_clock::now();
         try {

@@ -322,6 +322,10 @@ TEST(Cli, MeshBadInputsFailCleanly) {
     expect_clean_failure(
         "mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 5 --first-height 1e-3 --farfield-size 1",
         "farfield-size", "ffsize");
+    // Layers that do not fit in the generated farfield: the numbers and the size that would do.
+    expect_clean_failure(
+        "mesh '" + example_data("sphere.stl") + "' -o out.cgr --layers 10 --first-height 0.5 --farfield-size 1.1",
+        "enlarge --farfield-size to", "layers_fit");
 }
 
 TEST(Cli, SameMeshAsTheLibraryGivenTheSameValues) {

@@ -180,6 +180,32 @@ TEST(HybridMesh, OpenSurfaceThatIsNotAHalfModelIsRefusedClearly) {
     }
 }
 
+TEST(HybridMesh, LayersThickerThanTheGeneratedFarfieldAllowsAreRefusedWithTheNumbers) {
+    // 10 layers from 0.5 at 1.2 make 12.98 around a unit sphere; a farfield 1.1 times its
+    // diagonal (3.46) across leaves 0.8-0.9 (the divisions cut the sphere): refused before any layer (TetGen used to
+    // say the boundary's normals pointed into the region), with the size that fits, which then does.
+    const SurfaceMesh wall = prepare_surface(example_data("sphere.stl"), {});
+    HybridParams p = sphere_params();
+    p.layers.distribution.layers = 10;
+    p.layers.distribution.first_height = 0.5;
+    p.farfield.size = 1.1;
+    std::string msg;
+    try {
+        build_hybrid_mesh(wall, p);
+        FAIL() << "layers through the farfield must not give a mesh";
+    } catch (const InputError& e) {
+        msg = e.what();
+    }
+    for (const char* part :
+         {"12.98 thick", "FarfieldParams::size 1.1", "leaves 0.8", "enlarge FarfieldParams::size to 9"})
+        EXPECT_NE(msg.find(part), std::string::npos) << part << " not in: " << msg;
+    p.farfield.size = 9.0;
+    HybridReport rep;
+    const VolumeMesh m = build_hybrid_mesh(wall, p, nullptr, &rep);
+    EXPECT_GT(m.tets.size(), 0u);
+    EXPECT_GT(rep.validation.min_scaled_jacobian, 0.0);
+}
+
 /// Two unit spheres (patches "a", "b"), the second at \p dx along x.
 SurfaceMesh two_unit_spheres(double dx) {
     return test::merged(icosphere(Vec3::Zero(), 1.0, 3, {"a", PatchKind::Wall}),
