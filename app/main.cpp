@@ -139,7 +139,9 @@ std::string in_flags(std::string message) {
 
 /// What every subcommand takes: the input, the output and how the surface is made.
 struct Common {
-    std::string input, output, msh_version = "4.1";
+    std::vector<std::string> inputs;
+    std::string input;  ///< the inputs as one name, for messages
+    std::string output, msh_version = "4.1";
     bool quiet = false, quads = false;
     std::vector<int> mixed;
     std::vector<std::string> patches;
@@ -148,7 +150,9 @@ struct Common {
 
 void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help) {
     strata::CadParams& cad = c.prepare.cad;
-    cmd.add_option("INPUT", c.input, "CAD (.step .stp .iges .igs .brep .brp .geo) or surface mesh (.stl .msh)")
+    cmd.add_option("INPUT", c.inputs,
+                   "CAD (.step .stp .iges .igs .brep .brp .geo) or surface mesh (.stl .msh); several are read as one "
+                   "surface, each keeping its patches")
         ->required();
     cmd.add_option("-o,--output", c.output, output_help)->required();
     cmd.add_option("--msh-version", c.msh_version, "MSH file version for .msh output: 4.1 or 2.2")
@@ -208,7 +212,9 @@ strata::PrepareParams prepare_params(const Common& c) {
     const bool cad_options = c.quads || !c.mixed.empty() || p.cad.fuse || p.cad.size != none.size ||
                              p.cad.curvature_points != none.curvature_points || p.cad.size_min != none.size_min ||
                              !p.cad.units.empty();
-    if (!strata::is_cad_file(c.input) && cad_options)
+    const bool any_cad =
+        std::any_of(c.inputs.begin(), c.inputs.end(), [](const std::string& f) { return strata::is_cad_file(f); });
+    if (!any_cad && cad_options)
         throw strata::InputError("'" + c.input +
                                  "' is already a surface mesh: --size, --size-min, --curvature, --quads, --mixed, "
                                  "--fuse and --units apply to CAD input only; remove them (--scale scales any input)");
@@ -546,7 +552,7 @@ Start start(const Common& c, const strata::PrepareParams& params, Output output,
         strata::check_surface_output(c.output, s.msh_version);
     else
         strata::check_volume_output(c.output, s.msh_version);
-    s.surface = strata::prepare_surface(c.input, params, &s.report, &terminal);
+    s.surface = strata::prepare_surfaces(c.inputs, params, &s.report, &terminal);
     s.seconds = seconds_since(t0);
     return s;
 }
@@ -655,6 +661,10 @@ int main(int argc, char** argv) {
         return 2;
     }
 
+    for (Common* c : {&sc, &lc, &mc}) {
+        c->input.clear();
+        for (const std::string& f : c->inputs) c->input += (c->input.empty() ? "" : " + ") + f;
+    }
     try {
         if (*surface) return run_surface(sc);
         if (*layers) return run_layers(lc, lo);

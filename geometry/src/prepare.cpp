@@ -8,6 +8,7 @@
 #include <strata/io/read_surface.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 
@@ -82,6 +83,50 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     }
     strata::report(progress, "surface", 1.0);
     return oriented;
+}
+
+SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const PrepareParams& params, PrepareReport* report,
+                             Progress* progress) {
+    if (paths.empty()) throw InputError("no input file given; name one or more CAD or surface-mesh files");
+    if (paths.size() == 1) return prepare_surface(paths[0], params, report, progress);
+    strata::report(progress, "surface", 0.0);
+    CadParams cad = params.cad;
+    CadUnits units;
+    SurfaceMesh all;
+    std::string source;
+    for (const std::string& path : paths) {
+        CadUnits read_in;
+        // Only STEP and IGES declare a unit; the others keep what was asked (an error if any).
+        const std::string ext = lower_extension(path);
+        const bool has_unit = ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
+        CadParams this_cad = cad;
+        if (!has_unit) this_cad.units = params.cad.units;
+        const SurfaceMesh one = read_any(path, this_cad, &read_in);
+        // The first CAD file with a unit sets it for the others (unless one was asked).
+        if (!read_in.unit.empty() && units.unit.empty()) {
+            units = read_in;
+            if (cad.units.empty()) cad.units = read_in.unit;
+        }
+        const auto offset = static_cast<Index>(all.points.size());
+        all.points.insert(all.points.end(), one.points.begin(), one.points.end());
+        std::vector<Index> patch_of(one.patches.size());
+        for (std::size_t p = 0; p < one.patches.size(); ++p) {
+            Patch patch = one.patches[p];
+            if (find_patch(all, patch.name) != kNone)
+                patch.name += " (" + path.substr(path.find_last_of('/') + 1) + ")";
+            patch_of[p] = static_cast<Index>(all.patches.size());
+            all.patches.push_back(patch);
+        }
+        for (Index f = 0; f < one.num_faces(); ++f) {
+            std::array<Index, 4> v{};
+            for (Index i = 0; i < one.face_size(f); ++i) v[static_cast<std::size_t>(i)] = offset + one.face_node(f, i);
+            all.add_face(v.data(), one.face_size(f), patch_of[static_cast<std::size_t>(one.face_patch[f])]);
+        }
+        source += (source.empty() ? "" : " + ") + path;
+    }
+    SurfaceMesh out = prepare_mesh(std::move(all), params, source, report, progress);
+    if (report) report->units = units;
+    return out;
 }
 
 SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params, PrepareReport* report,

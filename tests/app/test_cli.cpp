@@ -137,6 +137,23 @@ TEST(Cli, SurfaceFromStep) {
     EXPECT_TRUE(closed_manifold(m));
 }
 
+TEST(Cli, SeveralInputsAreOneSurface) {
+    // The unit sphere and an IGES box (2 x 1 x 0.5 from the origin) that cuts into it: one
+    // surface of two components for strata surface, which does not test for overlap; strata
+    // mesh refuses it, saying where.
+    test::ScratchDir dir("cli_several");
+    CliResult r = strata_cli(
+        dir, "surface '" + example_data("sphere.stl") + "' '" + test_data("cad_box_with_hole.igs") + "' -o both.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("2 connected components (2 closed)"), std::string::npos) << r.out;
+    const SurfaceMesh m = read_msh((dir.path() / "both.msh").string());
+    EXPECT_EQ(m.patches.size(), 8u);  // the STL's solid and the box's 7 faces
+    r = strata_cli(dir, "mesh '" + example_data("sphere.stl") + "' '" + test_data("cad_box_with_hole.igs") +
+                            "' -o both.cgr --layers 2 --first-height 0.01");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.err.find("the surface intersects itself"), std::string::npos) << r.err;
+}
+
 TEST(Cli, SurfaceFromStepFused) {
     test::ScratchDir dir("cli_fuse");
     const SurfaceMesh m = surface_via_cli(dir, example_data("wing_fuselage.step"), "wf.msh", "--fuse --quads");

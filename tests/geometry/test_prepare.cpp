@@ -92,6 +92,57 @@ TEST(Prepare, UnknownTypeAndMissingFile) {
     EXPECT_THROW(prepare_surface(std::string(STRATA_EXAMPLES_DATA), {}), InputError);
 }
 
+/// An ASCII STL tetrahedron (solid "part") with its corner at \p o, facets in any orientation.
+std::string tet_stl(const Vec3& o) {
+    const Vec3 p[4] = {o, o + Vec3(1, 0, 0), o + Vec3(0, 1, 0), o + Vec3(0, 0, 1)};
+    const int f[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+    std::string s = "solid part\n";
+    for (const auto& t : f) {
+        s += "facet normal 0 0 0\nouter loop\n";
+        for (int i : t)
+            s += "vertex " + std::to_string(p[i].x()) + " " + std::to_string(p[i].y()) + " " +
+                 std::to_string(p[i].z()) + "\n";
+        s += "endloop\nendfacet\n";
+    }
+    return s + "endsolid part\n";
+}
+
+TEST(Prepare, SeveralInputsAreOneSurfaceEachKeepingItsPatches) {
+    test::ScratchDir dir("prepare_several");
+    const std::string a = dir.file("a.stl"), b = dir.file("b.stl");
+    std::ofstream(a) << tet_stl(Vec3(0, 0, 0));
+    std::ofstream(b) << tet_stl(Vec3(3, 0, 0));
+    PrepareReport rep;
+    const SurfaceMesh m = prepare_surfaces({a, b}, {}, &rep);
+    EXPECT_EQ(m.num_faces(), 8);
+    EXPECT_EQ(m.num_points(), 8);
+    EXPECT_EQ(rep.orient.components, 2);
+    ASSERT_EQ(m.patches.size(), 2u);
+    EXPECT_EQ(m.patches[0].name, "part");
+    EXPECT_EQ(m.patches[1].name, "part (b.stl)");  // the same name again: the file's after it
+    // Both oriented outward, as one file with both would be.
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        const Vec3 centre = m.face_patch[f] == 0 ? Vec3(0.25, 0.25, 0.25) : Vec3(3.25, 0.25, 0.25);
+        EXPECT_GT(face_area_vector(m, f).dot(face_centroid(m, m.points, f) - centre), 0.0) << f;
+    }
+    // A CAD file among them: read in its unit, which the report states.
+    PrepareParams fused;
+    fused.cad.fuse = true;  // its wing and fuselage overlap
+    const SurfaceMesh with_cad = prepare_surfaces({a, example_data("wing_fuselage.step")}, fused, &rep);
+    EXPECT_EQ(rep.units.unit, "m");
+    EXPECT_GT(with_cad.patches.size(), 2u);
+    // One input: prepare_surface itself; none, or a missing one: an error naming it.
+    EXPECT_EQ(prepare_surfaces({a}, {}).face_nodes, prepare_surface(a, {}).face_nodes);
+    EXPECT_THROW(prepare_surfaces({}, {}), InputError);
+    const std::string missing = dir.file("missing.stl");
+    try {
+        prepare_surfaces({a, missing}, {});
+        FAIL() << "a missing input must be an error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("missing.stl"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Prepare, ParsePatchKind) {
     EXPECT_EQ(parse_patch_kind("Symmetry"), PatchKind::Symmetry);
     EXPECT_EQ(parse_patch_kind("farfield"), PatchKind::Farfield);

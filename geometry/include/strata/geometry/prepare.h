@@ -44,6 +44,15 @@ struct PrepareReport {
 SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params, PrepareReport* report = nullptr,
                             Progress* progress = nullptr);
 
+/// Several inputs as one surface (any mix of CAD and surface meshes): each read as
+/// prepare_surface reads it, their faces and patches put together (a patch keeps its name; one
+/// that an earlier input already has gets the file's name after it), then prepare_mesh on the
+/// whole, so components that touch share their nodes. CAD files are read in the unit of the
+/// first one that declares a unit (CadParams::units, if given, for all); \p report->units is
+/// that unit. InputError naming the file for any that cannot be read; none given: InputError.
+SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const PrepareParams& params,
+                             PrepareReport* report = nullptr, Progress* progress = nullptr);
+
 /// The part of prepare_surface after reading, for a mesh that comes from elsewhere (the
 /// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,
 /// then merge_coincident_nodes (\p params.merge_tolerance), check_surface, orient_surface.
