@@ -173,7 +173,9 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
             ->delimiter(',')
             ->expected(1, -1);
     q->excludes(m);
-    cmd.add_flag("--fuse", cad.fuse, "fuse all solids into one body before meshing (CAD only)");
+    cmd.add_flag("--fuse", cad.fuse,
+                 "fuse overlapping bodies into one: a CAD file's solids before meshing (OpenCASCADE), overlapping "
+                 "closed surface-mesh components after reading (exact corefinement, CGAL)");
     cmd.add_option("--units", cad.units,
                    "STEP and IGES only: read the model in this length unit (mm, cm, m, km, in, ft, ...); default: "
                    "the unit the file declares. Every length option is in the unit the summary states");
@@ -209,15 +211,16 @@ strata::PrepareParams prepare_params(const Common& c) {
         p.cad.quad_surfaces = c.mixed;
     }
     const strata::CadParams none;
-    const bool cad_options = c.quads || !c.mixed.empty() || p.cad.fuse || p.cad.size != none.size ||
+    p.fuse = p.cad.fuse;  // --fuse: CAD solids by OpenCASCADE, overlapping mesh components by CGAL
+    const bool cad_options = c.quads || !c.mixed.empty() || p.cad.size != none.size ||
                              p.cad.curvature_points != none.curvature_points || p.cad.size_min != none.size_min ||
                              !p.cad.units.empty();
     const bool any_cad =
         std::any_of(c.inputs.begin(), c.inputs.end(), [](const std::string& f) { return strata::is_cad_file(f); });
     if (!any_cad && cad_options)
         throw strata::InputError("'" + c.input +
-                                 "' is already a surface mesh: --size, --size-min, --curvature, --quads, --mixed, "
-                                 "--fuse and --units apply to CAD input only; remove them (--scale scales any input)");
+                                 "' is already a surface mesh: --size, --size-min, --curvature, --quads, --mixed "
+                                 "and --units apply to CAD input only; remove them (--scale scales any input)");
     p.patch_kinds = parse_patch_options(c.patches);
     return p;
 }
@@ -372,6 +375,9 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
         static_cast<int>(rep.orient.components), static_cast<int>(rep.orient.closed_components),
         static_cast<int>(loops.rows()), static_cast<int>(rep.merged_nodes), static_cast<int>(rep.orient.flipped_faces));
     print_units(rep);
+    if (rep.fused_components > 0)
+        std::printf("fused: %d overlapping components replaced by their union (--fuse)\n",
+                    static_cast<int>(rep.fused_components));
     print_needles(mesh);
 }
 

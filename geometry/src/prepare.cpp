@@ -76,8 +76,19 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     strata::report(progress, "surface", 0.8);
     OrientReport orient;
     SurfaceMesh oriented = orient_surface(merged, &orient, params.internal_flow);
+    FuseReport fuse;
+    if (params.fuse) {
+        SurfaceMesh fused = fuse_components(oriented, &fuse);
+        if (fuse.fused > 0) {
+            // The union's faces with the untouched components: checked and oriented again.
+            fused = merge_coincident_nodes(fused, params.merge_tolerance);
+            check_surface(fused, source + " (fused)");
+            oriented = orient_surface(fused, &orient, params.internal_flow);
+        }
+    }
     if (report) {
         report->scale = params.scale;
+        report->fused_components = fuse.fused;
         report->merged_nodes = merged_nodes;
         report->orient = orient;
     }

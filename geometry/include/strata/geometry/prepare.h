@@ -7,6 +7,7 @@
 #include <strata/core/surface_mesh.h>
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
+#include <strata/geometry/fuse.h>
 
 #include <string>
 #include <utility>
@@ -25,13 +26,18 @@ struct PrepareParams {
     /// Every coordinate multiplied by this after reading (any input, after CAD units): for a
     /// surface mesh in another unit than wanted (STL and MSH carry none). Positive, finite.
     double scale = 1.0;
+    /// Closed components of walls that overlap (separate STL parts, several inputs) are replaced
+    /// by their union (fuse_components, exact corefinement), each face keeping its patch. CAD
+    /// solids of one file are fused by CadParams::fuse (OpenCASCADE) before meshing.
+    bool fuse = false;
 };
 
 /// What prepare_surface did, for the CLI's summary.
 struct PrepareReport {
-    Index merged_nodes = 0;  ///< nodes removed by merging
-    CadUnits units;          ///< CAD input: the unit read in and the one the file declares
-    double scale = 1.0;      ///< PrepareParams::scale applied
+    Index merged_nodes = 0;      ///< nodes removed by merging
+    CadUnits units;              ///< CAD input: the unit read in and the one the file declares
+    double scale = 1.0;          ///< PrepareParams::scale applied
+    Index fused_components = 0;  ///< components replaced by their union (PrepareParams::fuse)
     OrientReport orient;
 };
 

@@ -1,0 +1,26 @@
+#pragma once
+/// \file
+/// The Boolean union of overlapping closed components of a surface mesh (a fuselage and fins
+/// given as separate STL files), by exact corefinement: CGAL's
+/// Polygon_mesh_processing::corefine_and_compute_union, each face keeping its patch.
+
+#include <strata/core/surface_mesh.h>
+
+namespace strata {
+
+/// What fuse_components did.
+struct FuseReport {
+    Index components = 0;  ///< closed wall components looked at
+    Index fused = 0;       ///< of which unioned with another (they overlapped or touched)
+};
+
+/// \p mesh (oriented: closed bodies outward, as orient_surface leaves them) with its closed
+/// components of walls that intersect one another replaced by their union; the others, and
+/// every face that is not a wall's, kept as they are. Faces of the union keep the patch of the
+/// face they came from (split faces: of the face they were cut from); quads of the components
+/// unioned become two triangles. Deterministic. TopologyError naming the component (its first
+/// face and patch) where one that must be unioned intersects itself, or where CGAL's union
+/// fails (the result would not bound a volume).
+SurfaceMesh fuse_components(const SurfaceMesh& mesh, FuseReport* report = nullptr);
+
+}  // namespace strata

@@ -1,0 +1,185 @@
+// The union of overlapping closed components: fuse.h. CGAL's corefinement works on its own
+// Surface_mesh; a face property carries each face's patch through the cuts and copies.
+
+#include "cgal_kernel.h"
+
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
+#include <strata/geometry/fuse.h>
+#include <strata/geometry/intersections.h>
+#include <strata/geometry/topology.h>
+
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <vector>
+
+namespace strata {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Mesh = CGAL::Surface_mesh<cgal::Point>;
+using FaceD = Mesh::Face_index;
+using PatchMap = Mesh::Property_map<FaceD, Index>;
+
+PatchMap patch_map(Mesh& m) {
+    return m.add_property_map<FaceD, Index>("f:patch", kNone).first;
+}
+
+/// Carries the patch of every face through corefinement: a face cut into subfaces gives them
+/// its patch; a face copied into the result keeps it.
+struct PatchVisitor : PMP::Corefinement::Default_visitor<Mesh> {
+    Index pending = kNone;
+    void before_subface_creations(FaceD f, Mesh& tm) { pending = patch_map(tm)[f]; }
+    void after_subface_created(FaceD f, Mesh& tm) { patch_map(tm)[f] = pending; }
+    void after_face_copy(FaceD src, const Mesh& tm_src, FaceD tgt, Mesh& tm_tgt) {
+        const auto [from, found] = tm_src.property_map<FaceD, Index>("f:patch");
+        patch_map(tm_tgt)[tgt] = found ? from[src] : kNone;
+    }
+};
+
+/// Component \p faces of \p mesh as a CGAL triangle mesh (quads split along their first
+/// diagonal), each face with its patch.
+Mesh to_cgal(const SurfaceMesh& mesh, const std::vector<Index>& faces) {
+    Mesh out;
+    PatchMap patch = patch_map(out);
+    std::map<Index, Mesh::Vertex_index> vertex;
+    auto v = [&](Index i) {
+        auto it = vertex.find(i);
+        if (it == vertex.end()) it = vertex.emplace(i, out.add_vertex(cgal::point(mesh.points[i]))).first;
+        return it->second;
+    };
+    for (const Index f : faces) {
+        const Index* n = mesh.face_begin(f);
+        const Index p = mesh.face_patch[f];
+        auto add = [&](Index a, Index b, Index c) {
+            const FaceD g = out.add_face(v(a), v(b), v(c));
+            if (g == Mesh::null_face())
+                throw TopologyError("fuse: " + describe_face(mesh, f) +
+                                    " cannot join its component's other faces (a non-manifold edge or a face "
+                                    "repeated); repair the surface first");
+            patch[g] = p;
+        };
+        add(n[0], n[1], n[2]);
+        if (mesh.face_size(f) == 4) add(n[0], n[2], n[3]);
+    }
+    return out;
+}
+
+}  // namespace
+
+SurfaceMesh fuse_components(const SurfaceMesh& mesh, FuseReport* report) {
+    FuseReport rep;
+    Index nc = 0;
+    const std::vector<Index> comp = face_components(mesh, &nc);
+    std::vector<std::vector<Index>> faces(static_cast<std::size_t>(nc));
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+        faces[static_cast<std::size_t>(comp[static_cast<std::size_t>(f)])].push_back(f);
+    // Closed components of walls: the candidates.
+    const Csr loops = boundary_loops(mesh);
+    std::vector<char> open(static_cast<std::size_t>(nc), 0);
+    for (const Index v : loops.values)
+        for (Index f = 0; f < mesh.num_faces(); ++f)
+            for (const Index* n = mesh.face_begin(f); n != mesh.face_end(f); ++n)
+                if (*n == v) open[static_cast<std::size_t>(comp[static_cast<std::size_t>(f)])] = 1;
+    std::vector<char> candidate(static_cast<std::size_t>(nc), 0);
+    for (Index c = 0; c < nc; ++c) {
+        bool walls = !open[static_cast<std::size_t>(c)];
+        for (const Index f : faces[static_cast<std::size_t>(c)])
+            walls &= mesh.patches[static_cast<std::size_t>(mesh.face_patch[f])].kind == PatchKind::Wall;
+        candidate[static_cast<std::size_t>(c)] = walls ? 1 : 0;
+        rep.components += walls ? 1 : 0;
+    }
+    // Which candidates meet: the surface's own intersections between two of them.
+    std::vector<Index> group(static_cast<std::size_t>(nc));
+    std::iota(group.begin(), group.end(), Index{0});
+    auto find = [&](Index c) {
+        while (group[static_cast<std::size_t>(c)] != c)
+            c = group[static_cast<std::size_t>(c)] =
+                group[static_cast<std::size_t>(group[static_cast<std::size_t>(c)])];
+        return c;
+    };
+    for (const FacePair& p : self_intersections(mesh)) {
+        const Index a = comp[static_cast<std::size_t>(p.a)], b = comp[static_cast<std::size_t>(p.b)];
+        if (a == b || !candidate[static_cast<std::size_t>(a)] || !candidate[static_cast<std::size_t>(b)]) continue;
+        const Index ra = find(a), rb = find(b);
+        if (ra != rb) group[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+    }
+    std::map<Index, std::vector<Index>> groups;  // root → its components, in order
+    for (Index c = 0; c < nc; ++c)
+        if (candidate[static_cast<std::size_t>(c)]) groups[find(c)].push_back(c);
+    SurfaceMesh out;
+    out.patches = mesh.patches;
+    std::vector<Index> kept(mesh.points.size(), kNone);
+    auto keep_face = [&](Index f) {
+        std::vector<Index> n;
+        for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v) {
+            Index& k = kept[static_cast<std::size_t>(*v)];
+            if (k == kNone) k = static_cast<Index>(out.points.size()), out.points.push_back(mesh.points[*v]);
+            n.push_back(k);
+        }
+        out.add_face(n.data(), static_cast<Index>(n.size()), mesh.face_patch[f]);
+    };
+    for (Index c = 0; c < nc; ++c) {
+        const bool alone = !candidate[static_cast<std::size_t>(c)] || groups[find(c)].size() == 1;
+        if (alone)
+            for (const Index f : faces[static_cast<std::size_t>(c)]) keep_face(f);
+    }
+    for (const auto& [root, members] : groups) {
+        if (members.size() < 2) continue;
+        Mesh result;
+        for (std::size_t k = 0; k < members.size(); ++k) {
+            const Index c = members[k];
+            Mesh part = to_cgal(mesh, faces[static_cast<std::size_t>(c)]);
+            const Index first = faces[static_cast<std::size_t>(c)].front();
+            if (PMP::does_self_intersect(part))
+                throw TopologyError("fuse: the component of " + describe_face(mesh, first) +
+                                    " intersects itself, so it cannot be unioned with the others it overlaps; "
+                                    "repair it first (remesh it)");
+            if (k == 0) {
+                result = std::move(part);
+                continue;
+            }
+            Mesh united;
+            patch_map(united);
+            PatchVisitor visitor;
+            bool ok = false;
+            try {
+                ok = PMP::corefine_and_compute_union(result, part, united, CGAL::parameters::visitor(visitor));
+            } catch (const std::exception& e) {
+                throw TopologyError("fuse: CGAL could not union the component of " + describe_face(mesh, first) +
+                                    " with the others (" + e.what() + "); check that each is closed and outward");
+            }
+            if (!ok)
+                throw TopologyError("fuse: the union of the component of " + describe_face(mesh, first) +
+                                    " with the others would not bound a volume (they touch along an edge or a "
+                                    "point only, or one is not closed); move them apart or overlap them more");
+            result = std::move(united);
+        }
+        rep.fused += static_cast<Index>(members.size());
+        // Back to Strata's mesh, in CGAL's vertex and face order (deterministic for the same input).
+        const auto [patch, has_patch] = result.property_map<FaceD, Index>("f:patch");
+        std::map<Mesh::Vertex_index, Index> index;
+        for (const auto v : result.vertices()) {
+            const auto& p = result.point(v);
+            index[v] = static_cast<Index>(out.points.size());
+            out.points.emplace_back(p.x(), p.y(), p.z());
+        }
+        for (const auto f : result.faces()) {
+            std::vector<Index> n;
+            for (const auto v : CGAL::vertices_around_face(result.halfedge(f), result)) n.push_back(index.at(v));
+            const Index p = has_patch ? patch[f] : kNone;
+            out.add_face(n.data(), static_cast<Index>(n.size()),
+                         p == kNone ? mesh.face_patch[faces[static_cast<std::size_t>(root)].front()] : p);
+        }
+    }
+    if (report) *report = rep;
+    return out;
+}
+
+}  // namespace strata
