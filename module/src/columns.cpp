@@ -115,6 +115,29 @@ double cell_twist_deg(const std::array<Vec3, 4>& bottom, const std::array<Vec3, 
     return weight > 0.0 ? std::abs(sum / weight) * 180.0 / std::numbers::pi : 0.0;
 }
 
+bool twists_more_than(const std::array<Vec3, 4>& bottom, const std::array<Vec3, 4>& top, int n, double bound_deg,
+                      double tan_bound) {
+    // Every edge turned less than the bound (positive cosine, |tan| under it): so is their
+    // weighted mean, and no arc tangent is needed; the usual case.
+    if (bound_deg < 90.0) {
+        Vec3 axis = Vec3::Zero();
+        for (int c = 0; c < n; ++c) axis += top[static_cast<std::size_t>(c)] - bottom[static_cast<std::size_t>(c)];
+        bool small = axis.squaredNorm() > 0.0;
+        for (int c = 0; c < n && small; ++c) {
+            const auto a = static_cast<std::size_t>(c), b = static_cast<std::size_t>((c + 1) % n);
+            const Vec3 eb = bottom[b] - bottom[a], et = top[b] - top[a];
+            // Projections onto the plane across the axis change neither the sign of the cosine
+            // nor the ratio's bound: (eb x et) . axis and the projected dot product.
+            const double an = axis.squaredNorm();
+            const Vec3 ebp = eb - (eb.dot(axis) / an) * axis, etp = et - (et.dot(axis) / an) * axis;
+            const double cosine = ebp.dot(etp), sine = std::abs(ebp.cross(etp).dot(axis)) / std::sqrt(an);
+            small = cosine > 0.0 && sine <= tan_bound * cosine;
+        }
+        if (small) return false;
+    }
+    return cell_twist_deg(bottom, top, n) > bound_deg;
+}
+
 double face_corner_quality(const Columns& col, Index f) {
     const auto u = static_cast<std::size_t>(f);
     std::array<Vec3, 4> x;
@@ -332,7 +355,7 @@ void close_steps(Columns& col, const StopRules& rules, int k, const std::vector<
 
 }  // namespace
 
-double column_cell_jacobian(const Columns& col, Index f, const std::vector<Vec3>& next) {
+double column_cell_jacobian(const Columns& col, Index f, const std::vector<Vec3>& next, std::array<Vec3, 8>* corners) {
     static constexpr std::array<bool, 4> kAll{true, true, true, true};
     CellType type{};
     std::array<Vec3, 8> p{};
@@ -341,6 +364,7 @@ double column_cell_jacobian(const Columns& col, Index f, const std::vector<Vec3>
     closing_cell(col.faces.nodes[static_cast<std::size_t>(f)], col.faces.size[static_cast<std::size_t>(f)], kAll.data(),
                  lo, hi, type, p);
     double unused = 0.0;
+    if (corners) *corners = p;
     return closing_quality(type, true, p, unused);
 }
 
@@ -363,6 +387,8 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
         // Each face's cell judged alone (in parallel), then its columns stopped in face order.
         const Index nf = col.faces.count();
         std::vector<char> poor(static_cast<std::size_t>(nf), 0);
+        const double tan_twist = std::tan(rules.max_twist_deg * std::numbers::pi / 180.0);
+        for (auto f = static_cast<Index>(col.best.size()); f < nf; ++f) col.best.push_back(face_corner_quality(col, f));
 #pragma omp parallel for schedule(static) num_threads(thread_count(rules.threads))
         for (Index f = 0; f < nf; ++f) {
             const auto u = static_cast<std::size_t>(f);
@@ -374,16 +400,16 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
                 finite &= next[static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)])].allFinite();
             // Relative to the right cell on the same face: a needle triangle's cells are as good
             // as the face allows, and only what the marching does to them stops a column.
-            const double q = finite ? column_cell_jacobian(col, f, next) : std::nan("");
-            poor[u] = q >= rules.min_quality * face_corner_quality(col, f) ? 0 : 1;
+            std::array<Vec3, 8> p;  // the cell's corners, bottom then top, in the face's order
+            const double q = finite ? column_cell_jacobian(col, f, next, &p) : std::nan("");
+            poor[u] = q >= rules.min_quality * col.best[u] ? 0 : 1;
             if (!poor[u]) {
                 std::array<Vec3, 4> bottom, top;
                 for (int c = 0; c < n; ++c) {
-                    const auto v = static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)]);
-                    bottom[static_cast<std::size_t>(c)] = col.top[v];
-                    top[static_cast<std::size_t>(c)] = next[v];
+                    bottom[static_cast<std::size_t>(c)] = p[static_cast<std::size_t>(c)];
+                    top[static_cast<std::size_t>(c)] = p[static_cast<std::size_t>(c + n)];
                 }
-                if (cell_twist_deg(bottom, top, n) > rules.max_twist_deg) poor[u] = 2;
+                if (twists_more_than(bottom, top, n, rules.max_twist_deg, tan_twist)) poor[u] = 2;
             }
         }
         for (Index f = 0; f < nf; ++f)

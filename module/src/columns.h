@@ -41,6 +41,9 @@ struct Columns {
     /// a sharp edge without a fan. A cell's corner there can be no better than this times the
     /// sine of its face's angle, so face_corner_quality counts it.
     std::vector<double> reach;
+    /// Per column face, face_corner_quality as computed once (it depends on the wall alone);
+    /// stop_columns extends it to faces split since.
+    std::vector<double> best;
     /// Empty, or per wall node 1 where it cannot stop (a fan's column, first layer); stop_columns
     /// sets 2 where it would have stopped.
     std::vector<char> pinned;
@@ -83,6 +86,12 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
 /// sheared, the rotation for a top turned rigidly about the axis.
 double cell_twist_deg(const std::array<Vec3, 4>& bottom, const std::array<Vec3, 4>& top, int n);
 
+/// cell_twist_deg(bottom, top, n) > \p bound_deg, \p tan_bound its tangent: without an arc
+/// tangent where every edge turns less than the bound (the usual case), so the stopping test
+/// stays cheap.
+bool twists_more_than(const std::array<Vec3, 4>& bottom, const std::array<Vec3, 4>& top, int n, double bound_deg,
+                      double tan_bound);
+
 /// The best a cell over column face \p f can be: over its corners on the wall, the sine of
 /// the corner's angle (the scaled Jacobian of the right prism or hexahedron on it) times the
 /// corner node's reach (one direction per node: at a sharp edge without a fan no column stands
@@ -103,7 +112,8 @@ inline constexpr double kMinReach = 0.5;
 
 /// Scaled Jacobian of the cell column face \p f would make between its nodes' tops and \p next,
 /// every column going on (a prism or hexahedron, as cell_quality.h measures them).
-double column_cell_jacobian(const Columns& col, Index f, const std::vector<Vec3>& next);
+double column_cell_jacobian(const Columns& col, Index f, const std::vector<Vec3>& next,
+                            std::array<Vec3, 8>* corners = nullptr);
 
 /// The cells, boundary (the wall reversed, the top on top_patch, side faces over the wall's
 /// open edges \p loops) and front (top, face_layers) of \p out, whose points hold every level

@@ -77,6 +77,16 @@ TEST(Columns, TwistIsTheTopsTurnAboutTheCellsAxis) {
     const Vec3 g(1.0 / 3.0, 1.0 / 3.0, 0.1);
     for (std::size_t c = 0; c < 3; ++c) top[c] = turned(tri[c] + Vec3(0, 0, 0.1), g, 40);
     EXPECT_NEAR(cell_twist_deg(tri, top, 3), 40.0, 1e-9);
+    // The stopping test's shortcut agrees with the measure, turned, sheared and tilted alike.
+    const double bound = 30.0, tan_bound = std::tan(bound * std::numbers::pi / 180.0);
+    for (int t = -80; t <= 80; t += 7)
+        for (double shear : {0.0, 0.4, -0.9})
+            for (double tilt : {0.0, 0.3}) {
+                for (std::size_t c = 0; c < 4; ++c)
+                    top[c] = turned(quad[c] + up + Vec3(shear * quad[c].y() + tilt, 0.0, 0.0), centre, t);
+                EXPECT_EQ(twists_more_than(quad, top, 4, bound, tan_bound), cell_twist_deg(quad, top, 4) > bound)
+                    << t << " " << shear << " " << tilt;
+            }
 }
 
 TEST(Columns, ATwistedCellStopsItsColumns) {
