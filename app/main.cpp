@@ -375,6 +375,8 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
         static_cast<int>(rep.orient.components), static_cast<int>(rep.orient.closed_components),
         static_cast<int>(loops.rows()), static_cast<int>(rep.merged_nodes), static_cast<int>(rep.orient.flipped_faces));
     print_units(rep);
+    if (rep.internal_flow)
+        std::printf("flow: inside the walls (--internal): the outermost closed surface points inward\n");
     if (rep.fused_components > 0)
         std::printf("fused: %d overlapping components replaced by their union (--fuse)\n",
                     static_cast<int>(rep.fused_components));

@@ -89,6 +89,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     if (report) {
         report->scale = params.scale;
         report->fused_components = fuse.fused;
+        report->internal_flow = params.internal_flow;
         report->merged_nodes = merged_nodes;
         report->orient = orient;
     }

@@ -342,6 +342,7 @@ TEST(Cli, MeshInsideTheWallsWithInternal) {
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("domain: inside the walls (internal flow), no farfield generated"), std::string::npos)
         << r.out;
+    EXPECT_NE(r.out.find("flow: inside the walls (--internal)"), std::string::npos) << r.out;
     const VolumeMesh m = read_volume_msh((dir.path() / "tank.msh").string());
     EXPECT_GT(m.prisms.size(), 0u);
     EXPECT_GT(m.tets.size(), 0u);

@@ -38,6 +38,7 @@ struct PrepareReport {
     CadUnits units;              ///< CAD input: the unit read in and the one the file declares
     double scale = 1.0;          ///< PrepareParams::scale applied
     Index fused_components = 0;  ///< components replaced by their union (PrepareParams::fuse)
+    bool internal_flow = false;  ///< PrepareParams::internal_flow: oriented for the fluid inside the walls
     OrientReport orient;
 };
 
