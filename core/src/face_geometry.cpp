@@ -68,4 +68,14 @@ PatchPlane patch_plane(const SurfaceMesh& mesh, Index patch) {
     return pl;
 }
 
+double signed_volume(const SurfaceMesh& mesh) {
+    Vec3 ref = Vec3::Zero();
+    for (const Vec3& p : mesh.points) ref += p;
+    if (!mesh.points.empty()) ref /= static_cast<double>(mesh.points.size());
+    double volume = 0.0;
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+        volume += (face_centroid(mesh, mesh.points, f) - ref).dot(face_area_vector(mesh, f)) / 3.0;
+    return volume;
+}
+
 }  // namespace strata

@@ -5,6 +5,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/union_find.h>
 #include <strata/geometry/fuse.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/topology.h>
@@ -16,7 +17,6 @@
 
 #include <algorithm>
 #include <map>
-#include <numeric>
 #include <vector>
 
 namespace strata {
@@ -80,13 +80,14 @@ SurfaceMesh fuse_components(const SurfaceMesh& mesh, FuseReport* report) {
     std::vector<std::vector<Index>> faces(static_cast<std::size_t>(nc));
     for (Index f = 0; f < mesh.num_faces(); ++f)
         faces[static_cast<std::size_t>(comp[static_cast<std::size_t>(f)])].push_back(f);
-    // Closed components of walls: the candidates.
-    const Csr loops = boundary_loops(mesh);
+    // Closed components of walls: the candidates. A node's component is its faces'.
+    std::vector<Index> node_comp(mesh.points.size(), kNone);
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+        for (const Index* n = mesh.face_begin(f); n != mesh.face_end(f); ++n)
+            node_comp[static_cast<std::size_t>(*n)] = comp[static_cast<std::size_t>(f)];
     std::vector<char> open(static_cast<std::size_t>(nc), 0);
-    for (const Index v : loops.values)
-        for (Index f = 0; f < mesh.num_faces(); ++f)
-            for (const Index* n = mesh.face_begin(f); n != mesh.face_end(f); ++n)
-                if (*n == v) open[static_cast<std::size_t>(comp[static_cast<std::size_t>(f)])] = 1;
+    for (const Index v : boundary_loops(mesh).values)
+        open[static_cast<std::size_t>(node_comp[static_cast<std::size_t>(v)])] = 1;
     std::vector<char> candidate(static_cast<std::size_t>(nc), 0);
     for (Index c = 0; c < nc; ++c) {
         bool walls = !open[static_cast<std::size_t>(c)];
@@ -96,20 +97,12 @@ SurfaceMesh fuse_components(const SurfaceMesh& mesh, FuseReport* report) {
         rep.components += walls ? 1 : 0;
     }
     // Which candidates meet: the surface's own intersections between two of them.
-    std::vector<Index> group(static_cast<std::size_t>(nc));
-    std::iota(group.begin(), group.end(), Index{0});
-    auto find = [&](Index c) {
-        while (group[static_cast<std::size_t>(c)] != c)
-            c = group[static_cast<std::size_t>(c)] =
-                group[static_cast<std::size_t>(group[static_cast<std::size_t>(c)])];
-        return c;
-    };
+    UnionFind group(static_cast<std::size_t>(nc));
     for (const FacePair& p : self_intersections(mesh)) {
         const Index a = comp[static_cast<std::size_t>(p.a)], b = comp[static_cast<std::size_t>(p.b)];
-        if (a == b || !candidate[static_cast<std::size_t>(a)] || !candidate[static_cast<std::size_t>(b)]) continue;
-        const Index ra = find(a), rb = find(b);
-        if (ra != rb) group[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+        if (candidate[static_cast<std::size_t>(a)] && candidate[static_cast<std::size_t>(b)]) group.unite(a, b);
     }
+    auto find = [&](Index c) { return group.find(c); };
     std::map<Index, std::vector<Index>> groups;  // root → its components, in order
     for (Index c = 0; c < nc; ++c)
         if (candidate[static_cast<std::size_t>(c)]) groups[find(c)].push_back(c);

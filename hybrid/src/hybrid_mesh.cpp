@@ -60,18 +60,6 @@ std::vector<Vec3> points_in_layers(const LayerMesh& lm) {
     return holes;
 }
 
-/// Volume a closed surface encloses, signed by its orientation: negative when its normals
-/// point inward (the fluid inside, as orient_surface leaves a duct or a tunnel).
-double signed_enclosed_volume(const SurfaceMesh& s) {
-    Vec3 ref = Vec3::Zero();
-    for (const Vec3& p : s.points) ref += p;
-    if (!s.points.empty()) ref /= static_cast<double>(s.points.size());
-    double volume = 0.0;
-    for (Index f = 0; f < s.num_faces(); ++f)
-        volume += (face_centroid(s, s.points, f) - ref).dot(face_area_vector(s, f)) / 3.0;
-    return volume;
-}
-
 /// The domain the layers grow in: \p input itself if it is closed (walls inside farfield,
 /// symmetry or outflow patches, walls alone around a body, or walls alone around the fluid:
 /// internal flow), a half model (walls alone, open along one plane) closed by a generated half
@@ -86,7 +74,7 @@ SurfaceMesh closed_domain(const SurfaceMesh& input, const FarfieldParams& farfie
     if (boundary_loops(input).rows() == 0) {
         // Walls alone pointing inward on the whole: the fluid is inside them (orient_surface's
         // internal flow), so there is no farfield to add.
-        if (!has_outer && signed_enclosed_volume(input) < 0.0) has_outer = internal = true;
+        if (!has_outer && signed_volume(input) < 0.0) has_outer = internal = true;
         return input;
     }
     if (has_outer)

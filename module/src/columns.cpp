@@ -122,13 +122,13 @@ bool twists_more_than(const std::array<Vec3, 4>& bottom, const std::array<Vec3, 
     if (bound_deg < 90.0) {
         Vec3 axis = Vec3::Zero();
         for (int c = 0; c < n; ++c) axis += top[static_cast<std::size_t>(c)] - bottom[static_cast<std::size_t>(c)];
-        bool small = axis.squaredNorm() > 0.0;
+        const double an = axis.squaredNorm();
+        bool small = an > 0.0;
         for (int c = 0; c < n && small; ++c) {
             const auto a = static_cast<std::size_t>(c), b = static_cast<std::size_t>((c + 1) % n);
             const Vec3 eb = bottom[b] - bottom[a], et = top[b] - top[a];
             // Projections onto the plane across the axis change neither the sign of the cosine
             // nor the ratio's bound: (eb x et) . axis and the projected dot product.
-            const double an = axis.squaredNorm();
             const Vec3 ebp = eb - (eb.dot(axis) / an) * axis, etp = et - (et.dot(axis) / an) * axis;
             const double cosine = ebp.dot(etp), sine = std::abs(ebp.cross(etp).dot(axis)) / std::sqrt(an);
             small = cosine > 0.0 && sine <= tan_bound * cosine;

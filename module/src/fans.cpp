@@ -4,6 +4,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/union_find.h>
 #include <strata/geometry/normals.h>
 #include <strata/geometry/topology.h>
 
@@ -23,20 +24,6 @@ constexpr double kWedgeDeg = 90.0;    ///< widest wedge between two columns of a
 /// edge there that turns least is dropped. A box corner spans 1, a wing's trailing edge at
 /// its root 0.66.
 constexpr double kCornerSpan = 0.25;
-struct UnionFind {
-    std::vector<Index> parent;
-    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), Index{0}); }
-    Index find(Index x) {
-        while (parent[static_cast<std::size_t>(x)] != x)
-            x = parent[static_cast<std::size_t>(x)] =
-                parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-        return x;
-    }
-    void unite(Index a, Index b) {
-        a = find(a), b = find(b);
-        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-    }
-};
 
 Vec3 unit(const Vec3& v) {
     const double l = v.norm();

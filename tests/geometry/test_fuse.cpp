@@ -20,12 +20,6 @@
 namespace strata {
 namespace {
 
-double volume(const SurfaceMesh& m) {
-    double v = 0.0;
-    for (Index f = 0; f < m.num_faces(); ++f) v += face_centroid(m, m.points, f).dot(face_area_vector(m, f)) / 3.0;
-    return v;
-}
-
 TEST(Fuse, TwoOverlappingSpheresBecomeOneKeepingTheirPatches) {
     const Vec3 a(0, 0, 0), b(1.2, 0.1, 0);
     const SurfaceMesh two = orient_surface(
@@ -52,7 +46,7 @@ TEST(Fuse, TwoOverlappingSpheresBecomeOneKeepingTheirPatches) {
     const double lens = std::numbers::pi * std::pow(r1 + r2 - d, 2) *
                         (d * d + 2 * d * r2 - 3 * r2 * r2 + 2 * d * r1 + 6 * r1 * r2 - 3 * r1 * r1) / (12 * d);
     const double exact = 4.0 / 3.0 * std::numbers::pi * (r1 * r1 * r1 + r2 * r2 * r2) - lens;
-    EXPECT_NEAR(volume(u), exact, 0.02 * exact);
+    EXPECT_NEAR(test::enclosed_volume(u), exact, 0.02 * exact);
 }
 
 TEST(Fuse, ApartOrNotWallsTheyStayAsTheyAre) {

@@ -16,6 +16,10 @@ inline Vec3 face_area_vector(const SurfaceMesh& mesh, Index f) {
 /// Centroid (mean of the corners) of face \p f.
 Vec3 face_centroid(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f);
 
+/// Volume a closed surface encloses, signed by its orientation (positive for normals outward),
+/// measured from the centroid of its points so that a body far from the origin keeps it.
+double signed_volume(const SurfaceMesh& mesh);
+
 /// Axis-aligned bounding box of \p points; diagonal() of an empty set is 0.
 struct BoundingBox {
     Vec3 min = Vec3::Constant(0.0), max = Vec3::Constant(0.0);
