@@ -30,6 +30,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <string>
 #include <utility>
@@ -143,6 +144,7 @@ struct Common {
     std::string input;  ///< the inputs as one name, for messages
     std::string output, msh_version = "4.1";
     bool quiet = false, quads = false;
+    double remesh = -1.0;  ///< --remesh [SIZE]: the size (0: --size, or automatic); negative: not asked
     std::vector<int> mixed;
     std::vector<std::string> patches;
     strata::PrepareParams prepare;
@@ -176,6 +178,14 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
     cmd.add_flag("--fuse", cad.fuse,
                  "fuse overlapping bodies into one: a CAD file's solids before meshing (OpenCASCADE), overlapping "
                  "closed surface-mesh components after reading (exact corefinement, CGAL)");
+    cmd.add_option("--remesh", c.remesh,
+                   "--remesh [SIZE]: mesh the surface again with Gmsh (a dirty STL's needle faces, the cuts of "
+                   "--fuse): sharp edges (--feature-angle) and patches are kept; SIZE, or --size, is the element "
+                   "size (default: the input's median edge); --size-min, --curvature and --quads apply")
+        ->check(CLI::NonNegativeNumber);
+    cmd.add_option("--feature-angle", c.prepare.remeshing.feature_angle_deg,
+                   "with --remesh: edges whose faces turn more than this, degrees, stay sharp")
+        ->capture_default_str();
     cmd.add_option("--units", cad.units,
                    "STEP and IGES only: read the model in this length unit (mm, cm, m, km, in, ft, ...); default: "
                    "the unit the file declares. Every length option is in the unit the summary states");
@@ -212,15 +222,38 @@ strata::PrepareParams prepare_params(const Common& c) {
     }
     const strata::CadParams none;
     p.fuse = p.cad.fuse;  // --fuse: CAD solids by OpenCASCADE, overlapping mesh components by CGAL
+    p.remesh = c.remesh >= 0.0;
+    if (p.remesh) {
+        // The surface-meshing options apply to the new mesh as they do to CAD.
+        strata::RemeshParams& r = p.remeshing;
+        r.size = c.remesh > 0.0 ? c.remesh : p.cad.size;
+        r.size_min = p.cad.size_min;
+        r.curvature_points = p.cad.curvature_points;
+        r.quads = c.quads;
+        if (!c.mixed.empty())
+            throw strata::InputError(
+                "--mixed names CAD surface tags, which a remeshed surface no longer has; use "
+                "--quads or leave --remesh out");
+        if (c.remesh > 0.0 && p.cad.size != none.size && p.cad.size != c.remesh)
+            throw strata::InputError("--remesh " + strata::format_number(c.remesh) + " and --size " +
+                                     strata::format_number(p.cad.size) + " ask for two sizes; give one");
+    } else if (p.remeshing.feature_angle_deg != strata::RemeshParams{}.feature_angle_deg) {
+        throw strata::InputError("--feature-angle applies to --remesh only; add --remesh or remove it");
+    }
     const bool cad_options = c.quads || !c.mixed.empty() || p.cad.size != none.size ||
                              p.cad.curvature_points != none.curvature_points || p.cad.size_min != none.size_min ||
                              !p.cad.units.empty();
     const bool any_cad =
         std::any_of(c.inputs.begin(), c.inputs.end(), [](const std::string& f) { return strata::is_cad_file(f); });
-    if (!any_cad && cad_options)
+    if (!any_cad && !p.remesh && cad_options)
         throw strata::InputError("'" + c.input +
-                                 "' is already a surface mesh: --size, --size-min, --curvature, --quads, --mixed "
-                                 "and --units apply to CAD input only; remove them (--scale scales any input)");
+                                 "' is already a surface mesh: --size, --size-min, --curvature, --quads and --mixed "
+                                 "apply to CAD input or with --remesh only, --units to STEP and IGES; remove them "
+                                 "(--scale scales any input) or add --remesh");
+    if (!any_cad && !p.cad.units.empty())
+        throw strata::InputError("'" + c.input +
+                                 "' is a surface mesh, which carries no unit: --units applies to STEP and IGES "
+                                 "only; use --scale to convert");
     p.patch_kinds = parse_patch_options(c.patches);
     return p;
 }
@@ -332,16 +365,31 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// A warning where the wall has needle faces, which cap the layers whatever the marching does.
-void print_needles(const strata::SurfaceMesh& mesh) {
+/// A warning where the wall has needle faces, which cap the layers whatever the marching does,
+/// with what to do about them given how the surface came (\p any_cad: some input was CAD).
+void print_needles(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep, bool any_cad) {
     const strata::NeedleReport n = strata::needle_faces(mesh, strata::kNeedleCornerDeg, {strata::PatchKind::Wall});
     if (n.needles == 0) return;
+    // The worst face's aspect ratio: its longest edge over its shortest height.
+    std::string aspect;
+    const strata::Index f = n.worst_face;
+    if (mesh.face_size(f) == 3) {
+        const strata::Vec3 &a = mesh.points[static_cast<std::size_t>(mesh.face_node(f, 0))],
+                           &b = mesh.points[static_cast<std::size_t>(mesh.face_node(f, 1))],
+                           &c = mesh.points[static_cast<std::size_t>(mesh.face_node(f, 2))];
+        const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+        const double twice_area = (b - a).cross(c - a).norm();
+        if (twice_area > 0.0) aspect = ", aspect ratio " + strata::format_number(longest * longest / twice_area, 3);
+    }
+    const char* remedy = rep.remeshed ? "remesh finer (a smaller --remesh SIZE) or with a smaller --feature-angle"
+                         : any_cad    ? "mesh finer (--size, --size-min) or repair the CAD model's small faces"
+                                      : "add --remesh to rebuild the surface with Gmsh, or export a finer one";
     std::printf(
-        "warning: %d of %d wall faces are needles (a corner under %g degrees; the sharpest, %.3g degrees, on %s): "
-        "a layer cell on such a face has a scaled Jacobian of at most the sine of that corner (%.2g there); "
-        "remesh the surface into well-shaped faces (a finer CAD export, or Gmsh)\n",
+        "warning: %d of %d wall faces are needles (a corner under %g degrees; the sharpest, %.3g degrees%s, on %s): "
+        "a layer cell on such a face has a scaled Jacobian of at most the sine of that corner (%.2g there); %s\n",
         static_cast<int>(n.needles), static_cast<int>(n.faces), strata::kNeedleCornerDeg, n.sharpest_deg,
-        strata::describe_face(mesh, n.worst_face).c_str(), std::sin(n.sharpest_deg * 3.141592653589793 / 180.0));
+        aspect.c_str(), strata::describe_face(mesh, n.worst_face).c_str(),
+        std::sin(n.sharpest_deg * 3.141592653589793 / 180.0), remedy);
 }
 
 /// The unit the coordinates are in, and so every length option and figure.
@@ -359,7 +407,7 @@ void print_units(const strata::PrepareReport& rep) {
     std::printf("units: %s; every length below and every length option is in them\n", text.c_str());
 }
 
-void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep) {
+void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep, bool any_cad) {
     const strata::Csr loops = strata::boundary_loops(mesh);
     std::printf("surface: %d nodes, %d triangles, %d quadrilaterals, %d patches\n", static_cast<int>(mesh.num_points()),
                 static_cast<int>(mesh.num_triangles()), static_cast<int>(mesh.num_quads()),
@@ -380,7 +428,17 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
     if (rep.fused_components > 0)
         std::printf("fused: %d overlapping components replaced by their union (--fuse)\n",
                     static_cast<int>(rep.fused_components));
-    print_needles(mesh);
+    if (rep.remeshed) {
+        const strata::RemeshReport& r = rep.remesh;
+        std::printf(
+            "remeshed: %d faces -> %d on %d Gmsh surfaces, size %s, feature angle %s degrees%s; needle faces %d -> %d "
+            "(sharpest corner %.3g -> %.3g degrees)\n",
+            static_cast<int>(r.faces_before), static_cast<int>(r.faces_after), static_cast<int>(r.surfaces),
+            strata::format_number(r.size).c_str(), strata::format_number(r.feature_angle_deg).c_str(),
+            r.attempts > 1 ? " (lowered: larger angles left folded faces)" : "", static_cast<int>(r.needles_before),
+            static_cast<int>(r.needles_after), r.sharpest_before_deg, r.sharpest_after_deg);
+    }
+    print_needles(mesh, rep, any_cad);
 }
 
 /// Where layers were held back to stay valid (LayerParams::hold_back), so the user knows they are thinner there.
@@ -547,6 +605,7 @@ struct Start {
     double msh_version = 4.1;
     strata::SurfaceMesh surface;
     strata::PrepareReport report;
+    bool any_cad = false;  ///< some input is a CAD file
     double seconds = 0.0;
 };
 
@@ -561,6 +620,8 @@ Start start(const Common& c, const strata::PrepareParams& params, Output output,
     else
         strata::check_volume_output(c.output, s.msh_version);
     s.surface = strata::prepare_surfaces(c.inputs, params, &s.report, &terminal);
+    s.any_cad =
+        std::any_of(c.inputs.begin(), c.inputs.end(), [](const std::string& f) { return strata::is_cad_file(f); });
     s.seconds = seconds_since(t0);
     return s;
 }
@@ -571,7 +632,7 @@ int run_surface(const Common& c) {
     const Start s = start(c, prepare_params(c), Output::Surface, terminal);
     strata::write_surface(s.surface, c.output, s.msh_version, &terminal);
     if (c.quiet) return 0;
-    print_surface_summary(s.surface, s.report);
+    print_surface_summary(s.surface, s.report, s.any_cad);
     std::printf("wrote %s (%.2f s)\n", c.output.c_str(), seconds_since(t0));
     return 0;
 }
@@ -590,7 +651,7 @@ int run_layers(const Common& c, const LayerOptions& o) {
     const strata::LayerReport coverage = strata::layer_report(lm);
     strata::write_layer_report(coverage, strata::report_path(c.output));
     if (c.quiet) return 0;
-    print_surface_summary(s.surface, s.report);
+    print_surface_summary(s.surface, s.report, s.any_cad);
     print_layer_table(lm);
     print_coverage(coverage);
     print_cells(lm.mesh, v);
@@ -614,7 +675,7 @@ int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo) {
     strata::write_layer_report(hr.coverage, strata::report_path(c.output));
     const double t_write = seconds_since(t1);
     if (c.quiet) return 0;
-    print_surface_summary(s.surface, s.report);
+    print_surface_summary(s.surface, s.report, s.any_cad);
     print_hybrid_summary(mesh, hr);
     std::printf(
         "time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f s\n",
@@ -656,8 +717,24 @@ int main(int argc, char** argv) {
     add_layer_options(*meshcmd, mlo);
     add_mesh_options(*meshcmd, mo);
 
+    // --remesh takes an optional SIZE: "--remesh 20" is "--remesh=20", a bare "--remesh" is
+    // "--remesh=0" (automatic size), so that "--remesh wing.stl" leaves the input alone.
+    std::vector<std::string> args(argv + 1, argv + argc);
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        if (args[i] != "--remesh") continue;
+        char* end = nullptr;
+        const bool size = i + 1 < args.size() && !args[i + 1].empty() &&
+                          (std::strtod(args[i + 1].c_str(), &end), end && *end == '\0');
+        if (size) {
+            args[i] += "=" + args[i + 1];
+            args.erase(args.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+        } else {
+            args[i] += "=0";
+        }
+    }
+    std::reverse(args.begin(), args.end());  // CLI11 takes them last first
     try {
-        app.parse(argc, argv);
+        app.parse(args);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {

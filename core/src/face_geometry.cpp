@@ -33,6 +33,19 @@ BoundingBox bounding_box(const std::vector<Vec3>& points) {
     return b;
 }
 
+double median_edge_length(const SurfaceMesh& m) {
+    std::vector<double> len;
+    for (Index f = 0; f < m.num_faces(); ++f)
+        for (Index i = 0, k = m.face_size(f); i < k; ++i)
+            len.push_back((m.points[static_cast<std::size_t>(m.face_node(f, (i + 1) % k))] -
+                           m.points[static_cast<std::size_t>(m.face_node(f, i))])
+                              .norm());
+    if (len.empty()) return 0.0;
+    const auto mid = len.begin() + static_cast<std::ptrdiff_t>(len.size() / 2);
+    std::nth_element(len.begin(), mid, len.end());
+    return *mid;
+}
+
 PatchPlane fit_plane(const std::vector<Vec3>& pts) {
     PatchPlane pl;
     if (pts.size() < 3) {

@@ -86,7 +86,19 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
             oriented = orient_surface(fused, &orient, params.internal_flow);
         }
     }
+    RemeshReport remesh;
+    if (params.remesh) {
+        strata::report(progress, "surface", 0.9);
+        SurfaceMesh remeshed = remesh_surface(oriented, params.remeshing, source, &remesh);
+        remeshed = merge_coincident_nodes(remeshed, params.merge_tolerance);
+        check_surface(remeshed, source + " (remeshed)");
+        OrientReport again;
+        oriented = orient_surface(remeshed, &again, params.internal_flow);
+        orient.flipped_faces += again.flipped_faces;
+    }
     if (report) {
+        report->remeshed = params.remesh;
+        report->remesh = remesh;
         report->scale = params.scale;
         report->fused_components = fuse.fused;
         report->internal_flow = params.internal_flow;

@@ -46,5 +46,16 @@ TEST(FaceGeometry, BoundingBox) {
     EXPECT_DOUBLE_EQ(bounding_box({}).diagonal(), 0.0);
 }
 
+TEST(FaceGeometry, MedianEdgeLength) {
+    // Six quads of 0.5 (24 edges) and one long sliver beside them: the median ignores the sliver.
+    SurfaceMesh g = test::quad_grid(3, 2, 0.5);
+    EXPECT_DOUBLE_EQ(median_edge_length(g), 0.5);
+    const Index far = static_cast<Index>(g.points.size());
+    g.points.emplace_back(100.0, 0.0, 0.0);
+    g.add_face({0, 1, far}, 0);
+    EXPECT_DOUBLE_EQ(median_edge_length(g), 0.5);
+    EXPECT_DOUBLE_EQ(median_edge_length(SurfaceMesh{}), 0.0);
+}
+
 }  // namespace
 }  // namespace strata

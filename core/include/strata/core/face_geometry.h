@@ -27,6 +27,9 @@ struct BoundingBox {
 };
 BoundingBox bounding_box(const std::vector<Vec3>& points);
 
+/// The median length of the faces' edges (each counted once per face using it); 0 without faces.
+double median_edge_length(const SurfaceMesh& mesh);
+
 /// Least-squares plane through the nodes of the faces of one patch.
 struct PatchPlane {
     Vec3 point = Vec3::Zero();    ///< centroid of the patch's nodes

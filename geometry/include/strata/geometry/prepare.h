@@ -8,6 +8,7 @@
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/fuse.h>
+#include <strata/geometry/remesh.h>
 
 #include <string>
 #include <utility>
@@ -30,6 +31,11 @@ struct PrepareParams {
     /// by their union (fuse_components, exact corefinement), each face keeping its patch. CAD
     /// solids of one file are fused by CadParams::fuse (OpenCASCADE) before meshing.
     bool fuse = false;
+    /// Mesh the surface again with Gmsh (remesh_surface, with \p remeshing), after fusing: for
+    /// a dirty STL or MSH whose needle faces would stop the layers, and for the cuts a union
+    /// leaves. CAD input is meshed well by Gmsh in the first place; the option applies to it too.
+    bool remesh = false;
+    RemeshParams remeshing;
 };
 
 /// What prepare_surface did, for the CLI's summary.
@@ -39,6 +45,8 @@ struct PrepareReport {
     double scale = 1.0;          ///< PrepareParams::scale applied
     Index fused_components = 0;  ///< components replaced by their union (PrepareParams::fuse)
     bool internal_flow = false;  ///< PrepareParams::internal_flow: oriented for the fluid inside the walls
+    bool remeshed = false;       ///< PrepareParams::remesh done; \p remesh says how
+    RemeshReport remesh;
     OrientReport orient;
 };
 
@@ -62,7 +70,8 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
 
 /// The part of prepare_surface after reading, for a mesh that comes from elsewhere (the
 /// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,
-/// then merge_coincident_nodes (\p params.merge_tolerance), check_surface, orient_surface.
+/// then merge_coincident_nodes (\p params.merge_tolerance), check_surface, orient_surface, and
+/// if asked fuse_components and remesh_surface (each followed by the checks and orientation).
 /// \p source names the mesh in errors ("wing.stl", "Gmsh model 'sphere'"). InputError if
 /// \p raw has no faces.
 SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source,

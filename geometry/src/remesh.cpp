@@ -1,0 +1,307 @@
+// A surface mesh made again with Gmsh: remesh.h. Gmsh's tags stay in here.
+
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
+#include <strata/core/format.h>
+#include <strata/geometry/check.h>
+#include <strata/geometry/intersections.h>
+#include <strata/geometry/remesh.h>
+#include <strata/io/gmsh_model.h>
+#include <strata/io/gmsh_session.h>
+
+#include "cgal_kernel.h"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <vector>
+
+namespace strata {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+
+void validate(const RemeshParams& p, const std::string& source) {
+    const std::string ctx = source + ": remeshing: ";
+    if (!(p.size >= 0.0) || !std::isfinite(p.size))
+        throw InputError(ctx + "size must be a finite number >= 0 (0 = the input's median edge), got " +
+                         format_number(p.size));
+    if (!(p.size_min >= 0.0) || !std::isfinite(p.size_min))
+        throw InputError(ctx + "size_min must be a finite number >= 0, got " + format_number(p.size_min));
+    if (p.size > 0.0 && p.size_min > p.size)
+        throw InputError(ctx + "size_min (" + format_number(p.size_min) + ") is larger than size (" +
+                         format_number(p.size) + "); give a smaller size_min");
+    if (p.curvature_points < 0)
+        throw InputError(ctx + "curvature_points must be >= 0 (0 = off), got " + std::to_string(p.curvature_points));
+    if (!(p.feature_angle_deg > 0.0 && p.feature_angle_deg < 180.0))
+        throw InputError(ctx + "the feature angle must be between 0 and 180 degrees, got " +
+                         format_number(p.feature_angle_deg));
+    static constexpr std::array<int, 5> kAlgorithms{1, 2, 5, 6, 9};
+    if (std::find(kAlgorithms.begin(), kAlgorithms.end(), p.algorithm) == kAlgorithms.end())
+        throw InputError(ctx + "Gmsh 2D algorithm " + std::to_string(p.algorithm) +
+                         " is not supported; use 1, 2, 5, 6 or 9 (as for CAD meshing)");
+}
+
+/// The input as triangles (a quad split along its shorter diagonal), each with its face.
+struct Triangles {
+    std::vector<std::array<Index, 3>> tri;
+    std::vector<Index> face;  ///< the input face of each triangle
+};
+
+Triangles triangles_of(const SurfaceMesh& m) {
+    Triangles t;
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        const Index* n = m.face_begin(f);
+        if (m.face_size(f) == 3) {
+            t.tri.push_back({n[0], n[1], n[2]});
+            t.face.push_back(f);
+            continue;
+        }
+        auto at = [&](int i) -> const Vec3& { return m.points[static_cast<std::size_t>(n[i])]; };
+        if ((at(0) - at(2)).squaredNorm() <= (at(1) - at(3)).squaredNorm()) {
+            t.tri.push_back({n[0], n[1], n[2]});
+            t.tri.push_back({n[0], n[2], n[3]});
+        } else {
+            t.tri.push_back({n[0], n[1], n[3]});
+            t.tri.push_back({n[1], n[2], n[3]});
+        }
+        t.face.push_back(f);
+        t.face.push_back(f);
+    }
+    return t;
+}
+
+/// The edges between faces of different patches, each once (smaller node first), sorted.
+std::vector<std::array<Index, 2>> patch_seams(const SurfaceMesh& m) {
+    std::map<std::array<Index, 2>, Index> first_patch;  // edge → patch of its first face (kNone: seam)
+    std::vector<std::array<Index, 2>> seams;
+    for (Index f = 0; f < m.num_faces(); ++f)
+        for (Index i = 0, k = m.face_size(f); i < k; ++i) {
+            const Index a = m.face_node(f, i), b = m.face_node(f, (i + 1) % k);
+            const std::array<Index, 2> e{std::min(a, b), std::max(a, b)};
+            const auto [it, fresh] = first_patch.emplace(e, m.face_patch[f]);
+            if (!fresh && it->second != kNone && it->second != m.face_patch[f]) {
+                seams.push_back(e);
+                it->second = kNone;
+            }
+        }
+    std::sort(seams.begin(), seams.end());
+    return seams;
+}
+
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<
+    cgal::Kernel, CGAL::AABB_triangle_primitive<cgal::Kernel, std::vector<cgal::Triangle>::const_iterator>>>;
+
+/// One attempt's result: the new mesh and its faults.
+struct Attempt {
+    SurfaceMesh mesh;
+    Index surfaces = 0;
+    Index bad = 0;  ///< faces inverted against the old surface or without area
+    Index first_bad = kNone;
+};
+
+/// One run of Gmsh's route at feature angle \p angle_deg, the result checked against \p in.
+Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vector<std::array<Index, 2>>& seams,
+                    const RemeshParams& p, double size, double angle_deg, const std::string& source) {
+    const std::string ctx = source + ": remeshing with Gmsh (feature angle " + format_number(angle_deg) + " degrees)";
+    // Gmsh scales its tolerances by the model's bounding box, which it computes when it reads a
+    // file but not for entities made through the API (it then takes 1): the surface goes in
+    // centred and scaled to a unit diagonal. Given in millimetres, the frontal mesher looped
+    // for ever on the ONERA M6.
+    struct Frame {
+        Vec3 centre;
+        double scale;
+    };
+    const BoundingBox box = bounding_box(in.points);
+    const Frame frame{0.5 * (box.min + box.max), box.diagonal()};
+    GmshSession session("strata_remesh");
+    GmshOptionScope options;  // after the session: restored while Gmsh is still locked
+    Attempt out;
+    std::vector<int> face_surface;
+    std::map<int, std::vector<std::size_t>> old_of_surface;  // Gmsh surface → its old triangles
+    gmsh_call(ctx, [&] {
+        options.set("General.NumThreads", 1);  // one thread: the same mesh on every run
+        options.set("Mesh.MeshSizeMax", size / frame.scale);
+        const bool curvature = p.curvature_points > 0;
+        options.set("Mesh.MeshSizeMin", (p.size_min > 0.0 ? p.size_min : curvature ? size / 20.0 : 0.0) / frame.scale);
+        options.set("Mesh.MeshSizeFromCurvature", p.curvature_points);
+        options.set("Mesh.MeshSizeFromPoints", 0);
+        options.set("Mesh.MeshSizeExtendFromBoundary", 1);
+        options.set("Mesh.MeshSizeFactor", 1);
+        options.set("Mesh.ElementOrder", 1);
+        options.set("Mesh.SubdivisionAlgorithm", 0);
+        options.set("Mesh.Algorithm", p.algorithm);
+        options.set("Mesh.RecombineAll", p.quads ? 1 : 0);
+        options.set("Mesh.RecombinationAlgorithm", 1);  // Blossom
+        // The old surface as one discrete surface, and its patch boundaries as one discrete
+        // curve: classifySurfaces never lets a new surface cross an existing curve's lines.
+        std::vector<std::size_t> node_tags(in.points.size());
+        std::vector<double> xyz;
+        xyz.reserve(3 * in.points.size());
+        for (std::size_t i = 0; i < in.points.size(); ++i) {
+            node_tags[i] = i + 1;
+            const Vec3 q = (in.points[i] - frame.centre) / frame.scale;
+            xyz.insert(xyz.end(), {q.x(), q.y(), q.z()});
+        }
+        gmsh::model::addDiscreteEntity(2, 1);
+        gmsh::model::mesh::addNodes(2, 1, node_tags, xyz);
+        std::vector<std::size_t> elem_tags(tris.tri.size()), elem_nodes;
+        elem_nodes.reserve(3 * tris.tri.size());
+        for (std::size_t t = 0; t < tris.tri.size(); ++t) {
+            elem_tags[t] = t + 1;
+            for (Index v : tris.tri[t]) elem_nodes.push_back(static_cast<std::size_t>(v) + 1);
+        }
+        gmsh::model::mesh::addElementsByType(1, 2, elem_tags, elem_nodes);
+        if (!seams.empty()) {
+            gmsh::model::addDiscreteEntity(1, 1);
+            std::vector<std::size_t> line_tags(seams.size()), line_nodes;
+            for (std::size_t s = 0; s < seams.size(); ++s) {
+                line_tags[s] = tris.tri.size() + s + 1;
+                line_nodes.push_back(static_cast<std::size_t>(seams[s][0]) + 1);
+                line_nodes.push_back(static_cast<std::size_t>(seams[s][1]) + 1);
+            }
+            gmsh::model::mesh::addElementsByType(1, 1, line_tags, line_nodes);
+        }
+        gmsh::model::mesh::classifySurfaces(angle_deg * kPi / 180.0, true, true, kPi);
+        gmsh::model::mesh::createGeometry();
+        gmsh::vectorpair surfaces;
+        gmsh::model::getEntities(surfaces, 2);
+        for (const auto& [dim, tag] : surfaces) {
+            std::vector<std::size_t> tags, nodes;  // Gmsh 4.8: output vectors must start empty
+            gmsh::model::mesh::getElementsByType(2, tags, nodes, tag);
+            for (std::size_t& t : tags) t -= 1;
+            old_of_surface[tag] = std::move(tags);
+        }
+        gmsh::model::mesh::generate(2);
+    });
+    out.mesh = surface_from_gmsh_model("the remeshed " + source, NodeOrder::FirstUse, &face_surface);
+    for (Vec3& q : out.mesh.points) q = frame.centre + q * frame.scale;
+    out.surfaces = static_cast<Index>(old_of_surface.size());
+
+    // Each new surface's patch and orientation from the old triangles it was made of. A new face
+    // is inverted where its normal turns more than 90 degrees from the old face nearest its
+    // centroid (within its surface: no feature lies between them, so their normals differ
+    // by less than the feature angle).
+    SurfaceMesh& m = out.mesh;
+    m.patches = in.patches;
+    std::map<int, std::vector<Index>> faces_of_surface;
+    for (Index f = 0; f < m.num_faces(); ++f) faces_of_surface[face_surface[static_cast<std::size_t>(f)]].push_back(f);
+    std::vector<char> bad(static_cast<std::size_t>(m.num_faces()), 0);
+    const double diagonal = bounding_box(in.points).diagonal();
+    for (const auto& [surface, faces] : faces_of_surface) {
+        const auto old = old_of_surface.find(surface);
+        if (old == old_of_surface.end() || old->second.empty())
+            throw BackendError(ctx + ": Gmsh made faces on surface " + std::to_string(surface) +
+                               ", which holds none of the input");
+        std::map<Index, std::size_t> votes;
+        std::vector<cgal::Triangle> prims;
+        std::vector<Vec3> normals;
+        for (std::size_t t : old->second) {
+            const auto& tri = tris.tri[t];
+            ++votes[in.face_patch[tris.face[t]]];
+            const Vec3 &a = in.points[static_cast<std::size_t>(tri[0])],
+                       &b = in.points[static_cast<std::size_t>(tri[1])],
+                       &c = in.points[static_cast<std::size_t>(tri[2])];
+            prims.emplace_back(cgal::point(a), cgal::point(b), cgal::point(c));
+            normals.push_back((b - a).cross(c - a));
+        }
+        const Index patch =
+            std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) { return x.second < y.second; })->first;
+        const Tree tree(prims.begin(), prims.end());
+        std::vector<char> along(faces.size(), 0);
+        Index agree = 0;
+        for (std::size_t i = 0; i < faces.size(); ++i) {
+            const Index f = faces[i];
+            m.face_patch[f] = patch;
+            const Vec3 c = face_centroid(m, m.points, f), n = face_area_vector(m, f);
+            const double scale = std::max((m.points[static_cast<std::size_t>(m.face_node(f, 0))] - c).norm(), 1e-300);
+            if (!(n.norm() > 1e-12 * scale * scale) || !(n.norm() > 1e-24 * diagonal * diagonal)) {
+                bad[static_cast<std::size_t>(f)] = 1;
+                continue;
+            }
+            const auto hit = tree.closest_point_and_primitive(cgal::point(c));
+            const Vec3& on = normals[static_cast<std::size_t>(hit.second - prims.begin())];
+            along[i] = n.dot(on) > 0.0;
+            agree += along[i];
+        }
+        // Gmsh orients a surface's faces by its parametrization: the majority says whether the
+        // whole surface is reversed; the others are folded.
+        const bool reversed = 2 * agree < static_cast<Index>(faces.size());
+        for (std::size_t i = 0; i < faces.size(); ++i) {
+            const Index f = faces[i];
+            if (!bad[static_cast<std::size_t>(f)] && static_cast<bool>(along[i]) == reversed)
+                bad[static_cast<std::size_t>(f)] = 1;
+            if (reversed) {
+                Index* n = m.face_nodes.data() + m.face_offsets[static_cast<std::size_t>(f)];
+                std::reverse(n + 1, n + m.face_size(f));
+            }
+        }
+    }
+    for (Index f = 0; f < m.num_faces(); ++f)
+        if (bad[static_cast<std::size_t>(f)]) {
+            if (out.first_bad == kNone) out.first_bad = f;
+            ++out.bad;
+        }
+    return out;
+}
+
+}  // namespace
+
+SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, const std::string& source,
+                           RemeshReport* report) {
+    validate(params, source);
+    if (mesh.num_faces() == 0) throw InputError(source + ": remeshing: the surface has no faces");
+    const Triangles tris = triangles_of(mesh);
+    const std::vector<std::array<Index, 2>> seams = patch_seams(mesh);
+    const double size = params.size > 0.0 ? params.size : median_edge_length(mesh);
+    if (!(size > 0.0)) throw InputError(source + ": remeshing: the surface's edges have no length");
+
+    RemeshReport rep;
+    rep.faces_before = mesh.num_faces();
+    rep.size = size;
+    const NeedleReport before = needle_faces(mesh, kNeedleCornerDeg);
+    rep.needles_before = before.needles;
+    rep.sharpest_before_deg = before.sharpest_deg;
+
+    // The angle asked, then lower ones: more edges become curves, the surfaces Gmsh
+    // parametrizes get smaller and flatter.
+    std::vector<double> angles{params.feature_angle_deg};
+    while (angles.back() * 0.75 >= 0.5 * params.feature_angle_deg - 1e-9) angles.push_back(angles.back() * 0.75);
+    std::string failures;
+    for (double angle : angles) {
+        ++rep.attempts;
+        std::optional<Attempt> a;
+        try {
+            a = remesh_once(mesh, tris, seams, params, size, angle, source);
+        } catch (const BackendError& e) {
+            failures += std::string(failures.empty() ? "" : "; ") + "at " + format_number(angle) +
+                        " degrees Gmsh failed (" + e.what() + ")";
+            continue;
+        }
+        if (a->bad > 0) {
+            failures += std::string(failures.empty() ? "" : "; ") + "at " + format_number(angle) + " degrees " +
+                        std::to_string(a->bad) + " faces came out folded or without area, the first " +
+                        describe_face(a->mesh, a->first_bad);
+            continue;
+        }
+        rep.faces_after = a->mesh.num_faces();
+        rep.surfaces = a->surfaces;
+        rep.feature_angle_deg = angle;
+        const NeedleReport after = needle_faces(a->mesh, kNeedleCornerDeg);
+        rep.needles_after = after.needles;
+        rep.sharpest_after_deg = after.sharpest_deg;
+        if (report) *report = rep;
+        return std::move(a->mesh);
+    }
+    throw BackendError(source + ": remeshing failed: " + failures +
+                       ". Try a smaller feature angle (more sharp edges kept), another size, or repair the surface "
+                       "in a CAD tool");
+}
+
+}  // namespace strata

@@ -1,0 +1,199 @@
+// A surface mesh made again with Gmsh (geometry/remesh.h): a box of needle triangles comes back
+// as well-shaped faces on the same six planes with its edges kept; a sphere split into two
+// patches keeps both, split where they were, and its outward orientation; the size asked is
+// the size given; the same input gives the same mesh; bad parameters are refused.
+
+#include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
+#include <strata/geometry/check.h>
+#include <strata/geometry/primitives.h>
+#include <strata/geometry/remesh.h>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <tuple>
+
+namespace strata {
+namespace {
+
+/// The box [0,1] × [0,ly] × [0,1] as triangles on a lattice of nx × ny × nz steps, closed and
+/// pointing out. With ny ≫ nx, nz its x and z faces are strips of needles (aspect ratio ny).
+SurfaceMesh lattice_box(int nx, int ny, int nz, double ly = 1.0) {
+    SurfaceMesh m;
+    m.patches.push_back({"box", PatchKind::Wall});
+    std::map<std::tuple<int, int, int>, Index> id;
+    auto node = [&](int i, int j, int k) {
+        const auto [it, fresh] = id.emplace(std::tuple{i, j, k}, static_cast<Index>(m.points.size()));
+        if (fresh) m.points.emplace_back(double(i) / nx, ly * j / ny, double(k) / nz);
+        return it->second;
+    };
+    // One face of the box: the lattice over two axes at a fixed value of the third, split into
+    // triangles along one diagonal.
+    auto side = [&](int na, int nb, auto&& at) {
+        for (int a = 0; a < na; ++a)
+            for (int b = 0; b < nb; ++b) {
+                const Index p = at(a, b), q = at(a + 1, b), r = at(a + 1, b + 1), s = at(a, b + 1);
+                m.add_face({p, q, r}, 0);
+                m.add_face({p, r, s}, 0);
+            }
+    };
+    side(nx, ny, [&](int a, int b) { return node(a, b, 0); });
+    side(nx, ny, [&](int a, int b) { return node(a, b, nz); });
+    side(nx, nz, [&](int a, int b) { return node(a, 0, b); });
+    side(nx, nz, [&](int a, int b) { return node(a, ny, b); });
+    side(ny, nz, [&](int a, int b) { return node(0, a, b); });
+    side(ny, nz, [&](int a, int b) { return node(nx, a, b); });
+    return orient_surface(m);
+}
+
+TEST(Remesh, NeedleBoxComesBackWellShapedOnTheSamePlanes) {
+    const SurfaceMesh box = lattice_box(1, 60, 1);
+    ASSERT_GT(needle_faces(box, kNeedleCornerDeg).needles, 200);
+    RemeshParams p;
+    p.size = 0.1;
+    RemeshReport rep;
+    const SurfaceMesh m = remesh_surface(box, p, "box.stl", &rep);
+    check_surface(m, "remeshed");
+    EXPECT_TRUE(test::closed_manifold(m));
+    EXPECT_EQ(rep.faces_before, box.num_faces());
+    EXPECT_EQ(rep.faces_after, m.num_faces());
+    EXPECT_EQ(rep.needles_before, needle_faces(box, kNeedleCornerDeg).needles);
+    EXPECT_EQ(rep.needles_after, 0);
+    EXPECT_EQ(needle_faces(m, kNeedleCornerDeg).needles, 0);
+    EXPECT_GT(needle_faces(m, 0.0).sharpest_deg, 25.0);  // Frontal-Delaunay on planes: near-equilateral
+    EXPECT_GE(rep.surfaces, 6);  // one per side at least (Gmsh splits a strip of needles further)
+    EXPECT_EQ(rep.attempts, 1);
+    EXPECT_DOUBLE_EQ(rep.feature_angle_deg, 40.0);
+    // Every face lies in one of the six planes and points out of the box: the sharp edges are
+    // kept and no face is turned.
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        const Vec3 n = face_area_vector(m, f).normalized(), c = face_centroid(m, m.points, f);
+        Index axis = 0;
+        n.cwiseAbs().maxCoeff(&axis);
+        EXPECT_GT(std::abs(n[axis]), 1.0 - 1e-9) << f;
+        EXPECT_NEAR(c[axis], n[axis] > 0 ? 1.0 : 0.0, 1e-9) << f;
+    }
+    EXPECT_NEAR(test::enclosed_volume(m), 1.0, 1e-9);
+    const BoundingBox bb = bounding_box(m.points);
+    EXPECT_NEAR((bb.min - Vec3::Zero()).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((bb.max - Vec3::Ones()).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(median_edge_length(m), 0.1, 0.03);
+}
+
+TEST(Remesh, SizeDefaultsToTheInputsMedianEdgeAndQuadsOnRequest) {
+    // A box of 0.25 squares split in two: median edge 0.25 (the diagonals are the longer third).
+    const SurfaceMesh box = lattice_box(4, 4, 4);
+    RemeshReport rep;
+    const SurfaceMesh tri = remesh_surface(box, {}, "box", &rep);
+    EXPECT_DOUBLE_EQ(rep.size, 0.25);
+    EXPECT_NEAR(median_edge_length(tri), 0.25, 0.05);
+    RemeshParams q;
+    q.quads = true;
+    q.size = 0.1;
+    const SurfaceMesh quads = remesh_surface(box, q, "box");
+    EXPECT_TRUE(test::closed_manifold(quads));
+    EXPECT_GT(quads.num_quads(), 4 * quads.num_triangles());
+    EXPECT_NEAR(test::enclosed_volume(quads), 1.0, 1e-9);
+}
+
+TEST(Remesh, TwoPatchesKeepTheirNamesTheirSeamAndTheirOrientation) {
+    // A sphere (radius 1) whose upper half is patch "top": the patches' boundary is a zigzag of
+    // the old edges within one old edge length of the equator.
+    SurfaceMesh s = icosphere(Vec3::Zero(), 1.0, 3, {"bottom", PatchKind::Wall});
+    s.patches.push_back({"top", PatchKind::Symmetry});
+    for (Index f = 0; f < s.num_faces(); ++f)
+        if (face_centroid(s, s.points, f).z() > 0.0) s.face_patch[f] = 1;
+    const double h = median_edge_length(s);
+    RemeshParams p;
+    p.size = 0.1;
+    const SurfaceMesh m = remesh_surface(s, p, "sphere");
+    check_surface(m, "remeshed");
+    EXPECT_TRUE(test::closed_manifold(m));
+    ASSERT_EQ(m.patches.size(), 2u);
+    EXPECT_EQ(m.patches[0].name, "bottom");
+    EXPECT_EQ(m.patches[1].name, "top");
+    EXPECT_EQ(m.patches[1].kind, PatchKind::Symmetry);
+    std::array<Index, 2> count{0, 0};
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        const Index patch = m.face_patch[f];
+        ++count[static_cast<std::size_t>(patch)];
+        const double z = face_centroid(m, m.points, f).z();
+        if (std::abs(z) > h) EXPECT_EQ(patch, z > 0 ? 1 : 0) << f << " at z " << z;
+        // Out of the sphere, as the old faces were.
+        EXPECT_GT(face_area_vector(m, f).dot(face_centroid(m, m.points, f)), 0.0) << f;
+    }
+    EXPECT_GT(count[0], 300);
+    EXPECT_GT(count[1], 300);
+    // Where the patches meet, an edge of the new faces lies on the old seam.
+    for (Index f = 0; f < m.num_faces(); ++f)
+        for (Index i = 0, k = m.face_size(f); i < k; ++i) {
+            const Vec3& a = m.points[static_cast<std::size_t>(m.face_node(f, i))];
+            EXPECT_NEAR(a.norm(), 1.0, 0.02);  // on the old facets: within their sag of the sphere
+        }
+    // The new faces are chords of the old facets: a little less volume, never more.
+    EXPECT_LT(test::enclosed_volume(m), test::enclosed_volume(s));
+    EXPECT_GT(test::enclosed_volume(m), 0.99 * test::enclosed_volume(s));
+}
+
+TEST(Remesh, SameInputSameMesh) {
+    const SurfaceMesh box = lattice_box(1, 30, 2, 2.0);
+    RemeshParams p;
+    p.size = 0.15;
+    const SurfaceMesh a = remesh_surface(box, p, "box"), b = remesh_surface(box, p, "box");
+    EXPECT_EQ(a.points, b.points);
+    EXPECT_EQ(a.face_nodes, b.face_nodes);
+    EXPECT_EQ(a.face_patch, b.face_patch);
+}
+
+TEST(Remesh, LargeOrSmallCoordinatesMeshAlike) {
+    // Gmsh's tolerances follow its model's size, which it does not compute for a model made
+    // through its API: the same box in millimetres and in kilometres gives the same faces, to
+    // the rounding of its coordinates.
+    const SurfaceMesh box = lattice_box(1, 20, 1);
+    RemeshParams p;
+    p.size = 0.2;
+    const SurfaceMesh unit = remesh_surface(box, p, "box");
+    for (double scale : {1e-3, 1e3}) {
+        SurfaceMesh big = box;
+        for (Vec3& x : big.points) x *= scale;
+        RemeshParams q = p;
+        q.size = p.size * scale;
+        const SurfaceMesh m = remesh_surface(big, q, "box");
+        EXPECT_NEAR(m.num_faces(), unit.num_faces(), 0.02 * unit.num_faces()) << scale;
+        EXPECT_EQ(needle_faces(m, kNeedleCornerDeg).needles, 0) << scale;
+        EXPECT_NEAR(test::enclosed_volume(m), scale * scale * scale, 1e-9 * scale * scale * scale) << scale;
+    }
+}
+
+TEST(Remesh, BadParametersAreRefused) {
+    const SurfaceMesh box = lattice_box(2, 2, 2);
+    auto with = [&](auto&& set) {
+        RemeshParams p;
+        set(p);
+        return [&box, p] { remesh_surface(box, p, "part.stl"); };
+    };
+    test::expect_error<InputError>(with([](RemeshParams& p) { p.size = -1; }), {"part.stl", "size", "-1"});
+    test::expect_error<InputError>(with([](RemeshParams& p) { p.size = std::nan(""); }), {"part.stl", "size"});
+    test::expect_error<InputError>(with([](RemeshParams& p) {
+                                       p.size = 0.1;
+                                       p.size_min = 0.2;
+                                   }),
+                                   {"part.stl", "size_min", "0.2"});
+    test::expect_error<InputError>(with([](RemeshParams& p) { p.feature_angle_deg = 0; }),
+                                   {"part.stl", "feature angle", "between 0 and 180"});
+    test::expect_error<InputError>(with([](RemeshParams& p) { p.feature_angle_deg = 180; }),
+                                   {"part.stl", "feature angle"});
+    test::expect_error<InputError>(with([](RemeshParams& p) { p.algorithm = 3; }), {"part.stl", "algorithm 3"});
+    test::expect_error<InputError>(with([](RemeshParams& p) { p.curvature_points = -2; }),
+                                   {"part.stl", "curvature_points"});
+    test::expect_error<InputError>([] { remesh_surface(SurfaceMesh{}, {}, "empty.stl"); }, {"empty.stl", "no faces"});
+}
+
+}  // namespace
+}  // namespace strata
