@@ -422,6 +422,9 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
         "re-oriented\n",
         static_cast<int>(rep.orient.components), static_cast<int>(rep.orient.closed_components),
         static_cast<int>(loops.rows()), static_cast<int>(rep.merged_nodes), static_cast<int>(rep.orient.flipped_faces));
+    if (rep.collapsed_faces > 0)
+        std::printf("repaired: %d faces with a repeated node (no area) removed or made triangles\n",
+                    static_cast<int>(rep.collapsed_faces));
     print_units(rep);
     if (rep.internal_flow)
         std::printf("flow: inside the walls (--internal): the outermost closed surface points inward\n");

@@ -70,6 +70,8 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
     SurfaceMesh merged = merge_coincident_nodes(raw, params.merge_tolerance);
     const Index merged_nodes = raw.num_points() - merged.num_points();
+    Index collapsed = 0;
+    merged = remove_collapsed_faces(merged, &collapsed);
     raw = SurfaceMesh{};  // the input copy is no longer needed
     strata::report(progress, "surface", 0.7);
     check_surface(merged, source);
@@ -103,6 +105,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         report->fused_components = fuse.fused;
         report->internal_flow = params.internal_flow;
         report->merged_nodes = merged_nodes;
+        report->collapsed_faces = collapsed;
         report->orient = orient;
     }
     strata::report(progress, "surface", 1.0);

@@ -152,6 +152,44 @@ SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol) {
     return out;
 }
 
+SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed) {
+    require_valid_ids(mesh, "remove_collapsed_faces");
+    SurfaceMesh out;
+    out.patches = mesh.patches;
+    Index count = 0;
+    std::vector<Index> nodes;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const Index* v = mesh.face_begin(f);
+        const Index k = mesh.face_size(f);
+        // The corners without a repeat of the one before (cyclically): a quad's adjacent
+        // repeat drops out, an opposite one is left for the count below.
+        nodes.clear();
+        for (Index i = 0; i < k; ++i)
+            if (v[i] != v[(i + k - 1) % k]) nodes.push_back(v[i]);
+        bool distinct = true;
+        for (std::size_t i = 0; i < nodes.size(); ++i)
+            for (std::size_t j = i + 1; j < nodes.size(); ++j) distinct = distinct && nodes[i] != nodes[j];
+        if (nodes.size() == static_cast<std::size_t>(k) && distinct) {
+            out.add_face(v, k, mesh.face_patch[f]);
+            continue;
+        }
+        ++count;
+        if (nodes.size() == 3 && distinct) out.add_face(nodes.data(), 3, mesh.face_patch[f]);
+    }
+    if (changed) *changed = count;
+    if (count == 0) return mesh;
+    // Drop nodes no face uses any more.
+    std::vector<Index> new_id(mesh.points.size(), kNone);
+    for (Index v : out.face_nodes) new_id[static_cast<std::size_t>(v)] = 0;
+    for (std::size_t i = 0; i < mesh.points.size(); ++i)
+        if (new_id[i] != kNone) {
+            new_id[i] = static_cast<Index>(out.points.size());
+            out.points.push_back(mesh.points[i]);
+        }
+    for (Index& v : out.face_nodes) v = new_id[static_cast<std::size_t>(v)];
+    return out;
+}
+
 Csr vertex_faces(const SurfaceMesh& mesh) {
     require_valid_ids(mesh, "vertex_faces");
     const Index n = mesh.num_points();

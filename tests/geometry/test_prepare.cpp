@@ -3,6 +3,7 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/prepare.h>
+#include <strata/geometry/primitives.h>
 #include <strata/io/read_surface.h>
 
 #include <gtest/gtest.h>
@@ -63,6 +64,22 @@ TEST(Prepare, SphereWithFlippedFacesIsRepaired) {
     EXPECT_EQ(rep.orient.flipped_faces, flipped);
     for (Index f = 0; f < m.num_faces(); ++f)
         EXPECT_GT(face_area_vector(m, f).dot(face_centroid(m, m.points, f)), 0.0) << "face " << f;
+}
+
+TEST(Prepare, CollapsedFacesAreRemovedAndCounted) {
+    // An STL-like sphere whose pole a CAD tool wrote with a collapsed triangle (its two
+    // corners at one point): removed, counted, and the surface closed as before.
+    SurfaceMesh s = icosphere(Vec3::Zero(), 1.0, 2, {"wall", PatchKind::Wall});
+    const Index faces = s.num_faces();
+    const Index a = s.face_node(0, 0), b = s.face_node(0, 1);
+    s.points.push_back(s.points[static_cast<std::size_t>(a)]);  // a's twin, merged into it
+    s.add_face({a, b, static_cast<Index>(s.points.size() - 1)}, 0);
+    PrepareReport rep;
+    const SurfaceMesh m = prepare_mesh(s, {}, "pole.stl", &rep);
+    EXPECT_EQ(rep.collapsed_faces, 1);
+    EXPECT_EQ(m.num_faces(), faces);
+    EXPECT_TRUE(test::closed_manifold(m));
+    EXPECT_GT(test::enclosed_volume(m), 0.0);
 }
 
 TEST(Prepare, PatchKindsFromNamesAndMappings) {

@@ -431,6 +431,37 @@ TEST(Merge, IdsAreDeterministicLowestOldIdSurvivesOrderKept) {
     EXPECT_EQ(sg.face_nodes, (std::vector<Index>{0, 1, 1, 0, 1, 2}));
 }
 
+TEST(CollapsedFaces, RemovedOrMadeTrianglesAndTheCubeStaysClosed) {
+    // The unit cube (quads) with, on its edge 0-1, a collapsed triangle (0, 0, 1) and a quad
+    // (1, 0, 1, 0) whose repeats are opposite: both go. A quad (a, a, b, c) becomes (a, b, c).
+    SurfaceMesh m = unit_cube();
+    const Index quads = m.num_faces();
+    m.add_face({0, 0, 1}, 0);
+    m.add_face({1, 0, 1, 0}, 0);
+    Index changed = -1;
+    SurfaceMesh r = remove_collapsed_faces(m, &changed);
+    EXPECT_EQ(changed, 2);
+    EXPECT_EQ(r.num_faces(), quads);
+    EXPECT_TRUE(test::closed_manifold(r));
+    EXPECT_EQ(r.points, m.points);
+
+    SurfaceMesh q;
+    q.patches.push_back({"wall", PatchKind::Wall});
+    q.points = {Vec3(9, 9, 9), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};  // node 0 unused
+    q.add_face({1, 1, 2, 3}, 0);
+    r = remove_collapsed_faces(q, &changed);
+    EXPECT_EQ(changed, 1);
+    ASSERT_EQ(r.num_faces(), 1);
+    EXPECT_EQ(r.face_size(0), 3);
+    EXPECT_EQ(r.points, (std::vector<Vec3>{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}));
+    EXPECT_EQ(r.face_nodes, (std::vector<Index>{0, 1, 2}));
+
+    // Nothing collapsed: the mesh as it was, unused nodes and all.
+    r = remove_collapsed_faces(unit_cube(), &changed);
+    EXPECT_EQ(changed, 0);
+    EXPECT_EQ(r.face_nodes, unit_cube().face_nodes);
+}
+
 TEST(Merge, RespectsTheRelativeTolerance) {
     // Bounding box diagonal of the unit cube is √3; with rel_tol 1e-3 the tolerance is 1.73e-3.
     const SurfaceMesh cube = unit_cube();

@@ -41,6 +41,7 @@ struct PrepareParams {
 /// What prepare_surface did, for the CLI's summary.
 struct PrepareReport {
     Index merged_nodes = 0;      ///< nodes removed by merging
+    Index collapsed_faces = 0;   ///< faces with a repeated node removed (remove_collapsed_faces)
     CadUnits units;              ///< CAD input: the unit read in and the one the file declares
     double scale = 1.0;          ///< PrepareParams::scale applied
     Index fused_components = 0;  ///< components replaced by their union (PrepareParams::fuse)
@@ -70,7 +71,8 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
 
 /// The part of prepare_surface after reading, for a mesh that comes from elsewhere (the
 /// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,
-/// then merge_coincident_nodes (\p params.merge_tolerance), check_surface, orient_surface, and
+/// then merge_coincident_nodes (\p params.merge_tolerance), remove_collapsed_faces (counted in
+/// \p report->collapsed_faces), check_surface, orient_surface, and
 /// if asked fuse_components and remesh_surface (each followed by the checks and orientation).
 /// \p source names the mesh in errors ("wing.stl", "Gmsh model 'sphere'"). InputError if
 /// \p raw has no faces.

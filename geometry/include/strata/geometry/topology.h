@@ -13,6 +13,15 @@ namespace strata {
 /// Deterministic: the surviving node of a cluster is the lowest old id, order kept.
 SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol = 1e-9);
 
+/// Faces that repeat a node have no area and no shape: a triangle (a, a, b) or a quad whose
+/// repeated nodes are opposite is removed, a quad (a, a, b, c) becomes the triangle (a, b, c).
+/// Removing such a face leaves every other edge used as often as before less the two uses
+/// (there and back) of its own edge, so a closed surface stays closed. CAD tools write them
+/// at a surface's pole (OpenCASCADE's tessellation of a nose); merging close nodes makes
+/// them too. Nodes no face uses any more are dropped, order kept. \p changed: how many faces
+/// were removed or reduced.
+SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed = nullptr);
+
 /// Node → incident faces, faces in increasing id order.
 Csr vertex_faces(const SurfaceMesh& mesh);
 
