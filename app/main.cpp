@@ -161,15 +161,16 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
         ->capture_default_str();
     cmd.add_flag("-q,--quiet", c.quiet, "print nothing but errors");
     cmd.add_option("--size", cad.size,
-                   "target surface element size, model units (CAD only; 0: 1/20 of the bounding-box diagonal)")
+                   "target surface element size, model units (CAD or --remesh; 0: CAD 1/20 of the bounding-box "
+                   "diagonal, --remesh the input's median edge)")
         ->capture_default_str();
     cmd.add_option("--size-min", cad.size_min,
-                   "smallest element size under curvature refinement (CAD only; 0: size/20)")
+                   "smallest element size under curvature refinement (CAD or --remesh; 0: size/20)")
         ->capture_default_str();
     cmd.add_option("--curvature", cad.curvature_points,
-                   "refine by curvature: elements per 2*pi of radius (CAD only; 0: off)")
+                   "refine by curvature: elements per 2*pi of radius (CAD or --remesh; 0: off)")
         ->capture_default_str();
-    auto* q = cmd.add_flag("--quads", c.quads, "recombine the surface mesh into quadrilaterals (CAD only)");
+    auto* q = cmd.add_flag("--quads", c.quads, "recombine the surface mesh into quadrilaterals (CAD or --remesh)");
     auto* m =
         cmd.add_option("--mixed", c.mixed, "quadrilaterals on these CAD surface tags, triangles elsewhere (CAD only)")
             ->delimiter(',')
