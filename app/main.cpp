@@ -214,6 +214,11 @@ std::vector<std::pair<std::string, PatchKind>> parse_patch_options(const std::ve
 }
 
 /// The surface parameters from the options; surface-meshing options on a surface mesh are refused.
+/// Some input is a CAD file (the rest may be surface meshes).
+bool any_cad_input(const Common& c) {
+    return std::any_of(c.inputs.begin(), c.inputs.end(), [](const std::string& f) { return strata::is_cad_file(f); });
+}
+
 strata::PrepareParams prepare_params(const Common& c) {
     strata::PrepareParams p = c.prepare;
     if (c.quads) p.cad.elements = strata::SurfaceElements::Quads;
@@ -244,8 +249,7 @@ strata::PrepareParams prepare_params(const Common& c) {
     const bool cad_options = c.quads || !c.mixed.empty() || p.cad.size != none.size ||
                              p.cad.curvature_points != none.curvature_points || p.cad.size_min != none.size_min ||
                              !p.cad.units.empty();
-    const bool any_cad =
-        std::any_of(c.inputs.begin(), c.inputs.end(), [](const std::string& f) { return strata::is_cad_file(f); });
+    const bool any_cad = any_cad_input(c);
     if (!any_cad && !p.remesh && cad_options)
         throw strata::InputError("'" + c.input +
                                  "' is already a surface mesh: --size, --size-min, --curvature, --quads and --mixed "
@@ -624,8 +628,7 @@ Start start(const Common& c, const strata::PrepareParams& params, Output output,
     else
         strata::check_volume_output(c.output, s.msh_version);
     s.surface = strata::prepare_surfaces(c.inputs, params, &s.report, &terminal);
-    s.any_cad =
-        std::any_of(c.inputs.begin(), c.inputs.end(), [](const std::string& f) { return strata::is_cad_file(f); });
+    s.any_cad = any_cad_input(c);
     s.seconds = seconds_since(t0);
     return s;
 }

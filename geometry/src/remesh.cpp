@@ -193,7 +193,6 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
     std::map<int, std::vector<Index>> faces_of_surface;
     for (Index f = 0; f < m.num_faces(); ++f) faces_of_surface[face_surface[static_cast<std::size_t>(f)]].push_back(f);
     std::vector<char> bad(static_cast<std::size_t>(m.num_faces()), 0);
-    const double diagonal = bounding_box(in.points).diagonal();
     for (const auto& [surface, faces] : faces_of_surface) {
         const auto old = old_of_surface.find(surface);
         if (old == old_of_surface.end() || old->second.empty())
@@ -221,7 +220,7 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             m.face_patch[f] = patch;
             const Vec3 c = face_centroid(m, m.points, f), n = face_area_vector(m, f);
             const double scale = std::max((m.points[static_cast<std::size_t>(m.face_node(f, 0))] - c).norm(), 1e-300);
-            if (!(n.norm() > 1e-12 * scale * scale) || !(n.norm() > 1e-24 * diagonal * diagonal)) {
+            if (!(n.norm() > 1e-12 * scale * scale) || !(n.norm() > 1e-24 * frame.scale * frame.scale)) {
                 bad[static_cast<std::size_t>(f)] = 1;
                 continue;
             }

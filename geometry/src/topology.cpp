@@ -177,7 +177,10 @@ SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed) {
         if (nodes.size() == 3 && distinct) out.add_face(nodes.data(), 3, mesh.face_patch[f]);
     }
     if (changed) *changed = count;
-    if (count == 0) return mesh;
+    if (count == 0) {
+        out.points = mesh.points;  // the faces are the same: so are the nodes
+        return out;
+    }
     // Drop nodes no face uses any more.
     std::vector<Index> new_id(mesh.points.size(), kNone);
     for (Index v : out.face_nodes) new_id[static_cast<std::size_t>(v)] = 0;
