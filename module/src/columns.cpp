@@ -54,7 +54,8 @@ Columns::Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& m
     reach = wall_reach(wall);
 }
 
-std::vector<double> wall_reach(const SurfaceMesh& wall) {
+std::vector<double> wall_reach(const SurfaceMesh& wall, const std::vector<Vec3>& plane_normal,
+                               const std::vector<Vec3>& line) {
     const auto n = static_cast<std::size_t>(wall.num_points());
     std::vector<std::vector<Vec3>> normals(n);
     for (Index f = 0; f < wall.num_faces(); ++f) {
@@ -71,7 +72,21 @@ std::vector<double> wall_reach(const SurfaceMesh& wall) {
     for (std::size_t i = 0; i < n; ++i) {
         if (normals[i].empty()) continue;
         double lowest = 1.0;
-        max_min_dot_direction(normals[i], &lowest);
+        if (i < line.size() && line[i] != Vec3::Zero()) {
+            // Held on a line: that line is its one direction.
+            for (const Vec3& v : normals[i]) lowest = std::min(lowest, v.dot(line[i]));
+        } else {
+            if (i < plane_normal.size() && plane_normal[i] != Vec3::Zero()) {
+                // Held in a plane: its direction is mirror-symmetric, as good for the faces'
+                // mirror images as for the faces (a fin cut along its mid-plane: the edge
+                // that the cut leaves on the plane is as sharp as the whole fin's).
+                const Vec3& p = plane_normal[i];
+                const std::size_t m = normals[i].size();
+                for (std::size_t k = 0; k < m; ++k)
+                    normals[i].push_back(normals[i][k] - 2.0 * normals[i][k].dot(p) * p);
+            }
+            max_min_dot_direction(normals[i], &lowest);
+        }
         reach[i] = std::clamp(lowest, kMinReach, 1.0);
     }
     return reach;

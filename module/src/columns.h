@@ -101,8 +101,11 @@ double face_corner_quality(const Columns& col, Index f);
 
 /// Per node of \p wall, the largest smallest cosine between one direction and the unit normals
 /// of the faces around it (zero-area faces, such as a fan's strips, left out), at least
-/// kMinReach; 1 where no face counts.
-std::vector<double> wall_reach(const SurfaceMesh& wall);
+/// kMinReach; 1 where no face counts. A node held in a plane (\p plane_normal, unit, zero or
+/// empty for none) can only take a direction in it: the faces' mirror images across the plane
+/// count too. A node held on a line (\p line, unit, zero or empty for none) has that direction.
+std::vector<double> wall_reach(const SurfaceMesh& wall, const std::vector<Vec3>& plane_normal = {},
+                               const std::vector<Vec3>& line = {});
 
 /// The reach below which a node counts as kMinReach (one direction within 60° of every face
 /// around it): a sharper edge without a fan lowers what its cells must reach by half at most,

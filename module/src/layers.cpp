@@ -839,6 +839,13 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     LayerMesh out(nw, layers);
     Columns col(w.mesh, layers, out.mesh.points);
     const Marcher mc = make_marcher(surface, w, fans, params, delta, scale_reason, col.max_levels);
+    {
+        // Columns held in a symmetry or outflow plane are judged by what a direction in it allows.
+        std::vector<Vec3> plane_normal(static_cast<std::size_t>(nw), Vec3::Zero());
+        for (std::size_t i = 0; i < plane_normal.size(); ++i)
+            if (mc.node_plane[i] != kNone) plane_normal[i] = mc.planes[mc.node_plane[i]].normal;
+        col.reach = wall_reach(w.mesh, plane_normal, mc.node_line);
+    }
     if (!fans.empty()) {
         // A fan's columns start at their wall node, and each gets its first layer.
         for (Index i = nwall; i < nw; ++i)

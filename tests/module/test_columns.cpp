@@ -55,6 +55,31 @@ Vec3 turned(const Vec3& x, const Vec3& centre, double deg) {
     return centre + Vec3(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y(), d.z());
 }
 
+TEST(Columns, ReachOfANodeHeldInAPlaneCountsTheFacesMirrorImages) {
+    // Half of a thin wedge cut along its mid-plane y = 0: one face from the sharp edge (the
+    // x axis) up to y = 0.1 over x = 1, normal tilted 84.3° from the plane's. Free, node 0
+    // could march along that normal (reach 1); held in y = 0 its direction lies in the plane,
+    // within 84.3° of the face and of its mirror image: cos 84.3° = 0.0995, counted as kMinReach.
+    SurfaceMesh m;
+    m.patches.push_back({"fin", PatchKind::Wall});
+    m.points = {Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(-1, 0.1, 0)};
+    m.add_face({0, 1, 2}, 0);
+    const Vec3 n = face_area_vector(m, 0).normalized();
+    ASSERT_NEAR(std::abs(n.y()), std::cos(std::atan(0.1)), 1e-12);
+    EXPECT_DOUBLE_EQ(wall_reach(m)[0], 1.0);
+    const std::vector<Vec3> plane(3, Vec3(0, 1, 0));
+    EXPECT_DOUBLE_EQ(wall_reach(m, plane)[0], kMinReach);
+    // A blunter wedge (y up to 2 over x = 1): the direction in the plane is within 26.6° of
+    // both, cos = 0.894.
+    m.points[2] = Vec3(-1, 2, 0);
+    EXPECT_NEAR(wall_reach(m, plane)[0], std::sin(std::atan(2.0)), 1e-9);
+    // Held on a line, that line is the direction: along the edge (z) it is 90° off the face.
+    const std::vector<Vec3> line(3, Vec3(0, 0, 1));
+    EXPECT_DOUBLE_EQ(wall_reach(m, {}, line)[0], kMinReach);
+    const std::vector<Vec3> along_x(3, Vec3(-1, 0, 0));
+    EXPECT_NEAR(wall_reach(m, {}, along_x)[0], -face_area_vector(m, 0).normalized().x(), 1e-12);
+}
+
 TEST(Columns, TwistIsTheTopsTurnAboutTheCellsAxis) {
     const std::array<Vec3, 4> quad{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
     const Vec3 up(0, 0, 0.1), centre(0.5, 0.5, 0.1);
