@@ -9,49 +9,17 @@ AXIS_U, AXIS_V: x, y or z, the picture's horizontal and vertical axes; the windo
 model units. Example (the README's symmetry plane):
   scripts/plane_picture.py out/hemisphere.msh surface_2 docs/images/hemisphere_symmetry_plane.png x z -1.2 1.6 -0.8 0.8
 """
-import struct
 import sys
-import zlib
+
+from surface_picture import read_msh41, write_png
 
 
-def read_msh41(path, patch):
-    lines = open(path).read().split('\n')
-    if '$MeshFormat' not in lines or not lines[lines.index('$MeshFormat') + 1].startswith('4.1 0'):
-        sys.exit(f'{path}: not an ASCII MSH 4.1 file')
-    i = lines.index('$PhysicalNames')
-    tags = [int(l.split()[1]) for l in lines[i + 2:i + 2 + int(lines[i + 1])]
-            if l.split()[0] == '2' and l.split(None, 2)[2].strip('"') == patch]
-    if not tags:
+def read_patch(path, patch):
+    """Nodes, and the faces of surface patch \p patch (surface_picture.read_msh41)."""
+    nodes, faces = read_msh41(path)
+    if patch not in faces:
         sys.exit(f'{path}: no surface patch named {patch}')
-    # Surface entities carrying that physical tag.
-    i = lines.index('$Entities')
-    npt, ncu, nsu, _ = map(int, lines[i + 1].split())
-    entities = set()
-    for l in lines[i + 2 + npt + ncu:i + 2 + npt + ncu + nsu]:
-        f = l.split()
-        nphys = int(f[7])
-        if tags[0] in map(int, f[8:8 + nphys]):
-            entities.add(int(f[0]))
-    i = lines.index('$Nodes')
-    nblocks = int(lines[i + 1].split()[0])
-    i += 2
-    nodes = {}
-    for _ in range(nblocks):
-        k = int(lines[i].split()[3])
-        ids = lines[i + 1:i + 1 + k]
-        for j in range(k):
-            nodes[int(ids[j])] = tuple(map(float, lines[i + 1 + k + j].split()))
-        i += 1 + 2 * k
-    i = lines.index('$Elements')
-    nblocks = int(lines[i + 1].split()[0])
-    i += 2
-    faces = []
-    for _ in range(nblocks):
-        dim, ent, _, k = map(int, lines[i].split())
-        if dim == 2 and ent in entities:
-            faces += [list(map(int, l.split()))[1:] for l in lines[i + 1:i + 1 + k]]
-        i += 1 + k
-    return nodes, faces
+    return nodes, faces[patch]
 
 
 def main():
@@ -62,7 +30,7 @@ def main():
     u0, u1, v0, v1 = map(float, sys.argv[6:10])
     W = int(sys.argv[10]) if len(sys.argv) == 11 else 1000
     H = max(1, round(W * (v1 - v0) / (u1 - u0)))
-    nodes, faces = read_msh41(path, patch)
+    nodes, faces = read_patch(path, patch)
     img = bytearray(b'\xff' * (W * H * 3))
 
     def pixel(p):
@@ -80,14 +48,7 @@ def main():
         colour = b'\xc8\x00\x00' if len(f) == 4 else b'\x00\x00\xa0'
         for j in range(len(f)):
             segment(nodes[f[j]], nodes[f[(j + 1) % len(f)]], colour)
-    raw = b''.join(b'\x00' + bytes(img[r * W * 3:(r + 1) * W * 3]) for r in range(H))
-
-    def chunk(kind, data):
-        return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data) & 0xffffffff)
-
-    with open(out, 'wb') as f:
-        f.write(b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', W, H, 8, 2, 0, 0, 0)) +
-                chunk(b'IDAT', zlib.compress(raw, 9)) + chunk(b'IEND', b''))
+    write_png(out, W, H, [bytes(img[r * W * 3:(r + 1) * W * 3]) for r in range(H)])
     print(f'{out}: {len(faces)} faces of {patch}')
 
 

@@ -124,7 +124,9 @@ TEST(Remesh, TwoPatchesKeepTheirNamesTheirSeamAndTheirOrientation) {
         const Index patch = m.face_patch[f];
         ++count[static_cast<std::size_t>(patch)];
         const double z = face_centroid(m, m.points, f).z();
-        if (std::abs(z) > h) EXPECT_EQ(patch, z > 0 ? 1 : 0) << f << " at z " << z;
+        if (std::abs(z) > h) {
+            EXPECT_EQ(patch, z > 0 ? 1 : 0) << f << " at z " << z;
+        }
         // Out of the sphere, as the old faces were.
         EXPECT_GT(face_area_vector(m, f).dot(face_centroid(m, m.points, f)), 0.0) << f;
     }
