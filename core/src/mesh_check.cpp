@@ -2,6 +2,7 @@
 #include <strata/core/format.h>
 #include <strata/core/mesh_check.h>
 
+#include <algorithm>
 #include <utility>
 
 namespace strata {
@@ -25,9 +26,13 @@ MeshProblems check_face_arrays(const SurfaceMesh& mesh, const std::vector<Vec3>&
     MeshProblems out;
     const std::string word = rules.word;
     const bool triangles_only = rules.triangles_only;
+    // Non-decreasing from 0 to the end: every face's range then lies in face_nodes.
     if (mesh.face_offsets.empty() || mesh.face_offsets.front() != 0 ||
-        static_cast<std::size_t>(mesh.face_offsets.back()) != mesh.face_nodes.size()) {
-        out.add(word + " offsets are malformed (they must start at 0 and end at the number of face nodes)");
+        static_cast<std::size_t>(mesh.face_offsets.back()) != mesh.face_nodes.size() ||
+        !std::is_sorted(mesh.face_offsets.begin(), mesh.face_offsets.end())) {
+        out.add(word +
+                " offsets are malformed (they must start at 0, never decrease and end at the number of "
+                "face nodes)");
         out.indexable = false;
         return out;
     }

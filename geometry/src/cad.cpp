@@ -333,7 +333,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     set_number("Mesh.ElementOrder", 1);
     if (!script_set("Mesh.SubdivisionAlgorithm")) set_number("Mesh.SubdivisionAlgorithm", 0);
 
-    constexpr int kDefaultAlgorithm = CadParams{}.algorithm;
+    const int kDefaultAlgorithm = CadParams{}.algorithm;  // not constexpr: clang rejects the std::string members
     if (params.algorithm != kDefaultAlgorithm || !script_set("Mesh.Algorithm"))
         set_number("Mesh.Algorithm", params.algorithm);
     // A script's 7 or 8 would kill the process (see validate); 6 with the script's

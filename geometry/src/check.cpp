@@ -6,6 +6,8 @@
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/topology.h>
 
+#include "model_span.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -30,6 +32,9 @@ std::string face_text(const SurfaceMesh& mesh, Index f) {
 void check_surface(const SurfaceMesh& mesh, const std::string& source) {
     // The arrays first (one check for every stage): everything below indexes through them.
     require_sound(check_surface_arrays(mesh), source + ": ");
+    // Before anything computes an area or a volume from the coordinates.
+    const BoundingBox box = bounding_box(mesh.points);
+    require_model_span(box, source + ": ");
     const Index nf = mesh.num_faces();
 
     for (Index f = 0; f < nf; ++f) {
@@ -44,7 +49,7 @@ void check_surface(const SurfaceMesh& mesh, const std::string& source) {
     }
 
     // Relative to the model size, so the check means the same in millimetres and metres.
-    const double diag = bounding_box(mesh.points).diagonal();
+    const double diag = box.diagonal();
     const double min_area = 1e-12 * diag * diag;
     for (Index f = 0; f < nf; ++f) {
         const double a = face_area_vector(mesh, f).norm();

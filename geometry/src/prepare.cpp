@@ -68,7 +68,14 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     assign_patch_kinds(raw, params.patch_kinds, source);
     // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
     if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
-    SurfaceMesh merged = merge_coincident_nodes(raw, params.merge_tolerance);
+    SurfaceMesh merged;
+    try {
+        merged = merge_coincident_nodes(raw, params.merge_tolerance);
+    } catch (const TopologyError& e) {
+        // Its one TopologyError, coordinates spanning more than a double computes with: a real
+        // file can hold them, so the message names it.
+        throw TopologyError(source + ": " + e.what());
+    }
     const Index merged_nodes = raw.num_points() - merged.num_points();
     Index collapsed = 0;
     merged = remove_collapsed_faces(merged, &collapsed);

@@ -5,6 +5,8 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 
+#include "model_span.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -24,9 +26,14 @@ std::string node_text(const SurfaceMesh& mesh, Index v) {
 /// Every function here indexes points by face node ids; a corrupt id would be undefined
 /// behaviour rather than an error, so refuse it up front (O(#face nodes)). Coordinates and
 /// patches are not looked at: connectivity does not need them (check_surface names NaNs).
-void require_valid_ids(const SurfaceMesh& mesh, const char* who) {
+/// \p patch_per_face: the caller copies face_patch face by face, so it needs one entry per face
+/// (whether each names a patch is check_surface's business).
+void require_valid_ids(const SurfaceMesh& mesh, const char* who, bool patch_per_face = false) {
     require_sound(check_surface_arrays(mesh, {.require_faces = false, .coordinates = false, .patches = false}),
                   std::string(who) + ": ");
+    if (patch_per_face && mesh.face_patch.size() != static_cast<std::size_t>(mesh.num_faces()))
+        throw InputError(std::string(who) + ": face patches: " + std::to_string(mesh.face_patch.size()) +
+                         " entries for " + std::to_string(mesh.num_faces()) + " faces");
 }
 
 /// Integer cell of the merge hash grid.
@@ -83,8 +90,13 @@ SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol) {
             box.max = box.max.cwiseMax(p);
         }
     }
+    // Below this span (check_surface's bound too) the tolerance, the cells and p ± reach below
+    // are finite, and so are the integer cell coordinates. A relative tolerance over 1 merges
+    // every node (they are all within the diagonal), so capping it changes nothing but keeps
+    // an absurd one finite.
+    require_model_span(box, "merge_coincident_nodes: ");
     const double diag = box.diagonal();
-    const double tol = (rel_tol > 0.0 && std::isfinite(rel_tol)) ? rel_tol * diag : 0.0;
+    const double tol = (rel_tol > 0.0 && std::isfinite(rel_tol)) ? std::min(rel_tol, 2.0) * diag : 0.0;
     // Cells of a few tolerances: a tolerance ball then usually lies in one cell (1 hash lookup
     // instead of 27), at most 8. The floor of diag·1e-12 keeps the integer cell coordinates
     // (relative to box.min) far from overflow when the tolerance is zero or tiny.
@@ -153,7 +165,7 @@ SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol) {
 }
 
 SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed) {
-    require_valid_ids(mesh, "remove_collapsed_faces");
+    require_valid_ids(mesh, "remove_collapsed_faces", true);
     SurfaceMesh out;
     out.patches = mesh.patches;
     Index count = 0;

@@ -75,7 +75,7 @@ float load_f32le(const char* p) {
     return std::bit_cast<float>(bits);
 }
 
-SurfaceMesh parse_binary(const std::string& path, const std::string& data) {
+SurfaceMesh parse_binary(const std::string& path, std::string_view data) {
     const std::size_t n = load_u32le(data.data() + 80);
     if (n == 0) throw InputError("'" + path + "': binary STL holds no facets");
     check_capacity(path, n);
@@ -270,23 +270,26 @@ bool looks_ascii(std::string_view data) {
 }  // namespace
 
 SurfaceMesh read_stl(const std::string& path) {
-    const std::string data = slurp(path);
+    return read_stl_bytes(slurp(path), path);
+}
+
+SurfaceMesh read_stl_bytes(std::string_view data, const std::string& source) {
     if (data.size() >= kBinaryHeader) {
         const std::size_t n = load_u32le(data.data() + 80);
-        if (data.size() == kBinaryHeader + kBinaryFacet * n) return parse_binary(path, data);
+        if (data.size() == kBinaryHeader + kBinaryFacet * n) return parse_binary(source, data);
     }
     if (looks_ascii(data)) {
         std::string_view text = data;
         if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-        return parse_ascii(path, text);
+        return parse_ascii(source, text);
     }
     if (data.size() < kBinaryHeader)
-        throw InputError("'" + path + "': not an STL file: " + std::to_string(data.size()) +
+        throw InputError("'" + source + "': not an STL file: " + std::to_string(data.size()) +
                          " bytes, too short for binary STL (84-byte header) and it does not "
                          "begin with 'solid'");
     const std::size_t n = load_u32le(data.data() + 80);
     const std::size_t whole = (data.size() - kBinaryHeader) / kBinaryFacet;
-    throw InputError("'" + path + "': binary STL header announces " + std::to_string(n) + " facets, so 84+50*" +
+    throw InputError("'" + source + "': binary STL header announces " + std::to_string(n) + " facets, so 84+50*" +
                      std::to_string(n) + " = " + std::to_string(kBinaryHeader + kBinaryFacet * n) +
                      " bytes expected, but the file has " + std::to_string(data.size()) + " (" + std::to_string(whole) +
                      " whole facets); the file is truncated or not an STL file");

@@ -52,6 +52,18 @@ TEST(CheckFaceArrays, NamesEachProblem) {
     EXPECT_TRUE(check_surface_arrays(SurfaceMesh{}, {.require_faces = false}).ok());
 }
 
+TEST(CheckFaceArrays, DecreasingOffsetsAreMalformed) {
+    // Start 0 and end at the node count, but a face in the middle runs past the end (a fuzzer's
+    // find: the check read face_nodes beyond its size).
+    SurfaceMesh m = test::quad_grid(3, 1);  // offsets 0 4 8 12
+    m.face_offsets[1] = 10;
+    m.face_offsets[2] = 6;
+    const MeshProblems p = check_surface_arrays(m);
+    EXPECT_FALSE(p.indexable);
+    EXPECT_TRUE(mentions(p, "face offsets are malformed (they must start at 0, never decrease")) << p.lines[0];
+    EXPECT_THROW(require_sound(p, "x: "), InputError);
+}
+
 TEST(CheckVolumeArrays, NamesCellsAndBoundaryFacesAndKeepsFiveLines) {
     VolumeMesh m = test::BoxMesh(3, 1, 1).build();
     for (std::size_t c = 0; c < 3; ++c) m.hexes[c][0] = 500;

@@ -136,6 +136,14 @@ TEST(CheckSurface, NonFiniteCoordinateNamesTheNode) {
     EXPECT_TRUE(contains(msg, "node 7 ")) << msg;
 }
 
+TEST(CheckSurface, SpanFrom1e100IsATopologyErrorGivingTheBox) {
+    // Areas (squares) and the volumes orientation needs (cubes) overflow a double near 1e102.
+    test::expect_error<TopologyError>(
+        [] { check_surface(quad_grid(1, 1, 1e100), "huge.stl"); },
+        {"huge.stl: the nodes span from (0, 0, 0) to (1e+100, 1e+100, 0)", "diagonal of 1.41e+100", "wrong unit"});
+    EXPECT_NO_THROW(check_surface(quad_grid(1, 1, 1e99), "large.stl"));
+}
+
 TEST(CheckSurface, OutOfRangeNodeId) {
     SurfaceMesh m = quad_grid(1, 1);
     m.add_face({0, 2, 99}, 0);

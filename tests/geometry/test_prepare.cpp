@@ -82,6 +82,17 @@ TEST(Prepare, CollapsedFacesAreRemovedAndCounted) {
     EXPECT_GT(test::enclosed_volume(m), 0.0);
 }
 
+TEST(Prepare, CoordinatesSpanningBeyondADoubleNameTheFile) {
+    // Finite coordinates the reader accepts, but whose span overflows: merging refuses them (it
+    // made infinite cells and undefined integers of them, a fuzzer's find), naming the file.
+    test::ScratchDir dir("prepare_huge");
+    std::ofstream(dir.file("huge.stl")) << "solid s\nfacet normal 0 0 1\nouter loop\nvertex -1e308 0 0\n"
+                                           "vertex 1e308 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n";
+    test::expect_error<TopologyError>(
+        [&] { prepare_surface(dir.file("huge.stl"), {}); },
+        {"huge.stl: merge_coincident_nodes: the nodes span from (-1e+308, 0, 0)", "wrong unit"});
+}
+
 TEST(Prepare, PatchKindsFromNamesAndMappings) {
     SurfaceMesh m;
     m.patches = {{"Body", PatchKind::Other}, {"SymmetryPlane", PatchKind::Other}, {"outer_FARFIELD", PatchKind::Other}};

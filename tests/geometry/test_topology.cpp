@@ -462,6 +462,15 @@ TEST(CollapsedFaces, RemovedOrMadeTrianglesAndTheCubeStaysClosed) {
     EXPECT_EQ(r.face_nodes, unit_cube().face_nodes);
 }
 
+TEST(CollapsedFaces, FacePatchWithoutAnEntryPerFaceIsAnInputError) {
+    // Faces are copied with their patch entry, which must exist (a fuzzer's find: it was read
+    // past the end of face_patch).
+    SurfaceMesh m = quad_grid(2, 1);
+    m.face_patch.pop_back();
+    test::expect_error<InputError>([&] { remove_collapsed_faces(m); },
+                                   {"remove_collapsed_faces: face patches: 1 entries for 2 faces"});
+}
+
 TEST(Merge, RespectsTheRelativeTolerance) {
     // Bounding box diagonal of the unit cube is √3; with rel_tol 1e-3 the tolerance is 1.73e-3.
     const SurfaceMesh cube = unit_cube();
@@ -493,6 +502,21 @@ TEST(Merge, NonFiniteNodesAreKeptForTheCheck) {
     const SurfaceMesh g = merge_coincident_nodes(m);
     EXPECT_EQ(g.num_points(), 4);
     EXPECT_TRUE(std::isnan(g.points[2].x()));
+}
+
+TEST(Merge, SpanBeyondTheDoublesIsATopologyError) {
+    // Nodes at ±1.7e308 span more than a double holds: the tolerance and cells were infinite and
+    // turned into integers (undefined; a fuzzer's find). The span names the box; below 1e100
+    // merging works as ever, and an absurd tolerance merges every node.
+    SurfaceMesh m = quad_grid(1, 1);
+    m.points[0].x() = -1.7e308;
+    m.points[2].x() = 1.7e308;
+    test::expect_error<TopologyError>(
+        [&] { merge_coincident_nodes(m); },
+        {"merge_coincident_nodes: the nodes span from (-1.7e+308", "1.7e+308", "beyond the 1e+100", "wrong unit"});
+    EXPECT_THROW(merge_coincident_nodes(quad_grid(1, 1, 1e100)), TopologyError);
+    EXPECT_EQ(merge_coincident_nodes(quad_grid(1, 1, 1e99)).num_points(), 4);
+    EXPECT_EQ(merge_coincident_nodes(quad_grid(1, 1), 1e308).num_points(), 1);
 }
 
 // ---------------------------------------------------------------- adjacency

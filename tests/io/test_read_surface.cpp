@@ -158,6 +158,26 @@ TEST(ReadStl, BinaryMatchesAscii) {
     EXPECT_EQ(c.face_nodes, b.face_nodes);
 }
 
+TEST(ReadStl, BytesInMemoryReadAsTheFile) {
+    // read_stl_bytes (the fuzz target's entry) is read_stl without the file: same mesh, and the
+    // source in place of the path, in messages and as a binary file's patch name.
+    test::ScratchDir dir("io_stl_bytes");
+    const SurfaceMesh a = read_stl(example_data("sphere.stl"));
+    const SurfaceMesh from_text = read_stl_bytes(slurp(example_data("sphere.stl")), "text.stl");
+    EXPECT_EQ(from_text.points, a.points);
+    EXPECT_EQ(from_text.face_nodes, a.face_nodes);
+    EXPECT_EQ(from_text.patches[0].name, a.patches[0].name);  // ASCII: the solid's name
+    write_binary_stl(a, dir.file("sphere_bin.stl"), "solid sphere");
+    const SurfaceMesh b = read_stl(dir.file("sphere_bin.stl"));
+    const SurfaceMesh from_binary = read_stl_bytes(slurp(dir.file("sphere_bin.stl")), "in/memory.stl");
+    EXPECT_EQ(from_binary.points, b.points);
+    EXPECT_EQ(from_binary.patches[0].name, "memory");
+    expect_input_error([] { read_stl_bytes("solid s\nfacet normal 0 0 1\n", "upload.stl"); },
+                       {"'upload.stl': line 3", "expected 'outer loop', found the end of the file"});
+    expect_input_error([] { read_stl_bytes(std::string(100, '\x01'), "upload.stl"); },
+                       {"'upload.stl': binary STL header announces 16843009 facets"});
+}
+
 TEST(ReadStl, MultiSolidAsciiGivesOnePatchPerSolid) {
     const SurfaceMesh m = read_stl(test_data("io_two_solids.stl"));
     ASSERT_EQ(m.patches.size(), 2u);

@@ -37,7 +37,8 @@ struct FaceRules {
 };
 
 /// The faces of a surface mesh, indexing \p points (mesh.points, or a volume mesh's points for
-/// its boundary): no faces, malformed CSR (face_offsets, face_patch), a face of other than 3 or
+/// its boundary): no faces, malformed CSR (face_offsets that do not rise from 0 to the number of
+/// face nodes, a face_patch not one per face), a face of other than 3 or
 /// 4 nodes (or 3), a node id outside \p points, a patch id outside mesh.patches, a non-finite
 /// coordinate in \p points, as \p rules ask.
 MeshProblems check_face_arrays(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const FaceRules& rules = {});

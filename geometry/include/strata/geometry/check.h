@@ -12,9 +12,11 @@ namespace strata {
 
 /// First the arrays (check_surface_arrays, require_sound): InputError for an empty mesh, a face
 /// that is not a triangle or quadrilateral, a node or patch id out of range; TopologyError for
-/// a NaN or infinite coordinate (naming the node). Then TopologyError for a face with a repeated
-/// node or (near) zero area (relative to the bounding box), and for an edge shared by more than
-/// two faces (naming the edge's nodes, coordinates and faces). \p source names the input.
+/// a NaN or infinite coordinate (naming the node), and for nodes that span 1e100 or more (the
+/// bounding-box diagonal from which areas and volumes overflow; the message gives the box).
+/// Then TopologyError for a face with a repeated node or (near) zero area (relative to the
+/// bounding box), and for an edge shared by more than two faces (naming the edge's nodes,
+/// coordinates and faces). \p source names the input.
 void check_surface(const SurfaceMesh& mesh, const std::string& source);
 
 /// What orient_surface did.

@@ -11,6 +11,8 @@ namespace strata {
 /// Merge nodes closer than \p rel_tol × bounding-box diagonal; drop nodes no face uses.
 /// Faces that collapse (two equal corners) are kept so check_surface can report them.
 /// Deterministic: the surviving node of a cluster is the lowest old id, order kept.
+/// TopologyError if the used nodes span 1e100 or more (check_surface's bound: areas and volumes
+/// would overflow), InputError for a node id out of range.
 SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol = 1e-9);
 
 /// Faces that repeat a node have no area and no shape: a triangle (a, a, b) or a quad whose
@@ -19,7 +21,8 @@ SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol = 1e-
 /// (there and back) of its own edge, so a closed surface stays closed. CAD tools write them
 /// at a surface's pole (OpenCASCADE's tessellation of a nose); merging close nodes makes
 /// them too. Nodes no face uses any more are dropped, order kept. \p changed: how many faces
-/// were removed or reduced.
+/// were removed or reduced. InputError for a node id out of range, or a face_patch without one
+/// entry per face.
 SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed = nullptr);
 
 /// Node → incident faces, faces in increasing id order.

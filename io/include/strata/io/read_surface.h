@@ -6,6 +6,7 @@
 #include <strata/core/surface_mesh.h>
 
 #include <string>
+#include <string_view>
 
 namespace strata {
 
@@ -14,6 +15,11 @@ namespace strata {
 /// stem. Nodes are not merged (3 per facet). Throws InputError naming the file and line
 /// (ASCII) or facet (binary) on a malformed or truncated file.
 SurfaceMesh read_stl(const std::string& path);
+
+/// read_stl on a file's bytes already in memory (a download, a fuzzer's input): the same
+/// detection, mesh and errors, with \p source where read_stl names the path (in every message,
+/// and its stem as a binary file's patch name).
+SurfaceMesh read_stl_bytes(std::string_view data, const std::string& source);
 
 /// Gmsh .msh 2.2 or 4.1 with 3-node triangles and 4-node quadrangles (higher-order or other
 /// 2D types are an error; points, lines and volume elements are ignored), read by Gmsh into a

@@ -1,0 +1,175 @@
+// Fuzz target "surface": the bytes decoded into a triangle/quad soup, which goes through the
+// geometry stage's input code (run_surface_chain: check_surface, merging, removal of collapsed
+// faces, orientation, node rings, each alone and as prepare_mesh). Seeds: fuzz/corpus/surface/
+// (fuzz/make_seeds.py writes them).
+
+#include <strata/core/error.h>
+
+#include "fuzz_targets.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <limits>
+#include <utility>
+
+namespace strata::fuzz {
+namespace {
+
+/// Reads the bytes front to back; past the end every read fails.
+class Bytes {
+public:
+    Bytes(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
+    bool byte(std::uint8_t& out) {
+        if (pos_ >= size_) return false;
+        out = data_[pos_++];
+        return true;
+    }
+    bool raw_double(double& out) {
+        if (size_ - pos_ < sizeof out) return false;
+        std::memcpy(&out, data_ + pos_, sizeof out);
+        pos_ += sizeof out;
+        return true;
+    }
+
+private:
+    const std::uint8_t* data_;
+    std::size_t size_;
+    std::size_t pos_ = 0;
+};
+
+/// Coordinates a real file may hold or a bug may make: non-finite, extreme, tiny, signed zero.
+constexpr std::array<double, 16> kSpecial = {std::numeric_limits<double>::quiet_NaN(),
+                                             std::numeric_limits<double>::infinity(),
+                                             -std::numeric_limits<double>::infinity(),
+                                             1e308,
+                                             -1e308,
+                                             std::numeric_limits<double>::max(),
+                                             std::numeric_limits<double>::denorm_min(),
+                                             1e-300,
+                                             1e300,
+                                             1e15,
+                                             -1e15,
+                                             1e-15,
+                                             -0.0,
+                                             0.1,
+                                             3.0000000001,
+                                             9007199254740993.0};
+
+constexpr std::array<double, 4> kTolerance = {1e-9, 0.0, 1e-3, 0.3};
+constexpr std::array<const char*, 4> kPatchNames = {"wall", "farfield", "symmetry_y0", "inlet"};
+
+/// Grid point of the 4 × 4 × 4 lattice: bits 0-1 x, 2-3 y, 4-5 z.
+Vec3 grid(unsigned g) {
+    return Vec3(static_cast<double>(g & 3u), static_cast<double>((g >> 2) & 3u), static_cast<double>((g >> 4) & 3u));
+}
+
+/// Break the arrays the way a caller's own code might (what: bits 0-1 which array, bits 2-7 a
+/// position; value: the new value): every piece must refuse the mesh, not index through it.
+void corrupt(SurfaceMesh& m, std::uint8_t what, std::uint8_t value) {
+    const std::size_t at = what >> 2;
+    switch (what & 3) {
+        case 0:  // malformed CSR: the offsets from one on shifted by value - 128, all but the last
+            for (std::size_t i = at % m.face_offsets.size(); i + 1 < m.face_offsets.size(); ++i)
+                m.face_offsets[i] += Index{value} - 128;
+            break;
+        case 1:  // a patch entry too few or too many
+            m.face_patch.resize(value % (m.face_patch.size() + 2));
+            break;
+        case 2:  // a negative node id
+            if (!m.face_nodes.empty()) m.face_nodes[at % m.face_nodes.size()] = Index{value} - 256;
+            break;
+        default:  // nodes dropped from the end
+            m.points.resize(value % (m.points.size() + 1));
+            break;
+    }
+}
+
+}  // namespace
+
+/// The soup format, byte by byte (every byte string decodes to something):
+///
+///   flags      bit 0     PrepareParams::internal_flow
+///              bits 1-2  merge tolerance: 1e-9 (the default), 0, 1e-3, 0.3
+///              bit 3     the patch mapping inlet=other (an InputError with fewer than 4 patches)
+///              bits 4-5  number of patches - 1; they are "wall", "farfield", "symmetry_y0",
+///                        "inlet" (kinds from the names)
+///              bit 6     PrepareParams::scale 1000 instead of 1
+///              bit 7     corrupt the arrays after decoding: two more bytes, what and value
+///                        (corrupt() above)
+///   N          number of nodes, 0-255
+///   N nodes    one byte g each:
+///              g < 0xC0          grid point g & 0x3F (x = bits 0-1, y = 2-3, z = 4-5), moved
+///                                by g >> 6: 0 not, 1 by 1e-10 in x (merges), 2 by 0.5 in z
+///              0xC0 <= g < 0xF0  grid point of the next byte & 0x3F with coordinate
+///                                (g - 0xC0) / 16 replaced by kSpecial[(g - 0xC0) % 16]
+///              0xF0 <= g         three raw doubles from the next 24 bytes
+///   faces      until the end, a header byte h and 3 (h bit 0 clear) or 4 ids each:
+///              bits 1-2  patch (modulo the number of patches), or with bit 4 set (h >> 5) - 1,
+///                        which may be out of range
+///              bit 3     ids taken as they are (may be out of range) instead of modulo N
+///              A face cut short by the end is left out.
+Soup decode_soup(const std::uint8_t* data, std::size_t size) {
+    Soup soup;
+    SurfaceMesh& m = soup.mesh;
+    Bytes in(data, size);
+    std::uint8_t flags = 0, what = 0, value = 0, count = 0;
+    if (!in.byte(flags)) return soup;
+    const bool corrupted = (flags & 0x80) && in.byte(what) && in.byte(value);
+    soup.params.internal_flow = flags & 1;
+    soup.params.merge_tolerance = kTolerance[(flags >> 1) & 3u];
+    if (flags & 8) soup.params.patch_kinds.emplace_back("inlet", PatchKind::Other);
+    const unsigned num_patches = ((flags >> 4) & 3u) + 1;
+    for (unsigned p = 0; p < num_patches; ++p) m.patches.push_back({kPatchNames[p], PatchKind::Wall});
+    if (flags & 0x40) soup.params.scale = 1000.0;
+
+    if (!in.byte(count)) return soup;
+    for (unsigned i = 0; i < count; ++i) {
+        std::uint8_t g = 0, h = 0;
+        if (!in.byte(g)) break;
+        Vec3 x;
+        if (g < 0xC0) {
+            x = grid(g & 0x3Fu);
+            if (g >> 6 == 1) x.x() += 1e-10;
+            if (g >> 6 == 2) x.z() += 0.5;
+        } else if (g < 0xF0) {
+            if (!in.byte(h)) break;
+            x = grid(h & 0x3Fu);
+            x[(g - 0xC0) / 16] = kSpecial[(g - 0xC0u) % 16];
+        } else if (!in.raw_double(x.x()) || !in.raw_double(x.y()) || !in.raw_double(x.z())) {
+            break;
+        }
+        m.points.push_back(x);
+    }
+    const auto n = static_cast<Index>(m.points.size());
+
+    for (std::uint8_t h = 0; in.byte(h);) {
+        const Index k = (h & 1) ? 4 : 3;
+        std::array<Index, 4> v{};
+        bool whole = true;
+        for (Index i = 0; i < k && whole; ++i) {
+            std::uint8_t id = 0;
+            whole = in.byte(id);
+            v[static_cast<std::size_t>(i)] = (h & 8) || n == 0 ? Index{id} : Index{id} % n;
+        }
+        if (!whole) break;
+        const Index patch = (h & 16) ? Index{h >> 5} - 1 : Index{(h >> 1) & 3} % static_cast<Index>(num_patches);
+        m.add_face(v.data(), k, patch);
+    }
+    if (corrupted) corrupt(m, what, value);
+    return soup;
+}
+
+}  // namespace strata::fuzz
+
+int strata_fuzz_one_surface(const std::uint8_t* data, std::size_t size) {
+    const strata::fuzz::Soup soup = strata::fuzz::decode_soup(data, size);
+    strata::fuzz::run_surface_chain(soup.mesh, soup.params, "fuzz soup");
+    return 0;
+}
+
+#ifdef STRATA_LIBFUZZER
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    return strata_fuzz_one_surface(data, size);
+}
+#endif

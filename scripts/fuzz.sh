@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# Fuzz Strata's input code with libFuzzer, AddressSanitizer and UBSan (Debian's clang 14):
+#   scripts/fuzz.sh [TARGET|all] [SECONDS]
+# TARGET is one of
+#   stl      the STL reader (read_stl_bytes: ASCII and binary, told apart by content), then the
+#            surface chain below on the mesh it read
+#   surface  a triangle/quad soup decoded from the bytes (fuzz/fuzz_surface.cpp says how:
+#            small node counts, grid coordinates and raw doubles incl. NaN and infinity, faces
+#            of 3 or 4 ids, patch ids, options, corrupted arrays) through check_surface,
+#            vertex_faces, edge_table, boundary_loops, face_components, node_rings,
+#            orient_surface, needle_faces alone and prepare_mesh as a whole (merge, removal of
+#            collapsed faces, check, orientation), with its result checked again
+# or all (the default: each in turn). SECONDS is per target (default 600). Each target runs in
+# one process (one core) with -timeout=10 -rss_limit_mb=4096.
+#
+# The script installs clang and libfuzzer-14-dev if missing (the way scripts/setup.sh installs
+# its packages; Strata's other dependencies come from setup.sh), configures BUILD_DIR with
+# CXX=clang++ -DSTRATA_FUZZ=ON (every library compiled with the sanitizers and libFuzzer's
+# coverage, the targets linked with -fsanitize=fuzzer), builds fuzz_stl and fuzz_surface, and
+# seeds a working corpus (BUILD_DIR/corpus/TARGET, kept between runs) from fuzz/corpus/TARGET
+# (small valid inputs, fuzz/make_seeds.py), fuzz/regressions/TARGET and, for stl, every STL
+# file in SHARED_DATA, examples/data and tests/data.
+#
+# A finding (a crash, a sanitizer report, an exception other than strata::Error, a failed
+# oracle, an input that runs over 10 s or allocates over 4 GB) stops the target; the script
+# copies the input into fuzz/regressions/TARGET/, prints the libFuzzer log's tail and exits 1
+# once every target asked has run. Reproduce with BUILD_DIR/fuzz/fuzz_TARGET FILE. Fix it so
+# that Strata refuses the input with an InputError or a TopologyError naming what is wrong, give
+# the file a name that says what it is, and tests/fuzz/test_fuzz_regressions.cpp (normal build,
+# CI) replays it from then on.
+#
+# Environment: BUILD_DIR (default build-fuzz), SHARED_DATA (default ../shared/data), JOBS
+# (build parallelism, default: number of cores), FUZZ_ARGS (more libFuzzer options).
+set -euo pipefail
+
+cd "$(dirname "$0")/.."
+what=${1:-all}
+seconds=${2:-600}
+build_dir=${BUILD_DIR:-build-fuzz}
+shared=${SHARED_DATA:-../shared/data}
+jobs=${JOBS:-$(nproc)}
+
+case "$what" in
+  all) targets=(stl surface) ;;
+  stl | surface) targets=("$what") ;;
+  *)
+    echo "usage: scripts/fuzz.sh [stl|surface|all] [SECONDS]" >&2
+    exit 2
+    ;;
+esac
+
+packages=(clang libfuzzer-14-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "fuzz: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# RelWithDebInfo: optimised like the real build, with line numbers in the sanitizers' reports.
+CC=clang CXX=clang++ cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_FUZZ=ON \
+  -DSTRATA_BUILD_TESTS=OFF >/dev/null
+cmake --build "$build_dir" -j "$jobs" --target "${targets[@]/#/fuzz_}"
+
+# Per target: the longest input, extra options.
+declare -A max_len=([stl]=131072 [surface]=4096)
+declare -A extra=([stl]="-dict=fuzz/stl.dict" [surface]="")
+
+status=0
+for t in "${targets[@]}"; do
+  corpus="$build_dir/corpus/$t"
+  artifacts="$build_dir/artifacts/$t"
+  log="$build_dir/fuzz_$t.log"
+  mkdir -p "$corpus" "$artifacts" "fuzz/regressions/$t"
+  rm -f "$artifacts"/*
+  cp fuzz/corpus/"$t"/* "$corpus"/
+  find "fuzz/regressions/$t" -type f -exec cp {} "$corpus"/ \;
+  if [ "$t" = stl ]; then
+    for dir in "$shared" examples/data tests/data; do
+      [ -d "$dir" ] && find "$dir" -maxdepth 2 -iname '*.stl' -exec cp {} "$corpus"/ \;
+    done
+  fi
+  echo "fuzz: $t for $seconds s, corpus $corpus ($(find "$corpus" -type f | wc -l) files), log $log"
+  # shellcheck disable=SC2086  # FUZZ_ARGS and extra are lists of options
+  if UBSAN_OPTIONS=print_stacktrace=1 "$build_dir/fuzz/fuzz_$t" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 \
+    -max_len="${max_len[$t]}" -print_final_stats=1 -artifact_prefix="$artifacts/" ${extra[$t]} \
+    ${FUZZ_ARGS:-} >"$log" 2>&1; then
+    execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+    echo "fuzz: $t ran $seconds s without a finding: $execs inputs run, corpus $(find "$corpus" -type f | wc -l) files"
+  else
+    status=1
+    tail -n 40 "$log"
+    for f in "$artifacts"/*; do
+      [ -f "$f" ] || continue
+      cp "$f" "fuzz/regressions/$t/"
+      echo "fuzz: $t: FINDING $(basename "$f") copied to fuzz/regressions/$t/ (reproduce: $build_dir/fuzz/fuzz_$t $f)"
+    done
+  fi
+done
+exit $status
