@@ -91,7 +91,11 @@ for t in "${targets[@]}"; do
     -max_len="${max_len[$t]}" -print_final_stats=1 -artifact_prefix="$artifacts/" ${extra[$t]} \
     ${FUZZ_ARGS:-} >"$log" 2>&1; then
     execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
-    echo "fuzz: $t ran $seconds s without a finding: $execs inputs run, corpus $(find "$corpus" -type f | wc -l) files"
+    done_line=$(grep ' cov: ' "$log" | tail -n 1 || true)
+    cov=$(echo "$done_line" | sed -n 's/.* cov: \([0-9]*\).*/\1/p')
+    units=$(echo "$done_line" | sed -n 's/.* corp: \([0-9]*\).*/\1/p')
+    echo "fuzz: $t ran $seconds s without a finding: $execs inputs run, corpus $units inputs" \
+      "($(find "$corpus" -type f | wc -l) files), $cov edges covered"
   else
     status=1
     tail -n 40 "$log"
