@@ -40,7 +40,8 @@ void ColumnFaces::split(Index f, int c) {
     patch.push_back(patch[u]);
 }
 
-Columns::Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& mesh_points)
+Columns::Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& mesh_points,
+                 const std::vector<Vec3>& plane_normal, const std::vector<Vec3>& line)
     : faces(wall), points(&mesh_points) {
     const auto n = static_cast<std::size_t>(wall.num_points());
     point.assign(n * (static_cast<std::size_t>(layers) + 1), kNone);
@@ -51,7 +52,7 @@ Columns::Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& m
     active.assign(n, 1);
     reason.assign(n, Shortfall::None);
     top = wall.points;
-    reach = wall_reach(wall);
+    reach = wall_reach(wall, plane_normal, line);
 }
 
 std::vector<double> wall_reach(const SurfaceMesh& wall, const std::vector<Vec3>& plane_normal,

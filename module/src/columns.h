@@ -53,7 +53,9 @@ struct Columns {
 
     /// \p mesh_points: where the levels go, level 0 (the wall) first; the caller appends each
     /// level's moving nodes in wall order after stop_columns.
-    Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& mesh_points);
+    /// \p plane_normal, \p line: the planes and lines wall nodes are held in (wall_reach).
+    Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& mesh_points,
+            const std::vector<Vec3>& plane_normal = {}, const std::vector<Vec3>& line = {});
     /// Position of wall node \p i on \p level (its top above its column).
     Vec3 at_level(Index i, int level) const;
 };

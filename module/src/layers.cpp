@@ -837,15 +837,14 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     std::vector<Shortfall> scale_reason;
     const Index nw = w.mesh.num_points();
     LayerMesh out(nw, layers);
-    Columns col(w.mesh, layers, out.mesh.points);
-    const Marcher mc = make_marcher(surface, w, fans, params, delta, scale_reason, col.max_levels);
-    {
-        // Columns held in a symmetry or outflow plane are judged by what a direction in it allows.
-        std::vector<Vec3> plane_normal(static_cast<std::size_t>(nw), Vec3::Zero());
-        for (std::size_t i = 0; i < plane_normal.size(); ++i)
-            if (mc.node_plane[i] != kNone) plane_normal[i] = mc.planes[mc.node_plane[i]].normal;
-        col.reach = wall_reach(w.mesh, plane_normal, mc.node_line);
-    }
+    std::vector<int> max_levels(static_cast<std::size_t>(nw), layers);
+    const Marcher mc = make_marcher(surface, w, fans, params, delta, scale_reason, max_levels);
+    // Columns held in a symmetry or outflow plane are judged by what a direction in it allows.
+    std::vector<Vec3> plane_normal(static_cast<std::size_t>(nw), Vec3::Zero());
+    for (std::size_t i = 0; i < plane_normal.size(); ++i)
+        if (mc.node_plane[i] != kNone) plane_normal[i] = mc.planes[mc.node_plane[i]].normal;
+    Columns col(w.mesh, layers, out.mesh.points, plane_normal, mc.node_line);
+    col.max_levels = std::move(max_levels);
     if (!fans.empty()) {
         // A fan's columns start at their wall node, and each gets its first layer.
         for (Index i = nwall; i < nw; ++i)

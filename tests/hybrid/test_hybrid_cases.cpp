@@ -55,6 +55,19 @@ std::pair<std::vector<std::array<double, 3>>, double> wall_of(const std::vector<
     return {nodes, area};
 }
 
+/// Every node of \p m's boundary faces on patch \p name has coordinate \p axis (0 x, 1 y, 2 z)
+/// equal to \p value (a plane the layers' sides are held in); the patch has faces.
+void expect_patch_in_plane(const VolumeMesh& m, const std::string& name, int axis, double value) {
+    const Index patch = find_patch(m.boundary, name);
+    ASSERT_NE(patch, kNone) << name;
+    for (Index f = 0; f < m.boundary.num_faces(); ++f) {
+        if (m.boundary.face_patch[f] != patch) continue;
+        for (const Index* v = m.boundary.face_begin(f); v != m.boundary.face_end(f); ++v) {
+            EXPECT_NEAR(m.points[*v][axis], value, 1e-9) << name;
+        }
+    }
+}
+
 /// The checks every case ends with; prints the figures for the record. The cells fill the
 /// domain: the input surface's enclosed volume (its normals point into the fluid, so that of a
 /// closed fluid domain is minus its volume, that of a body plus the body's), and with a
@@ -121,16 +134,8 @@ TEST(HybridCases, HemisphereCylinderHalfDomainWithSymmetryAndOutflowPlanes) {
     const VolumeMesh m = build_hybrid_mesh(s, params(15, 0.002), nullptr, &rep);
     // The symmetry plane (y = 0) and the outflow plane (x = 10) hold the layers' sides.
     EXPECT_EQ(names(s, rep.remeshed_patches), (std::vector<std::string>{"surface_2", "surface_3"}));
-    for (Index f = 0; f < m.boundary.num_faces(); ++f) {
-        const std::string& p = m.boundary.patches[static_cast<std::size_t>(m.boundary.face_patch[f])].name;
-        for (const Index* v = m.boundary.face_begin(f); v != m.boundary.face_end(f); ++v) {
-            if (p == "surface_2") {
-                EXPECT_NEAR(m.points[*v].y(), 0.0, 1e-9);
-            } else if (p == "surface_3") {
-                EXPECT_NEAR(m.points[*v].x(), 10.0, 1e-9);
-            }
-        }
-    }
+    expect_patch_in_plane(m, "surface_2", 1, 0.0);
+    expect_patch_in_plane(m, "surface_3", 0, 10.0);
     expect_valid_case("hemisphere_cylinder", s, m, rep);
 }
 
@@ -144,16 +149,8 @@ TEST(HybridCases, FinnedMissileHalfModelOnASting) {
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(10, 1e-5), nullptr, &rep);
     EXPECT_EQ(names(s, rep.remeshed_patches), (std::vector<std::string>{"symmetry", "outflow"}));
-    for (Index f = 0; f < m.boundary.num_faces(); ++f) {
-        const std::string& p = m.boundary.patches[static_cast<std::size_t>(m.boundary.face_patch[f])].name;
-        for (const Index* v = m.boundary.face_begin(f); v != m.boundary.face_end(f); ++v) {
-            if (p == "symmetry") {
-                EXPECT_NEAR(m.points[*v].y(), 0.0, 1e-9);
-            } else if (p == "outflow") {
-                EXPECT_NEAR(m.points[*v].x(), 1.4, 1e-9);
-            }
-        }
-    }
+    expect_patch_in_plane(m, "symmetry", 1, 0.0);
+    expect_patch_in_plane(m, "outflow", 0, 1.4);
     // Measured: every layer on 97.6 % of the fins' nodes (their sharp tips and trailing-edge
     // roots stop), 99.6-100 % elsewhere.
     ASSERT_EQ(rep.coverage.patches.size(), 5u);
