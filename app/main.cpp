@@ -96,6 +96,10 @@ const std::vector<std::pair<std::string, std::string>> kFlagOfParameter = {
     {"DistributionParams::reference_length", "--ref-length"},
     {"LayerParams::sweeps", "--sweeps"},
     {"LayerParams::max_sweeps", "--max-sweeps"},
+    // The switches whose flag turns them off: their "= false" first, as the flag itself.
+    {"LayerParams::control_functions = false", "--no-control"},
+    {"LayerParams::concave = false", "--no-concave"},
+    {"LayerParams::hold_back = false", "--no-hold-back"},
     {"LayerParams::control_functions", "--no-control"},
     {"LayerParams::concave", "--no-concave"},
     {"LayerParams::hold_back", "--no-hold-back"},
@@ -472,27 +476,30 @@ void print_held_back(const std::vector<strata::LayerStats>& stats) {
             first, layers, most);
 }
 
-/// The fans at sharp convex edges, if any, and the wall nodes where none could be built: its
-/// first cells would have been unusable (\p unusable), or its face on the layer top could not
-/// take a pyramid (\p uncapped, strata mesh only).
-void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners, strata::Index unusable,
-                strata::Index uncapped) {
+/// The fans at sharp convex edges, if any, and the wall nodes where none could be built (\p
+/// no_fan: its first cells would have been unusable, or its face on the layer top could not
+/// take a pyramid), each reason with the first such node's position.
+void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners, const strata::LayerReport& no_fan) {
     if (edges > 0)
         std::printf("fans: %d sharp convex edges, %d wall nodes with a column per side and between (%d corners)\n",
                     static_cast<int>(edges), static_cast<int>(nodes), static_cast<int>(corners));
-    if (unusable > 0)
-        std::printf(
-            "note: no fan at %d wall nodes where its first cells would have been unusable (a needle face or a "
-            "narrow gap beside it)\n",
-            static_cast<int>(unusable));
-    if (uncapped > 0)
-        std::printf(
-            "note: no fan at %d wall nodes where a fan's face on the layer top could not be capped with a pyramid "
-            "(its columns twist: the wall there is small against the layers' thickness)\n",
-            static_cast<int>(uncapped));
+    for (const strata::NoFan reason : {strata::NoFan::Unusable, strata::NoFan::Uncapped}) {
+        const strata::Index n = no_fan.no_fan_nodes(reason);
+        if (n == 0) continue;
+        const auto first = std::find_if(no_fan.no_fan.begin(), no_fan.no_fan.end(),
+                                        [&](const strata::NoFanNode& v) { return v.reason == reason; });
+        std::printf("note: no fan at %d wall nodes where %s; %s node %d at %s (in OUT.report.json with positions)\n",
+                    static_cast<int>(n),
+                    reason == strata::NoFan::Unusable
+                        ? "its first cells would have been unusable (a needle face or a narrow gap beside it)"
+                        : "a fan's face on the layer top could not be capped with a pyramid (its columns twist: the "
+                          "wall there is small against the layers' thickness)",
+                    n > 1 ? "the first," : "", static_cast<int>(first->node),
+                    strata::format_point(first->position).c_str());
+    }
 }
 
-void print_layer_table(const strata::LayerMesh& lm) {
+void print_layer_table(const strata::LayerMesh& lm, const strata::LayerReport& coverage) {
     std::printf("layer  height       min SJ  mean SJ  max orth  mean orth  sweeps  columns  stopped  steps  step SJ\n");
     for (std::size_t k = 0; k < lm.stats.size(); ++k) {
         const strata::LayerStats& s = lm.stats[k];
@@ -505,7 +512,7 @@ void print_layer_table(const strata::LayerMesh& lm) {
         "  (columns: wall nodes with the layer; stopped: columns ending below it; steps: cells closing the steps "
         "where they end, pyramids, side-on prisms, tetrahedra; their apex at a stopped column sees the step's thin "
         "side edge-on, hence step SJ about layer height / edge length)\n");
-    print_fans(lm.fan_edges, lm.fan_nodes, lm.fan_corners, lm.fans_dropped, 0);
+    print_fans(lm.fan_edges, lm.fan_nodes, lm.fan_corners, coverage);
     if (lm.unsmoothed_nodes > 0)
         std::printf(
             "note: %d nodes (sharp convex edges, corners of open edges, ends of needle triangles) were extruded along "
@@ -574,7 +581,7 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     if (hr.internal_flow) std::printf("domain: inside the walls (internal flow), no farfield generated\n");
     if (hr.closed_half_model)
         std::printf("domain: a half model, closed by a generated half farfield and a symmetry plane\n");
-    print_fans(hr.fan_edges, hr.fan_nodes, hr.fan_corners, hr.fans_unusable, hr.fans_dropped);
+    print_fans(hr.fan_edges, hr.fan_nodes, hr.fan_corners, hr.coverage);
     print_held_back(hr.layer_stats);
     print_thinned(hr.thinned_nodes, hr.min_thickness_share);
     print_coverage(hr.coverage);
@@ -659,7 +666,7 @@ int run_layers(const Common& c, const LayerOptions& o) {
     strata::write_layer_report(coverage, strata::report_path(c.output));
     if (c.quiet) return 0;
     print_surface_summary(s.surface, s.report, s.any_cad);
-    print_layer_table(lm);
+    print_layer_table(lm, coverage);
     print_coverage(coverage);
     print_cells(lm.mesh, v);
     std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", s.seconds, t_layers,

@@ -9,4 +9,15 @@ std::string_view to_string(Shortfall reason) {
     return kNames.name(reason);
 }
 
+std::string_view to_string(NoFan reason) {
+    static constexpr EnumNames<NoFan, kNoFanReasons> kNames{{"unusable", "uncapped"}};
+    return kNames.name(reason);
+}
+
+Index LayerReport::no_fan_nodes(NoFan reason) const {
+    Index n = 0;
+    for (const NoFanNode& v : no_fan) n += v.reason == reason ? 1 : 0;
+    return n;
+}
+
 }  // namespace strata

@@ -292,6 +292,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     }
     if (!has_outer)
         check_layers_fit_farfield(surface, params.farfield, asked, params.layers.proximity_limits.other_patch);
+    std::vector<Index> uncapped;  // input nodes whose fan's face on the layer top took no pyramid
     for (int round = 0;; ++round) {
         auto t0 = std::chrono::steady_clock::now();
         try {
@@ -319,9 +320,12 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
             for (const Index w : e.nodes()) fan |= !lm.fan_column.empty() && lm.fan_column[static_cast<std::size_t>(w)];
             if (fan) {
                 if (layer_params.no_fan_nodes.empty()) layer_params.no_fan_nodes.assign(surface.points.size(), 0);
-                for (const Index w : e.nodes())
-                    layer_params.no_fan_nodes[static_cast<std::size_t>(lm.input_node[static_cast<std::size_t>(w)])] = 1;
-                rep.fans_dropped += static_cast<Index>(e.nodes().size());
+                for (const Index w : e.nodes()) {
+                    const Index v = lm.input_node[static_cast<std::size_t>(w)];
+                    char& no = layer_params.no_fan_nodes[static_cast<std::size_t>(v)];
+                    if (!no) uncapped.push_back(v);
+                    no = 1;
+                }
                 rep.front_rounds = round + 1;
                 continue;
             }
@@ -348,10 +352,14 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     rep.layer_stats = lm.stats;
     rep.unsmoothed_nodes = lm.unsmoothed_nodes;
     rep.fan_edges = lm.fan_edges, rep.fan_nodes = lm.fan_nodes, rep.fan_corners = lm.fan_corners;
-    rep.fans_unusable = lm.fans_dropped;
     rep.thinned_nodes = lm.thinned_nodes;
     rep.min_thickness_share = lm.min_thickness_share;
     rep.coverage = layer_report(lm);
+    std::sort(uncapped.begin(), uncapped.end());
+    for (const Index v : uncapped)
+        rep.coverage.no_fan.push_back({v, surface.points[static_cast<std::size_t>(v)], NoFan::Uncapped});
+    std::sort(rep.coverage.no_fan.begin(), rep.coverage.no_fan.end(),
+              [](const NoFanNode& a, const NoFanNode& b) { return a.node < b.node; });
     rep.remeshed_patches = outer.remeshed;
 
     // Region to fill: between the pyramid-capped layer top and the outer boundary.

@@ -81,7 +81,14 @@ void write_layer_report(const LayerReport& r, const std::string& path) {
                 << "], \"share\": " << number(n.share) << ", \"layers\": " << n.layers
                 << ", \"reason\": " << quoted(std::string(to_string(n.reason))) << "}";
         }
-        out << (r.short_nodes.empty() ? "]\n}\n" : "\n  ]\n}\n");
+        out << (r.short_nodes.empty() ? "],\n" : "\n  ],\n") << "  \"no_fan_nodes\": [";
+        for (std::size_t i = 0; i < r.no_fan.size(); ++i) {
+            const NoFanNode& n = r.no_fan[i];
+            out << (i ? ",\n" : "\n") << "    {\"node\": " << n.node << ", \"position\": [" << number(n.position.x())
+                << ", " << number(n.position.y()) << ", " << number(n.position.z())
+                << "], \"reason\": " << quoted(std::string(to_string(n.reason))) << "}";
+        }
+        out << (r.no_fan.empty() ? "]\n}\n" : "\n  ]\n}\n");
         if (!out.flush()) throw InputError(path + ": writing the layer report failed (disk full?)");
     }
     file.commit();

@@ -691,12 +691,16 @@ void check_folds(const Wall& w, const LayerParams& params, int k, const Columns&
     }
     if (jmin > 0.0) return;
     const Index wf = f < w.mesh.num_faces() ? f : kNone;  // split halves: name the layer only
-    const std::string what = std::isnan(jmin) ? " has a quality that cannot be computed (a non-finite coordinate: the "
-                                                "model's coordinates or the layer heights are out of range)"
-                                              : " would invert (min scaled Jacobian " + format_number(jmin) +
-                                                    "); the layers fold there: keep LayerParams::min_quality above 0 "
-                                                    "so the columns stop there, use fewer layers or a smaller total "
-                                                    "thickness, or keep LayerParams::concave on";
+    const std::string what = std::isnan(jmin)
+                                 ? " has a quality that cannot be computed (a non-finite coordinate: the "
+                                   "model's coordinates or the layer heights are out of range)"
+                                 : " would invert (min scaled Jacobian " + format_number(jmin) +
+                                       "); the layers fold there: keep LayerParams::min_quality above 0 "
+                                       "so the columns stop there, or use fewer layers or a smaller total "
+                                       "thickness" +
+                                       (params.concave ? std::string()
+                                                       : std::string(", or let the concave-region smoothing "
+                                                                     "act (drop LayerParams::concave = false)"));
     const auto& v = col.faces.nodes[static_cast<std::size_t>(f)];
     const int n = col.faces.size[static_cast<std::size_t>(f)];
     Vec3 centre = Vec3::Zero();
@@ -904,15 +908,17 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
             // narrower than the first layer): no fan at those wall nodes, and march again.
             LayerParams again = params;
             if (again.no_fan_nodes.empty()) again.no_fan_nodes.assign(surface.points.size(), 0);
-            Index dropped = 0;
+            std::vector<Index> dropped;
             for (Index i = 0; i < nw; ++i)
                 if (col.pinned[static_cast<std::size_t>(i)] == 2) {
-                    char& no = again.no_fan_nodes[static_cast<std::size_t>(w.input_node[static_cast<std::size_t>(i)])];
-                    dropped += no ? 0 : 1;
+                    const Index v = w.input_node[static_cast<std::size_t>(i)];
+                    char& no = again.no_fan_nodes[static_cast<std::size_t>(v)];
+                    if (!no) dropped.push_back(v);
                     no = 1;
                 }
             LayerMesh retry = extrude_layers(surface, again, progress);
-            retry.fans_dropped += dropped;
+            retry.fans_dropped.insert(retry.fans_dropped.end(), dropped.begin(), dropped.end());
+            std::sort(retry.fans_dropped.begin(), retry.fans_dropped.end());
             return retry;
         }
         col.pinned.clear();
@@ -984,6 +990,18 @@ LayerReport layer_report(const LayerMesh& lm) {
         if (base(i) != i || why[u] == Shortfall::None) continue;
         r.short_nodes.push_back(
             {lm.input_node.empty() ? i : lm.input_node[u], lm.mesh.points[base(i)], share[u], levels[u], why[u]});
+    }
+    if (!lm.fans_dropped.empty()) {
+        std::vector<Index> wall_of(lm.fans_dropped.size(), kNone);  // a wall node of each
+        for (Index i = 0; i < nw; ++i) {
+            const Index v = lm.input_node.empty() ? i : lm.input_node[static_cast<std::size_t>(i)];
+            const auto it = std::lower_bound(lm.fans_dropped.begin(), lm.fans_dropped.end(), v);
+            if (it != lm.fans_dropped.end() && *it == v)
+                wall_of[static_cast<std::size_t>(it - lm.fans_dropped.begin())] = i;
+        }
+        for (std::size_t j = 0; j < wall_of.size(); ++j)
+            if (wall_of[j] != kNone)
+                r.no_fan.push_back({lm.fans_dropped[j], lm.mesh.points[base(wall_of[j])], NoFan::Unusable});
     }
     // Per patch of the wall: its faces, and its nodes once each.
     const SurfaceMesh& wall = lm.top;

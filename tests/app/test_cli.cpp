@@ -384,6 +384,13 @@ TEST(Cli, LayersBadInputsFailCleanly) {
                              "--patch surface_1=farfield --patch surface_2=farfield --patch surface_3=farfield "
                              "--patch surface_4=farfield --patch surface_6=farfield",
                          "would invert", "folds");
+    // With the concave-region smoothing off, the message says how to turn it back on.
+    expect_clean_failure("layers '" + example_data("bl3d_4_box_notch_concave_corner.brep") +
+                             "' -o out.msh --layers 20 --first-height 5e-4 --growth 1.15 --sweeps 0 --max-sweeps 0 "
+                             "--min-quality 0 --no-concave "
+                             "--patch surface_1=farfield --patch surface_2=farfield --patch surface_3=farfield "
+                             "--patch surface_4=farfield --patch surface_6=farfield",
+                         "would invert", "(drop --no-concave)");
 }
 
 TEST(Cli, MeshSphereToCobaltAndMsh) {

@@ -35,6 +35,8 @@ TEST(WriteLayerReport, PatchesAndShortNodesWithEscapedNames) {
     r.patches.push_back(c);
     r.short_nodes.push_back({7, Vec3(1, 2, 3), 0.25, 30, Shortfall::Proximity});
     r.short_nodes.push_back({8, Vec3(1, 2, 4), 0.5, 4, Shortfall::HeldBack});
+    r.no_fan.push_back({5, Vec3(0.5, 0, 1), NoFan::Unusable});
+    r.no_fan.push_back({9, Vec3(0, 0, 2), NoFan::Uncapped});
     test::ScratchDir dir("write_report");
     const std::string path = report_path(dir.file("m.cgr"));
     EXPECT_EQ(path, dir.file("m.cgr.report.json"));
@@ -48,9 +50,11 @@ TEST(WriteLayerReport, PatchesAndShortNodesWithEscapedNames) {
           "\"min_layers\": 4", "\"mean_layers\": 12.5", "\"all_layers\": 8",
           "{\"node\": 7, \"position\": [1, 2, 3], \"share\": 0.25, \"layers\": 30, "
           "\"reason\": \"proximity\"}",
-          "\"reason\": \"held back\""})
+          "\"reason\": \"held back\"",
+          "\"no_fan_nodes\": [\n    {\"node\": 5, \"position\": [0.5, 0, 1], \"reason\": \"unusable\"},\n"
+          "    {\"node\": 9, \"position\": [0, 0, 2], \"reason\": \"uncapped\"}\n  ]"})
         EXPECT_NE(json.find(part), std::string::npos) << part << "\n" << json;
-    // Balanced brackets: one object, two arrays, each patch and node an object.
+    // Balanced brackets: one object, three arrays, each patch and node an object.
     int depth = 0, objects = 0;
     bool in_string = false;
     for (std::size_t i = 0; i < json.size(); ++i) {
@@ -68,7 +72,7 @@ TEST(WriteLayerReport, PatchesAndShortNodesWithEscapedNames) {
         ASSERT_GE(depth, 0);
     }
     EXPECT_EQ(depth, 0);
-    EXPECT_EQ(objects, 1 + 2 + 2);  // the report, the patch and its "short", two nodes
+    EXPECT_EQ(objects, 1 + 2 + 2 + 2);  // the report, the patch and its "short", two short nodes, two without fan
 }
 
 TEST(WriteLayerReport, MissingDirectoryIsAnInputErrorAndLeavesNothing) {

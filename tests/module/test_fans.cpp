@@ -156,12 +156,23 @@ TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
     p.node_thickness_limit.assign(static_cast<std::size_t>(wall.num_points()), std::numeric_limits<double>::infinity());
     p.node_thickness_limit[3 * 4 + 2] = 0.005;
     const LayerMesh lm = extrude_layers(wall, p);
-    EXPECT_GT(lm.fans_dropped, 0);
+    EXPECT_FALSE(lm.fans_dropped.empty());
+    EXPECT_TRUE(std::is_sorted(lm.fans_dropped.begin(), lm.fans_dropped.end()));
+    EXPECT_EQ(std::adjacent_find(lm.fans_dropped.begin(), lm.fans_dropped.end()), lm.fans_dropped.end());
+    EXPECT_NE(std::find(lm.fans_dropped.begin(), lm.fans_dropped.end(), 3 * 4 + 2), lm.fans_dropped.end());
+    // The report says where: each such node once, at its place on the wall.
+    const LayerReport r = layer_report(lm);
+    ASSERT_EQ(r.no_fan.size(), lm.fans_dropped.size());
+    EXPECT_EQ(r.no_fan_nodes(NoFan::Unusable), static_cast<Index>(lm.fans_dropped.size()));
+    for (std::size_t j = 0; j < r.no_fan.size(); ++j) {
+        EXPECT_EQ(r.no_fan[j].node, lm.fans_dropped[j]);
+        EXPECT_EQ(r.no_fan[j].position, wall.points[static_cast<std::size_t>(lm.fans_dropped[j])]);
+    }
     EXPECT_LT(lm.fan_edges, 30);
     EXPECT_EQ(lm.node_layers(3 * 4 + 2), 0);
     const ValidationReport v = validate_mesh(lm.mesh);
     EXPECT_TRUE(v.ok()) << (v.problems.empty() ? std::string() : v.problems.front());
-    EXPECT_EQ(extrude_layers(wall, blade_layers(120.0)).fans_dropped, 0);
+    EXPECT_TRUE(extrude_layers(wall, blade_layers(120.0)).fans_dropped.empty());
 }
 
 TEST(Fans, NoFanWhereTheNodesAreExcluded) {

@@ -58,12 +58,31 @@ struct ShortNode {
     Shortfall reason = Shortfall::None;
 };
 
+/// Why a wall node on a sharp convex edge got no fan (one column instead of several).
+enum class NoFan : std::uint8_t {
+    Unusable,  ///< the fan's first cells would have been unusable (a needle face or a narrow gap beside it)
+    Uncapped,  ///< a fan's face on the layer top could not be capped with a pyramid (its columns twist)
+};
+inline constexpr std::size_t kNoFanReasons = 2;
+/// "unusable", "uncapped".
+std::string_view to_string(NoFan reason);
+
+/// A wall node on a sharp convex edge that got no fan.
+struct NoFanNode {
+    Index node = kNone;  ///< node of the input surface
+    Vec3 position = Vec3::Zero();
+    NoFan reason = NoFan::Unusable;
+};
+
 struct LayerReport {
     int layers = 0;             ///< layers asked
     double first_height = 0.0;  ///< asked
     double thickness = 0.0;     ///< asked: the sum of the layer heights
     std::vector<PatchCoverage> patches;
     std::vector<ShortNode> short_nodes;  ///< every limited node, by wall node id
+    std::vector<NoFanNode> no_fan;       ///< wall nodes with no fan (LayerParams::fan_angle_deg), by node id
+    /// The wall nodes of no_fan with \p reason.
+    Index no_fan_nodes(NoFan reason) const;
 };
 
 }  // namespace strata

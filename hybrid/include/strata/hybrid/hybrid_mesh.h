@@ -27,13 +27,14 @@ struct HybridReport {
     std::vector<LayerStats> layer_stats;
     Index unsmoothed_nodes = 0;
     Index fan_edges = 0, fan_nodes = 0, fan_corners = 0;  ///< LayerMesh's: the fans at sharp convex edges
-    Index fans_dropped = 0;   ///< fan columns whose face on the layer top no pyramid could cap: no fan there
-    Index fans_unusable = 0;  ///< LayerMesh::fans_dropped: no fan where its first cells would have been unusable
-    Index thinned_nodes = 0;  ///< nodes whose layers were scaled down (proximity, front rounds)
+    Index thinned_nodes = 0;           ///< nodes whose layers were scaled down (proximity, front rounds)
     double min_thickness_share = 1.0;  ///< the smallest share of the asked thickness a node got
     int front_rounds = 0;              ///< rounds of lowering columns where the front intersected itself
-    LayerReport coverage;              ///< per wall patch, the thickness reached and why not (layer_report)
-    Index front_lowered_nodes = 0;     ///< column lowerings over those rounds
+    /// Per wall patch, the thickness reached and why not (layer_report), and the wall nodes left
+    /// without a fan: its first cells would have been unusable (LayerMesh::fans_dropped) or its
+    /// face on the layer top could not take a pyramid.
+    LayerReport coverage;
+    Index front_lowered_nodes = 0;  ///< column lowerings over those rounds
     std::vector<Index>
         remeshed_patches;  ///< patches (of the result's boundary) re-meshed around the layers' side faces
     /// The input was a half model (walls open along one plane): a half farfield and a

@@ -17,7 +17,8 @@ std::string report_path(const std::string& mesh_path);
 /// {"layers": n, "first_height": h, "thickness": t,
 ///  "patches": [{"name", "faces", "nodes", "full_nodes", "mean_share", "min_share",
 ///               "short": {"proximity", "front", "held_back"}}],
-///  "short_nodes": [{"node", "position": [x, y, z], "share", "reason"}]}.
+///  "short_nodes": [{"node", "position": [x, y, z], "share", "layers", "reason"}],
+///  "no_fan_nodes": [{"node", "position": [x, y, z], "reason": "unusable" | "uncapped"}]}.
 /// Atomic (temporary name, then rename); InputError naming the path if it cannot be written.
 void write_layer_report(const LayerReport& report, const std::string& path);
 

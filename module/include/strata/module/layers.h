@@ -142,7 +142,9 @@ public:
     Index fan_nodes = 0;                  ///< nodes of the input wall split into a fan's columns
     Index fan_corners = 0;                ///< of those, corners where three or more fan edges meet
     std::vector<char> fan_column;         ///< empty, or per wall node 1 for a column of a fan
-    Index fans_dropped = 0;               ///< wall nodes with no fan because its first cells would have been unusable
+    /// Nodes of the input surface with no fan because its first cells would have been unusable
+    /// (ascending; layer_report lists them with their positions).
+    std::vector<Index> fans_dropped;
 
     Index wall_nodes() const { return wall_nodes_; }
     /// Levels asked above the wall: the tallest a column can be.
