@@ -826,7 +826,7 @@ PYBIND11_MODULE(_strata, m) {
 
     auto cells = [](py::object self, CellType t) {
         const VolumeMesh& mesh = self.cast<PyMesh&>().mesh;
-        return m.with_cells(t, [&](const auto& block) { return view(block, self); });
+        return mesh.with_cells(t, [&](const auto& block) { return view(block, self); });
     };
     py::class_<PyMesh>(m, "Mesh", "A hybrid volume mesh (strata.mesh) or boundary layers (strata.layers).")
         .def_property_readonly(

@@ -6,7 +6,8 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BUILD = os.environ.get("BUILD_DIR", "build")
-sys.path.insert(0, os.path.join(BUILD if os.path.isabs(BUILD) else os.path.join(ROOT, BUILD), "python"))
+BUILD_PYTHON = os.path.join(BUILD if os.path.isabs(BUILD) else os.path.join(ROOT, BUILD), "python")
+sys.path.insert(0, BUILD_PYTHON)
 
 EXAMPLES = os.path.join(ROOT, "examples", "data")
 TEST_DATA = os.path.join(ROOT, "tests", "data")
