@@ -143,19 +143,21 @@ def test_progress_exception_propagates_and_nothing_is_written(tmp_path):
 
 
 def test_ctrl_c_cancels_as_keyboard_interrupt(tmp_path):
-    # SIGINT arrives while the layers run: Python's handler sets its flag, the progress hook's
-    # PyErr_CheckSignals sees it, the stage throws strata::Cancelled, Python gets Cancelled.
-    sent = []
-
-    def progress(stage, fraction):
-        if stage == "layers" and not sent:
-            sent.append(stage)
-            os.kill(os.getpid(), signal.SIGINT)
-
+    # No callback: only the progress hook's PyErr_CheckSignals can see the signal while C++
+    # runs. The alarm fires 50 ms in (the run takes over a second) and its handler is Python's
+    # own Ctrl-C handler, which raises KeyboardInterrupt; the stage then throws
+    # strata::Cancelled and Python gets strata.Cancelled. Without the check the run would end
+    # normally and a bare KeyboardInterrupt come after it, failing this test.
     out = tmp_path / "x.msh"
-    with pytest.raises(strata.Cancelled) as e:
-        strata.mesh(SPHERE_STL, output=str(out), progress=progress, **SMALL)
+    previous = signal.signal(signal.SIGALRM, signal.default_int_handler)
+    try:
+        signal.setitimer(signal.ITIMER_REAL, 0.05)
+        with pytest.raises(strata.Cancelled, match="Ctrl-C") as e:
+            strata.mesh(SPHERE_STL, output=str(out), layers=10, first_height=1e-3)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
     assert isinstance(e.value, KeyboardInterrupt)
-    assert sent and not out.exists()
+    assert not out.exists()
     # and the next run works
     assert len(strata.mesh(SPHERE_STL, **SMALL).tets) > 0
