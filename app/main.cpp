@@ -10,6 +10,7 @@
 #include <strata/core/format.h>
 #include <strata/core/progress.h>
 #include <strata/core/validate.h>
+#include <strata/frontend/options.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/prepare.h>
@@ -25,7 +26,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -40,7 +40,8 @@
 
 namespace {
 
-using strata::PatchKind;
+using strata::LayerOptions;
+using strata::MeshOptions;
 
 // ---------------------------------------------------------------------------------------
 // Ctrl-C: the handler only sets a flag (all a signal handler may do); the stages poll it through
@@ -75,83 +76,17 @@ private:
 // ---------------------------------------------------------------------------------------
 // Library messages name parameters; the user of this program knows the flags.
 
-const std::vector<std::pair<std::string, std::string>> kFlagOfParameter = {
-    {"PrepareParams::patch_kinds", "--patch"},
-    {"CadParams::size", "--size"},
-    {"CadParams::size_min", "--size-min"},
-    {"CadParams::curvature_points", "--curvature"},
-    {"CadParams::elements", "--quads/--mixed"},
-    {"CadParams::quad_surfaces", "--mixed"},
-    {"CadParams::fuse", "--fuse"},
-    {"PrepareParams::internal_flow", "--internal"},
-    {"PrepareParams::scale", "--scale"},
-    {"CadParams::units", "--units"},
-    {"DistributionParams::layers", "--layers"},
-    {"DistributionParams::kind", "--distribution"},
-    {"DistributionParams::first_height", "--first-height"},
-    {"DistributionParams::growth", "--growth"},
-    {"DistributionParams::thickness", "--thickness"},
-    {"DistributionParams::yplus", "--yplus"},
-    {"DistributionParams::reynolds", "--reynolds"},
-    {"DistributionParams::reference_length", "--ref-length"},
-    {"LayerParams::sweeps", "--sweeps"},
-    {"LayerParams::max_sweeps", "--max-sweeps"},
-    // The switches whose flag turns them off: their "= false" first, as the flag itself.
-    {"LayerParams::control_functions = false", "--no-control"},
-    {"LayerParams::concave = false", "--no-concave"},
-    {"LayerParams::hold_back = false", "--no-hold-back"},
-    {"LayerParams::control_functions", "--no-control"},
-    {"LayerParams::concave", "--no-concave"},
-    {"LayerParams::hold_back", "--no-hold-back"},
-    {"LayerParams::normals", "--normals"},
-    {"LayerParams::proximity", "--proximity"},
-    {"LayerParams::min_quality", "--min-quality"},
-    {"LayerParams::max_turn_deg", "--max-turn"},
-    {"LayerParams::max_twist_deg", "--max-twist"},
-    {"LayerParams::fan_angle_deg", "--fan-angle"},
-    {"LayerParams::threads", "--threads"},
-    {"HybridParams::threads", "--threads"},
-    {"FarfieldParams::shape", "--farfield"},
-    {"FarfieldParams::size", "--farfield-size"},
-    {"PyramidParams::height", "--pyramid-height"},
-    {"TetFillParams::radius_edge", "--radius-edge"},
-    {"TetFillParams::min_dihedral", "--min-dihedral"},
-    {"TetFillParams::max_dihedral", "--max-dihedral"},
-    {"TetFillParams::growth", "--tet-growth"},
-};
-
-/// \p message with every parameter name replaced by its flag ("LayerParams::sweeps" ->
-/// "--sweeps"); a name followed by more identifier characters (CadParams::size_min) is not
-/// taken for a shorter one (CadParams::size).
-std::string in_flags(std::string message) {
-    auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-    for (const auto& [param, flag] : kFlagOfParameter) {
-        for (std::size_t at = message.find(param); at != std::string::npos; at = message.find(param, at)) {
-            const std::size_t end = at + param.size();
-            if (end < message.size() && ident(message[end])) {
-                at = end;
-                continue;
-            }
-            message.replace(at, param.size(), flag);
-            at += flag.size();
-        }
-    }
-    return message;
+std::string in_flags(const std::string& message) {
+    return strata::translate_names(message, strata::flag_of_parameter());
 }
 
 // ---------------------------------------------------------------------------------------
 // Options, bound to the Params structs (their defaults are the library's).
 
 /// What every subcommand takes: the input, the output and how the surface is made.
-struct Common {
-    std::vector<std::string> inputs;
-    std::string input;  ///< the inputs as one name, for messages
+struct Common : strata::SurfaceOptions {
     std::string output, msh_version = "4.1";
-    bool quiet = false, quads = false;
-    double remesh = -1.0;  ///< --remesh [SIZE]: the size (0: --size, or automatic); negative: not asked
-    std::vector<int> mixed;
-    std::vector<std::string> patches;
-    strata::PrepareParams prepare;
+    bool quiet = false;
 };
 
 void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help) {
@@ -205,77 +140,6 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
                    "set a patch's kind, NAME=KIND with KIND wall|symmetry|farfield|other (repeatable)");
 }
 
-/// Parse repeated `--patch NAME=KIND` values.
-std::vector<std::pair<std::string, PatchKind>> parse_patch_options(const std::vector<std::string>& items) {
-    std::vector<std::pair<std::string, PatchKind>> out;
-    for (const std::string& s : items) {
-        const auto eq = s.rfind('=');
-        if (eq == std::string::npos || eq == 0 || eq + 1 == s.size())
-            throw strata::InputError("--patch '" + s + "': expected NAME=KIND, e.g. --patch symmetry_plane=symmetry");
-        out.emplace_back(s.substr(0, eq), strata::parse_patch_kind(s.substr(eq + 1)));
-    }
-    return out;
-}
-
-/// The surface parameters from the options; surface-meshing options on a surface mesh are refused.
-/// Some input is a CAD file (the rest may be surface meshes).
-bool any_cad_input(const Common& c) {
-    return std::any_of(c.inputs.begin(), c.inputs.end(), [](const std::string& f) { return strata::is_cad_file(f); });
-}
-
-strata::PrepareParams prepare_params(const Common& c) {
-    strata::PrepareParams p = c.prepare;
-    if (c.quads) p.cad.elements = strata::SurfaceElements::Quads;
-    if (!c.mixed.empty()) {
-        p.cad.elements = strata::SurfaceElements::Mixed;
-        p.cad.quad_surfaces = c.mixed;
-    }
-    const strata::CadParams none;
-    p.fuse = p.cad.fuse;  // --fuse: CAD solids by OpenCASCADE, overlapping mesh components by CGAL
-    p.remesh = c.remesh >= 0.0;
-    if (p.remesh) {
-        // The surface-meshing options apply to the new mesh as they do to CAD.
-        strata::RemeshParams& r = p.remeshing;
-        r.size = c.remesh > 0.0 ? c.remesh : p.cad.size;
-        r.size_min = p.cad.size_min;
-        r.curvature_points = p.cad.curvature_points;
-        r.quads = c.quads;
-        if (!c.mixed.empty())
-            throw strata::InputError(
-                "--mixed names CAD surface tags, which a remeshed surface no longer has; use "
-                "--quads or leave --remesh out");
-        if (c.remesh > 0.0 && p.cad.size != none.size && p.cad.size != c.remesh)
-            throw strata::InputError("--remesh " + strata::format_number(c.remesh) + " and --size " +
-                                     strata::format_number(p.cad.size) + " ask for two sizes; give one");
-    } else if (p.remeshing.feature_angle_deg != strata::RemeshParams{}.feature_angle_deg) {
-        throw strata::InputError("--feature-angle applies to --remesh only; add --remesh or remove it");
-    }
-    const bool cad_options = c.quads || !c.mixed.empty() || p.cad.size != none.size ||
-                             p.cad.curvature_points != none.curvature_points || p.cad.size_min != none.size_min ||
-                             !p.cad.units.empty();
-    const bool any_cad = any_cad_input(c);
-    if (!any_cad && !p.remesh && cad_options)
-        throw strata::InputError("'" + c.input +
-                                 "' is already a surface mesh: --size, --size-min, --curvature, --quads and --mixed "
-                                 "apply to CAD input or with --remesh only, --units to STEP and IGES; remove them "
-                                 "(--scale scales any input) or add --remesh");
-    if (!any_cad && !p.cad.units.empty())
-        throw strata::InputError("'" + c.input +
-                                 "' is a surface mesh, which carries no unit: --units applies to STEP and IGES "
-                                 "only; use --scale to convert");
-    p.patch_kinds = parse_patch_options(c.patches);
-    return p;
-}
-
-/// Layer options: the LayerParams fields, plus the enums and switches as the command line spells them.
-struct LayerOptions {
-    strata::LayerParams params;
-    std::string distribution{strata::to_string(strata::Distribution::Auto)};
-    std::string normals{strata::to_string(strata::LayerParams{}.normals)};
-    std::string proximity{strata::to_string(strata::LayerParams{}.proximity)};
-    bool no_control = false, no_concave = false, no_hold_back = false;
-};
-
 void add_layer_options(CLI::App& cmd, LayerOptions& o) {
     strata::LayerParams& p = o.params;
     strata::DistributionParams& d = p.distribution;
@@ -326,23 +190,6 @@ void add_layer_options(CLI::App& cmd, LayerOptions& o) {
     cmd.add_option("--threads", p.threads, "threads (0: all cores); the output is the same for any count")
         ->capture_default_str();
 }
-
-strata::LayerParams layer_params(const LayerOptions& o) {
-    strata::LayerParams p = o.params;
-    p.distribution.kind = strata::parse_distribution(o.distribution);
-    p.normals = strata::parse_normal_method(o.normals);
-    p.proximity = strata::parse_proximity_mode(o.proximity);
-    p.control_functions = p.control_functions && !o.no_control;
-    p.concave = p.concave && !o.no_concave;
-    p.hold_back = p.hold_back && !o.no_hold_back;
-    return p;
-}
-
-/// Hybrid options: the HybridParams fields beyond the layers.
-struct MeshOptions {
-    strata::HybridParams params;
-    std::string farfield{strata::to_string(strata::FarfieldParams{}.shape)};
-};
 
 void add_mesh_options(CLI::App& cmd, MeshOptions& o) {
     strata::HybridParams& p = o.params;
@@ -635,7 +482,7 @@ Start start(const Common& c, const strata::PrepareParams& params, Output output,
     else
         strata::check_volume_output(c.output, s.msh_version);
     s.surface = strata::prepare_surfaces(c.inputs, params, &s.report, &terminal);
-    s.any_cad = any_cad_input(c);
+    s.any_cad = strata::any_cad_input(c.inputs);
     s.seconds = seconds_since(t0);
     return s;
 }
@@ -643,7 +490,7 @@ Start start(const Common& c, const strata::PrepareParams& params, Output output,
 int run_surface(const Common& c) {
     const auto t0 = std::chrono::steady_clock::now();
     Terminal terminal(c.quiet);
-    const Start s = start(c, prepare_params(c), Output::Surface, terminal);
+    const Start s = start(c, strata::prepare_params(c), Output::Surface, terminal);
     strata::write_surface(s.surface, c.output, s.msh_version, &terminal);
     if (c.quiet) return 0;
     print_surface_summary(s.surface, s.report, s.any_cad);
@@ -652,9 +499,9 @@ int run_surface(const Common& c) {
 }
 
 int run_layers(const Common& c, const LayerOptions& o) {
-    const strata::LayerParams lp = layer_params(o);
+    const strata::LayerParams lp = strata::layer_params(o);
     Terminal terminal(c.quiet);
-    const Start s = start(c, prepare_params(c), Output::Volume, terminal);
+    const Start s = start(c, strata::prepare_params(c), Output::Volume, terminal);
     const auto t1 = std::chrono::steady_clock::now();
     const strata::LayerMesh lm = strata::extrude_layers(s.surface, lp, &terminal);
     const double t_layers = seconds_since(t1);
@@ -676,12 +523,9 @@ int run_layers(const Common& c, const LayerOptions& o) {
 }
 
 int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo) {
-    strata::HybridParams hp = mo.params;
-    hp.layers = layer_params(lo);
-    hp.threads = hp.layers.threads;
-    hp.farfield.shape = strata::parse_farfield_shape(mo.farfield);
+    const strata::HybridParams hp = strata::hybrid_params(lo, mo);
     Terminal terminal(c.quiet);
-    const Start s = start(c, prepare_params(c), Output::Volume, terminal);
+    const Start s = start(c, strata::prepare_params(c), Output::Volume, terminal);
     strata::HybridReport hr;
     const strata::VolumeMesh mesh = strata::build_hybrid_mesh(s.surface, hp, &terminal, &hr);
     const auto t1 = std::chrono::steady_clock::now();
@@ -760,10 +604,7 @@ int main(int argc, char** argv) {
         return 2;
     }
 
-    for (Common* c : {&sc, &lc, &mc}) {
-        c->input.clear();
-        for (const std::string& f : c->inputs) c->input += (c->input.empty() ? "" : " + ") + f;
-    }
+    for (Common* c : {&sc, &lc, &mc}) c->input = strata::input_name(c->inputs);
     try {
         if (*surface) return run_surface(sc);
         if (*layers) return run_layers(lc, lo);

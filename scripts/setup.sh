@@ -23,17 +23,28 @@ packages=(
   openfoam             # checkMesh, OpenFOAM's verdict on our meshes (tests/openfoam)
   libgtest-dev         # GoogleTest
   libcli11-dev         # command-line parsing for the strata program
+  # The Python package strata (python/, for Debian's /usr/bin/python3):
+  python3-dev          # Python 3.11 headers for the extension module
+  pybind11-dev         # C++ <-> Python bindings (found by CMake: find_package(pybind11 CONFIG))
+  python3-numpy        # the meshes' arrays are NumPy views
+  python3-gmsh         # Gmsh's Python API on the same libgmsh: strata.gmsh, strata.gmsh_gui
+  python3-pytest       # the package's tests (tests/python)
+  xvfb xauth           # a virtual display for the Gmsh-window test of strata-gmsh (tests/python)
 )
 
 bash scripts/install_packages.sh setup "${packages[@]}"
 
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build_dir" -j "$jobs"
+# import strata from any directory (a .pth file pointing at the build tree; see the script)
+bash scripts/install_python.sh "$build_dir"
 
 case "$mode" in
   build) ;;
   test)
     ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
+    # The Python package, on the build tree's package (tests/python/conftest.py).
+    BUILD_DIR="$build_dir" /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python
     ;;
   example)
     mkdir -p out

@@ -1,0 +1,905 @@
+// strata._strata: the pipeline for Python (the package strata wraps it, python/strata/).
+//
+// Options: one table (keywords()) maps each Python keyword onto a field of the front-end
+// options (strata::SurfaceOptions, LayerOptions, MeshOptions: the Params structs the CLI binds
+// to) with the library parameter it sets. Python reads the defaults from it (a default-
+// constructed Options), builds the functions' signatures from it and passes the keywords back
+// as a dict; the same table translates library messages ("LayerParams::sweeps", "--sweeps")
+// into keyword names. So no default and no name is typed twice.
+//
+// Results: Mesh and Surface own the C++ mesh; their arrays are NumPy views into it (read-only,
+// kept alive by the object), the report a dict.
+//
+// Errors: strata::InputError -> strata.InputError (also a ValueError), TopologyError,
+// BackendError, other strata::Error -> strata.Error (a RuntimeError); strata::Cancelled ->
+// strata.Cancelled (a KeyboardInterrupt) or the exception the progress callback raised.
+//
+// The GIL is held throughout: the progress hook runs Python (the callback, PyErr_CheckSignals
+// for Ctrl-C) on the calling thread, and Gmsh (shared with Python's gmsh module) is not
+// thread-safe anyway. Hooks called on other threads (OpenMP workers polling cancelled()) only
+// read an atomic flag.
+
+#include <strata/core/error.h>
+#include <strata/core/progress.h>
+#include <strata/core/validate.h>
+#include <strata/frontend/options.h>
+#include <strata/geometry/check.h>
+#include <strata/gmsh_api/gmsh_api.h>
+#include <strata/hybrid/hybrid_mesh.h>
+#include <strata/io/formats.h>
+#include <strata/io/gmsh_session.h>
+#include <strata/io/write_report.h>
+#include <strata/io/write_surface.h>
+#include <strata/io/write_volume.h>
+#include <strata/module/layers.h>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <functional>
+#include <optional>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace strata {
+namespace {
+
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "points are viewed as one #nodes x 3 array");
+
+// ---------------------------------------------------------------------------------------
+// Options
+
+/// Everything a call can set: the front-ends' options (their defaults are the Params structs').
+struct Options {
+    SurfaceOptions surface;
+    LayerOptions layers;
+    MeshOptions mesh;
+};
+
+/// Which functions take a keyword (bit mask).
+enum Takes : int { kSurface = 1, kLayers = 2, kMesh = 4, kGmshModel = 8 };
+
+struct Keyword {
+    std::string name;   ///< the Python keyword
+    std::string param;  ///< the library parameter it sets ("LayerParams::sweeps"), or "" for a front-end switch
+    int takes = 0;      ///< Takes bits
+    std::string doc;
+    std::function<py::object(const Options&)> get;
+    std::function<void(Options&, py::handle)> set;
+};
+
+/// A keyword bound to one field (\p field: Options& -> T&); Python values are cast to T.
+template <class F>
+Keyword field(std::string name, std::string param, int takes, F field, std::string doc) {
+    using T = std::decay_t<decltype(field(std::declval<Options&>()))>;
+    Keyword k{std::move(name), std::move(param), takes, std::move(doc), {}, {}};
+    k.get = [field](const Options& o) { return py::cast(field(const_cast<Options&>(o))); };
+    k.set = [field, name = k.name](Options& o, py::handle v) {
+        try {
+            field(o) = v.cast<T>();
+        } catch (const py::cast_error&) {
+            throw py::type_error(name + "=" + py::repr(v).cast<std::string>() + ": expected " + py::type_id<T>());
+        }
+    };
+    return k;
+}
+
+const std::vector<Keyword>& keywords() {
+    constexpr int S = kSurface | kLayers | kMesh;               // how the surface is made
+    constexpr int L = kLayers | kMesh | kGmshModel;             // the layers
+    constexpr int M = kMesh | kGmshModel;                       // beyond the layers
+    constexpr int P = kSurface | kLayers | kMesh | kGmshModel;  // patch kinds and orientation
+    static const std::vector<Keyword> table = [&] {
+        std::vector<Keyword> t;
+        // Surface (CadParams, RemeshParams, PrepareParams; front-end switches quads, remesh).
+        t.push_back(field(
+            "size", "CadParams::size", S, [](Options & o) -> auto& { return o.surface.prepare.cad.size; },
+            "target surface element size, model units (CAD or remesh; 0: automatic)"));
+        t.push_back(field(
+            "size_min", "CadParams::size_min", S, [](Options & o) -> auto& { return o.surface.prepare.cad.size_min; },
+            "smallest element size under curvature refinement (0: size/20)"));
+        t.push_back(field(
+            "curvature_points", "CadParams::curvature_points", S,
+            [](Options & o) -> auto& { return o.surface.prepare.cad.curvature_points; },
+            "refine by curvature: elements per 2*pi of radius (0: off)"));
+        t.push_back(field(
+            "algorithm", "CadParams::algorithm", S,
+            [](Options & o) -> auto& { return o.surface.prepare.cad.algorithm; },
+            "Gmsh 2D algorithm for CAD: 1, 2, 5, 6 or 9"));
+        t.push_back(field(
+            "quads", "", S, [](Options & o) -> auto& { return o.surface.quads; },
+            "recombine the surface mesh into quadrilaterals (CAD or remesh)"));
+        t.push_back(field(
+            "mixed", "CadParams::quad_surfaces", S, [](Options & o) -> auto& { return o.surface.mixed; },
+            "CAD surface tags meshed with quadrilaterals, triangles elsewhere"));
+        t.push_back(field(
+            "fuse", "CadParams::fuse", S, [](Options & o) -> auto& { return o.surface.prepare.cad.fuse; },
+            "fuse overlapping bodies into one"));
+        Keyword remesh{"remesh",
+                       "",
+                       S,
+                       "None, or mesh the surface again with Gmsh with this element size (0: --size, or the "
+                       "input's median edge)",
+                       {},
+                       {}};
+        remesh.get = [](const Options& o) -> py::object {
+            if (o.surface.remesh < 0.0) return py::none();
+            return py::float_(o.surface.remesh);
+        };
+        remesh.set = [](Options& o, py::handle v) {
+            if (v.is_none()) {
+                o.surface.remesh = -1.0;
+                return;
+            }
+            const double size = v.cast<double>();
+            if (!(size >= 0.0))
+                throw InputError("remesh=" + py::repr(v).cast<std::string>() +
+                                 ": expected None or a size >= 0 (0: automatic)");
+            o.surface.remesh = size;
+        };
+        t.push_back(std::move(remesh));
+        t.push_back(field(
+            "feature_angle_deg", "RemeshParams::feature_angle_deg", S,
+            [](Options & o) -> auto& { return o.surface.prepare.remeshing.feature_angle_deg; },
+            "with remesh: edges whose faces turn more than this, degrees, stay sharp"));
+        t.push_back(field(
+            "units", "CadParams::units", S, [](Options & o) -> auto& { return o.surface.prepare.cad.units; },
+            "STEP and IGES only: the length unit to read the model in (mm, m, in, ...)"));
+        t.push_back(field(
+            "scale", "PrepareParams::scale", S, [](Options & o) -> auto& { return o.surface.prepare.scale; },
+            "multiply every coordinate by this after reading"));
+        t.push_back(field(
+            "merge_tolerance", "PrepareParams::merge_tolerance", P,
+            [](Options & o) -> auto& { return o.surface.prepare.merge_tolerance; },
+            "coincident-node merge distance, relative to the bounding-box diagonal"));
+        t.push_back(field(
+            "internal_flow", "PrepareParams::internal_flow", P,
+            [](Options & o) -> auto& { return o.surface.prepare.internal_flow; },
+            "the fluid is inside the closed walls (a duct), not around them"));
+        Keyword patches{"patches", "PrepareParams::patch_kinds",
+                        P,         "None, or {patch name: 'wall' | 'symmetry' | 'farfield' | 'other'}",
+                        {},        {}};
+        patches.get = [](const Options& o) -> py::object {
+            if (o.surface.patches.empty()) return py::none();
+            py::dict d;
+            for (const auto& [name, kind] : parse_patch_options(o.surface.patches)) d[py::str(name)] = to_string(kind);
+            return py::object(std::move(d));
+        };
+        patches.set = [](Options& o, py::handle v) {
+            o.surface.patches.clear();
+            if (v.is_none()) return;
+            if (!py::isinstance<py::dict>(v))
+                throw py::type_error("patches=" + py::repr(v).cast<std::string>() +
+                                     ": expected a dict {patch name: kind}");
+            for (const auto& [name, kind] : v.cast<py::dict>())
+                o.surface.patches.push_back(py::str(name).cast<std::string>() + "=" +
+                                            py::str(kind).cast<std::string>());
+        };
+        t.push_back(std::move(patches));
+        // Layers (DistributionParams, LayerParams; enums as text as on the command line).
+        t.push_back(field(
+            "layers", "DistributionParams::layers", L,
+            [](Options & o) -> auto& { return o.layers.params.distribution.layers; }, "number of layers"));
+        t.push_back(field(
+            "distribution", "DistributionParams::kind", L, [](Options & o) -> auto& { return o.layers.distribution; },
+            "auto, geometric, thickness or tanh"));
+        t.push_back(field(
+            "first_height", "DistributionParams::first_height", L,
+            [](Options & o) -> auto& { return o.layers.params.distribution.first_height; },
+            "height of the first layer, model units (0: from yplus)"));
+        t.push_back(field(
+            "growth", "DistributionParams::growth", L,
+            [](Options & o) -> auto& { return o.layers.params.distribution.growth; },
+            "growth ratio of geometric layers (0: 1.2)"));
+        t.push_back(field(
+            "thickness", "DistributionParams::thickness", L,
+            [](Options & o) -> auto& { return o.layers.params.distribution.thickness; },
+            "total thickness of the layers, model units (thickness, tanh)"));
+        t.push_back(field(
+            "yplus", "DistributionParams::yplus", L,
+            [](Options & o) -> auto& { return o.layers.params.distribution.yplus; },
+            "first height from this target y+ (with reynolds, reference_length)"));
+        t.push_back(field(
+            "reynolds", "DistributionParams::reynolds", L,
+            [](Options & o) -> auto& { return o.layers.params.distribution.reynolds; }, "Reynolds number for yplus"));
+        t.push_back(field(
+            "reference_length", "DistributionParams::reference_length", L,
+            [](Options & o) -> auto& { return o.layers.params.distribution.reference_length; },
+            "reference length of the Reynolds number, model units"));
+        t.push_back(field(
+            "sweeps", "LayerParams::sweeps", L, [](Options & o) -> auto& { return o.layers.params.sweeps; },
+            "Poisson smoothing sweeps per layer"));
+        t.push_back(field(
+            "max_sweeps", "LayerParams::max_sweeps", L, [](Options & o) -> auto& { return o.layers.params.max_sweeps; },
+            "more sweeps allowed while the update stays large"));
+        t.push_back(field(
+            "tolerance", "LayerParams::tolerance", L, [](Options & o) -> auto& { return o.layers.params.tolerance; },
+            "stop extra sweeps when the update is below this share of the layer height"));
+        t.push_back(field(
+            "control_functions", "LayerParams::control_functions", L,
+            [](Options & o) -> auto& { return o.layers.params.control_functions; },
+            "control functions (Phi, Psi from the wall; Theta from the distribution)"));
+        t.push_back(field(
+            "concave", "LayerParams::concave", L, [](Options & o) -> auto& { return o.layers.params.concave; },
+            "extra smoothing in concave regions"));
+        t.push_back(field(
+            "hold_back", "LayerParams::hold_back", L, [](Options & o) -> auto& { return o.layers.params.hold_back; },
+            "hold a layer back where its cells would invert instead of failing"));
+        t.push_back(field(
+            "normals", "LayerParams::normals", L, [](Options & o) -> auto& { return o.layers.normals; },
+            "node normals: robust, area, angle, max"));
+        t.push_back(field(
+            "proximity", "LayerParams::proximity", L, [](Options & o) -> auto& { return o.layers.proximity; },
+            "where the domain is narrow: stop, scale or off"));
+        t.push_back(field(
+            "min_quality", "LayerParams::min_quality", L,
+            [](Options & o) -> auto& { return o.layers.params.min_quality; },
+            "a column stops where a cell would fall below this scaled Jacobian (0: never)"));
+        t.push_back(field(
+            "max_turn_deg", "LayerParams::max_turn_deg", L,
+            [](Options & o) -> auto& { return o.layers.params.max_turn_deg; },
+            "a column stops where it would turn more than this, degrees"));
+        t.push_back(field(
+            "max_twist_deg", "LayerParams::max_twist_deg", L,
+            [](Options & o) -> auto& { return o.layers.params.max_twist_deg; },
+            "a column stops where a cell would twist more than this, degrees"));
+        t.push_back(field(
+            "fan_angle_deg", "LayerParams::fan_angle_deg", L,
+            [](Options & o) -> auto& { return o.layers.params.fan_angle_deg; },
+            "fans of columns at convex edges turning this much or more, degrees (0: none)"));
+        t.push_back(field(
+            "threads", "LayerParams::threads", L, [](Options & o) -> auto& { return o.layers.params.threads; },
+            "threads (0: all cores); the mesh is the same for any count"));
+        // The rest of the hybrid mesh (FarfieldParams, PyramidParams, TetFillParams).
+        t.push_back(field(
+            "farfield", "FarfieldParams::shape", M, [](Options & o) -> auto& { return o.mesh.farfield; },
+            "generated outer boundary when the input has none: sphere or box"));
+        t.push_back(field(
+            "farfield_size", "FarfieldParams::size", M,
+            [](Options & o) -> auto& { return o.mesh.params.farfield.size; },
+            "farfield extent as a multiple of the body's bounding-box diagonal"));
+        t.push_back(field(
+            "farfield_divisions", "FarfieldParams::divisions", M,
+            [](Options & o) -> auto& { return o.mesh.params.farfield.divisions; },
+            "resolution of the generated farfield"));
+        t.push_back(field(
+            "pyramid_height", "PyramidParams::height", M,
+            [](Options & o) -> auto& { return o.mesh.params.pyramids.height; },
+            "pyramid apex height relative to the quad size"));
+        t.push_back(field(
+            "pyramid_min_height", "PyramidParams::min_height", M,
+            [](Options & o) -> auto& { return o.mesh.params.pyramids.min_height; },
+            "lowest pyramid apex, relative to the quad's shortest edge"));
+        t.push_back(field(
+            "radius_edge", "TetFillParams::radius_edge", M,
+            [](Options & o) -> auto& { return o.mesh.params.tets.radius_edge; },
+            "tetrahedron quality bound, radius/edge (TetGen -q)"));
+        t.push_back(field(
+            "min_dihedral", "TetFillParams::min_dihedral", M,
+            [](Options & o) -> auto& { return o.mesh.params.tets.min_dihedral; },
+            "smallest dihedral angle TetGen aims for, degrees (0: TetGen's)"));
+        t.push_back(field(
+            "max_dihedral", "TetFillParams::max_dihedral", M,
+            [](Options & o) -> auto& { return o.mesh.params.tets.max_dihedral; },
+            "largest dihedral angle TetGen's optimisation works down to, degrees"));
+        t.push_back(field(
+            "refine", "TetFillParams::refine", M, [](Options & o) -> auto& { return o.mesh.params.tets.refine; },
+            "add interior Steiner points for quality and size"));
+        t.push_back(field(
+            "max_volume", "TetFillParams::max_volume", M,
+            [](Options & o) -> auto& { return o.mesh.params.tets.max_volume; },
+            "volume bound per tetrahedron (0: none)"));
+        t.push_back(field(
+            "tet_growth", "TetFillParams::growth", M, [](Options & o) -> auto& { return o.mesh.params.tets.growth; },
+            "growth of the tetrahedron size with distance from the body (0: TetGen's)"));
+        t.push_back(field(
+            "background_mesh", "TetFillParams::background_mesh", M,
+            [](Options & o) -> auto& { return o.mesh.params.tets.background_mesh; },
+            "sample the size field on a background mesh"));
+        return t;
+    }();
+    return table;
+}
+
+/// Options from a dict of keywords (Python checked the names; unknown ones are a TypeError here too).
+Options options_from(const py::dict& kwargs) {
+    Options o;
+    for (const auto& [key, value] : kwargs) {
+        const std::string name = py::str(key);
+        bool found = false;
+        for (const Keyword& k : keywords()) {
+            if (k.name != name) continue;
+            k.set(o, value);
+            found = true;
+            break;
+        }
+        if (!found) throw py::type_error("unknown keyword '" + name + "'");
+    }
+    return o;
+}
+
+/// Library names -> Python keywords: parameters ("LayerParams::sweeps" -> "sweeps") and, for the
+/// front-end's own messages, the CLI flags of those parameters ("--sweeps" -> "sweeps").
+const std::vector<std::pair<std::string, std::string>>& python_names() {
+    static const std::vector<std::pair<std::string, std::string>> names = [] {
+        std::vector<std::pair<std::string, std::string>> n;
+        auto keyword_of = [](const std::string& param) -> std::string {
+            for (const Keyword& k : keywords())
+                if (!k.param.empty() && k.param == param) return k.name;
+            return {};
+        };
+        for (const Keyword& k : keywords())
+            if (!k.param.empty()) n.emplace_back(k.param, k.name);
+        n.emplace_back("HybridParams::threads", "threads");
+        n.emplace_back("CadParams::elements", "quads/mixed");
+        for (const auto& [param, flag] : flag_of_parameter()) {
+            const std::string k = keyword_of(param);
+            if (!k.empty()) n.emplace_back(flag, k);
+        }
+        // Flags of front-end switches, which set no single parameter.
+        n.emplace_back("--remesh", "remesh");
+        n.emplace_back("--quads", "quads");
+        n.emplace_back("--feature-angle", "feature_angle_deg");
+        n.emplace_back("--patch", "patches");
+        return n;
+    }();
+    return names;
+}
+
+// ---------------------------------------------------------------------------------------
+// Errors
+
+PyObject* g_error = nullptr;
+PyObject* g_input_error = nullptr;
+PyObject* g_topology_error = nullptr;
+PyObject* g_backend_error = nullptr;
+PyObject* g_cancelled = nullptr;
+
+/// Progress for Python: calls the callback (stage, fraction) and checks for Ctrl-C on the
+/// calling thread; an exception from either is kept, the stage is cancelled and the exception
+/// re-raised by the binding (rethrow_kept).
+class PythonProgress : public Progress {
+public:
+    explicit PythonProgress(py::object callback)
+        : callback_(std::move(callback)), thread_(std::this_thread::get_id()) {}
+
+    void report(std::string_view stage, double fraction) override {
+        if (stop_.load() || std::this_thread::get_id() != thread_) return;
+        try {
+            if (!callback_.is_none()) callback_(py::str(stage.data(), stage.size()), fraction);
+            check_signals();
+        } catch (py::error_already_set& e) {
+            keep(std::move(e));
+        }
+    }
+
+    bool cancelled() const override {
+        if (stop_.load()) return true;
+        if (std::this_thread::get_id() != thread_) return false;
+        // Between reports stages poll this in loops: look at signals every 50 ms at most.
+        const auto now = std::chrono::steady_clock::now();
+        if (now - last_check_ < std::chrono::milliseconds(50)) return false;
+        last_check_ = now;
+        try {
+            check_signals();
+        } catch (py::error_already_set& e) {
+            keep(std::move(e));
+        }
+        return stop_.load();
+    }
+
+    /// Re-raise the kept exception (a KeyboardInterrupt from Ctrl-C as strata.Cancelled).
+    [[noreturn]] void rethrow_kept() {
+        if (kept_) {
+            if (kept_->matches(PyExc_KeyboardInterrupt) && !kept_->matches(g_cancelled)) {
+                kept_.reset();
+                PyErr_SetString(g_cancelled, "cancelled by the user (Ctrl-C)");
+                throw py::error_already_set();
+            }
+            py::error_already_set e = std::move(*kept_);
+            kept_.reset();
+            throw e;
+        }
+        PyErr_SetString(g_cancelled, "cancelled by the user");
+        throw py::error_already_set();
+    }
+
+private:
+    static void check_signals() {
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+    void keep(py::error_already_set&& e) const {
+        if (!kept_) kept_.emplace(std::move(e));
+        stop_.store(true);
+    }
+
+    py::object callback_;
+    std::thread::id thread_;
+    mutable std::atomic<bool> stop_{false};
+    mutable std::optional<py::error_already_set> kept_;
+    mutable std::chrono::steady_clock::time_point last_check_{};
+};
+
+/// Run \p f with a PythonProgress; C++ exceptions become Strata's Python exceptions with
+/// the message's parameter names in keywords.
+template <class F>
+auto with_progress(const py::object& callback, F&& f) -> decltype(f(std::declval<Progress*>())) {
+    PythonProgress progress(callback);
+    try {
+        return f(&progress);
+    } catch (const Cancelled&) {
+        progress.rethrow_kept();
+    }
+}
+
+void translate_exception(std::exception_ptr p) {
+    auto raise = [](PyObject* type, const std::exception& e) {
+        PyErr_SetString(type, translate_names(e.what(), python_names()).c_str());
+    };
+    try {
+        if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+        raise(g_input_error, e);
+    } catch (const TopologyError& e) {
+        raise(g_topology_error, e);
+    } catch (const BackendError& e) {
+        raise(g_backend_error, e);
+    } catch (const Error& e) {
+        raise(g_error, e);
+    } catch (const Cancelled& e) {
+        PyErr_SetString(g_cancelled, e.what());
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Results
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// A read-only NumPy view of \p rows x \p cols values at \p data, kept alive by \p owner.
+template <class T>
+py::array view(const T* data, std::size_t rows, std::size_t cols, py::handle owner) {
+    py::array_t<T> a({rows, cols}, {cols * sizeof(T), sizeof(T)}, data, owner);
+    py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+    return py::array(std::move(a));
+}
+template <class T>
+py::array view(const std::vector<T>& v, py::handle owner) {
+    py::array_t<T> a({v.size()}, {sizeof(T)}, v.data(), owner);
+    py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+    return py::array(std::move(a));
+}
+template <class T, std::size_t N>
+py::array view(const std::vector<std::array<T, N>>& v, py::handle owner) {
+    return view(v.empty() ? nullptr : v.front().data(), v.size(), N, owner);
+}
+py::array points_view(const std::vector<Vec3>& points, py::handle owner) {
+    return view(points.empty() ? nullptr : points.front().data(), points.size(), 3, owner);
+}
+
+/// Faces of \p boundary (all, or of patch \p patch) as {"triangle": (n, 3), "quad": (n, 4)} copies.
+py::dict faces_of(const SurfaceMesh& boundary, std::optional<std::string> patch) {
+    Index only = kNone;
+    if (patch) {
+        only = find_patch(boundary, *patch);
+        if (only == kNone) {
+            std::string names;
+            for (const Patch& p : boundary.patches) names += (names.empty() ? "" : ", ") + p.name;
+            throw InputError("no patch '" + *patch + "'; the patches are: " + names);
+        }
+    }
+    std::vector<std::array<Index, 3>> tris;
+    std::vector<std::array<Index, 4>> quads;
+    for (Index f = 0; f < boundary.num_faces(); ++f) {
+        if (only != kNone && boundary.face_patch[static_cast<std::size_t>(f)] != only) continue;
+        const Index* n = boundary.face_begin(f);
+        if (boundary.face_size(f) == 3)
+            tris.push_back({n[0], n[1], n[2]});
+        else
+            quads.push_back({n[0], n[1], n[2], n[3]});
+    }
+    auto copy = [](const auto& cells, std::size_t width) {
+        py::array_t<Index> a({cells.size(), width});
+        if (!cells.empty()) std::memcpy(a.mutable_data(), cells.front().data(), cells.size() * width * sizeof(Index));
+        return a;
+    };
+    return py::dict("triangle"_a = copy(tris, 3), "quad"_a = copy(quads, 4));
+}
+
+py::list patch_names(const SurfaceMesh& s) {
+    py::list l;
+    for (const Patch& p : s.patches) l.append(p.name);
+    return l;
+}
+py::list patch_kinds(const SurfaceMesh& s) {
+    py::list l;
+    for (const Patch& p : s.patches) l.append(std::string(to_string(p.kind)));
+    return l;
+}
+
+py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double seconds) {
+    return py::dict("nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
+                    "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes,
+                    "collapsed_faces"_a = r.collapsed_faces, "flipped_faces"_a = r.orient.flipped_faces,
+                    "components"_a = r.orient.components, "closed_components"_a = r.orient.closed_components,
+                    "fused_components"_a = r.fused_components, "remeshed"_a = r.remeshed,
+                    "internal_flow"_a = r.internal_flow, "units"_a = r.units.unit, "scale"_a = r.scale,
+                    "seconds"_a = seconds);
+}
+
+py::dict coverage_report(const LayerReport& r) {
+    py::dict patches;
+    for (const PatchCoverage& c : r.patches) {
+        py::dict short_by;
+        for (std::size_t k = 1; k < kShortfalls; ++k)
+            short_by[py::str(std::string(to_string(static_cast<Shortfall>(k))))] = c.short_by[k];
+        patches[py::str(c.name)] =
+            py::dict("faces"_a = c.faces, "nodes"_a = c.nodes, "full_nodes"_a = c.full_nodes,
+                     "full"_a = c.nodes > 0 ? static_cast<double>(c.full_nodes) / static_cast<double>(c.nodes) : 1.0,
+                     "all_layers"_a = c.all_layers, "mean_share"_a = c.mean_share, "min_share"_a = c.min_share,
+                     "mean_layers"_a = c.mean_layers, "min_layers"_a = c.min_layers, "short"_a = short_by);
+    }
+    return py::dict("layers"_a = r.layers, "first_height"_a = r.first_height, "thickness"_a = r.thickness,
+                    "patches"_a = patches, "short_nodes"_a = r.short_nodes.size());
+}
+
+py::dict quality_report(const VolumeMesh& mesh, const ValidationReport& v) {
+    py::dict cells, min_sj, worst;
+    for (const CellType t : kCellTypes) {
+        const std::string name(to_string(t));
+        cells[py::str(name)] = mesh.num_cells(t);
+        if (mesh.num_cells(t) == 0) continue;
+        const auto& q = v.by_type[static_cast<std::size_t>(t)];
+        min_sj[py::str(name)] = q.min_scaled_jacobian;
+        worst[py::str(name)] = q.worst_cell;
+    }
+    min_sj["all"] = v.min_scaled_jacobian;
+    worst["all"] = v.worst_cell;
+    return py::dict("cells"_a = cells, "nodes"_a = mesh.points.size(), "min_scaled_jacobian"_a = min_sj,
+                    "worst_cell"_a = worst, "cell_volume"_a = v.cell_volume, "boundary_volume"_a = v.boundary_volume);
+}
+
+py::list layer_table(const std::vector<LayerStats>& stats) {
+    py::list l;
+    for (const LayerStats& s : stats)
+        l.append(py::dict("height"_a = s.height, "min_scaled_jacobian"_a = s.min_scaled_jacobian,
+                          "mean_scaled_jacobian"_a = s.mean_scaled_jacobian,
+                          "max_orthogonality_deg"_a = s.max_orthogonality_deg, "sweeps"_a = s.sweeps,
+                          "columns"_a = s.columns, "stopped_nodes"_a = s.stopped_nodes, "held_nodes"_a = s.held_nodes));
+    return l;
+}
+
+/// The hybrid report as a dict (without the surface's part).
+py::dict hybrid_report(const VolumeMesh& mesh, const HybridReport& hr) {
+    py::dict d = quality_report(mesh, hr.validation);
+    d["coverage"] = coverage_report(hr.coverage);
+    d["layers"] = layer_table(hr.layer_stats);
+    d["internal_flow"] = hr.internal_flow;
+    d["closed_half_model"] = hr.closed_half_model;
+    d["front_rounds"] = hr.front_rounds;
+    d["thinned_nodes"] = hr.thinned_nodes;
+    d["fan_edges"] = hr.fan_edges;
+    d["times"] = py::dict("layers"_a = hr.seconds_layers, "pyramids"_a = hr.seconds_pyramids,
+                          "tetrahedra"_a = hr.seconds_tets, "validation"_a = hr.seconds_validate);
+    return d;
+}
+
+/// A surface result: the oriented surface mesh with patches.
+struct PySurface {
+    SurfaceMesh mesh;
+    py::dict report;
+};
+
+/// A volume result: the hybrid mesh (or the layers alone) and the report.
+struct PyMesh {
+    VolumeMesh mesh;
+    py::dict report;
+};
+
+struct Prepared {
+    SurfaceMesh surface;
+    PrepareReport report;
+    double seconds = 0.0;
+};
+
+/// The inputs read and prepared as the CLI does (strata::prepare_params, prepare_surfaces).
+Prepared prepare(const std::vector<std::string>& inputs, Options& o, Progress* progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (inputs.empty()) throw InputError("no input: give a CAD or surface-mesh file, or a list of them");
+    o.surface.inputs = inputs;
+    o.surface.input = input_name(inputs);
+    Prepared p;
+    p.surface = prepare_surfaces(inputs, prepare_params(o.surface), &p.report, progress);
+    p.seconds = seconds_since(t0);
+    return p;
+}
+
+std::vector<std::string> as_inputs(const py::handle& input) {
+    if (py::isinstance<py::str>(input) || py::hasattr(input, "__fspath__"))
+        return {py::str(py::module_::import("os").attr("fspath")(input)).cast<std::string>()};
+    std::vector<std::string> out;
+    for (const py::handle item : input) out.push_back(py::str(py::module_::import("os").attr("fspath")(item)));
+    return out;
+}
+
+py::object run_surface(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
+                       const std::string& msh_version, const py::object& callback) {
+    Options o = options_from(kwargs);
+    const std::vector<std::string> inputs = as_inputs(input);
+    const double version = parse_msh_version(msh_version);
+    if (output) check_surface_output(*output, version);
+    return with_progress(callback, [&](Progress* progress) -> py::object {
+        Prepared p = prepare(inputs, o, progress);
+        if (output) write_surface(p.surface, *output, version, progress);
+        auto result = std::make_unique<PySurface>();
+        result->report = surface_report(p.surface, p.report, p.seconds);
+        result->mesh = std::move(p.surface);
+        return py::cast(std::move(result));
+    });
+}
+
+py::object run_layers(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
+                      const std::string& msh_version, const py::object& callback) {
+    Options o = options_from(kwargs);
+    const LayerParams lp = layer_params(o.layers);
+    const std::vector<std::string> inputs = as_inputs(input);
+    const double version = parse_msh_version(msh_version);
+    if (output) check_volume_output(*output, version);
+    return with_progress(callback, [&](Progress* progress) -> py::object {
+        Prepared p = prepare(inputs, o, progress);
+        auto t = std::chrono::steady_clock::now();
+        LayerMesh lm = extrude_layers(p.surface, lp, progress);
+        const double t_layers = seconds_since(t);
+        t = std::chrono::steady_clock::now();
+        const ValidationReport v =
+            require_valid_mesh(lm.mesh, o.surface.input, {.threads = lp.threads, .progress = progress});
+        const double t_validate = seconds_since(t);
+        const LayerReport coverage = layer_report(lm);
+        t = std::chrono::steady_clock::now();
+        if (output) {
+            write_volume(lm.mesh, *output, version, progress);
+            write_layer_report(coverage, report_path(*output));
+        }
+        auto result = std::make_unique<PyMesh>();
+        py::dict r = quality_report(lm.mesh, v);
+        r["coverage"] = coverage_report(coverage);
+        r["layers"] = layer_table(lm.stats);
+        r["surface"] = surface_report(p.surface, p.report, p.seconds);
+        r["times"] = py::dict("surface"_a = p.seconds, "layers"_a = t_layers, "validation"_a = t_validate,
+                              "write"_a = seconds_since(t));
+        result->report = r;
+        result->mesh = std::move(lm.mesh);
+        return py::cast(std::move(result));
+    });
+}
+
+py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
+                    const std::string& msh_version, const py::object& callback) {
+    Options o = options_from(kwargs);
+    const HybridParams hp = hybrid_params(o.layers, o.mesh);
+    const std::vector<std::string> inputs = as_inputs(input);
+    const double version = parse_msh_version(msh_version);
+    if (output) check_volume_output(*output, version);
+    return with_progress(callback, [&](Progress* progress) -> py::object {
+        Prepared p = prepare(inputs, o, progress);
+        HybridReport hr;
+        auto result = std::make_unique<PyMesh>();
+        result->mesh = build_hybrid_mesh(p.surface, hp, progress, &hr);
+        const auto t = std::chrono::steady_clock::now();
+        if (output) {
+            write_volume(result->mesh, *output, version, progress);
+            write_layer_report(hr.coverage, report_path(*output));
+        }
+        py::dict r = hybrid_report(result->mesh, hr);
+        r["surface"] = surface_report(p.surface, p.report, p.seconds);
+        r["times"]["surface"] = p.seconds;
+        r["times"]["write"] = seconds_since(t);
+        result->report = r;
+        return py::cast(std::move(result));
+    });
+}
+
+py::dict run_gmsh_model(const py::dict& kwargs, const py::object& callback) {
+    Options o = options_from(kwargs);
+    const HybridParams hp = hybrid_params(o.layers, o.mesh);
+    PrepareParams pp = o.surface.prepare;  // patch kinds, internal flow, merge tolerance: what applies to a model
+    pp.patch_kinds = parse_patch_options(o.surface.patches);
+    return with_progress(callback, [&](Progress* progress) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const HybridReport hr = mesh_current_gmsh_model(hp, pp, progress);
+        // The report's cell counts come from the model's new mesh through the report's validation.
+        py::dict d;
+        d["coverage"] = coverage_report(hr.coverage);
+        d["layers"] = layer_table(hr.layer_stats);
+        py::dict min_sj;
+        for (const CellType t : kCellTypes)
+            if (!hr.validation.by_type[static_cast<std::size_t>(t)].worst_cell.empty())
+                min_sj[py::str(std::string(to_string(t)))] =
+                    hr.validation.by_type[static_cast<std::size_t>(t)].min_scaled_jacobian;
+        min_sj["all"] = hr.validation.min_scaled_jacobian;
+        d["min_scaled_jacobian"] = min_sj;
+        d["worst_cell"] = hr.validation.worst_cell;
+        d["cells"] = hr.validation.cells;
+        d["cell_volume"] = hr.validation.cell_volume;
+        d["internal_flow"] = hr.internal_flow;
+        d["closed_half_model"] = hr.closed_half_model;
+        d["times"] = py::dict("layers"_a = hr.seconds_layers, "pyramids"_a = hr.seconds_pyramids,
+                              "tetrahedra"_a = hr.seconds_tets, "validation"_a = hr.seconds_validate,
+                              "total"_a = seconds_since(t0));
+        return d;
+    });
+}
+
+}  // namespace
+}  // namespace strata
+
+PYBIND11_MODULE(_strata, m) {
+    using namespace strata;
+    m.doc() = "Strata's C++ pipeline; use the package strata (strata.mesh, strata.layers, strata.surface).";
+
+    // Exceptions: one base, InputError also a ValueError, Cancelled a KeyboardInterrupt.
+    g_error =
+        PyErr_NewExceptionWithDoc("strata.Error", "Base of every error Strata raises.", PyExc_RuntimeError, nullptr);
+    py::tuple input_bases = py::make_tuple(py::handle(g_error), py::handle(PyExc_ValueError));
+    // The base may be a tuple: InputError is a ValueError as well.
+    g_input_error = PyErr_NewExceptionWithDoc(
+        "strata.InputError", "Unusable input: a missing or unreadable file, a bad format or option value.",
+        input_bases.ptr(), nullptr);
+    g_topology_error = PyErr_NewExceptionWithDoc(
+        "strata.TopologyError", "Invalid mesh topology or geometry (non-manifold edge, inverted cell, ...).", g_error,
+        nullptr);
+    g_backend_error =
+        PyErr_NewExceptionWithDoc("strata.BackendError", "Gmsh, OpenCASCADE or TetGen failed.", g_error, nullptr);
+    g_cancelled = PyErr_NewExceptionWithDoc("strata.Cancelled", "The run was cancelled (Ctrl-C); nothing was written.",
+                                            PyExc_KeyboardInterrupt, nullptr);
+    m.attr("Error") = py::handle(g_error);
+    m.attr("InputError") = py::handle(g_input_error);
+    m.attr("TopologyError") = py::handle(g_topology_error);
+    m.attr("BackendError") = py::handle(g_backend_error);
+    m.attr("Cancelled") = py::handle(g_cancelled);
+    py::register_exception_translator(&translate_exception);
+
+    m.def(
+        "keywords",
+        [] {
+            const Options defaults;
+            py::list l;
+            for (const Keyword& k : keywords()) {
+                py::list takes;
+                if (k.takes & kSurface) takes.append("surface");
+                if (k.takes & kLayers) takes.append("layers");
+                if (k.takes & kMesh) takes.append("mesh");
+                if (k.takes & kGmshModel) takes.append("gmsh");
+                l.append(py::dict("name"_a = k.name, "default"_a = k.get(defaults), "param"_a = k.param,
+                                  "takes"_a = takes, "doc"_a = k.doc));
+            }
+            return l;
+        },
+        "The keywords of surface(), layers(), mesh() and gmsh.mesh_current_model(): name, default (from a "
+        "default-constructed Params struct), the library parameter it sets, which functions take it, and a line "
+        "of help.");
+    m.def(
+        "translate", [](const std::string& message) { return translate_names(message, python_names()); },
+        "A library message with its parameter names and CLI flags in Python keywords.");
+
+    py::class_<PySurface>(m, "Surface", "A checked, oriented surface mesh with patches (strata.surface).")
+        .def_property_readonly(
+            "points", [](py::object self) { return points_view(self.cast<PySurface&>().mesh.points, self); },
+            "#nodes x 3 float64, model units (read-only view)")
+        .def_property_readonly(
+            "face_offsets", [](py::object self) { return view(self.cast<PySurface&>().mesh.face_offsets, self); },
+            "#faces + 1: face f is face_nodes[face_offsets[f]:face_offsets[f+1]]")
+        .def_property_readonly(
+            "face_nodes", [](py::object self) { return view(self.cast<PySurface&>().mesh.face_nodes, self); },
+            "node ids, 3 or 4 per face")
+        .def_property_readonly(
+            "face_patch", [](py::object self) { return view(self.cast<PySurface&>().mesh.face_patch, self); },
+            "#faces, index into patch_names")
+        .def_property_readonly("patch_names", [](const PySurface& s) { return patch_names(s.mesh); })
+        .def_property_readonly("patch_kinds", [](const PySurface& s) { return patch_kinds(s.mesh); })
+        .def(
+            "faces", [](const PySurface& s, std::optional<std::string> patch) { return faces_of(s.mesh, patch); },
+            py::arg("patch") = py::none(), "{'triangle': (n, 3), 'quad': (n, 4)} node ids, of one patch or all")
+        .def_readonly("report", &PySurface::report)
+        .def(
+            "write",
+            [](const PySurface& s, const std::string& path, const std::string& msh_version) {
+                write_surface(s.mesh, path, parse_msh_version(msh_version));
+            },
+            py::arg("path"), py::arg("msh_version") = "4.1", "Write the surface (.msh, .vtk, .stl, ... by extension).")
+        .def("__repr__", [](const PySurface& s) {
+            return "<strata.Surface: " + std::to_string(s.mesh.num_points()) + " nodes, " +
+                   std::to_string(s.mesh.num_faces()) + " faces, " + std::to_string(s.mesh.patches.size()) +
+                   " patches>";
+        });
+
+    auto cells = [](py::object self, CellType t) {
+        const VolumeMesh& mesh = self.cast<PyMesh&>().mesh;
+        return mesh.with_cells(t, [&](const auto& block) { return view(block, self); });
+    };
+    py::class_<PyMesh>(m, "Mesh", "A hybrid volume mesh (strata.mesh) or boundary layers (strata.layers).")
+        .def_property_readonly(
+            "points", [](py::object self) { return points_view(self.cast<PyMesh&>().mesh.points, self); },
+            "#nodes x 3 float64, model units (read-only view)")
+        .def_property_readonly(
+            "tets", [cells](py::object self) { return cells(self, CellType::Tet); }, "#tetrahedra x 4 node ids")
+        .def_property_readonly(
+            "pyramids", [cells](py::object self) { return cells(self, CellType::Pyramid); },
+            "#pyramids x 5 node ids (base 0-1-2-3, apex 4)")
+        .def_property_readonly(
+            "prisms", [cells](py::object self) { return cells(self, CellType::Prism); },
+            "#prisms x 6 node ids (bottom 0-1-2, top 3-4-5)")
+        .def_property_readonly(
+            "hexes", [cells](py::object self) { return cells(self, CellType::Hex); },
+            "#hexahedra x 8 node ids (bottom 0-1-2-3, top 4-5-6-7)")
+        .def_property_readonly(
+            "cells",
+            [cells](py::object self) {
+                py::dict d;
+                for (const CellType t : kCellTypes) d[py::str(std::string(to_string(t)))] = cells(self, t);
+                return d;
+            },
+            "{'tetrahedron': (n, 4), 'pyramid': (n, 5), 'prism': (n, 6), 'hexahedron': (n, 8)} views")
+        .def_property_readonly(
+            "face_offsets", [](py::object self) { return view(self.cast<PyMesh&>().mesh.boundary.face_offsets, self); },
+            "boundary faces, CSR: #faces + 1 offsets into face_nodes")
+        .def_property_readonly(
+            "face_nodes", [](py::object self) { return view(self.cast<PyMesh&>().mesh.boundary.face_nodes, self); },
+            "boundary faces' node ids, 3 or 4 per face, normals out of the domain")
+        .def_property_readonly(
+            "face_patch", [](py::object self) { return view(self.cast<PyMesh&>().mesh.boundary.face_patch, self); },
+            "#boundary faces, index into patch_names")
+        .def_property_readonly("patch_names", [](const PyMesh& s) { return patch_names(s.mesh.boundary); })
+        .def_property_readonly("patch_kinds", [](const PyMesh& s) { return patch_kinds(s.mesh.boundary); })
+        .def(
+            "faces", [](const PyMesh& s, std::optional<std::string> patch) { return faces_of(s.mesh.boundary, patch); },
+            py::arg("patch") = py::none(), "boundary faces {'triangle': (n, 3), 'quad': (n, 4)}, of one patch or all")
+        .def_readonly("report", &PyMesh::report)
+        .def(
+            "write",
+            [](const PyMesh& s, const std::string& path, const std::string& msh_version) {
+                write_volume(s.mesh, path, parse_msh_version(msh_version));
+            },
+            py::arg("path"), py::arg("msh_version") = "4.1",
+            "Write the mesh (.cgr with its .bc map, .msh, .vtk, .su2, ... by extension).")
+        .def("__repr__", [](const PyMesh& s) {
+            return "<strata.Mesh: " + std::to_string(s.mesh.points.size()) + " nodes, " +
+                   std::to_string(s.mesh.tets.size()) + " tetrahedra, " + std::to_string(s.mesh.pyramids.size()) +
+                   " pyramids, " + std::to_string(s.mesh.prisms.size()) + " prisms, " +
+                   std::to_string(s.mesh.hexes.size()) + " hexahedra>";
+        });
+
+    const char* run_doc = "(input, options: dict, output, msh_version, progress); see strata.";
+    m.def("surface", &run_surface, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),
+          py::arg("progress"), run_doc);
+    m.def("layers", &run_layers, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),
+          py::arg("progress"), run_doc);
+    m.def("mesh", &run_mesh, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),
+          py::arg("progress"), run_doc);
+    m.def("mesh_current_gmsh_model", &run_gmsh_model, py::arg("options"), py::arg("progress"),
+          "strata::mesh_current_gmsh_model on the current Gmsh model; returns the report dict.");
+    m.def(
+        "note_gmsh_user",
+        [] {
+            // GmshLock records that the user initialised Gmsh (here: Python's gmsh module), so
+            // that Strata's readers neither initialise Gmsh again nor finalise it under the user.
+            try {
+                GmshLock lock("strata");
+            } catch (const InputError&) {
+                return false;
+            }
+            return true;
+        },
+        "True if Gmsh is initialised (by Python's gmsh module); Strata then leaves it initialised.");
+}

@@ -1,0 +1,234 @@
+"""Strata inside Gmsh's window.
+
+    python3 -m strata.gmsh_gui MODEL        (or: strata-gmsh MODEL)
+
+Opens MODEL (.geo, .step, .brep, .stl, .msh: anything Gmsh opens) in Gmsh's FLTK window with
+Strata's options in the ONELAB panel on the left (layers, first height, growth, farfield,
+tetrahedra) and a "Strata: hybrid mesh" button. The button meshes the surface if the model has
+no surface mesh yet, runs strata.gmsh.mesh_current_model on the open model with the panel's
+values, shows the hybrid mesh, and writes the coverage report to Gmsh's message console.
+
+The GUI only reads the panel and calls run_action(); run_action() works without a display
+(tests/python/test_gmsh_gui.py sets the ONELAB parameters and calls it headless).
+"""
+
+import argparse
+import json
+import math
+import sys
+
+import gmsh
+
+from . import InputError, keywords
+from . import gmsh as strata_gmsh
+
+# The panel: ONELAB name -> keyword of strata.gmsh.mesh_current_model. The numeric prefix
+# orders the panel (Gmsh does not show it); each default is the keyword's default (the C++
+# Params struct's), except the first height, which the library cannot guess (0 asks for
+# yplus): the panel suggests 1/1000 of the model's size.
+PANEL = [
+    ("Strata/1Layers", "layers"),
+    ("Strata/2First height", "first_height"),
+    ("Strata/3Growth", "growth"),
+    ("Strata/4Farfield/1Shape", "farfield"),
+    ("Strata/4Farfield/2Size (x body)", "farfield_size"),
+    ("Strata/5Tetrahedra/1Radius-edge bound", "radius_edge"),
+    ("Strata/5Tetrahedra/2Size growth", "tet_growth"),
+    ("Strata/5Tetrahedra/3Max dihedral (deg)", "max_dihedral"),
+    ("Strata/5Tetrahedra/4Refine", "refine"),
+]
+RESULT = "Strata/9Result"
+BUTTON = "ONELAB/Button"
+ACTION = "ONELAB/Action"
+ACTION_NAME = "strata"  # what Gmsh puts in ONELAB/Action when the button is pressed
+
+_CHOICES = {"farfield": ["sphere", "box"]}
+
+
+def _keyword_table():
+    return {k["name"]: k for k in keywords("gmsh")}
+
+
+def model_size():
+    """The diagonal of the current model's bounding box (entities, or the mesh's nodes)."""
+    xmin, ymin, zmin, xmax, ymax, zmax = gmsh.model.getBoundingBox(-1, -1)
+    if not all(math.isfinite(v) for v in (xmin, ymin, zmin, xmax, ymax, zmax)) or xmax < xmin:
+        _, coords, _ = gmsh.model.mesh.getNodes()
+        if len(coords) == 0:
+            return 1.0
+        xs, ys, zs = coords[0::3], coords[1::3], coords[2::3]
+        xmin, xmax, ymin, ymax, zmin, zmax = min(xs), max(xs), min(ys), max(ys), min(zs), max(zs)
+    return math.sqrt((xmax - xmin) ** 2 + (ymax - ymin) ** 2 + (zmax - zmin) ** 2) or 1.0
+
+
+def define_parameters():
+    """Put Strata's parameters into the ONELAB database (defaults: the keywords')."""
+    table = _keyword_table()
+    params = []
+    for name, keyword in PANEL:
+        k = table[keyword]
+        default = k["default"]
+        p = {"name": name, "attributes": {"Help": k["doc"]}}
+        if keyword == "first_height":
+            default = float(f"{model_size() * 1e-3:.3g}")
+        if isinstance(default, bool):
+            p.update(type="number", values=[int(default)], choices=[0, 1])
+        elif isinstance(default, str):
+            p.update(type="string", values=[default], choices=_CHOICES.get(keyword, [default]))
+        else:
+            p.update(type="number", values=[default])
+            if isinstance(default, int):
+                p.update(min=1, max=200, step=1)
+        params.append(p)
+    params.append({"type": "string", "name": RESULT, "values": [""], "readOnly": True,
+                   "attributes": {"Kind": "multiline"}})
+    gmsh.onelab.set(json.dumps(params))
+    gmsh.onelab.setString(BUTTON, ["Strata: hybrid mesh", ACTION_NAME])
+    gmsh.onelab.set(json.dumps({"type": "string", "name": ACTION, "values": [""], "visible": False}))
+
+
+def options_from_parameters():
+    """The keywords of mesh_current_model from the ONELAB parameters."""
+    table = _keyword_table()
+    options = {}
+    for name, keyword in PANEL:
+        default = table[keyword]["default"]
+        if isinstance(default, str):
+            values = gmsh.onelab.getString(name)
+        else:
+            values = gmsh.onelab.getNumber(name)
+        if len(values) == 0:
+            raise InputError(f"ONELAB parameter '{name}' is missing: call define_parameters() first")
+        value = values[0]
+        if isinstance(default, bool):
+            value = bool(value)
+        elif isinstance(default, int):
+            if value != int(value):
+                raise InputError(f"{name} = {value}: expected a whole number")
+            value = int(value)
+        elif isinstance(default, float):
+            value = float(value)
+        options[keyword] = value
+    return options
+
+
+def coverage_lines(report):
+    """The report as lines for Gmsh's message console."""
+    cells = report["cells"]
+    sj = report["min_scaled_jacobian"]
+    lines = [f"Strata: {cells} cells, min scaled Jacobian {sj['all']:.3g} ({report['worst_cell']})"]
+    for kind in ("hexahedron", "prism", "pyramid", "tetrahedron"):
+        if kind in sj:
+            lines.append(f"Strata:   {kind:12s} min scaled Jacobian {sj[kind]:.3g}")
+    cov = report["coverage"]
+    lines.append(f"Strata: coverage, {cov['layers']} layers asked, {cov['thickness']:.4g} thick "
+                 f"(first {cov['first_height']:.3g}):")
+    for name, c in cov["patches"].items():
+        lines.append(f"Strata:   {name:20s} {c['nodes']:7d} nodes, {100 * c['full']:5.1f}% full, "
+                     f"mean {c['mean_layers']:.1f} layers, min {c['min_layers']}, "
+                     f"thickness {100 * c['mean_share']:.1f}%")
+    t = report["times"]
+    lines.append(f"Strata: time {t['total']:.2f} s (layers {t['layers']:.2f}, pyramids {t['pyramids']:.2f}, "
+                 f"tetrahedra {t['tetrahedra']:.2f}, validation {t['validation']:.2f})")
+    return lines
+
+
+def _has_surface_mesh():
+    types, _, _ = gmsh.model.mesh.getElements(2)
+    return len(types) > 0
+
+
+def run_action(progress=None):
+    """The button's action on the current model: surface mesh if there is none, then the hybrid
+    mesh with the ONELAB parameters. Writes the report to Gmsh's console and the Result
+    parameter; returns it. Strata's errors are written there too, then raised."""
+    try:
+        options = options_from_parameters()
+        if not _has_surface_mesh():
+            gmsh.logger.write("Strata: the model has no surface mesh; meshing it in 2D first")
+            gmsh.model.mesh.generate(2)
+        report = strata_gmsh.mesh_current_model(progress=progress, **options)
+    except Exception as e:  # shown to the user in the window, then raised to the caller
+        try:
+            gmsh.logger.write(f"Strata: {e}", "error")
+        except Exception:
+            pass  # Gmsh 4.8's Python API raises after logging an error; it is in the console
+        gmsh.onelab.setString(RESULT, [f"failed: {e}"])
+        raise
+    lines = coverage_lines(report)
+    for line in lines:
+        gmsh.logger.write(line)
+    gmsh.onelab.setString(RESULT, ["\n".join(line.replace("Strata: ", "", 1) for line in lines)])
+    return report
+
+
+def show_volume():
+    """Show the new volume mesh as a user would look into it: the cells cut by the model's
+    mid-plane (z), coloured by type (prisms, pyramids, tetrahedra), seen from the cut side."""
+    xmin, ymin, zmin, xmax, ymax, zmax = gmsh.model.getBoundingBox(-1, -1)
+    mid = 0.5 * (zmin + zmax) if math.isfinite(zmin + zmax) else 0.0
+    gmsh.option.setNumber("Mesh.SurfaceFaces", 0)
+    gmsh.option.setNumber("Mesh.VolumeFaces", 1)
+    gmsh.option.setNumber("Mesh.VolumeEdges", 1)
+    gmsh.option.setNumber("Mesh.ColorCarousel", 0)  # by element type
+    gmsh.option.setNumber("Mesh.Clip", 1)
+    gmsh.option.setNumber("General.ClipWholeElements", 1)
+    gmsh.option.setNumber("General.ClipOnlyDrawIntersectingVolume", 1)
+    gmsh.option.setNumber("General.Clip0A", 0)
+    gmsh.option.setNumber("General.Clip0B", 0)
+    gmsh.option.setNumber("General.Clip0C", -1)
+    gmsh.option.setNumber("General.Clip0D", mid)
+
+
+def open_model(path):
+    gmsh.open(path)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog="strata-gmsh", description="Open MODEL in Gmsh's window with Strata's options in the ONELAB panel "
+        "and a 'Strata: hybrid mesh' button.")
+    parser.add_argument("model", help="anything Gmsh opens: .geo, .step, .brep, .stl, .msh")
+    parser.add_argument("--run", action="store_true", help="press the button once the window is open")
+    parser.add_argument("--screenshot", metavar="PNG",
+                        help="with --run: save the graphics area as PNG when the mesh is shown, then close")
+    args = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    if args.screenshot and not args.run:
+        parser.error("--screenshot needs --run")
+    gmsh.initialize()
+    try:
+        open_model(args.model)
+        gmsh.option.setNumber("Solver.AutoMesh", 0)  # Gmsh's own Run would mesh the model in 3D
+        define_parameters()
+        # A panel wide enough for the parameters' names, and the message console open: the
+        # report goes there.
+        for option, value in (("General.MenuWidth", 330), ("General.GraphicsWidth", 860),
+                              ("General.GraphicsHeight", 620), ("General.MessageHeight", 170),
+                              ("General.ShowMessagesOnStartup", 1)):
+            gmsh.option.setNumber(option, value)
+        gmsh.fltk.initialize()
+        if args.run:
+            gmsh.onelab.setString(ACTION, [ACTION_NAME])
+        while gmsh.fltk.isAvailable():
+            action = gmsh.onelab.getString(ACTION)
+            if ACTION_NAME in action:
+                gmsh.onelab.setString(ACTION, [""])
+                try:
+                    run_action()
+                    show_volume()
+                except Exception:  # already in the console; the window stays open
+                    if args.screenshot:
+                        raise
+                gmsh.fltk.update()
+                gmsh.graphics.draw()
+                if args.screenshot:
+                    gmsh.write(args.screenshot)
+                    break
+            gmsh.fltk.wait()
+    finally:
+        gmsh.finalize()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,163 @@
+"""strata.surface / layers / mesh: keywords from the Params structs, NumPy views, the report,
+errors as Python exceptions, progress and Ctrl-C."""
+
+import inspect
+import os
+import signal
+
+import numpy as np
+import pytest
+
+import strata
+from conftest import BUILD_PYTHON, SPHERE_STL, TEST_DATA
+
+SMALL = dict(layers=4, first_height=1e-3, growth=1.2)
+
+
+def test_imports_from_the_build_tree():
+    # conftest puts BUILD_DIR/python first: the package under test is the one just built
+    assert os.path.realpath(os.path.dirname(strata.__file__)) == os.path.realpath(os.path.join(BUILD_PYTHON, "strata"))
+
+
+def test_keywords_and_defaults_come_from_the_params_structs():
+    sig = inspect.signature(strata.mesh)
+    # DistributionParams{}: 20 layers, growth 0 (= 1.2); TetFillParams{}: radius_edge 1.5, growth 0.3;
+    # FarfieldParams{}: sphere, 20 diagonals. Keyword-only, as the C++ names them.
+    assert sig.parameters["layers"].default == 20
+    assert sig.parameters["growth"].default == 0.0
+    assert sig.parameters["radius_edge"].default == 1.5
+    assert sig.parameters["tet_growth"].default == 0.3
+    assert sig.parameters["farfield"].default == "sphere"
+    assert sig.parameters["farfield_size"].default == 20.0
+    assert sig.parameters["layers"].kind is inspect.Parameter.KEYWORD_ONLY
+    params = {k["name"]: k["param"] for k in strata.keywords()}
+    assert params["first_height"] == "DistributionParams::first_height"
+    assert params["max_dihedral"] == "TetFillParams::max_dihedral"
+    # surface() takes no layer keywords, layers() no tetrahedra keywords
+    assert "layers" not in inspect.signature(strata.surface).parameters
+    assert "radius_edge" not in inspect.signature(strata.layers).parameters
+    assert "radius_edge" in strata.mesh.__doc__
+
+
+def test_unknown_keyword_is_a_type_error():
+    with pytest.raises(TypeError):
+        strata.mesh(SPHERE_STL, layer=4)
+    with pytest.raises(TypeError, match="layers"):
+        strata.mesh(SPHERE_STL, layers="four")
+
+
+def test_mesh_sphere_arrays_and_report(tmp_path):
+    stages = []
+    out = tmp_path / "sphere.msh"
+    m = strata.mesh(SPHERE_STL, output=str(out), progress=lambda s, f: stages.append((s, f)), **SMALL)
+    assert out.exists() and (tmp_path / "sphere.msh.report.json").exists()
+    pts = m.points
+    assert pts.shape[1] == 3 and pts.dtype == np.float64 and not pts.flags.writeable
+    assert m.prisms.shape[1] == 6 and m.tets.shape[1] == 4 and len(m.prisms) > 0 and len(m.tets) > 0
+    assert m.cells["prism"] is not None and m.cells["tetrahedron"].shape == m.tets.shape
+    for block in (m.tets, m.prisms):
+        assert block.min() >= 0 and block.max() < len(pts)
+    # the views share the mesh's memory and keep it alive
+    base = m.points
+    del m
+    assert np.isfinite(base).all()
+    m = strata.mesh(SPHERE_STL, **SMALL)
+    # first layer: prism bottom-to-top edge = first height (1e-3) to within the smoothing
+    p = m.prisms[:, [0, 3]]
+    h = np.linalg.norm(m.points[p[:, 1]] - m.points[p[:, 0]], axis=1)
+    assert 0.5e-3 < np.median(h) < 2e-3
+    r = m.report
+    assert r["cells"]["prism"] == len(m.prisms) and r["cells"]["tetrahedron"] == len(m.tets)
+    assert 0 < r["min_scaled_jacobian"]["all"] <= r["min_scaled_jacobian"]["prism"] <= 1
+    assert abs(r["cell_volume"] - r["boundary_volume"]) < 1e-6 * r["boundary_volume"]
+    cov = r["coverage"]
+    assert cov["layers"] == 4 and cov["patches"], cov
+    for name, c in cov["patches"].items():
+        assert c["nodes"] > 0 and 0.0 <= c["full"] <= 1.0
+    assert set(r["times"]) >= {"surface", "layers", "pyramids", "tetrahedra", "validation", "write"}
+    # patches: the sphere's wall and the generated farfield, with their boundary faces
+    assert "farfield" in m.patch_names
+    assert m.patch_kinds[m.patch_names.index("farfield")] == "farfield"
+    ff = m.faces("farfield")["triangle"]
+    assert len(ff) > 0 and ff.shape[1] == 3
+    assert len(m.face_patch) == len(m.face_offsets) - 1
+    assert sum(len(a) for a in m.faces().values()) == len(m.face_patch)
+    # progress: every stage, fractions in [0, 1]
+    names = [s for s, _ in stages]
+    for stage in ("surface", "layers", "pyramids", "tetrahedra", "validation", "writing"):
+        assert stage in names
+    assert all(0.0 <= f <= 1.0 for _, f in stages)
+
+
+def test_surface_and_layers(tmp_path):
+    s = strata.surface(SPHERE_STL)
+    assert s.points.shape == (s.report["nodes"], 3)
+    assert s.report["triangles"] == len(s.faces()["triangle"]) > 0
+    assert s.patch_kinds == ["wall"]
+    lm = strata.layers(SPHERE_STL, **SMALL)
+    assert len(lm.prisms) == 4 * s.report["triangles"]  # every column full on a sphere
+    assert len(lm.tets) == 0 and lm.report["coverage"]["layers"] == 4
+    assert len(lm.report["layers"]) == 4
+
+
+def test_patches_keyword(tmp_path):
+    s = strata.surface(os.path.join(TEST_DATA, "cad_box_groups.geo"))
+    name = s.patch_names[0]
+    s2 = strata.surface(os.path.join(TEST_DATA, "cad_box_groups.geo"), patches={name: "symmetry"})
+    assert s2.patch_kinds[s2.patch_names.index(name)] == "symmetry"
+    with pytest.raises(strata.InputError, match="nosuch"):
+        strata.surface(os.path.join(TEST_DATA, "cad_box_groups.geo"), patches={"nosuch": "wall"})
+
+
+def test_errors_carry_strata_messages_in_keyword_names(tmp_path):
+    with pytest.raises(strata.InputError, match="missing.stl") as e:
+        strata.mesh(str(tmp_path / "missing.stl"), **SMALL)
+    assert isinstance(e.value, ValueError) and isinstance(e.value, strata.Error)
+    # a library message naming a parameter shows the keyword, not the C++ name or the flag
+    with pytest.raises(strata.InputError) as e:
+        strata.mesh(SPHERE_STL, layers=0, first_height=1e-3)
+    assert "layers" in str(e.value) and "DistributionParams" not in str(e.value) and "--" not in str(e.value)
+    with pytest.raises(strata.InputError) as e:
+        strata.mesh(SPHERE_STL, size=0.1, **SMALL)  # a surface-meshing option on a surface mesh
+    assert "size" in str(e.value) and "--size" not in str(e.value)
+    with pytest.raises(strata.InputError, match="distribution"):
+        strata.mesh(SPHERE_STL, distribution="cubic", **SMALL)
+    with pytest.raises(strata.TopologyError):
+        strata.surface(os.path.join(TEST_DATA, "cli_nonmanifold.stl"))
+    with pytest.raises(strata.InputError):
+        strata.mesh(SPHERE_STL, output=str(tmp_path / "x.unknown"), **SMALL)
+
+
+def test_progress_exception_propagates_and_nothing_is_written(tmp_path):
+    class Stop(Exception):
+        pass
+
+    def progress(stage, fraction):
+        if stage == "tetrahedra":
+            raise Stop(stage)
+
+    out = tmp_path / "x.msh"
+    with pytest.raises(Stop, match="tetrahedra"):
+        strata.mesh(SPHERE_STL, output=str(out), progress=progress, **SMALL)
+    assert not out.exists()
+
+
+def test_ctrl_c_cancels_as_keyboard_interrupt(tmp_path):
+    # No callback: only the progress hook's PyErr_CheckSignals can see the signal while C++
+    # runs. The alarm fires 50 ms in (the run takes over a second) and its handler is Python's
+    # own Ctrl-C handler, which raises KeyboardInterrupt; the stage then throws
+    # strata::Cancelled and Python gets strata.Cancelled. Without the check the run would end
+    # normally and a bare KeyboardInterrupt come after it, failing this test.
+    out = tmp_path / "x.msh"
+    previous = signal.signal(signal.SIGALRM, signal.default_int_handler)
+    try:
+        signal.setitimer(signal.ITIMER_REAL, 0.05)
+        with pytest.raises(strata.Cancelled, match="Ctrl-C") as e:
+            strata.mesh(SPHERE_STL, output=str(out), layers=10, first_height=1e-3)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+    assert isinstance(e.value, KeyboardInterrupt)
+    assert not out.exists()
+    # and the next run works
+    assert len(strata.mesh(SPHERE_STL, **SMALL).tets) > 0
