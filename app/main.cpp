@@ -551,6 +551,10 @@ int main(int argc, char** argv) {
         "Boundary-layer prisms and hexahedra marched from the wall, tetrahedra beyond.",
         "strata"};
     app.set_version_flag("--version", std::string("strata ") + STRATA_VERSION);
+    app.footer(
+        "Volume outputs (layers, mesh: -o OUT) by name: .cgr/.cog/.grd Cobalt60 (with a .bc patch map), .cgns CGNS, "
+        "a directory named polyMesh (CASE/constant/polyMesh) OpenFOAM, .msh (--msh-version 4.1 or 2.2), and through "
+        "Gmsh .vtk .su2 .unv .mesh .bdf .nas .inp .med .key.");
     app.require_subcommand(1);
 
     Common sc;
@@ -562,7 +566,9 @@ int main(int argc, char** argv) {
     LayerOptions lo;
     CLI::App* layers =
         app.add_subcommand("layers", "extrude boundary-layer prisms and hexahedra from the walls; write the layers");
-    add_common_options(*layers, lc, "output volume mesh (.msh; .cgr, .vtk, .su2, ... by extension)");
+    add_common_options(*layers, lc,
+                       "output volume mesh: .msh, .cgr/.cog/.grd (Cobalt60), .cgns (CGNS), CASE/constant/polyMesh "
+                       "(OpenFOAM, a directory), .vtk, .su2, ... by extension");
     add_layer_options(*layers, lo);
 
     Common mc;
@@ -571,7 +577,9 @@ int main(int argc, char** argv) {
     CLI::App* meshcmd = app.add_subcommand("mesh",
                                            "the whole pipeline: surface, boundary layers, pyramids, tetrahedra; "
                                            "write one validated hybrid mesh");
-    add_common_options(*meshcmd, mc, "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .msh, .vtk, .su2, ...");
+    add_common_options(*meshcmd, mc,
+                       "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .cgns (CGNS), CASE/constant/polyMesh "
+                       "(OpenFOAM polyMesh, a directory), .msh, .vtk, .su2, ...");
     add_layer_options(*meshcmd, mlo);
     add_mesh_options(*meshcmd, mo);
 

@@ -29,3 +29,14 @@ if(NOT TARGET strata::tetgen)
     INTERFACE_INCLUDE_DIRECTORIES "${TETGEN_INCLUDE_DIR}"
     INTERFACE_COMPILE_DEFINITIONS "STRATA_LIBTET=\"${TETGEN_LIBRARY}\"")
 endif()
+
+# CGNS mid-level library (Debian's libcgns-dev, HDF5 inside): the .cgns writer. No CMake config
+# in the Debian package: header + library.
+if(NOT TARGET strata::cgns)
+  find_path(CGNS_INCLUDE_DIR cgnslib.h REQUIRED)
+  find_library(CGNS_LIBRARY cgns REQUIRED)
+  add_library(strata::cgns INTERFACE IMPORTED)
+  set_target_properties(strata::cgns PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${CGNS_INCLUDE_DIR}"
+    INTERFACE_LINK_LIBRARIES "${CGNS_LIBRARY}")
+endif()

@@ -20,6 +20,7 @@ packages=(
   libtet1.5-dev        # TetGen 1.5 (tetrahedral fill)
   libnanoflann-dev     # k-d tree (the tetrahedra's size field)
   libcgal-dev          # exact predicates: the layer front's self-intersection test
+  libcgns-dev          # CGNS mid-level library (on HDF5): the .cgns writer
   openfoam             # checkMesh, OpenFOAM's verdict on our meshes (tests/openfoam)
   libgtest-dev         # GoogleTest
   libcli11-dev         # command-line parsing for the strata program

@@ -14,13 +14,16 @@ constexpr std::array<const char*, 20> kSurfaceExtensions = {".msh",  ".vtk",  ".
                                                             ".nas",  ".inp",  ".cgns", ".med", ".mail", ".p3d",  ".wrl",
                                                             ".vrml", ".ply2", ".off",  ".x3d", ".neu",  ".key"};
 
-/// Formats Gmsh 4.8 writes volume meshes to (.cgns and .med only if this Gmsh was built with
-/// them: BackendError at writing otherwise). Surface-only formats (.stl, .off, .ply2, .wrl, ...)
-/// are left out, and so is Gambit .neu: Gmsh 4.8's writer corrupts the heap (the process aborts)
-/// on a mesh mixing cell types.
-constexpr std::array<const char*, 11> kGmshVolumeExtensions = {".msh", ".vtk", ".su2",  ".unv", ".mesh", ".bdf",
-                                                               ".nas", ".inp", ".cgns", ".med", ".key"};
+/// Formats Gmsh 4.8 writes volume meshes to (.med only if this Gmsh was built with it:
+/// BackendError at writing otherwise). Surface-only formats (.stl, .off, .ply2, .wrl, ...) are
+/// left out, and so is Gambit .neu: Gmsh 4.8's writer corrupts the heap (the process aborts) on a
+/// mesh mixing cell types. .cgns is Strata's own writer for volumes (cgns.h).
+constexpr std::array<const char*, 10> kGmshVolumeExtensions = {".msh", ".vtk", ".su2", ".unv", ".mesh",
+                                                               ".bdf", ".nas", ".inp", ".med", ".key"};
 constexpr std::array<const char*, 3> kCobaltExtensions = {".cgr", ".cog", ".grd"};
+constexpr std::array<const char*, 1> kCgnsExtensions = {".cgns"};
+/// The last component of an OpenFOAM mesh directory.
+constexpr std::string_view kPolyMesh = "polyMesh";
 
 template <std::size_t N>
 bool listed(const std::string& ext, const std::array<const char*, N>& list) {
@@ -60,16 +63,30 @@ void check_surface_output(const std::string& path, double msh_version) {
 }
 
 void check_volume_output(const std::string& path, double msh_version) {
+    if (is_polymesh_path(path)) return check_output_directory(path);
     const std::string ext = lower_extension(path);
-    if (!listed(ext, kGmshVolumeExtensions) && !listed(ext, kCobaltExtensions))
+    if (!listed(ext, kGmshVolumeExtensions) && !listed(ext, kCobaltExtensions) && !listed(ext, kCgnsExtensions))
         throw InputError("cannot write '" + path + "': unknown volume-mesh extension '" + ext + "'; use one of " +
-                         join(kCobaltExtensions) + " (Cobalt60) or " + join(kGmshVolumeExtensions));
+                         join(kCobaltExtensions) + " (Cobalt60), " + join(kCgnsExtensions) +
+                         " (CGNS), a directory named polyMesh (OpenFOAM, e.g. case/constant/polyMesh) or " +
+                         join(kGmshVolumeExtensions) + " (through Gmsh)");
     if (ext == ".msh") check_msh_version(path, msh_version);
     check_output_path(path);
 }
 
 bool is_cobalt_path(const std::string& path) {
     return listed(lower_extension(path), kCobaltExtensions);
+}
+
+bool is_cgns_path(const std::string& path) {
+    return listed(lower_extension(path), kCgnsExtensions);
+}
+
+bool is_polymesh_path(const std::string& path) {
+    std::string_view p = path;
+    while (p.size() > 1 && p.back() == '/') p.remove_suffix(1);
+    const std::size_t slash = p.rfind('/');
+    return p.substr(slash == std::string_view::npos ? 0 : slash + 1) == kPolyMesh;
 }
 
 std::vector<std::string> volume_output_files(const std::string& path) {

@@ -5,11 +5,13 @@
 
 #include <strata/core/error.h>
 #include <strata/core/mesh_check.h>
+#include <strata/io/cgns.h>
 #include <strata/io/cobalt.h>
 #include <strata/io/files.h>
 #include <strata/io/formats.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
+#include <strata/io/openfoam.h>
 #include <strata/io/read_surface.h>
 #include <strata/io/write_surface.h>
 #include <strata/io/write_volume.h>
@@ -70,6 +72,8 @@ void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_
 void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version, Progress* progress) {
     check_volume_output(path, msh_version);
     if (is_cobalt_path(path)) return write_cobalt(mesh, path, progress);
+    if (is_polymesh_path(path)) return write_polymesh(mesh, path, progress);
+    if (is_cgns_path(path)) return write_cgns(mesh, path, progress);
     require_sound(check_volume_arrays(mesh), "cannot write '" + path + "': ");
     write_through_gmsh(path, msh_version, "write_volume", progress, [&] { add_volume_to_gmsh_model(mesh); });
 }

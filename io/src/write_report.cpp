@@ -51,7 +51,10 @@ std::string number(double x) {
 }  // namespace
 
 std::string report_path(const std::string& mesh_path) {
-    return mesh_path + ".report.json";
+    // Beside an output directory (an OpenFOAM polyMesh), not in it: "polyMesh/" as "polyMesh".
+    std::string p = mesh_path;
+    while (p.size() > 1 && p.back() == '/') p.pop_back();
+    return p + ".report.json";
 }
 
 void write_layer_report(const LayerReport& r, const std::string& path) {

@@ -86,6 +86,10 @@ TEST(Cli, HelpAndVersion) {
     CliResult h = strata_cli(dir, "--help");
     EXPECT_EQ(h.code, 0);
     EXPECT_NE(h.out.find("surface"), std::string::npos);
+    for (const char* format : {".cgr", ".cgns", "polyMesh", ".msh"}) EXPECT_NE(h.out.find(format), std::string::npos);
+    CliResult hm = strata_cli(dir, "mesh --help");
+    EXPECT_EQ(hm.code, 0);
+    for (const char* format : {".cgr", ".cgns", "polyMesh", ".msh"}) EXPECT_NE(hm.out.find(format), std::string::npos);
     CliResult hs = strata_cli(dir, "surface --help");
     EXPECT_EQ(hs.code, 0);
     for (const char* opt : {"--size", "--quads", "--mixed", "--patch", "--fuse", "--curvature", "-o"})
@@ -406,6 +410,55 @@ TEST(Cli, MeshSphereToCobaltAndMsh) {
     std::vector<std::string> got = files_in(dir);
     std::sort(got.begin(), got.end());
     EXPECT_EQ(got, expected);
+}
+
+TEST(Cli, MeshToOpenFoamPolyMeshAndCgns) {
+    // The polyMesh directory is written straight into a case, byte-identical for 1 and 2 threads;
+    // CGNS by extension; the report beside the directory, not in it.
+    test::ScratchDir dir("cli_polymesh");
+    const std::string common = " --layers 3 --first-height 2e-3 --farfield-size 6";
+    std::vector<std::string> files{"boundary", "faces", "neighbour", "owner", "points"};
+    for (const char* threads : {"1", "2"}) {
+        const std::string c = std::string("case") + threads;
+        fs::create_directories(dir.file(c + "/constant"));
+        CliResult r = strata_cli(dir, "mesh '" + example_data("sphere.stl") + "' -o " + c + "/constant/polyMesh" +
+                                          common + " --threads " + threads);
+        ASSERT_EQ(r.code, 0) << r.err;
+        EXPECT_NE(r.out.find("wrote " + c + "/constant/polyMesh and " + c + "/constant/polyMesh.report.json"),
+                  std::string::npos)
+            << r.out;
+        std::vector<std::string> got;
+        for (const auto& e : fs::directory_iterator(dir.file(c + "/constant/polyMesh")))
+            got.push_back(e.path().filename().string());
+        std::sort(got.begin(), got.end());
+        EXPECT_EQ(got, files);
+    }
+    for (const std::string& f : files)
+        EXPECT_TRUE(slurp(dir.file("case1/constant/polyMesh/" + f)) == slurp(dir.file("case2/constant/polyMesh/" + f)))
+            << f << " differs between 1 and 2 threads";
+    const std::string boundary = slurp(dir.file("case1/constant/polyMesh/boundary"));
+    EXPECT_NE(boundary.find("type            wall;"), std::string::npos) << boundary;
+    EXPECT_NE(boundary.find("type            patch;"), std::string::npos) << boundary;  // the farfield
+    CliResult c = strata_cli(dir, "mesh '" + example_data("sphere.stl") + "' -o s.cgns" + common);
+    ASSERT_EQ(c.code, 0) << c.err;
+    EXPECT_GT(fs::file_size(dir.file("s.cgns")), 100000u);
+    EXPECT_TRUE(fs::exists(dir.file("s.cgns.report.json")));
+}
+
+TEST(Cli, BadOutputPathsFailCleanly) {
+    const std::string in = "mesh '" + example_data("sphere.stl") + "' --layers 3 --first-height 2e-3 -o ";
+    expect_clean_failure(in + "nocase/constant/polyMesh", "directory 'nocase/constant' does not exist", "polymesh_dir");
+    expect_clean_failure(in + "missing/mesh.cgns", "directory 'missing' does not exist", "cgns_dir");
+    expect_clean_failure(in + "mesh.foam", "polyMesh (OpenFOAM", "unknown_ext");
+    // An existing file where the polyMesh directory would go is refused, and left alone.
+    test::ScratchDir dir("cli_bad_polymesh_file");
+    std::ofstream(dir.file("polyMesh")) << "mine";
+    CliResult r = strata_cli(dir, in + "polyMesh");
+    EXPECT_NE(r.code, 0);
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("is a file, not a directory"), std::string::npos) << r.err;
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"polyMesh"});
+    EXPECT_EQ(slurp(dir.file("polyMesh")), "mine");
 }
 
 TEST(Cli, MeshBoxDomainRemeshesTheSidesTheLayersEndOn) {

@@ -15,6 +15,11 @@ void check_input_file(const std::string& path);
 /// directory '<dir>' does not exist; ..." or "...: it is a directory; choose a file name".
 void check_output_path(const std::string& path);
 
+/// Refuse \p path as an output directory (a polyMesh) before anything is written: InputError
+/// "cannot write '<path>': directory '<parent>' does not exist; ..." or "...: it is a file, not a
+/// directory; ...". An existing directory is fine: it is replaced as a whole (AtomicDirectory).
+void check_output_directory(const std::string& path);
+
 /// The extension of \p path in lower case, with its dot (".step"); "" if it has none.
 std::string lower_extension(const std::string& path);
 
@@ -33,6 +38,34 @@ public:
     const std::string& temp_path() const { return temp_; }
     const std::string& target() const { return target_; }
     /// Rename the temporary file onto the target; throws InputError naming both on failure.
+    void commit();
+
+private:
+    std::string target_;
+    std::string temp_;
+    bool committed_ = false;
+};
+
+/// Build-then-rename for an output that is a directory of files (an OpenFOAM polyMesh): the
+/// files go into a temporary directory next to \p target; commit() puts it in place of the
+/// target in one step (Linux renameat2 RENAME_EXCHANGE swaps it with an existing target, whose
+/// old contents are then removed), so a reader never sees a half-written or half-replaced
+/// directory. Destruction without commit() removes the temporary directory and everything in it.
+class AtomicDirectory {
+public:
+    /// InputError naming the directory if the parent does not exist or \p target is a file;
+    /// creates the (empty) temporary directory.
+    explicit AtomicDirectory(std::string target);
+    ~AtomicDirectory();
+    AtomicDirectory(const AtomicDirectory&) = delete;
+    AtomicDirectory& operator=(const AtomicDirectory&) = delete;
+
+    const std::string& temp_path() const { return temp_; }
+    const std::string& target() const { return target_; }
+    /// A file of the temporary directory: temp_path()/\p name.
+    std::string file(const std::string& name) const;
+    /// Put the temporary directory in place of the target; throws InputError naming both on failure
+    /// (the target is then as it was).
     void commit();
 
 private:

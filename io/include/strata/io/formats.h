@@ -17,13 +17,22 @@ double parse_msh_version(std::string_view text);
 /// .msh) in a directory that exists: InputError naming the path and the choices otherwise.
 void check_surface_output(const std::string& path, double msh_version = 4.1);
 
-/// A volume output: Cobalt60 (.cgr, .cog, .grd, with its .bc patch map) or a format Gmsh writes
-/// volume meshes to (.msh, .vtk, .su2, .unv, ...; \p msh_version 4.1 or 2.2 for .msh), in a
-/// directory that exists: InputError naming the path and the choices otherwise.
+/// A volume output: Cobalt60 (.cgr, .cog, .grd, with its .bc patch map), CGNS (.cgns), an
+/// OpenFOAM polyMesh directory (a path whose last component is `polyMesh`: a directory that
+/// does not exist yet or is replaced whole) or a format Gmsh writes volume meshes to (.msh, .vtk,
+/// .su2, .unv, ...; \p msh_version 4.1 or 2.2 for .msh), in a directory that exists: InputError
+/// naming the path and the choices otherwise.
 void check_volume_output(const std::string& path, double msh_version = 4.1);
 
 /// Cobalt60 grid extensions: .cgr, .cog, .grd (any case).
 bool is_cobalt_path(const std::string& path);
+
+/// CGNS: .cgns (any case).
+bool is_cgns_path(const std::string& path);
+
+/// An OpenFOAM polyMesh directory: the last component of \p path (trailing slashes aside) is
+/// `polyMesh` (e.g. "case/constant/polyMesh").
+bool is_polymesh_path(const std::string& path);
 
 /// The files write_volume writes for \p path: the grid and, for Cobalt60, "<path>.bc".
 std::vector<std::string> volume_output_files(const std::string& path);

@@ -1,6 +1,7 @@
 #pragma once
 /// \file
-/// Volume meshes to and from files: Cobalt60 (cobalt.h) and every format Gmsh writes.
+/// Volume meshes to and from files: Cobalt60 (cobalt.h), OpenFOAM polyMesh (openfoam.h), CGNS
+/// (cgns.h) and every format Gmsh writes.
 
 #include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
@@ -10,13 +11,13 @@
 namespace strata {
 
 /// Write \p mesh to \p path, the format from the extension (formats.h): .cgr, .cog or .grd as
-/// Cobalt60 with its .bc patch map (write_cobalt); .msh as MSH \p msh_version 4.1 or 2.2; .vtk,
-/// .su2, .unv, ... through Gmsh: one discrete volume with all cells and a physical group "fluid"
-/// (3D), one discrete surface and one 2D physical group per boundary patch, named after the
-/// patch (add_volume_to_gmsh_model). Atomic (temporary name, then rename). Does not validate:
-/// callers run require_valid_mesh first. InputError for an unknown extension, a missing
-/// directory or malformed arrays; BackendError if Gmsh fails. \p progress: stage "writing";
-/// cancelled, nothing is left at \p path.
+/// Cobalt60 with its .bc patch map (write_cobalt); a path whose last component is `polyMesh` as
+/// an OpenFOAM polyMesh directory (write_polymesh); .cgns as CGNS (write_cgns); .msh as MSH \p msh_version 4.1 or 2.2;
+/// .vtk, .su2, .unv, ... through Gmsh: one discrete volume with all cells and a physical group "fluid" (3D), one
+/// discrete surface and one 2D physical group per boundary patch, named after the patch (add_volume_to_gmsh_model).
+/// Atomic (temporary name, then rename). Does not validate: callers run require_valid_mesh first. InputError for an
+/// unknown extension, a missing directory or malformed arrays; BackendError if Gmsh fails. \p progress: stage
+/// "writing"; cancelled, nothing is left at \p path.
 void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version = 4.1,
                   Progress* progress = nullptr);
 
