@@ -281,24 +281,25 @@ TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& hol
     const FaceIndex face_of = index_faces(boundary);
 
     const bool sizing = params.refine && params.growth > 0.0;
+    const double tolerance = tetgen::tolerance_keeping_points(boundary.points);
     tetgenio in, out;
     set_plc(in, boundary, holes);
     if (!sizing) {
-        tetgen::run(tetgen::switches(params, false, false), in, out, nullptr);
+        tetgen::run(tetgen::switches(params, false, false, tolerance), in, out, nullptr);
         return convert_and_check(boundary, face_of, out, volume);
     }
 
     const tetgen::SizeField h(boundary, params.growth, params.max_volume);
     if (!params.background_mesh) {  // sizes at the boundary points only, interpolated by TetGen
         tetgen::set_sizes(in, boundary.num_points(), h);
-        tetgen::run(tetgen::switches(params, true, false), in, out, nullptr);
+        tetgen::run(tetgen::switches(params, true, false, tolerance), in, out, nullptr);
         return convert_and_check(boundary, face_of, out, volume);
     }
     tetgenio background;
     {
         tetgenio bg_in;
         set_plc(bg_in, tetgen::background_boundary(boundary), {});  // convex, cavities included (c, no holes)
-        tetgen::run(tetgen::switches(params, false, true), bg_in, background, nullptr);
+        tetgen::run(tetgen::switches(params, false, true, tolerance), bg_in, background, nullptr);
     }
     if (background.numberofpoints < boundary.num_points() || background.numberoftetrahedra <= 0)
         throw BackendError(
@@ -306,7 +307,7 @@ TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& hol
             "check the hole points (inside the cavities) and merge coincident nodes");
     tetgen::set_sizes(background, boundary.num_points(), h);
     tetgen::set_sizes(in, boundary.num_points(), h);
-    tetgen::run(tetgen::switches(params, true, false), in, out, &background);
+    tetgen::run(tetgen::switches(params, true, false, tolerance), in, out, &background);
     return convert_and_check(boundary, face_of, out, volume);
 }
 

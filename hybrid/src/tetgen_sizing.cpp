@@ -45,6 +45,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <numeric>
 #include <vector>
 
 namespace strata::tetgen {
@@ -116,9 +117,13 @@ struct SizeField::Tree {
     }
 };
 
-std::string switches(const TetFillParams& p, bool sizing, bool background) {
+std::string switches(const TetFillParams& p, bool sizing, bool background, double tolerance) {
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
     std::string s = "pYzQ";
+    if (tolerance > 0.0) {
+        s += 'T';
+        s += format_number(tolerance, 3);
+    }
     if (background) {
         s += 'c';  // keep the convex hull: every walk towards a point stays inside the mesh
         s += 'q';
@@ -142,6 +147,31 @@ std::string switches(const TetFillParams& p, bool sizing, bool background) {
         s += format_number(p.max_dihedral, 17);
     }
     return s;
+}
+
+double tolerance_keeping_points(const std::vector<Vec3>& points) {
+    if (points.size() < 2) return 0.0;
+    const BoundingBox box = bounding_box(points);
+    const double diagonal = (box.max - box.min).norm();
+    const double near = 10.0 * kTetGenEpsilon * diagonal;
+    // Closest pair below `near`: sweep along x, each point against those within `near` after it.
+    std::vector<Index> order(points.size());
+    std::iota(order.begin(), order.end(), Index{0});
+    std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+        return points[static_cast<std::size_t>(a)].x() < points[static_cast<std::size_t>(b)].x() ||
+               (points[static_cast<std::size_t>(a)].x() == points[static_cast<std::size_t>(b)].x() && a < b);
+    });
+    double closest = near;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        const Vec3& p = points[static_cast<std::size_t>(order[i])];
+        for (std::size_t j = i + 1; j < order.size(); ++j) {
+            const Vec3& q = points[static_cast<std::size_t>(order[j])];
+            if (q.x() - p.x() >= closest) break;
+            const double d = (q - p).norm();
+            if (d > 0.0) closest = std::min(closest, d);  // equal points are the caller's error
+        }
+    }
+    return closest < near ? 0.01 * closest / diagonal : 0.0;
 }
 
 // ---------------------------------------------------------------------------------------

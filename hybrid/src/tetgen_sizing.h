@@ -20,10 +20,22 @@ inline constexpr double kRadiusPerEdge = 0.75;
 /// Radius-edge bound of the background mesh's quality-only refinement.
 inline constexpr double kBackgroundRatio = 2.0;
 
+/// TetGen's default tolerance (-T): among other things, it takes two points closer than this
+/// times the diagonal of the input's bounding box for one (and drops one of them).
+inline constexpr double kTetGenEpsilon = 1e-8;
+
 /// Switches for one run, parsed by TetGen itself (so its consistency rules apply):
 ///  p Y z Q [q<ratio>[/<angle>]] [a<vol>] [m] [o/<max dihedral>] for the fill (\p sizing adds m), or
-///  p Y z Q c q<kBackgroundRatio> for the background mesh (\p background).
-std::string switches(const TetFillParams& p, bool sizing, bool background);
+///  p Y z Q c q<kBackgroundRatio> for the background mesh (\p background); T<\p tolerance> after
+///  either if \p tolerance > 0 (TetGen's default, kTetGenEpsilon, otherwise).
+std::string switches(const TetFillParams& p, bool sizing, bool background, double tolerance = 0.0);
+
+/// The tolerance (-T) TetGen needs to keep every point of \p points: 0 (its default will do)
+/// unless two of them are closer than 10 × kTetGenEpsilon × the diagonal of their bounding
+/// box, and then a hundredth of the closest such distance over that diagonal. Such points come
+/// from a surface whose shortest edges are that short (a needle of a remeshed CAD surface:
+/// 2.8e-7 m on a 32 m domain), and TetGen would otherwise merge them and renumber the rest.
+double tolerance_keeping_points(const std::vector<Vec3>& points);
 
 /// h(x) = min(h_wall(nearest wall node) + growth·|x − that node|, h_far), the wall being the
 /// boundary faces whose patch is not Farfield. Nearest-node queries on a nanoflann k-d tree;

@@ -164,6 +164,44 @@ TEST(TetgenFill, UnitCubeTwelveTriangles) {
         }
 }
 
+// A cube whose bottom side holds an edge of 5e-9 (a needle of a remeshed surface carried up to
+// the layers' top): TetGen's default tolerance takes its ends for one point and renumbered the
+// rest; with the tolerance fill_with_tets passes, every boundary node stays.
+TEST(TetgenFill, KeepsPointsCloserThanTetGensTolerance) {
+    SurfaceMesh b;
+    b.patches.push_back({"farfield", PatchKind::Farfield});
+    SurfaceMesh cube = unit_cube();
+    b.points = cube.points;
+    for (Index f = 0; f < cube.num_faces(); ++f) {
+        bool bottom = true;
+        for (int c = 0; c < 3; ++c) bottom &= cube.points[cube.face_node(f, c)].z() == 0.0;
+        if (!bottom) b.add_face({cube.face_node(f, 0), cube.face_node(f, 1), cube.face_node(f, 2)}, 0);
+    }
+    auto corner = [&](double x, double y) {
+        for (Index i = 0; i < b.num_points(); ++i)
+            if (b.points[i] == Vec3(x, y, 0.0)) return i;
+        return kNone;
+    };
+    const Index a = corner(0, 0), c1 = corner(1, 0), c2 = corner(1, 1), d = corner(0, 1);
+    const Index p = b.num_points(), q = p + 1;
+    b.points.emplace_back(0.5, 0.5, 0.0);
+    b.points.emplace_back(0.5 + 5e-9, 0.5, 0.0);
+    // The bottom (normal −z, out of the cube) around the short edge p-q.
+    for (const auto& t :
+         {std::array<Index, 3>{a, q, c1}, std::array<Index, 3>{c1, q, c2}, std::array<Index, 3>{c2, q, p},
+          std::array<Index, 3>{c2, p, d}, std::array<Index, 3>{d, p, a}, std::array<Index, 3>{a, p, q}}) {
+        const Vec3 n = (b.points[t[1]] - b.points[t[0]]).cross(b.points[t[2]] - b.points[t[0]]);
+        ASSERT_LT(n.z(), 0.0);
+        b.add_face({t[0], t[1], t[2]}, 0);
+    }
+    for (const bool refine : {false, true}) {
+        TetFillParams params;
+        params.refine = refine;
+        const TetFill f = fill_with_tets(b, {}, params);
+        expect_valid_fill(b, f, 1.0);
+    }
+}
+
 // A volume bound far below what the boundary triangles allow: without -Y TetGen would split
 // the boundary triangles; with it every Steiner point stays strictly inside the cube.
 TEST(TetgenFill, VolumeBoundAddsSteinerPointsOnlyInside) {

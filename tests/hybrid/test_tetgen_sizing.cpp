@@ -96,8 +96,28 @@ TEST(TetgenSizing, Switches) {
     p.max_dihedral = 0.0;
     EXPECT_EQ(tetgen::switches(p, true, false), "pYzQq1.5/12a0.5m");
     EXPECT_EQ(tetgen::switches(p, true, true), "pYzQcq2");
+    EXPECT_EQ(tetgen::switches(p, true, true, 2.5e-12), "pYzQT2.5e-12cq2");
+    EXPECT_EQ(tetgen::switches(p, true, false, 0.0), "pYzQq1.5/12a0.5m");  // 0: TetGen's default
     p.refine = false;
     EXPECT_EQ(tetgen::switches(p, true, false), "pYzQ");
+}
+
+TEST(TetgenSizing, ToleranceKeepsPointsCloserThanTetGensOwn) {
+    // The unit cube's corners: nothing near, TetGen's default.
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 8; ++i) pts.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    EXPECT_EQ(tetgen::tolerance_keeping_points(pts), 0.0);
+    // Two points 1e-9 apart (TetGen's default merges points within 1e-8 × the diagonal, √3):
+    // a hundredth of their distance over the diagonal.
+    pts.emplace_back(0.5, 0.5, 0.0);
+    pts.emplace_back(0.5, 0.5 + 1e-9, 0.0);
+    EXPECT_NEAR(tetgen::tolerance_keeping_points(pts), 0.01 * 1e-9 / std::sqrt(3.0), 1e-6 * 1e-11);
+    // Ten times TetGen's own tolerance is the bound: 1e-6 apart is far enough.
+    pts.back() = Vec3(0.5, 0.5 + 1e-6, 0.0);
+    EXPECT_EQ(tetgen::tolerance_keeping_points(pts), 0.0);
+    // Equal points are not asked about (no tolerance keeps both: the caller's error).
+    pts.back() = pts[pts.size() - 2];
+    EXPECT_EQ(tetgen::tolerance_keeping_points(pts), 0.0);
 }
 
 }  // namespace
