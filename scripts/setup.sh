@@ -31,6 +31,11 @@ packages=(
   python3-gmsh         # Gmsh's Python API on the same libgmsh: strata.gmsh, strata.gmsh_gui
   python3-pytest       # the package's tests (tests/python)
   xvfb xauth           # a virtual display for the Gmsh-window test of strata-gmsh (tests/python)
+  # FreeCAD 0.20 for Strata's FreeCAD module (freecad/, tests/freecad): freecad-python3 holds
+  # freecadcmd and the GUI; it is what the metapackage `freecad` depends on, without the
+  # metapackage's recommends (CalculiX, Graphviz). Still large: 206 packages, ~1.5 GB
+  # installed on a machine that already had the packages above (Qt 5, PySide2, VTK 9, Coin).
+  freecad-python3
 )
 
 bash scripts/install_packages.sh setup "${packages[@]}"
@@ -39,6 +44,8 @@ cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build_dir" -j "$jobs"
 # import strata from any directory (a .pth file pointing at the build tree; see the script)
 bash scripts/install_python.sh "$build_dir"
+# import strata_freecad in FreeCAD and freecadcmd (a symlink into FreeCAD's Mod folder; see the script)
+bash scripts/install_freecad.sh
 
 case "$mode" in
   build) ;;
