@@ -32,12 +32,18 @@ def check(condition, message):
 
 
 def test_initgui_registers_workbench_and_command():
-    path = os.path.join(os.path.dirname(strata_freecad.__file__), "InitGui.py")
-    with open(path) as f:
-        exec(compile(f.read(), path, "exec"), {"Gui": FreeCADGui, "__name__": "InitGui"})
+    here = os.path.dirname(os.path.realpath(strata_freecad.__file__))
+    if "StrataWorkbench" not in FreeCADGui.listWorkbenches():
+        # Not installed into FreeCAD's Mod folders: run InitGui.py as FreeCAD would at start-up.
+        path = os.path.join(here, "InitGui.py")
+        with open(path) as f:
+            exec(compile(f.read(), path, "exec"), {"Gui": FreeCADGui, "__name__": "InitGui"})
+    # Installed by setup (scripts/install_freecad.sh), FreeCAD registered it at start-up: it must
+    # be this tree's module.
     check("StrataWorkbench" in FreeCADGui.listWorkbenches(), f"workbenches {sorted(FreeCADGui.listWorkbenches())}")
     wb = FreeCADGui.listWorkbenches()["StrataWorkbench"]
     check(os.path.isfile(wb.Icon), f"icon {wb.Icon}")
+    check(os.path.dirname(os.path.dirname(os.path.realpath(wb.Icon))) == here, f"icon {wb.Icon} not from {here}")
     FreeCADGui.activateWorkbench("StrataWorkbench")  # runs Initialize: the command and toolbar
     check("Strata_HybridMesh" in FreeCADGui.listCommands(), "Strata_HybridMesh not registered")
     import strata_freecad_gui
