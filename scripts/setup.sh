@@ -31,6 +31,8 @@ packages=(
   python3-gmsh         # Gmsh's Python API on the same libgmsh: strata.gmsh, strata.gmsh_gui
   python3-pytest       # the package's tests (tests/python)
   xvfb xauth           # a virtual display for the Gmsh-window test of strata-gmsh (tests/python)
+  python3-matplotlib   # the quality report's plots: strata report, strata mesh --plots (strata.report)
+  snakemake            # the workflow meshing a family of variants (examples/pipeline) and its test
 )
 
 bash scripts/install_packages.sh setup "${packages[@]}"
