@@ -58,10 +58,15 @@ PlaneCut cut_cells(const VolumeMesh& mesh, int axis, double value, const std::ar
                 const Vec3& q = mesh.points[static_cast<std::size_t>(c[b])];
                 const double dp = p[axis] - value, dq = q[axis] - value;
                 if ((dp < 0.0) == (dq < 0.0)) continue;
+                // A corner on the plane is taken as it is, so that cells touching the plane at a
+                // corner or an edge give repeated points (dropped below), not slivers.
                 const double s = dp / (dp - dq);  // dp and dq differ in sign: no division by 0
-                const Vec3 x = p + s * (q - p);
+                const Vec3 x = dp == 0.0 ? p : dq == 0.0 ? q : Vec3(p + s * (q - p));
                 poly.push_back({x[cut.u], x[cut.v]});
             }
+            std::sort(poly.begin(), poly.end());
+            poly.erase(std::unique(poly.begin(), poly.end()), poly.end());
+            if (poly.size() < 3) continue;  // touching only
             // Convex: order the crossings by angle about their mean.
             double mu = 0.0, mv = 0.0;
             for (const auto& x : poly) mu += x[0], mv += x[1];

@@ -23,7 +23,8 @@ struct PlaneCut {
 };
 
 /// Cut \p mesh by the plane x[\p axis] = \p value (axis 0, 1, 2): every cell with corners on
-/// both sides (a corner on the plane counts on the + side) gives the convex hull-ordered
+/// both sides (a corner on the plane counts on the + side; a cell touching it at a corner or
+/// an edge only gives none) gives the angle-ordered
 /// polygon of the points where its edges cross the plane, kept when all of the cell's corners
 /// lie in \p window = {u0, u1, v0, v1} of the plane's coordinates (a cut near the body without
 /// the farfield's large cells). Cells in kCellTypes order, each type in mesh order.
