@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -36,6 +37,8 @@
 #include <utility>
 #include <vector>
 
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace {
@@ -459,6 +462,60 @@ void print_written(const std::vector<std::string>& files) {
 }
 
 // ---------------------------------------------------------------------------------------
+// The plots: drawn by the Python package (strata.report, matplotlib) from the report.
+
+/// What `--plots DIR` adds to `strata mesh`.
+struct PlotOptions {
+    std::string dir;  ///< empty: no plots
+    std::string cut;  ///< "AXIS=VALUE", or empty: across the body's longest side through its centre
+};
+
+/// The axis and value of --plot-cut "AXIS=VALUE" (axis -1 for none given).
+std::pair<int, double> parse_cut(const std::string& cut) {
+    if (cut.empty()) return {-1, 0.0};
+    const auto eq = cut.find('=');
+    char* end = nullptr;
+    const double value = eq == std::string::npos ? 0.0 : std::strtod(cut.c_str() + eq + 1, &end);
+    if (eq != 1 || std::string("xyz").find(cut[0]) == std::string::npos || end == cut.c_str() + eq + 1 || *end ||
+        !std::isfinite(value))
+        throw strata::InputError("--plot-cut " + cut + ": expected AXIS=VALUE, AXIS x, y or z (e.g. y=0.5)");
+    return {static_cast<int>(std::string("xyz").find(cut[0])), value};
+}
+
+/// Run `python3 -m strata.report REPORT --plots DIR` (the Python package's report, which the
+/// CLI delegates to so the plots have one implementation): the interpreter STRATA_PYTHON or the
+/// one the package is built for, the build tree's package first on PYTHONPATH. Its exit status.
+int run_report_script(const std::string& report, const std::string& dir, bool quiet) {
+    const char* env_python = std::getenv("STRATA_PYTHON");
+    const std::string python = env_python && *env_python ? env_python : STRATA_REPORT_PYTHON;
+    std::string path = STRATA_PYTHON_PATH;
+    struct stat st {};
+    if (::stat((path + "/strata/report.py").c_str(), &st) != 0) path.clear();  // an installed strata: the .pth's
+    if (const char* old = std::getenv("PYTHONPATH"); old && *old) path = path.empty() ? old : path + ":" + old;
+    std::vector<std::string> args{python, "-m", "strata.report", report, "--plots", dir};
+    if (quiet) args.emplace_back("-q");
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    std::fflush(stdout);
+    const pid_t pid = ::fork();
+    if (pid < 0) throw strata::Error("cannot start " + python + " for the plots (fork failed)");
+    if (pid == 0) {
+        if (!path.empty()) ::setenv("PYTHONPATH", path.c_str(), 1);
+        ::execvp(argv[0], argv.data());
+        std::fprintf(stderr,
+                     "strata: error: cannot run %s for the plots; set STRATA_PYTHON to a Python 3 with "
+                     "matplotlib and the strata package\n",
+                     argv[0]);
+        ::_exit(127);
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) throw strata::Error("waiting for the plots' Python failed");
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+// ---------------------------------------------------------------------------------------
 // The subcommands.
 
 /// What every subcommand starts with: the output checked (a typo in its name should not cost a
@@ -510,7 +567,7 @@ int run_layers(const Common& c, const LayerOptions& o) {
         strata::require_valid_mesh(lm.mesh, c.input, {.threads = lp.threads, .progress = &terminal});
     strata::write_volume(lm.mesh, c.output, s.msh_version, &terminal);
     const strata::LayerReport coverage = strata::layer_report(lm);
-    strata::write_layer_report(coverage, strata::report_path(c.output));
+    strata::write_mesh_report(coverage, lm.mesh, v, strata::report_path(c.output));
     if (c.quiet) return 0;
     print_surface_summary(s.surface, s.report, s.any_cad);
     print_layer_table(lm, coverage);
@@ -522,24 +579,34 @@ int run_layers(const Common& c, const LayerOptions& o) {
     return 0;
 }
 
-int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo) {
+int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo, const PlotOptions& po) {
     const strata::HybridParams hp = strata::hybrid_params(lo, mo);
+    const auto [cut_axis, cut_value] = parse_cut(po.cut);
     Terminal terminal(c.quiet);
     const Start s = start(c, strata::prepare_params(c), Output::Volume, terminal);
     strata::HybridReport hr;
     const strata::VolumeMesh mesh = strata::build_hybrid_mesh(s.surface, hp, &terminal, &hr);
     const auto t1 = std::chrono::steady_clock::now();
     strata::write_volume(mesh, c.output, s.msh_version, &terminal);
-    strata::write_layer_report(hr.coverage, strata::report_path(c.output));
+    strata::write_mesh_report(hr.coverage, mesh, hr.validation, strata::report_path(c.output));
+    if (!po.dir.empty())
+        strata::write_plot_data(hr.coverage, s.surface, mesh, strata::plot_data_path(c.output), cut_axis, cut_value);
     const double t_write = seconds_since(t1);
-    if (c.quiet) return 0;
-    print_surface_summary(s.surface, s.report, s.any_cad);
-    print_hybrid_summary(mesh, hr);
-    std::printf(
-        "time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f s\n",
-        s.seconds, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
-    print_written(with_report(strata::volume_output_files(c.output), c.output));
-    return 0;
+    if (!c.quiet) {
+        print_surface_summary(s.surface, s.report, s.any_cad);
+        print_hybrid_summary(mesh, hr);
+        std::printf(
+            "time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f "
+            "s\n",
+            s.seconds, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
+        std::vector<std::string> files = with_report(strata::volume_output_files(c.output), c.output);
+        if (!po.dir.empty()) files.push_back(strata::plot_data_path(c.output));
+        print_written(files);
+    }
+    if (po.dir.empty()) return 0;
+    const int rc = run_report_script(strata::report_path(c.output), po.dir, c.quiet);
+    if (rc != 0) std::fprintf(stderr, "strata: error: the mesh is written, but the plots failed (status %d)\n", rc);
+    return rc;
 }
 
 }  // namespace
@@ -582,6 +649,27 @@ int main(int argc, char** argv) {
                        "(OpenFOAM polyMesh, a directory), .msh, .vtk, .su2, ...");
     add_layer_options(*meshcmd, mlo);
     add_mesh_options(*meshcmd, mo);
+    PlotOptions po;
+    meshcmd->add_option("--plots", po.dir,
+                        "also draw the quality report's plots into DIR (PNG and index.md: strata report; writes "
+                        "OUT.plot.json, the wall and a cut for them; needs Python's matplotlib)");
+    meshcmd->add_option("--plot-cut", po.cut,
+                        "with --plots: the cut's plane AXIS=VALUE (e.g. y=0.5); default across the body's longest "
+                        "side through its centre");
+
+    std::string report_file, report_dir;
+    bool report_quiet = false;
+    CLI::App* reportcmd = app.add_subcommand(
+        "report",
+        "draw a mesh's quality report as plots: scaled-Jacobian histograms, the layers' figures, layers "
+        "reached over the wall, a cut (PNG and DIR/index.md; runs python3 -m strata.report)");
+    reportcmd
+        ->add_option("REPORT", report_file,
+                     "OUT.report.json, written next to every mesh (OUT.plot.json beside "
+                     "it, from strata mesh --plots, adds the wall and the cut)")
+        ->required();
+    reportcmd->add_option("--plots", report_dir, "directory for the plots (created)")->required();
+    reportcmd->add_flag("-q,--quiet", report_quiet, "print nothing but errors");
 
     // --remesh takes an optional SIZE: "--remesh 20" is "--remesh=20", a bare "--remesh" is
     // "--remesh=0" (automatic size), so that "--remesh wing.stl" leaves the input alone.
@@ -616,7 +704,8 @@ int main(int argc, char** argv) {
     try {
         if (*surface) return run_surface(sc);
         if (*layers) return run_layers(lc, lo);
-        if (*meshcmd) return run_mesh(mc, mlo, mo);
+        if (*meshcmd) return run_mesh(mc, mlo, mo, po);
+        if (*reportcmd) return run_report_script(report_file, report_dir, report_quiet);
     } catch (const strata::Cancelled& e) {
         std::cerr << "\nstrata: " << e.what() << "; nothing was written\n";
         return 130;

@@ -36,6 +36,8 @@ packages=(
   # metapackage's recommends (CalculiX, Graphviz). Still large: 206 packages, ~1.5 GB
   # installed on a machine that already had the packages above (Qt 5, PySide2, VTK 9, Coin).
   freecad-python3
+  python3-matplotlib   # the quality report's plots: strata report, strata mesh --plots (strata.report)
+  snakemake            # the workflow meshing a family of variants (examples/pipeline) and its test
 )
 
 bash scripts/install_packages.sh setup "${packages[@]}"

@@ -114,4 +114,19 @@ double min_scaled_jacobian(const Vec3* corners, CellType t) {
     return cell_min(corners, kIdentity.data(), t);
 }
 
+double quality_bin_edge(int b) {
+    return std::pow(10.0, -kQualityDecades + static_cast<double>(b) / kQualityBinsPerDecade);
+}
+
+int quality_bin(double sj) {
+    if (!(sj >= quality_bin_edge(0))) return 0;  // NaN too
+    // From the log, then corrected against the edges themselves, so a value on an edge lands
+    // in the bin above it whatever log10 rounds to.
+    int b = 1 + static_cast<int>(std::floor((std::log10(sj) + kQualityDecades) * kQualityBinsPerDecade));
+    b = std::clamp(b, 1, kQualityBins - 1);
+    while (b > 1 && sj < quality_bin_edge(b - 1)) --b;
+    while (b < kQualityBins - 1 && sj >= quality_bin_edge(b)) ++b;
+    return b;
+}
+
 }  // namespace strata

@@ -125,6 +125,7 @@ struct CellResult {
     std::int64_t worst = -1;                             ///< the first cell with min_jacobian (global cell number)
     std::array<double, 4> type_min{1.0, 1.0, 1.0, 1.0};  ///< the same per cell type
     std::array<std::int64_t, 4> type_worst{-1, -1, -1, -1};
+    std::array<std::array<Index, kQualityBins>, 4> histogram{};  ///< per cell type, quality_bin
     double volume = 0.0;
     Problems problems;
 };
@@ -151,6 +152,7 @@ CellResult check_cells(const VolumeMesh& mesh, const CellNumbering& cells, int t
             const auto k = static_cast<std::size_t>(t);
             if (r.type_worst[k] < 0 || j < r.type_min[k]) r.type_worst[k] = g;
             sticky_min(r.type_min[k], j);
+            ++r.histogram[k][static_cast<std::size_t>(quality_bin(j))];
             r.volume += vol;
             if (!(j > 0.0))
                 r.problems.add(kJacobian, [&, t = t, i = i] {
@@ -170,6 +172,7 @@ CellResult check_cells(const VolumeMesh& mesh, const CellNumbering& cells, int t
         if (out.worst < 0 || r.min_jacobian < out.min_jacobian) out.worst = r.worst;
         sticky_min(out.min_jacobian, r.min_jacobian);
         for (std::size_t k = 0; k < 4; ++k) {
+            for (std::size_t b = 0; b < kQualityBins; ++b) out.histogram[k][b] += r.histogram[k][b];
             if (r.type_worst[k] < 0) continue;
             if (out.type_worst[k] < 0 || r.type_min[k] < out.type_min[k]) out.type_worst[k] = r.type_worst[k];
             sticky_min(out.type_min[k], r.type_min[k]);
@@ -220,6 +223,7 @@ ValidationReport validate(const VolumeMesh& mesh, const ValidateParams& params, 
     }
     for (std::size_t k = 0; k < 4; ++k) {
         report.by_type[k].min_scaled_jacobian = cr.type_min[k];
+        report.by_type[k].histogram = cr.histogram[k];
         if (cr.type_worst[k] < 0) continue;
         const auto [t, i] = cells.locate(cr.type_worst[k]);
         report.by_type[k].worst_cell = describe_cell(mesh, t, i);

@@ -1,14 +1,19 @@
 // The layer coverage report as JSON: write_report.h.
 
+#include <strata/core/cell_quality.h>
 #include <strata/core/error.h>
 #include <strata/core/format.h>
+#include <strata/core/plane_cut.h>
 #include <strata/io/files.h>
 #include <strata/io/write_report.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace strata {
 namespace {
@@ -48,22 +53,56 @@ std::string number(double x) {
     return std::isfinite(x) ? format_number(x, 17) : "null";
 }
 
-}  // namespace
-
-std::string report_path(const std::string& mesh_path) {
-    // Beside an output directory (an OpenFOAM polyMesh), not in it: "polyMesh/" as "polyMesh".
-    std::string p = mesh_path;
-    while (p.size() > 1 && p.back() == '/') p.pop_back();
-    return p + ".report.json";
+/// A number for a picture: 7 significant digits, or null.
+std::string short_number(double x) {
+    return std::isfinite(x) ? format_number(x, 7) : "null";
 }
 
-void write_layer_report(const LayerReport& r, const std::string& path) {
+/// "nodes", "cells" and "quality" (write_mesh_report), each line ending with ",\n".
+void write_figures(std::ostream& out, const VolumeMesh& mesh, const ValidationReport& v) {
+    out << "  \"nodes\": " << mesh.points.size() << ",\n  \"cells\": {";
+    for (std::size_t k = 0; k < kCellTypes.size(); ++k)
+        out << (k ? ", " : "") << quoted(std::string(to_string(kCellTypes[k]))) << ": "
+            << mesh.num_cells(kCellTypes[k]);
+    out << "},\n  \"quality\": {\n    \"min_scaled_jacobian\": {\"all\": " << number(v.min_scaled_jacobian);
+    for (const CellType t : kCellTypes)
+        if (mesh.num_cells(t) > 0)
+            out << ", " << quoted(std::string(to_string(t))) << ": "
+                << number(v.by_type[static_cast<std::size_t>(t)].min_scaled_jacobian);
+    out << "},\n    \"bin_edges\": [0";
+    for (int b = 0; b < kQualityBins; ++b) out << ", " << number(quality_bin_edge(b));
+    out << "],\n    \"histograms\": {";
+    bool first = true;
+    for (const CellType t : kCellTypes) {
+        if (mesh.num_cells(t) == 0) continue;
+        out << (first ? "\n      " : ",\n      ") << quoted(std::string(to_string(t))) << ": [";
+        first = false;
+        const auto& h = v.by_type[static_cast<std::size_t>(t)].histogram;
+        for (std::size_t b = 0; b < h.size(); ++b) out << (b ? ", " : "") << h[b];
+        out << "]";
+    }
+    out << (first ? "}\n  },\n" : "\n    }\n  },\n");
+}
+
+void write_report(const LayerReport& r, const std::string& path, const VolumeMesh* mesh,
+                  const ValidationReport* quality) {
     AtomicFile file(path);
     {
         std::ofstream out(file.temp_path());
         if (!out) throw InputError(path + ": cannot write the layer report; check the directory's permissions");
         out << "{\n  \"layers\": " << r.layers << ",\n  \"first_height\": " << number(r.first_height)
-            << ",\n  \"thickness\": " << number(r.thickness) << ",\n  \"patches\": [";
+            << ",\n  \"thickness\": " << number(r.thickness) << ",\n";
+        if (mesh && quality) write_figures(out, *mesh, *quality);
+        out << "  \"layer_stats\": [";
+        for (std::size_t i = 0; i < r.per_layer.size(); ++i) {
+            const LayerFigures& l = r.per_layer[i];
+            out << (i ? ",\n" : "\n") << "    {\"layer\": " << i + 1 << ", \"height\": " << number(l.height)
+                << ", \"min_scaled_jacobian\": " << number(l.min_scaled_jacobian)
+                << ", \"mean_scaled_jacobian\": " << number(l.mean_scaled_jacobian)
+                << ", \"max_orthogonality_deg\": " << number(l.max_orthogonality_deg) << ", \"columns\": " << l.columns
+                << ", \"stopped_nodes\": " << l.stopped_nodes << ", \"held_nodes\": " << l.held_nodes << "}";
+        }
+        out << (r.per_layer.empty() ? "],\n" : "\n  ],\n") << "  \"patches\": [";
         for (std::size_t i = 0; i < r.patches.size(); ++i) {
             const PatchCoverage& c = r.patches[i];
             out << (i ? ",\n" : "\n") << "    {\"name\": " << quoted(c.name) << ", \"faces\": " << c.faces
@@ -93,6 +132,119 @@ void write_layer_report(const LayerReport& r, const std::string& path) {
         }
         out << (r.no_fan.empty() ? "]\n}\n" : "\n  ]\n}\n");
         if (!out.flush()) throw InputError(path + ": writing the layer report failed (disk full?)");
+    }
+    file.commit();
+}
+
+}  // namespace
+
+std::string report_path(const std::string& mesh_path) {
+    // Beside an output directory (an OpenFOAM polyMesh), not in it: "polyMesh/" as "polyMesh".
+    std::string p = mesh_path;
+    while (p.size() > 1 && p.back() == '/') p.pop_back();
+    return p + ".report.json";
+}
+
+void write_layer_report(const LayerReport& r, const std::string& path) {
+    write_report(r, path, nullptr, nullptr);
+}
+
+void write_mesh_report(const LayerReport& r, const VolumeMesh& mesh, const ValidationReport& quality,
+                       const std::string& path) {
+    write_report(r, path, &mesh, &quality);
+}
+
+std::string plot_data_path(const std::string& mesh_path) {
+    std::string p = mesh_path;
+    while (p.size() > 1 && p.back() == '/') p.pop_back();
+    return p + ".plot.json";
+}
+
+void write_plot_data(const LayerReport& r, const SurfaceMesh& surface, const VolumeMesh& mesh, const std::string& path,
+                     int cut_axis, double cut_value) {
+    // The wall: its faces, and its points renumbered in surface order.
+    std::vector<Index> faces;
+    std::vector<Index> point_of(surface.points.size(), kNone);
+    for (Index f = 0; f < surface.num_faces(); ++f) {
+        if (surface.patches[static_cast<std::size_t>(surface.face_patch[f])].kind != PatchKind::Wall) continue;
+        faces.push_back(f);
+        for (const Index* v = surface.face_begin(f); v != surface.face_end(f); ++v)
+            point_of[static_cast<std::size_t>(*v)] = 0;
+    }
+    std::vector<Index> points;  // surface node of each point
+    for (std::size_t i = 0; i < point_of.size(); ++i)
+        if (point_of[i] == 0) {
+            point_of[i] = static_cast<Index>(points.size());
+            points.push_back(static_cast<Index>(i));
+        }
+    std::vector<int> layers(surface.points.size(), r.layers);
+    for (const ShortNode& n : r.short_nodes)
+        if (n.node >= 0 && static_cast<std::size_t>(n.node) < layers.size())
+            layers[static_cast<std::size_t>(n.node)] = n.layers;
+    Vec3 lo = Vec3::Constant(0.0), hi = Vec3::Constant(0.0);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const Vec3& p = surface.points[static_cast<std::size_t>(points[i])];
+        lo = i ? Vec3(lo.cwiseMin(p)) : p;
+        hi = i ? Vec3(hi.cwiseMax(p)) : p;
+    }
+    // The cut: across the wall box's longest side through its centre unless given.
+    const Vec3 size = hi - lo;
+    int axis = cut_axis;
+    double value = cut_value;
+    if (axis < 0 || axis > 2) {
+        size.maxCoeff(&axis);
+        value = 0.5 * (lo[axis] + hi[axis]);
+    }
+    const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
+    const std::array<double, 4> window{lo[u] - 0.5 * size[u], hi[u] + 0.5 * size[u], lo[v] - 0.5 * size[v],
+                                       hi[v] + 0.5 * size[v]};
+    const PlaneCut cut = cut_cells(mesh, axis, value, window);
+
+    AtomicFile file(path);
+    {
+        std::ofstream out(file.temp_path());
+        if (!out) throw InputError(path + ": cannot write the plots' data; check the directory's permissions");
+        out << "{\n\"wall\": {\"points\": [";
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const Vec3& p = surface.points[static_cast<std::size_t>(points[i])];
+            out << (i ? ",\n[" : "\n[") << short_number(p.x()) << "," << short_number(p.y()) << ","
+                << short_number(p.z()) << "]";
+        }
+        out << "],\n\"faces\": [";
+        for (std::size_t i = 0; i < faces.size(); ++i) {
+            out << (i ? ",\n[" : "\n[");
+            for (const Index* n = surface.face_begin(faces[i]); n != surface.face_end(faces[i]); ++n)
+                out << (n == surface.face_begin(faces[i]) ? "" : ",") << point_of[static_cast<std::size_t>(*n)];
+            out << "]";
+        }
+        out << "],\n\"patches\": [";
+        for (std::size_t p = 0; p < surface.patches.size(); ++p)
+            out << (p ? ", " : "") << quoted(surface.patches[p].name);
+        out << "],\n\"face_patch\": [";
+        for (std::size_t i = 0; i < faces.size(); ++i) out << (i ? "," : "") << surface.face_patch[faces[i]];
+        out << "],\n\"layers\": [";
+        for (std::size_t i = 0; i < points.size(); ++i)
+            out << (i ? "," : "") << layers[static_cast<std::size_t>(points[i])];
+        const char* names = "xyz";
+        out << "]},\n\"cut\": {\"axis\": \"" << names[axis] << "\", \"value\": " << short_number(value) << ", \"u\": \""
+            << names[u] << "\", \"v\": \"" << names[v] << "\", \"window\": [" << short_number(window[0]) << ", "
+            << short_number(window[1]) << ", " << short_number(window[2]) << ", " << short_number(window[3])
+            << "],\n\"types\": [";
+        for (Index p = 0; p < cut.num_polygons(); ++p)
+            out << (p ? "," : "") << quoted(std::string(to_string(cut.types[static_cast<std::size_t>(p)])));
+        out << "],\n\"polygons\": [";
+        for (Index p = 0; p < cut.num_polygons(); ++p) {
+            out << (p ? ",\n[" : "\n[");
+            for (Index k = cut.offsets[static_cast<std::size_t>(p)]; k < cut.offsets[static_cast<std::size_t>(p) + 1];
+                 ++k) {
+                const auto& x = cut.points[static_cast<std::size_t>(k)];
+                out << (k == cut.offsets[static_cast<std::size_t>(p)] ? "" : ",") << short_number(x[0]) << ","
+                    << short_number(x[1]);
+            }
+            out << "]";
+        }
+        out << "]}\n}\n";
+        if (!out.flush()) throw InputError(path + ": writing the plots' data failed (disk full?)");
     }
     file.commit();
 }

@@ -555,7 +555,7 @@ py::dict coverage_report(const LayerReport& r) {
 }
 
 py::dict quality_report(const VolumeMesh& mesh, const ValidationReport& v) {
-    py::dict cells, min_sj, worst;
+    py::dict cells, min_sj, worst, histograms;
     for (const CellType t : kCellTypes) {
         const std::string name(to_string(t));
         cells[py::str(name)] = mesh.num_cells(t);
@@ -563,11 +563,15 @@ py::dict quality_report(const VolumeMesh& mesh, const ValidationReport& v) {
         const auto& q = v.by_type[static_cast<std::size_t>(t)];
         min_sj[py::str(name)] = q.min_scaled_jacobian;
         worst[py::str(name)] = q.worst_cell;
+        histograms[py::str(name)] = py::list(py::cast(std::vector<Index>(q.histogram.begin(), q.histogram.end())));
     }
+    std::vector<double> edges{0.0};  // the bins' edges, as in OUT.report.json
+    for (int b = 0; b < kQualityBins; ++b) edges.push_back(quality_bin_edge(b));
     min_sj["all"] = v.min_scaled_jacobian;
     worst["all"] = v.worst_cell;
     return py::dict("cells"_a = cells, "nodes"_a = mesh.points.size(), "min_scaled_jacobian"_a = min_sj,
-                    "worst_cell"_a = worst, "cell_volume"_a = v.cell_volume, "boundary_volume"_a = v.boundary_volume);
+                    "worst_cell"_a = worst, "histograms"_a = histograms, "bin_edges"_a = edges,
+                    "cell_volume"_a = v.cell_volume, "boundary_volume"_a = v.boundary_volume);
 }
 
 py::list layer_table(const std::vector<LayerStats>& stats) {
@@ -669,7 +673,7 @@ py::object run_layers(const py::object& input, const py::dict& kwargs, const std
         t = std::chrono::steady_clock::now();
         if (output) {
             write_volume(lm.mesh, *output, version, progress);
-            write_layer_report(coverage, report_path(*output));
+            write_mesh_report(coverage, lm.mesh, v, report_path(*output));
         }
         auto result = std::make_unique<PyMesh>();
         py::dict r = quality_report(lm.mesh, v);
@@ -699,7 +703,7 @@ py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::
         const auto t = std::chrono::steady_clock::now();
         if (output) {
             write_volume(result->mesh, *output, version, progress);
-            write_layer_report(hr.coverage, report_path(*output));
+            write_mesh_report(hr.coverage, result->mesh, hr.validation, report_path(*output));
         }
         py::dict r = hybrid_report(result->mesh, hr);
         r["surface"] = surface_report(p.surface, p.report, p.seconds);

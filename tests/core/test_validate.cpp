@@ -406,3 +406,51 @@ TEST(ValidateMesh, StructuredMeshSpanningManyChunksIsValid) {
     EXPECT_EQ(r.interior_faces, 3 * 39 * 40 * 40);
     EXPECT_NEAR(r.cell_volume, 1.0, 1e-12);
 }
+
+namespace strata {
+namespace {
+
+TEST(QualityBins, EdgesAreFourADecadeFromAMillionthToOne) {
+    EXPECT_EQ(kQualityBins, 25);
+    EXPECT_DOUBLE_EQ(quality_bin_edge(0), 1e-6);
+    EXPECT_DOUBLE_EQ(quality_bin_edge(kQualityBins - 1), 1.0);
+    EXPECT_NEAR(quality_bin_edge(4), 1e-5, 1e-20);
+    EXPECT_EQ(quality_bin(0.0), 0);
+    EXPECT_EQ(quality_bin(-0.5), 0);
+    EXPECT_EQ(quality_bin(std::nan("")), 0);
+    EXPECT_EQ(quality_bin(9.9e-7), 0);
+    EXPECT_EQ(quality_bin(1e-6), 1);  // an edge starts the bin above it
+    EXPECT_EQ(quality_bin(quality_bin_edge(12)), 13);
+    EXPECT_EQ(quality_bin(std::nextafter(quality_bin_edge(12), 0.0)), 12);
+    EXPECT_EQ(quality_bin(0.5), 23);  // [10^-0.5, 1)
+    EXPECT_EQ(quality_bin(1.0), kQualityBins - 1);
+    EXPECT_EQ(quality_bin(1.0 + 1e-15), kQualityBins - 1);
+    for (int b = 1; b < kQualityBins; ++b) {  // each bin holds its lower edge and the middle of the bin
+        EXPECT_EQ(quality_bin(quality_bin_edge(b - 1)), b) << b;
+        EXPECT_EQ(quality_bin(std::sqrt(quality_bin_edge(b - 1) * quality_bin_edge(b))), b) << b;
+    }
+}
+
+TEST(ValidateMesh, HistogramPerTypeCountsEveryCellInItsBin) {
+    // The mixed box: every cell's own value in its own type's bin; the counts sum to the cells.
+    const VolumeMesh m = test::mixed_box().build();
+    const ValidationReport r = validate_mesh(m);
+    for (const CellType t : kCellTypes) {
+        std::array<Index, kQualityBins> expected{};
+        for (std::size_t i = 0; i < m.num_cells(t); ++i)
+            ++expected[static_cast<std::size_t>(quality_bin(min_scaled_jacobian(m.points, m.cell(t, i), t)))];
+        const auto& h = r.by_type[static_cast<std::size_t>(t)].histogram;
+        EXPECT_EQ(h, expected) << to_string(t);
+        Index sum = 0;
+        for (const Index c : h) sum += c;
+        EXPECT_EQ(sum, static_cast<Index>(m.num_cells(t))) << to_string(t);
+    }
+    // Unit hexahedra are right-angled: all in the last bin.
+    EXPECT_EQ(r.by_type[static_cast<std::size_t>(CellType::Hex)].histogram[kQualityBins - 1], 21);
+    // The same for one thread and many.
+    const ValidationReport one = validate_mesh(m, {.threads = 1});
+    for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(one.by_type[k].histogram, r.by_type[k].histogram);
+}
+
+}  // namespace
+}  // namespace strata

@@ -1,10 +1,13 @@
 // The layer coverage report as JSON (io/write_report.h): content, escaping, atomic writing.
 
 #include <strata/core/error.h>
+#include <strata/core/format.h>
+#include <strata/core/validate.h>
 #include <strata/io/write_report.h>
 
 #include <gtest/gtest.h>
 
+#include "core/box_mesh.h"
 #include "test_support.h"
 
 #include <fstream>
@@ -78,6 +81,49 @@ TEST(WriteLayerReport, PatchesAndShortNodesWithEscapedNames) {
 TEST(WriteLayerReport, MissingDirectoryIsAnInputErrorAndLeavesNothing) {
     test::expect_error<InputError>([] { write_layer_report({}, "/nonexistent_dir_for_strata/m.report.json"); },
                                    {"/nonexistent_dir_for_strata"});
+}
+
+TEST(WriteMeshReport, CellsQualityHistogramsAndLayerStats) {
+    // The mixed box (every cell type): its cell counts, each type's min scaled Jacobian and
+    // histogram (the counts summing to its cells), the bins' edges, and the layers' figures.
+    const VolumeMesh m = test::mixed_box().build();
+    const ValidationReport v = validate_mesh(m);
+    LayerReport r;
+    r.layers = 2;
+    r.per_layer.push_back({1e-3, 0.5, 0.75, 12.5, 40, 0, 1});
+    r.per_layer.push_back({1.2e-3, 0.25, 0.7, 20, 38, 2, 0});
+    test::ScratchDir dir("write_mesh_report");
+    const std::string path = dir.file("m.report.json");
+    write_mesh_report(r, m, v, path);
+    const std::string json = slurp(path);
+    std::string hex = "\"hexahedron\": [";
+    for (int b = 0; b + 1 < kQualityBins; ++b) hex += "0, ";
+    hex += "21]";  // unit cubes: all right-angled
+    for (const std::string& part :
+         {std::string("\"nodes\": ") + std::to_string(m.points.size()),
+          std::string("\"cells\": {\"tetrahedron\": 10, \"pyramid\": 16, \"prism\": 4, \"hexahedron\": 21}"),
+          "\"min_scaled_jacobian\": {\"all\": " + format_number(v.min_scaled_jacobian, 17), hex,
+          std::string("\"bin_edges\": [0, "), std::string(", 1],"),
+          std::string("{\"layer\": 1, \"height\": 0.001, \"min_scaled_jacobian\": 0.5, \"mean_scaled_jacobian\": "
+                      "0.75, \"max_orthogonality_deg\": 12.5, \"columns\": 40, \"stopped_nodes\": 0, "
+                      "\"held_nodes\": 1}"),
+          std::string("{\"layer\": 2, \"height\": 0.0011999999999999999, ")})
+        EXPECT_NE(json.find(part), std::string::npos) << part << "\n" << json;
+    // Each type's histogram sums to its cells.
+    for (const CellType t : kCellTypes) {
+        const std::string key = "\"" + std::string(to_string(t)) + "\": [";
+        const std::size_t at = json.find(key, json.find("\"histograms\""));
+        ASSERT_NE(at, std::string::npos) << key;
+        std::istringstream in(json.substr(at + key.size(), json.find(']', at) - at - key.size()));
+        long sum = 0, count = 0;
+        std::string item;
+        while (std::getline(in, item, ',')) sum += std::stol(item), ++count;
+        EXPECT_EQ(count, kQualityBins) << key;
+        EXPECT_EQ(sum, static_cast<long>(m.num_cells(t))) << key;
+    }
+    // The coverage-only report has no figures.
+    write_layer_report(r, path);
+    EXPECT_EQ(slurp(path).find("\"quality\""), std::string::npos);
 }
 
 }  // namespace

@@ -26,4 +26,17 @@ double min_scaled_jacobian(const std::vector<Vec3>& p, const Index* v, CellType 
 /// The same for a cell given by its cell_corners(t) corner positions \p corners, in order.
 double min_scaled_jacobian(const Vec3* corners, CellType t);
 
+/// The fixed bins of the scaled-Jacobian histograms (ValidationReport, OUT.report.json):
+/// logarithmic, kQualityBinsPerDecade a decade from 1e-kQualityDecades up to 1, since the
+/// cells worth seeing are the few between 1e-5 and 1e-1. Bin 0 holds everything below
+/// 1e-kQualityDecades (≤ 0 and NaN too: an invalid mesh); bin b ≥ 1 holds
+/// [quality_bin_edge(b − 1), quality_bin_edge(b)), the last one also 1 and rounding above it.
+inline constexpr int kQualityDecades = 6;
+inline constexpr int kQualityBinsPerDecade = 4;
+inline constexpr int kQualityBins = 1 + kQualityDecades * kQualityBinsPerDecade;
+/// The upper edge of bin \p b ≥ 0: 10^(−kQualityDecades + b / kQualityBinsPerDecade).
+double quality_bin_edge(int b);
+/// The bin of scaled Jacobian \p sj.
+int quality_bin(double sj);
+
 }  // namespace strata

@@ -74,10 +74,22 @@ struct NoFanNode {
     NoFan reason = NoFan::Unusable;
 };
 
+/// The figures of one layer (LayerStats' own, for the report).
+struct LayerFigures {
+    double height = 0.0;  ///< the layer's height asked, model units
+    double min_scaled_jacobian = 0.0;
+    double mean_scaled_jacobian = 0.0;
+    double max_orthogonality_deg = 0.0;
+    Index columns = 0;        ///< wall nodes that have this layer
+    Index stopped_nodes = 0;  ///< columns that stopped below it (had the one before)
+    Index held_nodes = 0;     ///< nodes held back in it
+};
+
 struct LayerReport {
-    int layers = 0;             ///< layers asked
-    double first_height = 0.0;  ///< asked
-    double thickness = 0.0;     ///< asked: the sum of the layer heights
+    int layers = 0;                       ///< layers asked
+    double first_height = 0.0;            ///< asked
+    double thickness = 0.0;               ///< asked: the sum of the layer heights
+    std::vector<LayerFigures> per_layer;  ///< one per layer asked, wall side first
     std::vector<PatchCoverage> patches;
     std::vector<ShortNode> short_nodes;  ///< every limited node, by wall node id
     std::vector<NoFanNode> no_fan;       ///< wall nodes with no fan (LayerParams::fan_angle_deg), by node id

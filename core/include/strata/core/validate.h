@@ -5,6 +5,7 @@
 /// sets, boundary faces exactly the patch faces (and pointing out), and cell volumes summing
 /// to the volume enclosed by the boundary (divergence theorem).
 
+#include <strata/core/cell_quality.h>
 #include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
 
@@ -23,6 +24,9 @@ struct ValidationReport {
     struct TypeQuality {
         double min_scaled_jacobian = 1.0;
         std::string worst_cell;
+        /// Cells by their min scaled Jacobian in the fixed bins quality_bin (cell_quality.h);
+        /// the counts sum to the cells of the type.
+        std::array<Index, kQualityBins> histogram{};
     };
     std::array<TypeQuality, 4> by_type;
     double cell_volume = 0.0;      ///< Σ cell volumes
