@@ -196,8 +196,10 @@ void write_plot_data(const LayerReport& r, const SurfaceMesh& surface, const Vol
         value = 0.5 * (lo[axis] + hi[axis]);
     }
     const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
-    const std::array<double, 4> window{lo[u] - 0.5 * size[u], hi[u] + 0.5 * size[u], lo[v] - 0.5 * size[v],
-                                       hi[v] + 0.5 * size[v]};
+    // Half the body's larger extent in the plane round it both ways, so a thin body (a wing
+    // cut along its chord) is seen with the cells above and below it too.
+    const double pad = 0.5 * std::max(size[u], size[v]);
+    const std::array<double, 4> window{lo[u] - pad, hi[u] + pad, lo[v] - pad, hi[v] + pad};
     const PlaneCut cut = cut_cells(mesh, axis, value, window);
 
     AtomicFile file(path);

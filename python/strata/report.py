@@ -187,11 +187,22 @@ def plot_cut(report, data, path):
     layer = [p for p, t in zip(polys, cut["types"]) if t in ("prism", "hexahedron")]
     zoom = None
     if layer and report["thickness"] > 0:
-        top = max((pt for p in layer for pt in p), key=lambda pt: pt[1])
-        r = 1.5 * report["thickness"]
-        zoom = (top[0] - r, top[0] + r, top[1] - 1.6 * r, top[1] + 0.4 * r)
+        # The body's front in the cut (its lowest u: a leading edge, a nose), where the layers
+        # turn round it: the layer cells' polygons there, 3 thicknesses across.
+        front = min((pt for p in layer for pt in p), key=lambda pt: pt[0])
+        thick = report["thickness"]
+        zoom = (front[0] - 0.5 * thick, front[0] + 2.5 * thick, front[1] - 1.5 * thick, front[1] + 1.5 * thick)
     fig, axes = plt.subplots(1, 2 if zoom else 1, figsize=(14 if zoom else 9, 6.5), squeeze=False)
     u0, u1, v0, v1 = cut["window"]
+    if layer:
+        # The whole panel: the body's section (where its layer cells are) and as much again
+        # round it, widened to a square, within the cut's window.
+        us = [pt[0] for p in layer for pt in p]
+        vs = [pt[1] for p in layer for pt in p]
+        cu, cv = (min(us) + max(us)) / 2, (min(vs) + max(vs)) / 2
+        half = max(max(us) - min(us), max(vs) - min(vs))
+        u0, u1 = max(u0, cu - half), min(u1, cu + half)
+        v0, v1 = max(v0, cv - half), min(v1, cv + half)
     for ax, (a0, a1, b0, b1) in zip(axes[0], [(u0, u1, v0, v1)] + ([zoom] if zoom else [])):
         for t in TYPES:
             mine = [p for p, ty in zip(polys, cut["types"]) if ty == t]
@@ -203,11 +214,11 @@ def plot_cut(report, data, path):
         ax.set_aspect("equal")
         ax.set_xlabel(cut["u"])
         ax.set_ylabel(cut["v"])
-    axes[0, 0].legend(loc="upper right")
-    axes[0, 0].set_title(f"cut {cut['axis']} = {cut['value']:.4g}: cells near the body, by type", fontsize=10)
+    axes[0, 0].legend(loc="lower center", bbox_to_anchor=(0.5, 1.01), ncol=4, fontsize=8, frameon=False)
+    axes[0, 0].set_title(f"cut {cut['axis']} = {cut['value']:.4g}: cells near the body, by type", fontsize=10,
+                         pad=24)
     if zoom:
-        axes[0, 1].set_title(f"the layers at ({zoom[0] / 2 + zoom[1] / 2:.4g}, {zoom[3] - 0.4 * r:.4g})",
-                             fontsize=10)
+        axes[0, 1].set_title(f"the layers round the body's front, ({front[0]:.4g}, {front[1]:.4g})", fontsize=10)
     fig.tight_layout()
     _save(fig, path)
     plt.close(fig)
