@@ -18,6 +18,14 @@
 
 namespace strata::test {
 
+/// The names in \p dir, sorted (what a writer left behind).
+inline std::vector<std::string> dir_entries(const std::filesystem::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
 /// A file of examples/data (the geometries copied from ../shared/data).
 inline std::string example_data(const std::string& name) {
     return std::string(STRATA_EXAMPLES_DATA) + "/" + name;

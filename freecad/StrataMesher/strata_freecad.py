@@ -154,7 +154,21 @@ def _set_options(obj, options):
             setattr(obj, prop, value)
 
 
-class StrataMesh:
+class Stateless:
+    """A proxy with nothing to save: FreeCAD 0.20 pickles proxies with __getstate__ and
+    __setstate__, newer versions with dumps and loads."""
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    dumps = __getstate__
+    loads = __setstate__
+
+
+class StrataMesh(Stateless):
     """Proxy of a Fem::FemMeshObjectPython meshed by Strata (like FreeCAD's MeshGmsh)."""
 
     Type = "Fem::StrataMesh"
@@ -174,16 +188,6 @@ class StrataMesh:
         # As with FreeCAD's Gmsh mesher, a recompute keeps the mesh; meshing is explicit
         # (run(), the task panel's Mesh button): a hybrid mesh can take minutes.
         return None
-
-    # FreeCAD 0.20 pickles proxies with __getstate__/__setstate__, newer ones with dumps/loads.
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    dumps = __getstate__
-    loads = __setstate__
 
 
 def make_mesh_object(doc, part, name="StrataMesh"):

@@ -20,7 +20,7 @@ def _shape_object(obj):
     return shape is not None and not shape.isNull()
 
 
-class ViewProviderStrataMesh:
+class ViewProviderStrataMesh(strata_freecad.Stateless):
     """FEM's mesh view provider (FreeCAD shows the FemMesh) with a double-click to the task panel."""
 
     def __init__(self, vobj):
@@ -47,15 +47,6 @@ class ViewProviderStrataMesh:
             FreeCADGui.Control.closeDialog()
         FreeCADGui.ActiveDocument.setEdit(vobj.Object.Name)
         return True
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    dumps = __getstate__
-    loads = __setstate__
 
 
 class TaskPanel:

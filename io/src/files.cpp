@@ -31,7 +31,10 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
-void check_output_path(const std::string& path) {
+namespace {
+
+/// InputError unless the directory \p path is to go in exists.
+void require_parent_directory(const std::string& path) {
     namespace fs = std::filesystem;
     const fs::path t(path);
     const fs::path dir = t.parent_path().empty() ? fs::path(".") : t.parent_path();
@@ -39,17 +42,23 @@ void check_output_path(const std::string& path) {
     if (!fs::is_directory(dir, ec))
         throw InputError("cannot write '" + path + "': directory '" + dir.string() +
                          "' does not exist; create it or choose another output path");
+}
+
+}  // namespace
+
+void check_output_path(const std::string& path) {
+    namespace fs = std::filesystem;
+    require_parent_directory(path);
+    const fs::path t(path);
+    std::error_code ec;
     if (fs::is_directory(t, ec)) throw InputError("cannot write '" + path + "': it is a directory; choose a file name");
 }
 
 void check_output_directory(const std::string& path) {
     namespace fs = std::filesystem;
+    require_parent_directory(path);
     const fs::path t(path);
-    const fs::path dir = t.parent_path().empty() ? fs::path(".") : t.parent_path();
     std::error_code ec;
-    if (!fs::is_directory(dir, ec))
-        throw InputError("cannot write '" + path + "': directory '" + dir.string() +
-                         "' does not exist; create it or choose another output path");
     if (fs::exists(t, ec) && !fs::is_directory(t, ec))
         throw InputError("cannot write '" + path +
                          "': it is a file, not a directory; remove it or choose another output path");

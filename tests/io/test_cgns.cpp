@@ -27,13 +27,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> entries(const fs::path& dir) {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
 /// Every cell type in a box (the arrangement tests/io/test_write_volume.cpp validates): hexahedra,
 /// six pyramids, two prisms in a row, six tetrahedra on top of the prisms. The y− and y+ sides
 /// hold the prisms' triangular ends and the other cubes' quadrilaterals.
@@ -71,7 +64,7 @@ TEST(WriteCgns, ReadBackWithTheCgnsLibrary) {
     ASSERT_GT(m.hexes.size(), 0u);
     const std::string path = dir.file("mesh.cgns");
     write_volume(m, path);  // by extension, through write_volume
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"mesh.cgns"});
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"mesh.cgns"});
 
     int fn = 0;
     CG(cg_open(path.c_str(), CG_MODE_READ, &fn));
@@ -244,5 +237,5 @@ TEST(WriteCgns, BadPathAndMalformedMeshLeaveNothing) {
     VolumeMesh bad = m;
     bad.hexes[0][3] = 100000;
     test::expect_error<InputError>([&] { write_cgns(bad, dir.file("mesh.cgns")); }, {"mesh.cgns", "100000"});
-    EXPECT_TRUE(entries(dir.path()).empty());
+    EXPECT_TRUE(test::dir_entries(dir.path()).empty());
 }

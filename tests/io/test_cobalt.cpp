@@ -45,13 +45,6 @@ std::string slurp(const std::string& path) {
     return s.str();
 }
 
-std::vector<std::string> dir_entries(const std::filesystem::path& dir) {
-    std::vector<std::string> names;
-    for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
 std::vector<Index> sorted_nodes(std::vector<Index> v) {
     std::sort(v.begin(), v.end());
     return v;
@@ -299,7 +292,7 @@ TEST(WriteCobalt, ByteIdenticalReruns) {
     const std::string bc_a = slurp(dir.file("a.cgr.bc")), bc_b = slurp(dir.file("b.cgr.bc"));
     // The comment names the grid file; the patch lines are identical.
     EXPECT_EQ(bc_a.substr(bc_a.find('\n')), bc_b.substr(bc_b.find('\n')));
-    EXPECT_EQ(dir_entries(dir.path()), (std::vector<std::string>{"a.cgr", "a.cgr.bc", "b.cgr", "b.cgr.bc"}));
+    EXPECT_EQ(test::dir_entries(dir.path()), (std::vector<std::string>{"a.cgr", "a.cgr.bc", "b.cgr", "b.cgr.bc"}));
 }
 
 /// Patches without faces are not numbered; numbers follow the patch table; names with spaces
@@ -360,7 +353,7 @@ void expect_error(F&& f, const std::string& text, const std::filesystem::path& d
     } catch (const E& e) {
         EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
     }
-    EXPECT_EQ(dir_entries(dir), entries) << "files left behind";
+    EXPECT_EQ(test::dir_entries(dir), entries) << "files left behind";
 }
 
 TEST(WriteCobalt, FaceSharedByThreeCells) {

@@ -20,13 +20,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> entries(const fs::path& dir) {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
 std::string slurp(const std::string& path) {
     std::ifstream in(path);
     return std::string(std::istreambuf_iterator<char>(in), {});
@@ -56,7 +49,7 @@ TEST(AtomicDirectory, NewTargetExistingTargetAndNoCommit) {
         EXPECT_FALSE(fs::exists(target));  // nothing at the target before commit
         d.commit();
     }
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"out"});
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"out"});
     EXPECT_EQ(slurp(target + "/a"), "first");
     {
         AtomicDirectory d(target);
@@ -64,14 +57,14 @@ TEST(AtomicDirectory, NewTargetExistingTargetAndNoCommit) {
         EXPECT_EQ(slurp(target + "/a"), "first");  // the old one stays whole until commit
         d.commit();
     }
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"out"});
-    EXPECT_EQ(entries(target), std::vector<std::string>{"b"});  // replaced whole, not merged
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"out"});
+    EXPECT_EQ(test::dir_entries(target), std::vector<std::string>{"b"});  // replaced whole, not merged
     {
         AtomicDirectory d(target);
         std::ofstream(d.file("c")) << "never committed";
     }
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"out"});
-    EXPECT_EQ(entries(target), std::vector<std::string>{"b"});
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"out"});
+    EXPECT_EQ(test::dir_entries(target), std::vector<std::string>{"b"});
     EXPECT_THROW(AtomicDirectory(dir.file("missing/out")), InputError);
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"out"});
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"out"});
 }

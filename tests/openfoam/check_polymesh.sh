@@ -13,27 +13,9 @@ while [ "${1:-}" = "--type" ]; do
   shift 2
 done
 command -v checkMesh >/dev/null || { echo "checkMesh not found: install Debian's openfoam (scripts/setup.sh does)"; exit 1; }
-export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
-case_dir=$(mktemp -d)
-trap 'rm -rf "$case_dir"' EXIT
-mkdir -p "$case_dir/system" "$case_dir/constant"
-cat >"$case_dir/system/controlDict" <<'DICT'
-FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }
-application checkMesh; startFrom startTime; startTime 0; stopAt endTime; endTime 0; deltaT 1;
-writeControl timeStep; writeInterval 1;
-DICT
-cat >"$case_dir/system/fvSchemes" <<'DICT'
-FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }
-ddtSchemes { default steadyState; }
-gradSchemes { default Gauss linear; }
-divSchemes { default none; }
-laplacianSchemes { default Gauss linear corrected; }
-interpolationSchemes { default linear; }
-snGradSchemes { default corrected; }
-DICT
-cat >"$case_dir/system/fvSolution" <<'DICT'
-FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }
-DICT
+# shellcheck source=foam_case.sh
+source "$(dirname "$0")/foam_case.sh"
+new_foam_case
 "$strata" mesh "$@" -o "$case_dir/constant/polyMesh" -q
 for t in "${types[@]}"; do
   patch=${t%%=*} type=${t#*=}
@@ -41,10 +23,4 @@ for t in "${types[@]}"; do
        END { exit !found }' "$case_dir/constant/polyMesh/boundary" ||
     { echo "patch $patch is not of type $type:"; cat "$case_dir/constant/polyMesh/boundary"; exit 1; }
 done
-checkMesh -case "$case_dir" >"$case_dir/checkMesh.log" 2>&1 || true
-grep -E "cells:|non-orthogonality Max|Max skewness|Max aspect ratio" "$case_dir/checkMesh.log" || true
-if ! grep -q "^Mesh OK." "$case_dir/checkMesh.log"; then
-  grep -E "\*\*\*|Failed|FATAL" "$case_dir/checkMesh.log" || tail -20 "$case_dir/checkMesh.log"
-  exit 1
-fi
-echo "checkMesh: Mesh OK."
+check_foam_case
