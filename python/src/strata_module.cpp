@@ -550,8 +550,18 @@ py::dict coverage_report(const LayerReport& r) {
                      "all_layers"_a = c.all_layers, "mean_share"_a = c.mean_share, "min_share"_a = c.min_share,
                      "mean_layers"_a = c.mean_layers, "min_layers"_a = c.min_layers, "short"_a = short_by);
     }
+    // The wall nodes that fell short and those without a fan, as OUT.report.json lists them.
+    py::list short_nodes, no_fan;
+    for (const ShortNode& n : r.short_nodes)
+        short_nodes.append(
+            py::dict("node"_a = n.node, "position"_a = py::make_tuple(n.position.x(), n.position.y(), n.position.z()),
+                     "share"_a = n.share, "layers"_a = n.layers, "reason"_a = std::string(to_string(n.reason))));
+    for (const NoFanNode& n : r.no_fan)
+        no_fan.append(py::dict("node"_a = n.node,
+                               "position"_a = py::make_tuple(n.position.x(), n.position.y(), n.position.z()),
+                               "reason"_a = std::string(to_string(n.reason))));
     return py::dict("layers"_a = r.layers, "first_height"_a = r.first_height, "thickness"_a = r.thickness,
-                    "patches"_a = patches, "short_nodes"_a = r.short_nodes.size());
+                    "patches"_a = patches, "short_nodes"_a = short_nodes, "no_fan_nodes"_a = no_fan);
 }
 
 py::dict quality_report(const VolumeMesh& mesh, const ValidationReport& v) {

@@ -89,6 +89,24 @@ def test_mesh_sphere_arrays_and_report(tmp_path):
     assert all(0.0 <= f <= 1.0 for _, f in stages)
 
 
+def test_coverage_lists_the_short_nodes_with_their_positions():
+    # Two spheres whose gap is a tenth of the layers: the columns facing it get fewer layers
+    # (proximity), each listed with where and why, as in OUT.report.json.
+    geo = os.path.join(os.path.dirname(SPHERE_STL), "two_spheres_narrow_gap.geo")
+    lm = strata.layers(geo, size=0.05, layers=30, first_height=1e-4, growth=1.2)
+    cov = lm.report["coverage"]
+    short = cov["short_nodes"]
+    assert short, "no short node beside the gap"
+    assert len(short) == sum(sum(c["short"].values()) for c in cov["patches"].values())
+    assert {n["reason"] for n in short} == {"proximity"}
+    for n in short:
+        assert len(n["position"]) == 3 and 0.0 < n["share"] < 1.0 and 0 <= n["layers"] <= 30
+        # on the wall: a point of one of the spheres (radius 0.5, centres 0 and 1.0118 on x)
+        d = min(np.linalg.norm(np.subtract(n["position"], c)) for c in ((0, 0, 0), (1.0118, 0, 0)))
+        assert abs(d - 0.5) < 0.01, n
+    assert cov["no_fan_nodes"] == []
+
+
 def test_surface_and_layers(tmp_path):
     s = strata.surface(SPHERE_STL)
     assert s.points.shape == (s.report["nodes"], 3)
