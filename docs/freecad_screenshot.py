@@ -65,9 +65,9 @@ def shoot():
     obj.ViewObject.DisplayMode = "Faces & Wireframe"
     # The layers' nodes (those of the hexahedra and prisms) in one colour, the rest in another:
     # the faces take their nodes' colours, so the layers' cells are blue and the first row of
-    # cells beyond them (tetrahedra, pyramids) fades from blue to grey. (ElementColor, per element, would be the natural
-    # choice, but FreeCAD 0.20 maps the faces of the volumes other than tetrahedra to the wrong
-    # elements.)
+    # cells beyond them (tetrahedra, pyramids) fades from blue to grey. (ElementColor, per
+    # element, would be the natural choice, but FreeCAD 0.20 maps the faces of the volumes other
+    # than tetrahedra to the wrong elements: everything took the tetrahedra's colour.)
     fm = obj.FemMesh
     layer_nodes = {n for e in fm.Volumes for n in fm.getElementNodes(e) if len(fm.getElementNodes(e)) in (6, 8)}
     obj.ViewObject.NodeColor = {n: LAYER_COLOUR if n in layer_nodes else OTHER_COLOUR for n in fm.Nodes}
@@ -87,7 +87,7 @@ def shoot():
     cam.height.setValue(HEIGHT)
     mw = FreeCADGui.getMainWindow()
     mw.resize(1600, 1000)
-    docks = [d for d in mw.findChildren(QtWidgets.QDockWidget) if d.windowTitle() == "Combo View"]
+    docks = [dock for dock in mw.findChildren(QtWidgets.QDockWidget) if dock.windowTitle() == "Combo View"]
     mw.resizeDocks(docks, [PANEL_WIDTH] * len(docks), QtCore.Qt.Horizontal)
 
     def grab():
