@@ -11,12 +11,19 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace strata::test {
+
+/// The bytes of the file at \p path (empty if it cannot be read).
+inline std::string slurp(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 /// The names in \p dir, sorted (what a writer left behind).
 inline std::vector<std::string> dir_entries(const std::filesystem::path& dir) {

@@ -35,12 +35,7 @@ struct CliResult {
     std::string out, err;
 };
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using strata::test::slurp;
 
 /// Run the strata program with \p args (already shell-quoted) in \p dir, under \p wrapper (a
 /// command prefix such as "timeout ... ").

@@ -26,12 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using strata::test::slurp;
 
 /// The files of fuzz/<kind>/<target>/, sorted (none if the folder does not exist).
 std::vector<fs::path> inputs(const std::string& kind, const std::string& target) {

@@ -38,12 +38,7 @@ using strata::test::ScratchDir;
 
 namespace {
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using strata::test::slurp;
 
 std::vector<Index> sorted_nodes(std::vector<Index> v) {
     std::sort(v.begin(), v.end());

@@ -31,19 +31,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-std::vector<std::string> entries(const fs::path& dir) {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-}
+using strata::test::slurp;
 
 /// One cell of each type, all valid and conforming: the hexahedron [0,1]³, a prism on its x = 1
 /// side (a wedge out to x = 2 along the floor), a pyramid on its top (apex at z = 1.5) and a
@@ -253,8 +241,8 @@ TEST(WritePolyMesh, FilesAsOpenFoamWritesThem) {
     const VolumeMesh m = one_of_each();
     const std::string path = dir.file("polyMesh");
     write_volume(m, path);  // by name, through write_volume
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"polyMesh"});
-    EXPECT_EQ(entries(path), (std::vector<std::string>{"boundary", "faces", "neighbour", "owner", "points"}));
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"polyMesh"});
+    EXPECT_EQ(test::dir_entries(path), (std::vector<std::string>{"boundary", "faces", "neighbour", "owner", "points"}));
 
     const std::string owner = slurp(path + "/owner");
     EXPECT_NE(owner.find("    class       labelList;\n"
@@ -300,14 +288,14 @@ TEST(WritePolyMesh, ByteIdenticalRerunsAndTheDirectoryReplacedWhole) {
     const std::string path = dir.file("polyMesh");
     write_polymesh(m, path);
     std::map<std::string, std::string> first;
-    for (const std::string& f : entries(path)) first[f] = slurp(path + "/" + f);
+    for (const std::string& f : test::dir_entries(path)) first[f] = slurp(path + "/" + f);
     // An existing polyMesh with other files (as gmshToFoam leaves: sets/, zones) is replaced whole.
     fs::create_directories(path + "/sets");
     std::ofstream(path + "/sets/old") << "stale";
     std::ofstream(path + "/cellZones") << "stale";
     write_polymesh(m, path + "/");  // a trailing slash names the same directory
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"polyMesh"});
-    ASSERT_EQ(entries(path), (std::vector<std::string>{"boundary", "faces", "neighbour", "owner", "points"}));
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"polyMesh"});
+    ASSERT_EQ(test::dir_entries(path), (std::vector<std::string>{"boundary", "faces", "neighbour", "owner", "points"}));
     for (const auto& [f, text] : first) EXPECT_TRUE(slurp(path + "/" + f) == text) << f;
 }
 
@@ -341,13 +329,13 @@ TEST(WritePolyMesh, BadPathsBadMeshesAndCancellingLeaveNothing) {
         CancelAt cancel(at);
         EXPECT_THROW(write_polymesh(m, dir.file("polyMesh"), &cancel), Cancelled) << at;
     }
-    EXPECT_TRUE(entries(dir.path()).empty());
+    EXPECT_TRUE(test::dir_entries(dir.path()).empty());
 
     // A failed write leaves an existing polyMesh as it was.
     write_polymesh(m, dir.file("polyMesh"));
     const std::string before = slurp(dir.file("polyMesh/faces"));
     CancelAt cancel(1.0);
     EXPECT_THROW(write_polymesh(test::BoxMesh(1, 1, 1).build(), dir.file("polyMesh"), &cancel), Cancelled);
-    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"polyMesh"});
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"polyMesh"});
     EXPECT_TRUE(slurp(dir.file("polyMesh/faces")) == before);
 }

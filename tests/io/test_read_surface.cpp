@@ -31,12 +31,7 @@ namespace fs = std::filesystem;
 using test::example_data;
 using test::test_data;
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using strata::test::slurp;
 
 std::vector<std::string> files_in(const fs::path& dir) {
     std::vector<std::string> names;

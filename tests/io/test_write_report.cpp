@@ -16,12 +16,7 @@
 namespace strata {
 namespace {
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using strata::test::slurp;
 
 TEST(WriteLayerReport, PatchesAndShortNodesWithEscapedNames) {
     LayerReport r;
