@@ -60,9 +60,20 @@ def _pyplot():
     return plt
 
 
+def _write_atomically(path, write):
+    """write(temporary path), then rename it to \p path: never a half-written file at \p path."""
+    tmp = f"{path}.tmp{os.getpid()}"
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
 def _save(fig, path):
     # No "Software" metadata (the version): the same report gives the same file.
-    fig.savefig(path, dpi=100, metadata={"Software": None})
+    _write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100, metadata={"Software": None}))
 
 
 def plot_histograms(report, path):
@@ -282,8 +293,13 @@ def write_plots(report_path, plots_dir, quiet=False):
     if data is not None:
         plot_cut(report, data, os.path.join(plots_dir, "cut.png"))
         written.append("cut.png")
-    with open(os.path.join(plots_dir, "index.md"), "w") as f:
-        f.write(_index(report, data, report_path, written))
+    index = _index(report, data, report_path, written)
+
+    def write_index(tmp):
+        with open(tmp, "w") as f:
+            f.write(index)
+
+    _write_atomically(os.path.join(plots_dir, "index.md"), write_index)
     files = [os.path.join(plots_dir, n) for n in written + ["index.md"]]
     if not quiet:
         print("wrote " + ", ".join(files))
