@@ -61,7 +61,7 @@ def _pyplot():
 
 
 def _write_atomically(path, write):
-    """write(temporary path), then rename it to \p path: never a half-written file at \p path."""
+    """write(temporary path), then rename it to path: never a half-written file at path."""
     tmp = f"{path}.tmp{os.getpid()}"
     try:
         write(tmp)
