@@ -16,6 +16,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <vector>
 
@@ -155,21 +156,34 @@ SurfaceMesh fuse_components(const SurfaceMesh& mesh, FuseReport* report) {
             result = std::move(united);
         }
         rep.fused += static_cast<Index>(members.size());
-        // Back to Strata's mesh, in CGAL's vertex and face order (deterministic for the same input).
+        // Back to Strata's mesh in an order of the geometry alone: CGAL's corefinement visits the
+        // intersecting faces in an order that depends on heap addresses (its boxes' ids are
+        // their addresses), so its vertex and face order changed with, e.g., the length of the
+        // output path. Vertices sorted by coordinates, faces by their nodes from the lowest.
         const auto [patch, has_patch] = result.property_map<FaceD, Index>("f:patch");
-        std::map<Mesh::Vertex_index, Index> index;
-        for (const auto v : result.vertices()) {
+        std::vector<Mesh::Vertex_index> verts(result.vertices().begin(), result.vertices().end());
+        auto coords = [&](Mesh::Vertex_index v) {
             const auto& p = result.point(v);
+            return std::array<double, 3>{p.x(), p.y(), p.z()};
+        };
+        std::sort(verts.begin(), verts.end(), [&](auto a, auto b) { return coords(a) < coords(b); });
+        std::map<Mesh::Vertex_index, Index> index;
+        for (const auto v : verts) {
+            const auto c = coords(v);
             index[v] = static_cast<Index>(out.points.size());
-            out.points.emplace_back(p.x(), p.y(), p.z());
+            out.points.emplace_back(c[0], c[1], c[2]);
         }
+        std::vector<std::pair<std::vector<Index>, Index>> united_faces;  // nodes from the lowest, patch
         for (const auto f : result.faces()) {
             std::vector<Index> n;
             for (const auto v : CGAL::vertices_around_face(result.halfedge(f), result)) n.push_back(index.at(v));
+            std::rotate(n.begin(), std::min_element(n.begin(), n.end()), n.end());
             const Index p = has_patch ? patch[f] : kNone;
-            out.add_face(n.data(), static_cast<Index>(n.size()),
-                         p == kNone ? mesh.face_patch[faces[static_cast<std::size_t>(root)].front()] : p);
+            united_faces.emplace_back(std::move(n),
+                                      p == kNone ? mesh.face_patch[faces[static_cast<std::size_t>(root)].front()] : p);
         }
+        std::sort(united_faces.begin(), united_faces.end());
+        for (const auto& [n, p] : united_faces) out.add_face(n.data(), static_cast<Index>(n.size()), p);
     }
     if (report) *report = rep;
     return out;
