@@ -9,15 +9,21 @@ find_package(CGAL REQUIRED CONFIG)
 # k-d tree for nearest-point queries (Debian's libnanoflann-dev, header-only).
 find_package(nanoflann REQUIRED CONFIG)
 
+# A library Debian ships without a CMake config, as an imported target: its header's folder
+# and the library to link.
+function(strata_header_and_library target prefix header library)
+  if(NOT TARGET ${target})
+    find_path(${prefix}_INCLUDE_DIR ${header} REQUIRED)
+    find_library(${prefix}_LIBRARY ${library} REQUIRED)
+    add_library(${target} INTERFACE IMPORTED)
+    set_target_properties(${target} PROPERTIES
+      INTERFACE_INCLUDE_DIRECTORIES "${${prefix}_INCLUDE_DIR}"
+      INTERFACE_LINK_LIBRARIES "${${prefix}_LIBRARY}")
+  endif()
+endfunction()
+
 # Gmsh ships no CMake config (PLATFORM.md): header + library.
-if(NOT TARGET strata::libgmsh)
-  find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)
-  find_library(GMSH_LIBRARY gmsh REQUIRED)
-  add_library(strata::libgmsh INTERFACE IMPORTED)
-  set_target_properties(strata::libgmsh PROPERTIES
-    INTERFACE_INCLUDE_DIRECTORIES "${GMSH_INCLUDE_DIR}"
-    INTERFACE_LINK_LIBRARIES "${GMSH_LIBRARY}")
-endif()
+strata_header_and_library(strata::libgmsh GMSH gmsh.h gmsh)
 
 # TetGen 1.5 (Debian's libtet1.5-dev): the header, and the library's path for dlopen. It is
 # not linked: libgmsh exports its own TetGen under the same symbol names (see hybrid/).
@@ -32,11 +38,4 @@ endif()
 
 # CGNS mid-level library (Debian's libcgns-dev, HDF5 inside): the .cgns writer. No CMake config
 # in the Debian package: header + library.
-if(NOT TARGET strata::cgns)
-  find_path(CGNS_INCLUDE_DIR cgnslib.h REQUIRED)
-  find_library(CGNS_LIBRARY cgns REQUIRED)
-  add_library(strata::cgns INTERFACE IMPORTED)
-  set_target_properties(strata::cgns PROPERTIES
-    INTERFACE_INCLUDE_DIRECTORIES "${CGNS_INCLUDE_DIR}"
-    INTERFACE_LINK_LIBRARIES "${CGNS_LIBRARY}")
-endif()
+strata_header_and_library(strata::cgns CGNS cgnslib.h cgns)

@@ -52,28 +52,29 @@ VolumeMesh one_of_each() {
                           {"far", PatchKind::Farfield},
                           {"unused", PatchKind::Other}};
     // Boundary: the cell faces whose node set occurs once.
+    struct Face {
+        CellType type;
+        std::array<Index, 4> v;
+        int size;
+    };
+    std::vector<Face> all;
     std::map<std::array<Index, 4>, int> uses;
     for (CellType t : kCellTypes)
         for (std::size_t i = 0; i < m.num_cells(t); ++i) {
             const CellFaceTable& ft = cell_faces(t);
             for (int f = 0; f < ft.count; ++f) {
-                std::array<Index, 4> v{};
-                for (int k = 0; k < ft.size[f]; ++k) v[k] = m.cell(t, i)[ft.node[f][k]];
-                ++uses[sorted_face_key(v.data(), ft.size[f])];
+                Face face{t, {}, ft.size[f]};
+                for (int k = 0; k < ft.size[f]; ++k) face.v[k] = m.cell(t, i)[ft.node[f][k]];
+                ++uses[sorted_face_key(face.v.data(), face.size)];
+                all.push_back(face);
             }
         }
-    for (CellType t : kCellTypes)
-        for (std::size_t i = 0; i < m.num_cells(t); ++i) {
-            const CellFaceTable& ft = cell_faces(t);
-            for (int f = 0; f < ft.count; ++f) {
-                std::array<Index, 4> v{};
-                for (int k = 0; k < ft.size[f]; ++k) v[k] = m.cell(t, i)[ft.node[f][k]];
-                if (uses[sorted_face_key(v.data(), ft.size[f])] != 1) continue;
-                bool floor = true;
-                for (int k = 0; k < ft.size[f]; ++k) floor = floor && m.points[v[k]].z() == 0.0;
-                m.boundary.add_face(v.data(), ft.size[f], floor ? 0 : t == CellType::Tet ? 1 : 2);
-            }
-        }
+    for (const Face& face : all) {
+        if (uses[sorted_face_key(face.v.data(), face.size)] != 1) continue;
+        bool floor = true;
+        for (int k = 0; k < face.size; ++k) floor = floor && m.points[face.v[k]].z() == 0.0;
+        m.boundary.add_face(face.v.data(), face.size, floor ? 0 : face.type == CellType::Tet ? 1 : 2);
+    }
     return m;
 }
 
