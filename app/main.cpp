@@ -287,18 +287,27 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
     print_units(rep);
     if (rep.internal_flow)
         std::printf("flow: inside the walls (--internal): the outermost closed surface points inward\n");
+    if (rep.touching_faces > 0)
+        std::printf("fused: %d faces removed where bodies touch back to back along a common face (--fuse)\n",
+                    static_cast<int>(rep.touching_faces));
     if (rep.fused_components > 0)
         std::printf("fused: %d overlapping components replaced by their union (--fuse)\n",
                     static_cast<int>(rep.fused_components));
     if (rep.remeshed) {
         const strata::RemeshReport& r = rep.remesh;
         std::printf(
-            "remeshed: %d faces -> %d on %d Gmsh surfaces, size %s, feature angle %s degrees%s; needle faces %d -> %d "
-            "(sharpest corner %.3g -> %.3g degrees)\n",
+            "remeshed: %d faces -> %d on %d Gmsh surfaces, size %s%s, feature angle %s degrees%s; needle faces %d -> "
+            "%d (sharpest corner %.3g -> %.3g degrees)\n",
             static_cast<int>(r.faces_before), static_cast<int>(r.faces_after), static_cast<int>(r.surfaces),
-            strata::format_number(r.size).c_str(), strata::format_number(r.feature_angle_deg).c_str(),
-            r.attempts > 1 ? " (lowered: larger angles left folded faces)" : "", static_cast<int>(r.needles_before),
-            static_cast<int>(r.needles_after), r.sharpest_before_deg, r.sharpest_after_deg);
+            strata::format_number(r.size).c_str(),
+            r.size_halved ? " (half the input's median edge: at the median every feature angle failed)" : "",
+            strata::format_number(r.feature_angle_deg).c_str(),
+            r.feature_angle_deg < r.asked_feature_angle_deg ? " (lowered: larger angles left folded faces)"
+            : r.feature_angle_deg > r.asked_feature_angle_deg
+                ? " (raised: at smaller angles Gmsh could not parametrize the surfaces or left folded faces)"
+                : "",
+            static_cast<int>(r.needles_before), static_cast<int>(r.needles_after), r.sharpest_before_deg,
+            r.sharpest_after_deg);
     }
     print_needles(mesh, rep, any_cad);
 }

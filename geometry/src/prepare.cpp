@@ -2,8 +2,10 @@
 #include <strata/core/format.h>
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
+#include <strata/geometry/intersections.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
+#include <strata/geometry/touching.h>
 #include <strata/io/files.h>
 #include <strata/io/read_surface.h>
 
@@ -81,7 +83,28 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     merged = remove_collapsed_faces(merged, &collapsed);
     raw = SurfaceMesh{};  // the input copy is no longer needed
     strata::report(progress, "surface", 0.7);
-    check_surface(merged, source);
+    Index touching = 0;
+    if (params.fuse) {
+        // Bodies touching along a common face: the walls between them are not the union's.
+        const std::vector<Index> back_to_back = touching_faces(merged);
+        if (!back_to_back.empty()) {
+            std::vector<char> drop(static_cast<std::size_t>(merged.num_faces()), 0);
+            for (const Index f : back_to_back) drop[static_cast<std::size_t>(f)] = 1;
+            merged = remove_faces(merged, drop);
+            touching = static_cast<Index>(back_to_back.size());
+        }
+    }
+    try {
+        check_surface(merged, source);
+    } catch (const TopologyError& e) {
+        if (params.fuse) throw;
+        const std::vector<Index> back_to_back = touching_faces(merged);
+        if (back_to_back.empty()) throw;
+        throw TopologyError(std::string(e.what()) + ". Bodies touch there: " + std::to_string(back_to_back.size()) +
+                            " faces lie back to back on another body's (the first, " +
+                            describe_face(merged, back_to_back.front()) +
+                            "); fusing the bodies into one (--fuse) removes them");
+    }
     strata::report(progress, "surface", 0.8);
     OrientReport orient;
     SurfaceMesh oriented = orient_surface(merged, &orient, params.internal_flow);
@@ -110,6 +133,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         report->remesh = remesh;
         report->scale = params.scale;
         report->fused_components = fuse.fused;
+        report->touching_faces = touching;
         report->internal_flow = params.internal_flow;
         report->merged_nodes = merged_nodes;
         report->collapsed_faces = collapsed;

@@ -269,38 +269,52 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
     rep.sharpest_before_deg = before.sharpest_deg;
 
     // The angle asked, then lower ones: more edges become curves, the surfaces Gmsh
-    // parametrizes get smaller and flatter.
+    // parametrizes get smaller and flatter (a surface that folded its faces). Then higher ones,
+    // up to 1.5 times the angle asked: fewer curves, fewer and simpler surfaces, for a coarse
+    // tessellation where Gmsh's split of a surface for its parametrization leaves "wrong
+    // topology of boundary mesh" (the fused wing-fuselage STL: at 40, 30 and 22.5 degrees; 50
+    // meshes it).
     std::vector<double> angles{params.feature_angle_deg};
     while (angles.back() * 0.75 >= 0.5 * params.feature_angle_deg - 1e-9) angles.push_back(angles.back() * 0.75);
+    for (const double up : {1.25, 1.5})
+        if (params.feature_angle_deg * up < 90.0) angles.push_back(params.feature_angle_deg * up);
+    rep.asked_feature_angle_deg = params.feature_angle_deg;
+    // With the size left to Strata (the input's median edge), then half of it: a coarse
+    // tessellation's median edge can be as large as a thin part's diameter (the wing-fuselage's
+    // tail cone, where Gmsh put a face across the cone at every angle).
+    std::vector<double> sizes{size};
+    if (!(params.size > 0.0)) sizes.push_back(0.5 * size);
     std::string failures;
-    for (double angle : angles) {
-        ++rep.attempts;
-        std::optional<Attempt> a;
-        try {
-            a = remesh_once(mesh, tris, seams, params, size, angle, source);
-        } catch (const BackendError& e) {
-            failures += std::string(failures.empty() ? "" : "; ") + "at " + format_number(angle) +
-                        " degrees Gmsh failed (" + e.what() + ")";
-            continue;
+    for (const double h : sizes)
+        for (double angle : angles) {
+            ++rep.attempts;
+            std::optional<Attempt> a;
+            const std::string at = "at " + format_number(angle) + " degrees" +
+                                   (sizes.size() > 1 ? " and size " + format_number(h) : std::string());
+            try {
+                a = remesh_once(mesh, tris, seams, params, h, angle, source);
+            } catch (const BackendError& e) {
+                failures += std::string(failures.empty() ? "" : "; ") + at + " Gmsh failed (" + e.what() + ")";
+                continue;
+            }
+            if (a->bad > 0) {
+                failures += std::string(failures.empty() ? "" : "; ") + at + " " + std::to_string(a->bad) +
+                            " faces came out folded or without area, the first " + describe_face(a->mesh, a->first_bad);
+                continue;
+            }
+            rep.size_halved = h != size;
+            rep.size = h;
+            rep.faces_after = a->mesh.num_faces();
+            rep.surfaces = a->surfaces;
+            rep.feature_angle_deg = angle;
+            const NeedleReport after = needle_faces(a->mesh, kNeedleCornerDeg);
+            rep.needles_after = after.needles;
+            rep.sharpest_after_deg = after.sharpest_deg;
+            if (report) *report = rep;
+            return std::move(a->mesh);
         }
-        if (a->bad > 0) {
-            failures += std::string(failures.empty() ? "" : "; ") + "at " + format_number(angle) + " degrees " +
-                        std::to_string(a->bad) + " faces came out folded or without area, the first " +
-                        describe_face(a->mesh, a->first_bad);
-            continue;
-        }
-        rep.faces_after = a->mesh.num_faces();
-        rep.surfaces = a->surfaces;
-        rep.feature_angle_deg = angle;
-        const NeedleReport after = needle_faces(a->mesh, kNeedleCornerDeg);
-        rep.needles_after = after.needles;
-        rep.sharpest_after_deg = after.sharpest_deg;
-        if (report) *report = rep;
-        return std::move(a->mesh);
-    }
     throw BackendError(source + ": remeshing failed: " + failures +
-                       ". Try a smaller feature angle (more sharp edges kept), another size, or repair the surface "
-                       "in a CAD tool");
+                       ". Try another feature angle (--feature-angle) or size, or repair the surface in a CAD tool");
 }
 
 }  // namespace strata

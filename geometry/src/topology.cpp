@@ -164,6 +164,23 @@ SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol) {
     return out;
 }
 
+namespace {
+
+/// \p out's points: those of \p points its faces use, order kept; its faces renumbered.
+void drop_unused_nodes(const std::vector<Vec3>& points, SurfaceMesh& out) {
+    std::vector<Index> new_id(points.size(), kNone);
+    for (Index v : out.face_nodes) new_id[static_cast<std::size_t>(v)] = 0;
+    out.points.clear();
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (new_id[i] != kNone) {
+            new_id[i] = static_cast<Index>(out.points.size());
+            out.points.push_back(points[i]);
+        }
+    for (Index& v : out.face_nodes) v = new_id[static_cast<std::size_t>(v)];
+}
+
+}  // namespace
+
 SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed) {
     require_valid_ids(mesh, "remove_collapsed_faces", true);
     SurfaceMesh out;
@@ -193,15 +210,20 @@ SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed) {
         out.points = mesh.points;  // the faces are the same: so are the nodes
         return out;
     }
-    // Drop nodes no face uses any more.
-    std::vector<Index> new_id(mesh.points.size(), kNone);
-    for (Index v : out.face_nodes) new_id[static_cast<std::size_t>(v)] = 0;
-    for (std::size_t i = 0; i < mesh.points.size(); ++i)
-        if (new_id[i] != kNone) {
-            new_id[i] = static_cast<Index>(out.points.size());
-            out.points.push_back(mesh.points[i]);
-        }
-    for (Index& v : out.face_nodes) v = new_id[static_cast<std::size_t>(v)];
+    drop_unused_nodes(mesh.points, out);
+    return out;
+}
+
+SurfaceMesh remove_faces(const SurfaceMesh& mesh, const std::vector<char>& drop) {
+    require_valid_ids(mesh, "remove_faces", true);
+    if (drop.size() != static_cast<std::size_t>(mesh.num_faces()))
+        throw InputError("remove_faces: " + std::to_string(drop.size()) + " flags for " +
+                         std::to_string(mesh.num_faces()) + " faces");
+    SurfaceMesh out;
+    out.patches = mesh.patches;
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+        if (!drop[static_cast<std::size_t>(f)]) out.add_face(mesh.face_begin(f), mesh.face_size(f), mesh.face_patch[f]);
+    drop_unused_nodes(mesh.points, out);
     return out;
 }
 

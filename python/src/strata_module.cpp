@@ -533,9 +533,9 @@ py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double sec
                     "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes,
                     "collapsed_faces"_a = r.collapsed_faces, "flipped_faces"_a = r.orient.flipped_faces,
                     "components"_a = r.orient.components, "closed_components"_a = r.orient.closed_components,
-                    "fused_components"_a = r.fused_components, "remeshed"_a = r.remeshed,
-                    "internal_flow"_a = r.internal_flow, "units"_a = r.units.unit, "scale"_a = r.scale,
-                    "seconds"_a = seconds);
+                    "fused_components"_a = r.fused_components, "touching_faces"_a = r.touching_faces,
+                    "remeshed"_a = r.remeshed, "internal_flow"_a = r.internal_flow, "units"_a = r.units.unit,
+                    "scale"_a = r.scale, "seconds"_a = seconds);
 }
 
 py::dict coverage_report(const LayerReport& r) {

@@ -316,6 +316,34 @@ TEST(Cli, RemeshRebuildsANeedleStlIntoAValidMesh) {
     EXPECT_GT(m.tets.size(), 0u);
 }
 
+TEST(Cli, TouchingBodiesOfATessellatedStlAreJoinedAndRemeshed) {
+    // Issue 10's case: OpenCASCADE's coarse tessellation of wing_fuselage.step, whose glider is
+    // two halves touching at y = 0, each closed there by its own disc (64 faces back to back,
+    // edges bounding four faces). Without --fuse: one line saying so; with it: one closed body
+    // and a valid mesh (with the needle warning); with --remesh too: a valid mesh of a
+    // remeshed surface (at the median edge Gmsh fails at every feature angle, at half of it
+    // not).
+    const std::string stl = "'" + example_data("wing_fuselage_brepmesh.stl") + "'";
+    const std::string layers = " --layers 5 --first-height 0.1 --msh-version 2.2";
+    expect_clean_failure("mesh " + stl + " -o wf.msh" + layers, "64 faces lie back to back", "touching");
+    test::ScratchDir dir("cli_touching");
+    CliResult r = strata_cli(dir, "mesh " + stl + " -o fused.msh --fuse" + layers);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("fused: 64 faces removed where bodies touch back to back"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("1 connected components (1 closed)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("add --remesh"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("valid: "), std::string::npos) << r.out;
+    r = strata_cli(dir, "mesh " + stl + " -o remeshed.msh --fuse --remesh" + layers);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("remeshed: 1860 faces -> "), std::string::npos) << r.out;
+    const int after = needles_after_remesh(r.out);
+    EXPECT_GE(after, 0);
+    EXPECT_LT(after, 20) << r.out;
+    const VolumeMesh m = read_volume_msh(dir.file("remeshed.msh"));
+    EXPECT_GT(m.prisms.size(), 0u);
+    EXPECT_GT(m.tets.size(), 0u);
+}
+
 TEST(Cli, RemeshAfterFuseClearsTheCutsNeedles) {
     // The union of the missile's five parts cuts their triangles along the fin roots into 222
     // needles; remeshed, a handful are left and every part keeps its patch.

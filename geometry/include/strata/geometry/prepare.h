@@ -28,7 +28,8 @@ struct PrepareParams {
     /// surface mesh in another unit than wanted (STL and MSH carry none). Positive, finite.
     double scale = 1.0;
     /// Closed components of walls that overlap (separate STL parts, several inputs) are replaced
-    /// by their union (fuse_components, exact corefinement), each face keeping its patch. CAD
+    /// by their union (fuse_components, exact corefinement), each face keeping its patch; where
+    /// bodies touch along a common face, the faces there go first (touching_faces). CAD
     /// solids of one file are fused by CadParams::fuse (OpenCASCADE) before meshing.
     bool fuse = false;
     /// Mesh the surface again with Gmsh (remesh_surface, with \p remeshing), after fusing: for
@@ -45,6 +46,7 @@ struct PrepareReport {
     CadUnits units;              ///< CAD input: the unit read in and the one the file declares
     double scale = 1.0;          ///< PrepareParams::scale applied
     Index fused_components = 0;  ///< components replaced by their union (PrepareParams::fuse)
+    Index touching_faces = 0;    ///< faces removed where bodies touch back to back (PrepareParams::fuse)
     bool internal_flow = false;  ///< PrepareParams::internal_flow: oriented for the fluid inside the walls
     bool remeshed = false;       ///< PrepareParams::remesh done; \p remesh says how
     RemeshReport remesh;
@@ -72,7 +74,9 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
 /// The part of prepare_surface after reading, for a mesh that comes from elsewhere (the
 /// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,
 /// then merge_coincident_nodes (\p params.merge_tolerance), remove_collapsed_faces (counted in
-/// \p report->collapsed_faces), check_surface, orient_surface, and
+/// \p report->collapsed_faces), with \p params.fuse the touching_faces removed (counted in
+/// \p report->touching_faces), check_surface (whose TopologyError, without \p params.fuse,
+/// says where bodies touch and suggests fusing them), orient_surface, and
 /// if asked fuse_components and remesh_surface (each followed by the checks and orientation).
 /// \p source names the mesh in errors ("wing.stl", "Gmsh model 'sphere'"). InputError if
 /// \p raw has no faces.

@@ -36,14 +36,16 @@ struct RemeshParams {
 struct RemeshReport {
     Index faces_before = 0;
     Index faces_after = 0;
-    Index surfaces = 0;                  ///< the discrete surfaces Gmsh meshed (≥ one per patch)
-    double size = 0.0;                   ///< the maximum element size used
-    double feature_angle_deg = 0.0;      ///< the feature angle that gave the result
-    int attempts = 0;                    ///< feature angles tried (1: the one asked worked)
-    Index needles_before = 0;            ///< faces with a corner under kNeedleCornerDeg, before
-    Index needles_after = 0;             ///< and after
-    double sharpest_before_deg = 180.0;  ///< sharpest corner before
-    double sharpest_after_deg = 180.0;   ///< and after
+    Index surfaces = 0;        ///< the discrete surfaces Gmsh meshed (≥ one per patch)
+    double size = 0.0;         ///< the maximum element size used
+    bool size_halved = false;  ///< size is half the input's median edge: at the median every feature angle failed
+    double asked_feature_angle_deg = 0.0;  ///< RemeshParams::feature_angle_deg
+    double feature_angle_deg = 0.0;        ///< the feature angle that gave the result
+    int attempts = 0;                      ///< feature angles tried (1: the one asked worked)
+    Index needles_before = 0;              ///< faces with a corner under kNeedleCornerDeg, before
+    Index needles_after = 0;               ///< and after
+    double sharpest_before_deg = 180.0;    ///< sharpest corner before
+    double sharpest_after_deg = 180.0;     ///< and after
 };
 
 /// Mesh the surface \p mesh again (triangles, or quadrilaterals if asked). Each patch keeps its

@@ -25,6 +25,10 @@ SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol = 1e-
 /// entry per face.
 SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed = nullptr);
 
+/// \p mesh without the faces where \p drop (one per face) is nonzero; nodes no face uses any
+/// more are dropped, order kept.
+SurfaceMesh remove_faces(const SurfaceMesh& mesh, const std::vector<char>& drop);
+
 /// Node → incident faces, faces in increasing id order.
 Csr vertex_faces(const SurfaceMesh& mesh);
 
