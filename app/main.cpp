@@ -29,11 +29,14 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -57,6 +60,63 @@ static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT flag must be l
 extern "C" void on_sigint(int) {
     g_interrupted.store(true);
     std::signal(SIGINT, SIG_DFL);
+}
+
+// ---------------------------------------------------------------------------------------
+// --timeout: a watchdog thread. At the deadline it asks the running stage to stop, as Ctrl-C
+// does (exit 124, nothing written). A stage that cannot poll (Gmsh's or TetGen's own meshing,
+// which can run on for hours on a degenerate input) gets kTimeoutGrace seconds more; then the
+// program ends there, unless the writers have started (they finish, so no file is left half
+// written under a temporary name).
+
+std::atomic<bool> g_timed_out{false};
+std::atomic<bool> g_writing{false};
+constexpr double kTimeoutGrace = 5.0;
+
+class Watchdog {
+public:
+    explicit Watchdog(double seconds) : seconds_(seconds) {
+        if (seconds > 0.0) thread_ = std::thread([this] { watch(); });
+    }
+    ~Watchdog() {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            done_ = true;
+        }
+        wake_.notify_all();
+        if (thread_.joinable()) thread_.join();
+    }
+    Watchdog(const Watchdog&) = delete;
+    Watchdog& operator=(const Watchdog&) = delete;
+
+private:
+    void watch() {
+        using Seconds = std::chrono::duration<double>;
+        std::unique_lock<std::mutex> lock(mutex_);
+        if (wake_.wait_for(lock, Seconds(seconds_), [this] { return done_; })) return;
+        g_timed_out.store(true);
+        g_interrupted.store(true);  // the running stage stops at its next check
+        if (wake_.wait_for(lock, Seconds(kTimeoutGrace), [this] { return done_; })) return;
+        if (g_writing.load()) return;
+        std::fprintf(stderr,
+                     "\nstrata: error: stopped by --timeout %g s: the running stage (Gmsh's or TetGen's own "
+                     "meshing, which cannot be asked to stop) went on %g s beyond it; nothing was written\n",
+                     seconds_, kTimeoutGrace);
+        std::fflush(stderr);
+        std::_Exit(124);
+    }
+    double seconds_;
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    bool done_ = false;
+    std::thread thread_;
+};
+
+/// Before the first output file is opened: stop if cancelled (Ctrl-C, --timeout), and from here
+/// on let the writers finish.
+void begin_writing() {
+    if (g_interrupted.load()) throw strata::Cancelled();
+    g_writing.store(true);
 }
 
 /// One-line progress bar on stderr when it is a terminal; cancelled once Ctrl-C was pressed.
@@ -90,6 +150,7 @@ std::string in_flags(const std::string& message) {
 struct Common : strata::SurfaceOptions {
     std::string output, msh_version = "4.1";
     bool quiet = false;
+    double timeout = 0.0;  ///< seconds, 0: none (Watchdog)
 };
 
 void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help) {
@@ -102,6 +163,11 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
     cmd.add_option("--msh-version", c.msh_version, "MSH file version for .msh output: 4.1 or 2.2")
         ->capture_default_str();
     cmd.add_flag("-q,--quiet", c.quiet, "print nothing but errors");
+    cmd.add_option("--timeout", c.timeout,
+                   "stop a run that takes longer than this many seconds (exit 124, nothing written); a stage "
+                   "that cannot be stopped (Gmsh's or TetGen's own meshing) is ended 5 s later (0: no limit)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     cmd.add_option("--size", cad.size,
                    "target surface element size, model units (CAD or --remesh; 0: CAD 1/20 of the bounding-box "
                    "diagonal, --remesh the input's median edge)")
@@ -557,6 +623,7 @@ int run_surface(const Common& c) {
     const auto t0 = std::chrono::steady_clock::now();
     Terminal terminal(c.quiet);
     const Start s = start(c, strata::prepare_params(c), Output::Surface, terminal);
+    begin_writing();
     strata::write_surface(s.surface, c.output, s.msh_version, &terminal);
     if (c.quiet) return 0;
     print_surface_summary(s.surface, s.report, s.any_cad);
@@ -574,6 +641,7 @@ int run_layers(const Common& c, const LayerOptions& o) {
     const auto t2 = std::chrono::steady_clock::now();
     const strata::ValidationReport v =
         strata::require_valid_mesh(lm.mesh, c.input, {.threads = lp.threads, .progress = &terminal});
+    begin_writing();
     strata::write_volume(lm.mesh, c.output, s.msh_version, &terminal);
     const strata::LayerReport coverage = strata::layer_report(lm);
     strata::write_mesh_report(coverage, lm.mesh, v, strata::report_path(c.output));
@@ -596,6 +664,7 @@ int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo, con
     strata::HybridReport hr;
     const strata::VolumeMesh mesh = strata::build_hybrid_mesh(s.surface, hp, &terminal, &hr);
     const auto t1 = std::chrono::steady_clock::now();
+    begin_writing();
     strata::write_volume(mesh, c.output, s.msh_version, &terminal);
     strata::write_mesh_report(hr.coverage, mesh, hr.validation, strata::report_path(c.output));
     if (!po.dir.empty())
@@ -710,12 +779,18 @@ int main(int argc, char** argv) {
     }
 
     for (Common* c : {&sc, &lc, &mc}) c->input = strata::input_name(c->inputs);
+    const Watchdog watchdog(*surface ? sc.timeout : *layers ? lc.timeout : *meshcmd ? mc.timeout : 0.0);
     try {
         if (*surface) return run_surface(sc);
         if (*layers) return run_layers(lc, lo);
         if (*meshcmd) return run_mesh(mc, mlo, mo, po);
         if (*reportcmd) return run_report_script(report_file, report_dir, report_quiet);
     } catch (const strata::Cancelled& e) {
+        if (g_timed_out.load()) {
+            const double t = *surface ? sc.timeout : *layers ? lc.timeout : mc.timeout;
+            std::cerr << "\nstrata: error: stopped by --timeout " << t << " s; nothing was written\n";
+            return 124;
+        }
         std::cerr << "\nstrata: " << e.what() << "; nothing was written\n";
         return 130;
     } catch (const std::exception& e) {
