@@ -11,13 +11,16 @@ import os
 import re
 import sys
 import tempfile
-import traceback
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 for var in ("STRATA_FREECAD_MOD", "STRATA_BUILD_PYTHON"):
     if os.environ.get(var):
         sys.path.insert(0, os.environ[var])
+sys.path.insert(0, HERE)  # freecad_checks beside this script
+
+import freecad_checks  # noqa: E402
+from freecad_checks import check  # noqa: E402
 
 import numpy as np  # noqa: E402
 
@@ -32,11 +35,6 @@ HEMISPHERE_CYLINDER = os.path.join(ROOT, "examples", "data", "hemisphere_cylinde
 # quads: quadrilaterals on the wall, so hexahedra in the layers and pyramids over their tops;
 # prisms where triangles stay, tetrahedra to the farfield: all four volume types.
 OPTIONS = dict(layers=2, first_height=0.01, growth=1.2, quads=True, farfield_size=3.0, farfield_divisions=4)
-
-
-def check(condition, message):
-    if not condition:
-        raise AssertionError(message)
 
 
 # --- FreeCAD's orientation conventions, used as witnesses ---------------------------------
@@ -282,22 +280,7 @@ def test_defaults_and_errors():
 
 def main():
     tests = [test_imports, test_reorder_on_single_cells, test_defaults_and_errors, test_mesh_shape_hemisphere_cylinder]
-    failed = []
-    for t in tests:
-        try:
-            t()
-            print(f"PASS {t.__name__}")
-        except Exception:
-            traceback.print_exc()
-            print(f"FAIL {t.__name__}")
-            failed.append(t.__name__)
-    if failed:
-        print(f"strata_freecad tests: {len(failed)} failed: {', '.join(failed)}")
-    else:
-        print("strata_freecad tests: OK")
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(1 if failed else 0)
+    freecad_checks.run(tests, "strata_freecad tests")
 
 
 main()

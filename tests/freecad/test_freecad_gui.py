@@ -10,11 +10,14 @@ a failing script): status 0 and "strata_freecad GUI tests: OK" only when every c
 
 import os
 import sys
-import traceback
 
 for var in ("STRATA_FREECAD_MOD", "STRATA_BUILD_PYTHON"):
     if os.environ.get(var):
         sys.path.insert(0, os.environ[var])
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # freecad_checks beside this script
+
+import freecad_checks  # noqa: E402
+from freecad_checks import check  # noqa: E402
 
 import FreeCAD  # noqa: E402
 import FreeCADGui  # noqa: E402
@@ -24,11 +27,6 @@ from PySide2 import QtWidgets  # noqa: E402
 
 import strata  # noqa: E402
 import strata_freecad  # noqa: E402
-
-
-def check(condition, message):
-    if not condition:
-        raise AssertionError(message)
 
 
 def test_initgui_registers_workbench_and_command():
@@ -104,20 +102,7 @@ def test_task_panel():
 
 
 def main():
-    tests = [test_initgui_registers_workbench_and_command, test_task_panel]
-    failed = []
-    for t in tests:
-        try:
-            t()
-            print(f"PASS {t.__name__}")
-        except Exception:
-            traceback.print_exc()
-            print(f"FAIL {t.__name__}")
-            failed.append(t.__name__)
-    print("strata_freecad GUI tests: " + (f"{len(failed)} failed: {', '.join(failed)}" if failed else "OK"))
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(1 if failed else 0)
+    freecad_checks.run([test_initgui_registers_workbench_and_command, test_task_panel], "strata_freecad GUI tests")
 
 
 main()
