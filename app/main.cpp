@@ -62,6 +62,12 @@ extern "C" void on_sigint(int) {
     std::signal(SIGINT, SIG_DFL);
 }
 
+/// What a message on stderr starts with where a progress bar may be drawn on the line (a
+/// terminal): a line break; nothing otherwise, so a redirected stderr holds one line.
+const char* after_bar() {
+    return isatty(2) ? "\n" : "";
+}
+
 // ---------------------------------------------------------------------------------------
 // --timeout: a watchdog thread. At the deadline it asks the running stage to stop, as Ctrl-C
 // does (exit 124, nothing written). A stage that cannot poll (Gmsh's or TetGen's own meshing,
@@ -99,9 +105,9 @@ private:
         if (wake_.wait_for(lock, Seconds(kTimeoutGrace), [this] { return done_; })) return;
         if (g_writing.load()) return;
         std::fprintf(stderr,
-                     "\nstrata: error: stopped by --timeout %g s: the running stage (Gmsh's or TetGen's own "
+                     "%sstrata: error: stopped by --timeout %g s: the running stage (Gmsh's or TetGen's own "
                      "meshing, which cannot be asked to stop) went on %g s beyond it; nothing was written\n",
-                     seconds_, kTimeoutGrace);
+                     after_bar(), seconds_, kTimeoutGrace);
         std::fflush(stderr);
         std::_Exit(124);
     }
@@ -788,10 +794,10 @@ int main(int argc, char** argv) {
     } catch (const strata::Cancelled& e) {
         if (g_timed_out.load()) {
             const double t = *surface ? sc.timeout : *layers ? lc.timeout : mc.timeout;
-            std::cerr << "\nstrata: error: stopped by --timeout " << t << " s; nothing was written\n";
+            std::cerr << after_bar() << "strata: error: stopped by --timeout " << t << " s; nothing was written\n";
             return 124;
         }
-        std::cerr << "\nstrata: " << e.what() << "; nothing was written\n";
+        std::cerr << after_bar() << "strata: " << e.what() << "; nothing was written\n";
         return 130;
     } catch (const std::exception& e) {
         std::string msg = in_flags(e.what());

@@ -9,8 +9,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
-
 #include "test_support.h"
 
 #include <signal.h>
@@ -652,16 +650,12 @@ TEST(Cli, TimeoutStopsARunAndLeavesNoFile) {
     CliResult r = strata_cli(
         dir, "mesh '" + example_data("sphere.stl") + "' -o s.msh --layers 40 --first-height 1e-4 --timeout 0.05");
     EXPECT_EQ(r.code, 124) << r.err;
-    EXPECT_NE(r.err.find("strata: error: stopped by --timeout 0.05 s; nothing was written"), std::string::npos)
-        << r.err;
+    EXPECT_EQ(r.err, "strata: error: stopped by --timeout 0.05 s; nothing was written\n");
     EXPECT_TRUE(files_in(dir).empty());
     { std::ofstream(dir.file("ball.geo")) << "SetFactory(\"OpenCASCADE\");\nSphere(1) = {0, 0, 0, 1};\n"; }
-    const auto t0 = std::chrono::steady_clock::now();
     r = strata_cli(dir, "mesh ball.geo -o ball.msh --size 0.002 --layers 5 --first-height 1e-3 --timeout 1");
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_EQ(r.code, 124) << r.err;
     EXPECT_NE(r.err.find("stopped by --timeout 1 s: the running stage"), std::string::npos) << r.err;
-    EXPECT_LT(seconds, 30.0);  // Gmsh alone would take minutes
     EXPECT_EQ(files_in(dir), std::vector<std::string>{"ball.geo"});
     r = strata_cli(dir, "mesh ball.geo -o ball.msh --timeout -1");
     EXPECT_EQ(r.code, 2) << r.err;
