@@ -482,6 +482,18 @@ void print_coverage(const strata::LayerReport& r) {
 /// Scaled Jacobian below which the summary warns that a solver may not use the cells.
 constexpr double kSolverQuality = 0.01;
 
+/// OpenFOAM checkMesh's figures, and what it would fail on.
+void print_solver_checks(const strata::SolverChecks& s) {
+    std::printf(
+        "openfoam: non-orthogonality max %.3g deg (mean %.3g, %d faces above %g), skewness max %.3g (%d faces above "
+        "%g), aspect ratio max %.4g (%d cells above %g): checkMesh would %s\n",
+        s.max_non_orthogonality_deg, s.mean_non_orthogonality_deg, static_cast<int>(s.severely_non_orthogonal),
+        strata::kFoamNonOrthogonalDeg, s.max_skewness, static_cast<int>(s.skew_faces), strata::kFoamSkewness,
+        s.max_aspect_ratio, static_cast<int>(s.high_aspect_cells), strata::kFoamAspectRatio,
+        s.ok() ? "say \"Mesh OK\"" : "fail it");
+    for (const std::string& line : s.failures()) std::printf("warning: checkMesh would fail: %s\n", line.c_str());
+}
+
 /// The cells by type, the validation's figures, the worst cell of each type, and a warning
 /// below what a solver can use.
 void print_cells(const strata::VolumeMesh& mesh, const strata::ValidationReport& v) {
@@ -503,6 +515,7 @@ void print_cells(const strata::VolumeMesh& mesh, const strata::ValidationReport&
             "warning: cells below a scaled Jacobian of %g, which a solver may reject or converge poorly on; "
             "the worst is %s\n",
             kSolverQuality, v.worst_cell.c_str());
+    print_solver_checks(v.solver);
 }
 
 void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridReport& hr) {

@@ -237,6 +237,8 @@ ValidationReport validate(const VolumeMesh& mesh, const ValidateParams& params, 
     report.boundary_faces = static_cast<Index>(match.boundary);
     for (const FaceMatch::Problem& p : match.problems)
         problems.add(kind_of(p.issue), [&] { return describe(match, p); });
+    strata::report(params.progress, "validation", 0.6);
+    report.solver = solver_checks(mesh, match, params.threads);
 
     strata::report(params.progress, "validation", 0.9);
     report.boundary_volume = boundary_volume(mesh);

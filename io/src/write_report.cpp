@@ -81,7 +81,22 @@ void write_figures(std::ostream& out, const VolumeMesh& mesh, const ValidationRe
         for (std::size_t b = 0; b < h.size(); ++b) out << (b ? ", " : "") << h[b];
         out << "]";
     }
-    out << (first ? "}\n  },\n" : "\n    }\n  },\n");
+    out << (first ? "}" : "\n    }");
+    const SolverChecks& f = v.solver;
+    out << ",\n    \"openfoam\": {\"max_non_orthogonality_deg\": " << number(f.max_non_orthogonality_deg)
+        << ", \"mean_non_orthogonality_deg\": " << number(f.mean_non_orthogonality_deg)
+        << ", \"severely_non_orthogonal_faces\": " << f.severely_non_orthogonal
+        << ", \"non_orthogonality_errors\": " << f.non_orthogonality_errors
+        << ", \"worst_non_orthogonal\": " << quoted(f.worst_non_orthogonal)
+        << ",\n      \"max_skewness\": " << number(f.max_skewness) << ", \"skew_faces\": " << f.skew_faces
+        << ", \"worst_skew\": " << quoted(f.worst_skew)
+        << ",\n      \"max_aspect_ratio\": " << number(f.max_aspect_ratio)
+        << ", \"high_aspect_cells\": " << f.high_aspect_cells << ", \"worst_aspect\": " << quoted(f.worst_aspect)
+        << ",\n      \"negative_pyramids\": " << f.negative_pyramids
+        << ", \"check_mesh_ok\": " << (f.ok() ? "true" : "false") << ", \"failures\": [";
+    const std::vector<std::string> fails = f.failures();
+    for (std::size_t i = 0; i < fails.size(); ++i) out << (i ? ", " : "") << quoted(fails[i]);
+    out << "]}\n  },\n";
 }
 
 void write_report(const LayerReport& r, const std::string& path, const VolumeMesh* mesh,

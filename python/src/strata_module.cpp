@@ -564,6 +564,19 @@ py::dict coverage_report(const LayerReport& r) {
                     "patches"_a = patches, "short_nodes"_a = short_nodes, "no_fan_nodes"_a = no_fan);
 }
 
+/// OpenFOAM checkMesh's figures (solver_checks.h), keyed as in OUT.report.json.
+py::dict openfoam_report(const SolverChecks& f) {
+    return py::dict("max_non_orthogonality_deg"_a = f.max_non_orthogonality_deg,
+                    "mean_non_orthogonality_deg"_a = f.mean_non_orthogonality_deg,
+                    "severely_non_orthogonal_faces"_a = f.severely_non_orthogonal,
+                    "non_orthogonality_errors"_a = f.non_orthogonality_errors,
+                    "worst_non_orthogonal"_a = f.worst_non_orthogonal, "max_skewness"_a = f.max_skewness,
+                    "skew_faces"_a = f.skew_faces, "worst_skew"_a = f.worst_skew,
+                    "max_aspect_ratio"_a = f.max_aspect_ratio, "high_aspect_cells"_a = f.high_aspect_cells,
+                    "worst_aspect"_a = f.worst_aspect, "negative_pyramids"_a = f.negative_pyramids,
+                    "check_mesh_ok"_a = f.ok(), "failures"_a = f.failures());
+}
+
 py::dict quality_report(const VolumeMesh& mesh, const ValidationReport& v) {
     py::dict cells, min_sj, worst, histograms;
     for (const CellType t : kCellTypes) {
@@ -579,9 +592,11 @@ py::dict quality_report(const VolumeMesh& mesh, const ValidationReport& v) {
     for (int b = 0; b < kQualityBins; ++b) edges.push_back(quality_bin_edge(b));
     min_sj["all"] = v.min_scaled_jacobian;
     worst["all"] = v.worst_cell;
-    return py::dict("cells"_a = cells, "nodes"_a = mesh.points.size(), "min_scaled_jacobian"_a = min_sj,
-                    "worst_cell"_a = worst, "histograms"_a = histograms, "bin_edges"_a = edges,
-                    "cell_volume"_a = v.cell_volume, "boundary_volume"_a = v.boundary_volume);
+    py::dict d("cells"_a = cells, "nodes"_a = mesh.points.size(), "min_scaled_jacobian"_a = min_sj,
+               "worst_cell"_a = worst, "histograms"_a = histograms, "bin_edges"_a = edges,
+               "cell_volume"_a = v.cell_volume, "boundary_volume"_a = v.boundary_volume);
+    d["openfoam"] = openfoam_report(v.solver);
+    return d;
 }
 
 py::list layer_table(const std::vector<LayerStats>& stats) {
@@ -746,6 +761,7 @@ py::dict run_gmsh_model(const py::dict& kwargs, const py::object& callback) {
         d["worst_cell"] = hr.validation.worst_cell;
         d["cells"] = hr.validation.cells;
         d["cell_volume"] = hr.validation.cell_volume;
+        d["openfoam"] = openfoam_report(hr.validation.solver);
         d["internal_flow"] = hr.internal_flow;
         d["closed_half_model"] = hr.closed_half_model;
         d["times"] = py::dict("layers"_a = hr.seconds_layers, "pyramids"_a = hr.seconds_pyramids,

@@ -127,6 +127,11 @@ def coverage_lines(report):
         lines.append(f"Strata:   {name:20s} {c['nodes']:7d} nodes, {100 * c['full']:5.1f}% full, "
                      f"mean {c['mean_layers']:.1f} layers, min {c['min_layers']}, "
                      f"thickness {100 * c['mean_share']:.1f}%")
+    foam = report["openfoam"]
+    lines.append(f"Strata: OpenFOAM checkMesh would {'say Mesh OK' if foam['check_mesh_ok'] else 'fail it'}: "
+                 f"non-orthogonality max {foam['max_non_orthogonality_deg']:.3g} deg, "
+                 f"skewness max {foam['max_skewness']:.3g}, aspect ratio max {foam['max_aspect_ratio']:.4g}")
+    lines += [f"Strata:   {line}" for line in foam["failures"]]
     t = report["times"]
     lines.append(f"Strata: time {t['total']:.2f} s (layers {t['layers']:.2f}, pyramids {t['pyramids']:.2f}, "
                  f"tetrahedra {t['tetrahedra']:.2f}, validation {t['validation']:.2f})")

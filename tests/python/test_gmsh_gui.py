@@ -62,6 +62,7 @@ def test_action_meshes_the_open_model_with_the_panel_values(session):
     assert "tetrahedra" in stages and triangles
     log = "\n".join(gmsh.logger.get())
     assert "Strata:" in log and "coverage" in log and "min scaled Jacobian" in log
+    assert "OpenFOAM checkMesh would say Mesh OK" in log, log
     assert "coverage" in gmsh.onelab.getString(gmsh_gui.RESULT)[0]
     gmsh_gui.show_volume()  # headless too: only options
 

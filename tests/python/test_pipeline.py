@@ -70,6 +70,10 @@ def test_mesh_sphere_arrays_and_report(tmp_path):
     assert r["cells"]["prism"] == len(m.prisms) and r["cells"]["tetrahedron"] == len(m.tets)
     assert 0 < r["min_scaled_jacobian"]["all"] <= r["min_scaled_jacobian"]["prism"] <= 1
     assert abs(r["cell_volume"] - r["boundary_volume"]) < 1e-6 * r["boundary_volume"]
+    # OpenFOAM checkMesh's figures (tests/openfoam/check_figures.sh compares them with checkMesh)
+    foam = r["openfoam"]
+    assert 0 < foam["max_non_orthogonality_deg"] < 70 and 0 < foam["max_skewness"] < 4, foam
+    assert foam["check_mesh_ok"] and foam["failures"] == [] and foam["negative_pyramids"] == 0, foam
     cov = r["coverage"]
     assert cov["layers"] == 4 and cov["patches"], cov
     for name, c in cov["patches"].items():

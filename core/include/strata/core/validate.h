@@ -7,6 +7,7 @@
 
 #include <strata/core/cell_quality.h>
 #include <strata/core/progress.h>
+#include <strata/core/solver_checks.h>
 #include <strata/core/volume_mesh.h>
 
 #include <array>
@@ -33,6 +34,9 @@ struct ValidationReport {
     double boundary_volume = 0.0;  ///< volume enclosed by the boundary faces
     Index interior_faces = 0;
     Index boundary_faces = 0;
+    /// OpenFOAM checkMesh's figures (solver_checks.h): not problems of validity, but what a
+    /// solver fed this mesh will say of it.
+    SolverChecks solver;
     /// One line per problem found (at most a few per kind, then a count), each naming the
     /// cells or faces and where they are. Empty when the mesh is valid.
     std::vector<std::string> problems;
@@ -47,7 +51,7 @@ struct ValidateParams {
 
 /// Check \p mesh: its arrays (check_volume_arrays; with an id out of range nothing else is
 /// checked), every corner's scaled Jacobian and every cell's volume, the faces (match_faces:
-/// every problem it finds is one), the volume closure. Works in fixed chunks merged in order,
+/// every problem it finds is one), the volume closure; and checkMesh's figures (solver). Works in fixed chunks merged in order,
 /// so the report does not depend on the thread count.
 ValidationReport validate_mesh(const VolumeMesh& mesh, const ValidateParams& params = {});
 

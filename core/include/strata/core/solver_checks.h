@@ -1,0 +1,58 @@
+#pragma once
+/// \file
+/// The figures OpenFOAM's checkMesh judges a mesh by, computed as it computes them, so that a
+/// mesh's summary says before any solver sees it whether checkMesh would pass it and where it
+/// would not: face non-orthogonality and skewness, cell aspect ratio, face pyramids. A valid
+/// mesh (validate.h) can still fail them: thin prisms on both sides of a sharp edge with one
+/// marching direction have a shared face whose skewness is about 2.5 cot(α/2) for a wedge of
+/// angle α (above checkMesh's 4 for α under 64°), which a fan (layers.h) lifts.
+///
+/// Definitions (OpenFOAM's primitiveMesh and primitiveMeshTools): a face's centre and area
+/// vector from the triangles joining each edge to the mean of its corners; a cell's centre the
+/// volume-weighted centre of the pyramids from its faces to the mean of its face centres. With
+/// d from the owner's centre to the neighbour's and S the face's area vector, non-orthogonality
+/// is the angle between d and S; skewness the distance from the face centre to where d crosses
+/// the face's plane, over the larger of 0.2 |d| and the face's extent in that direction (a
+/// boundary face: its centre's offset from the cell centre's projection, over the larger of
+/// 0.4 × the cell centre's distance from the plane and the extent). A cell's aspect ratio is the
+/// larger of its largest over its smallest Cartesian component of Σ|S|, and Σ|S| / (6 V^⅔).
+
+#include <strata/core/face_match.h>
+#include <strata/core/volume_mesh.h>
+
+#include <string>
+#include <vector>
+
+namespace strata {
+
+/// checkMesh's bounds (its defaults): what it calls severe, and what fails it.
+inline constexpr double kFoamNonOrthogonalDeg = 70.0;  ///< "severely non-orthogonal" (a warning)
+inline constexpr double kFoamSkewness = 4.0;           ///< "highly skew faces" (fails)
+inline constexpr double kFoamAspectRatio = 1000.0;     ///< "high aspect ratio cells" (fails)
+
+struct SolverChecks {
+    double max_non_orthogonality_deg = 0.0;  ///< over interior faces
+    double mean_non_orthogonality_deg = 0.0;
+    std::string worst_non_orthogonal;    ///< "face of prism 3 and tetrahedron 9 at (x, y, z)"
+    Index severely_non_orthogonal = 0;   ///< interior faces above kFoamNonOrthogonalDeg
+    Index non_orthogonality_errors = 0;  ///< interior faces at 90° or more (fails checkMesh)
+    double max_skewness = 0.0;           ///< over all faces
+    std::string worst_skew;
+    Index skew_faces = 0;  ///< faces above kFoamSkewness
+    double max_aspect_ratio = 0.0;
+    std::string worst_aspect;
+    Index high_aspect_cells = 0;  ///< cells above kFoamAspectRatio
+    Index negative_pyramids = 0;  ///< faces whose pyramid to a cell's centre is not positive (fails)
+    std::string worst_pyramid;    ///< the first such face
+    /// What checkMesh's default run would fail on, one line each, naming the worst place;
+    /// empty if it would say "Mesh OK".
+    std::vector<std::string> failures() const;
+    bool ok() const { return failures().empty(); }
+};
+
+/// checkMesh's figures for \p mesh, whose faces \p match matched (match_faces; faces that are
+/// not a clean interior or boundary match are skipped: the validator reports them). Fixed
+/// chunks merged in order (ties to the lower face): the same for any \p threads.
+SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads = 0);
+
+}  // namespace strata

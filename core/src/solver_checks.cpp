@@ -1,0 +1,231 @@
+// OpenFOAM checkMesh's figures: solver_checks.h. The formulas follow OpenFOAM v1912
+// (primitiveMeshFaceCentresAndAreas, primitiveMeshCellCentresAndVols, primitiveMeshTools::
+// faceOrthogonality, faceSkewness, boundaryFaceSkewness, cellClosedness, facePyramidVolume).
+
+#include <strata/core/cell_faces.h>
+#include <strata/core/format.h>
+#include <strata/core/parallel.h>
+#include <strata/core/solver_checks.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+namespace strata {
+namespace {
+
+constexpr double kRootVSmall = 1e-150;  // OpenFOAM's ROOTVSMALL (double)
+constexpr std::int64_t kChunk = 1 << 14;
+
+struct FaceGeometry {
+    Vec3 centre = Vec3::Zero();
+    Vec3 area = Vec3::Zero();  ///< area vector, the node order's right-hand normal
+};
+
+/// A face's centre and area vector as OpenFOAM computes them: triangles from each edge to the
+/// mean of the corners, the centre their area-weighted centroid.
+FaceGeometry face_geometry(const std::vector<Vec3>& p, const Index* v, int n) {
+    Vec3 mean = Vec3::Zero();
+    for (int i = 0; i < n; ++i) mean += p[static_cast<std::size_t>(v[i])];
+    mean /= static_cast<double>(n);
+    Vec3 sum_n = Vec3::Zero(), sum_ac = Vec3::Zero();
+    double sum_a = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const Vec3& a = p[static_cast<std::size_t>(v[i])];
+        const Vec3& b = p[static_cast<std::size_t>(v[(i + 1) % n])];
+        const Vec3 nn = (b - a).cross(mean - a);
+        const double m = nn.norm();
+        sum_n += nn;
+        sum_a += m;
+        sum_ac += m * (a + b + mean);
+    }
+    if (sum_a < kRootVSmall) return {mean, Vec3::Zero()};
+    return {sum_ac / (3.0 * sum_a), 0.5 * sum_n};
+}
+
+std::string cell_name(const FaceSlots& slots, std::uint64_t slot) {
+    const FaceSlots::Slot s = slots.locate(slot);
+    return std::string(to_string(s.type)) + " " + std::to_string(s.index);
+}
+
+/// Per chunk of face slots: the largest values (the first face that has each) and the sums.
+struct Partial {
+    double min_cos = 2.0, max_skew = -1.0, sum_cos = 0.0;
+    std::uint64_t worst_ortho = 0, worst_skew = 0, first_pyramid = 0;
+    bool has_ortho = false, has_skew = false, has_pyramid = false;
+    Index faces = 0, severe = 0, errors = 0, skew = 0, pyramids = 0;
+};
+
+}  // namespace
+
+std::vector<std::string> SolverChecks::failures() const {
+    std::vector<std::string> out;
+    if (skew_faces > 0)
+        out.push_back(std::to_string(skew_faces) + " faces with a skewness above " + format_number(kFoamSkewness) +
+                      ", the worst " + format_number(max_skewness, 3) + " (" + worst_skew + ")");
+    if (high_aspect_cells > 0)
+        out.push_back(std::to_string(high_aspect_cells) + " cells with an aspect ratio above " +
+                      format_number(kFoamAspectRatio) + ", the worst " + format_number(max_aspect_ratio, 4) + " (" +
+                      worst_aspect + ")");
+    if (non_orthogonality_errors > 0)
+        out.push_back(std::to_string(non_orthogonality_errors) + " faces at 90 degrees or more of non-orthogonality (" +
+                      worst_non_orthogonal + ")");
+    if (negative_pyramids > 0)
+        out.push_back(std::to_string(negative_pyramids) + " faces whose pyramid to a cell centre is inverted (" +
+                      worst_pyramid + ")");
+    return out;
+}
+
+SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads) {
+    SolverChecks r;
+    const FaceSlots& slots = match.slots;
+    const CellNumbering& cells = slots.cells();
+    const std::vector<Vec3>& p = mesh.points;
+    const std::int64_t nc = cells.count();
+    if (nc == 0) return r;
+
+    // Cell centres and volumes, and the aspect ratios (each cell from its own faces).
+    std::vector<Vec3> centre(static_cast<std::size_t>(nc));
+    std::vector<double> aspect(static_cast<std::size_t>(nc), 0.0);
+    std::vector<std::uint64_t> first_slot(static_cast<std::size_t>(nc) + 1, 0);
+    for (std::int64_t g = 0; g < nc; ++g) {
+        const CellNumbering::Cell c = cells.locate(g);
+        first_slot[static_cast<std::size_t>(g) + 1] =
+            first_slot[static_cast<std::size_t>(g)] + static_cast<std::uint64_t>(cell_faces(c.type).count);
+    }
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads))
+    for (std::int64_t g = 0; g < nc; ++g) {
+        const std::uint64_t s0 = first_slot[static_cast<std::size_t>(g)],
+                            s1 = first_slot[static_cast<std::size_t>(g) + 1];
+        std::array<FaceGeometry, 6> fg;
+        Vec3 est = Vec3::Zero();
+        for (std::uint64_t s = s0; s < s1; ++s) {
+            Index v[4];
+            const int n = slots.nodes(s, v);
+            fg[s - s0] = face_geometry(p, v, n);
+            est += fg[s - s0].centre;
+        }
+        est /= static_cast<double>(s1 - s0);
+        Vec3 sum_c = Vec3::Zero(), mag = Vec3::Zero();
+        double vol3 = 0.0;
+        for (std::uint64_t s = s0; s < s1; ++s) {
+            const FaceGeometry& f = fg[s - s0];
+            const double pyr3 = f.area.dot(f.centre - est);
+            sum_c += pyr3 * (0.75 * f.centre + 0.25 * est);
+            vol3 += pyr3;
+            mag += f.area.cwiseAbs();
+        }
+        centre[static_cast<std::size_t>(g)] = std::abs(vol3) > kRootVSmall ? Vec3(sum_c / vol3) : est;
+        const double v = std::max(kRootVSmall, vol3 / 3.0);
+        aspect[static_cast<std::size_t>(g)] =
+            std::max(mag.maxCoeff() / (mag.minCoeff() + kRootVSmall), mag.sum() / 6.0 / std::pow(v, 2.0 / 3.0));
+    }
+    for (std::int64_t g = 0; g < nc; ++g) {
+        const double a = aspect[static_cast<std::size_t>(g)];
+        if (a > kFoamAspectRatio) ++r.high_aspect_cells;
+        if (a > r.max_aspect_ratio) {
+            r.max_aspect_ratio = a;
+            const CellNumbering::Cell c = cells.locate(g);
+            r.worst_aspect = describe_cell(mesh, c.type, c.index);
+        }
+    }
+
+    // Faces: each interior face once (from its lower slot), each boundary face from its cell.
+    const std::uint64_t ns = slots.count();
+    const auto chunks = static_cast<std::int64_t>((ns + kChunk - 1) / kChunk);
+    std::vector<Partial> part(static_cast<std::size_t>(chunks));
+    const double severe_cos = std::cos(kFoamNonOrthogonalDeg * std::numbers::pi / 180.0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(thread_count(threads))
+    for (std::int64_t k = 0; k < chunks; ++k) {
+        Partial& q = part[static_cast<std::size_t>(k)];
+        const auto end = std::min<std::uint64_t>(ns, static_cast<std::uint64_t>(k + 1) * kChunk);
+        for (auto s = static_cast<std::uint64_t>(k) * kChunk; s < end; ++s) {
+            const std::int64_t other = match.across[s];
+            if (other == FaceMatch::kUnmatched) continue;
+            const bool interior = other >= 0;
+            if (interior && static_cast<std::uint64_t>(other) < s) continue;
+            Index v[4];
+            const int n = slots.nodes(s, v);
+            const FaceGeometry f = face_geometry(p, v, n);  // outward from the owner, cell(s)
+            const Vec3& co = centre[static_cast<std::size_t>(slots.cell(s))];
+            double skew = 0.0;
+            auto extent = [&](const Vec3& dir) {
+                double e = 0.0;
+                for (int i = 0; i < n; ++i)
+                    e = std::max(e, std::abs(dir.dot(p[static_cast<std::size_t>(v[i])] - f.centre)));
+                return e;
+            };
+            const Vec3 cpf = f.centre - co;
+            if (interior) {
+                const Vec3& cn = centre[static_cast<std::size_t>(slots.cell(static_cast<std::uint64_t>(other)))];
+                const Vec3 d = cn - co;
+                const double cos = d.dot(f.area) / (d.norm() * f.area.norm() + kRootVSmall);
+                ++q.faces;
+                q.sum_cos += cos;
+                if (cos < severe_cos) ++(cos > 1e-15 ? q.severe : q.errors);
+                if (cos < q.min_cos) q.min_cos = cos, q.worst_ortho = s, q.has_ortho = true;
+                const Vec3 sv = cpf - (f.area.dot(cpf) / (f.area.dot(d) + kRootVSmall)) * d;
+                const double m = sv.norm();
+                skew = m / std::max(0.2 * d.norm() + kRootVSmall, extent(sv / (m + kRootVSmall)));
+                // The neighbour's pyramid (its outward area is -area).
+                if (-f.area.dot(f.centre - cn) / 3.0 < -1e-15 && !q.has_pyramid)
+                    q.first_pyramid = s, q.has_pyramid = true;
+                q.pyramids += -f.area.dot(f.centre - cn) / 3.0 < -1e-15 ? 1 : 0;
+            } else {
+                const Vec3 nrm = f.area / (f.area.norm() + kRootVSmall);
+                const Vec3 d = nrm * nrm.dot(cpf);
+                const Vec3 sv = cpf - (f.area.dot(cpf) / (f.area.dot(d) + kRootVSmall)) * d;
+                const double m = sv.norm();
+                skew = m / std::max(0.4 * d.norm() + kRootVSmall, extent(sv / (m + kRootVSmall)));
+            }
+            if (skew > kFoamSkewness) ++q.skew;
+            if (skew > q.max_skew) q.max_skew = skew, q.worst_skew = s, q.has_skew = true;
+            if (f.area.dot(f.centre - co) / 3.0 < -1e-15) {
+                ++q.pyramids;
+                if (!q.has_pyramid) q.first_pyramid = s, q.has_pyramid = true;
+            }
+        }
+    }
+
+    // Merged in chunk order: the first face with the extreme value wins ties.
+    double min_cos = 2.0, max_skew = -1.0, sum_cos = 0.0;
+    std::uint64_t worst_ortho = 0, worst_skew = 0, first_pyramid = 0;
+    bool has_ortho = false, has_skew = false, has_pyramid = false;
+    Index faces = 0;
+    for (const Partial& q : part) {
+        faces += q.faces;
+        sum_cos += q.sum_cos;
+        r.severely_non_orthogonal += q.severe;
+        r.non_orthogonality_errors += q.errors;
+        r.skew_faces += q.skew;
+        r.negative_pyramids += q.pyramids;
+        if (q.has_ortho && q.min_cos < min_cos) min_cos = q.min_cos, worst_ortho = q.worst_ortho, has_ortho = true;
+        if (q.has_skew && q.max_skew > max_skew) max_skew = q.max_skew, worst_skew = q.worst_skew, has_skew = true;
+        if (q.has_pyramid && !has_pyramid) first_pyramid = q.first_pyramid, has_pyramid = true;
+    }
+    auto face_name = [&](std::uint64_t s) {
+        Index v[4];
+        const int n = slots.nodes(s, v);
+        const FaceGeometry f = face_geometry(p, v, n);
+        const std::int64_t other = match.across[s];
+        std::string who = cell_name(slots, s);
+        if (other >= 0) who += " and " + cell_name(slots, static_cast<std::uint64_t>(other));
+        return "the face at " + format_point(f.centre) + " of " + who;
+    };
+    auto degrees = [](double c) { return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi; };
+    if (has_ortho) {
+        r.max_non_orthogonality_deg = degrees(min_cos);
+        r.mean_non_orthogonality_deg = degrees(sum_cos / static_cast<double>(faces));
+        r.worst_non_orthogonal = face_name(worst_ortho);
+    }
+    if (has_skew) {
+        r.max_skewness = max_skew;
+        r.worst_skew = face_name(worst_skew);
+    }
+    if (has_pyramid) r.worst_pyramid = face_name(first_pyramid);
+    return r;
+}
+
+}  // namespace strata

@@ -1,0 +1,136 @@
+// OpenFOAM checkMesh's figures (solver_checks.h) on cells whose figures are worked out by hand
+// from checkMesh's definitions; tests/openfoam/check_figures.sh compares them with checkMesh
+// itself on a real mesh.
+
+#include "box_mesh.h"
+
+#include <strata/core/cell_faces.h>
+#include <strata/core/face_match.h>
+#include <strata/core/solver_checks.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+
+using namespace strata;
+using strata::test::BoxMesh;
+using strata::test::CubeSplit;
+
+namespace {
+
+SolverChecks checks(const VolumeMesh& m, int threads = 0) {
+    const FaceMatch match = match_faces(m, threads);
+    EXPECT_TRUE(match.ok());
+    return solver_checks(m, match, threads);
+}
+
+/// Two unit cubes along x; the points of the far side (x = 2) moved by \p shift in y, so the
+/// second cell is a parallelepiped leaning away from the first.
+VolumeMesh leaning_pair(double shift) {
+    VolumeMesh m = BoxMesh(2, 1, 1).build();
+    for (Vec3& p : m.points)
+        if (p.x() > 1.5) p.y() += shift;
+    return m;
+}
+
+}  // namespace
+
+TEST(SolverChecks, UnitCubesAreOrthogonalUnskewedAndOfAspectRatioOne) {
+    const SolverChecks s = checks(BoxMesh(3, 2, 2).build());
+    EXPECT_NEAR(s.max_non_orthogonality_deg, 0.0, 1e-6);
+    EXPECT_NEAR(s.max_skewness, 0.0, 1e-9);
+    EXPECT_NEAR(s.max_aspect_ratio, 1.0, 1e-9);
+    EXPECT_EQ(s.severely_non_orthogonal + s.skew_faces + s.high_aspect_cells + s.negative_pyramids, 0);
+    EXPECT_TRUE(s.ok());
+}
+
+TEST(SolverChecks, LeaningCellHasTheFiguresWorkedOutByHand) {
+    // Centres (0.5, 0.5, 0.5) and (1.5, 1.5, 0.5): d = (1, 1, 0) against the shared face's
+    // normal x, 45°. d crosses the shared face at y = 1, 0.5 from its centre, over the face's
+    // half-width 0.5 (more than 0.2 |d|): skewness 1. The far face's centre (2, 2.5) lies 1 off
+    // the cell centre's projection (2, 1.5), over its half-width 0.5: boundary skewness 2, the
+    // largest. Σ|S| of the leaning cell is (6, 2, 2): aspect ratio 3.
+    const SolverChecks s = checks(leaning_pair(2.0));
+    EXPECT_NEAR(s.max_non_orthogonality_deg, 45.0, 1e-9);
+    EXPECT_NEAR(s.mean_non_orthogonality_deg, 45.0, 1e-9);
+    EXPECT_NEAR(s.max_skewness, 2.0, 1e-9);
+    EXPECT_NE(s.worst_skew.find("the face at (2, 2.5, 0.5) of hexahedron 1"), std::string::npos) << s.worst_skew;
+    EXPECT_NEAR(s.max_aspect_ratio, 3.0, 1e-9);
+    EXPECT_NE(s.worst_aspect.find("hexahedron 1"), std::string::npos) << s.worst_aspect;
+    EXPECT_TRUE(s.ok());
+}
+
+TEST(SolverChecks, StrongLeanIsSeverelyNonOrthogonalAndTooSkewForCheckMesh) {
+    // Shift 10: d = (1, 5, 0), atan(5) = 78.7° (above 70); the far face's centre lies 5 off,
+    // over its half-width 0.5: skewness 10, above checkMesh's 4.
+    const SolverChecks s = checks(leaning_pair(10.0));
+    EXPECT_NEAR(s.max_non_orthogonality_deg, std::atan(5.0) * 180.0 / std::numbers::pi, 1e-9);
+    EXPECT_EQ(s.severely_non_orthogonal, 1);
+    EXPECT_EQ(s.non_orthogonality_errors, 0);
+    EXPECT_NEAR(s.max_skewness, 10.0, 1e-9);
+    EXPECT_EQ(s.skew_faces, 1);
+    ASSERT_FALSE(s.ok());
+    ASSERT_EQ(s.failures().size(), 1u);
+    EXPECT_NE(s.failures()[0].find("1 faces with a skewness above 4, the worst 10"), std::string::npos)
+        << s.failures()[0];
+}
+
+TEST(SolverChecks, FlatCellsHaveTheRatioOfTheirSides) {
+    // A 1 × 1 × h box: Σ|S| = (2h, 2h, 2), so the ratio of components is 1/h.
+    VolumeMesh m = BoxMesh(2, 1, 1).build();
+    for (Vec3& p : m.points) p.z() *= 1e-4;
+    const SolverChecks s = checks(m);
+    EXPECT_NEAR(s.max_aspect_ratio, 1e4, 1e-6);
+    EXPECT_EQ(s.high_aspect_cells, 2);
+    ASSERT_EQ(s.failures().size(), 1u);
+    EXPECT_NE(s.failures()[0].find("2 cells with an aspect ratio above 1000"), std::string::npos);
+}
+
+TEST(SolverChecks, InvertedCellHasInvertedFacePyramids) {
+    // A tetrahedron listed in the wrong order, with its (then inward) faces as the boundary.
+    VolumeMesh m;
+    m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    m.tets.push_back({0, 2, 1, 3});
+    m.boundary.patches.push_back({"wall", PatchKind::Wall});
+    const CellFaceTable& t = cell_faces(CellType::Tet);
+    for (int f = 0; f < t.count; ++f) {
+        Index v[3];
+        for (int c = 0; c < 3; ++c) v[c] = m.tets[0][static_cast<std::size_t>(t.node[f][c])];
+        m.boundary.add_face(v, 3, 0);
+    }
+    const SolverChecks s = checks(m);
+    EXPECT_EQ(s.negative_pyramids, 4);
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.worst_pyramid.find("tetrahedron 0"), std::string::npos);
+}
+
+TEST(SolverChecks, FiguresAreTheSameForAnyThreadCount) {
+    // 24³ cubes of six tetrahedra each (20 chunks of faces), the interior points jittered so
+    // that no two faces tie.
+    BoxMesh box(24, 24, 24);
+    for (int k = 0; k < 24; ++k)
+        for (int j = 0; j < 24; ++j)
+            for (int i = 0; i < 24; ++i) box.set(i, j, k, CubeSplit::Kuhn);
+    VolumeMesh m = box.build();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> jitter(-0.15, 0.15);
+    for (Vec3& p : m.points)
+        if (p.minCoeff() > 0.5 && p.maxCoeff() < 23.5) p += Vec3(jitter(rng), jitter(rng), jitter(rng));
+    const SolverChecks a = checks(m, 1);
+    for (int threads : {2, 3}) {
+        const SolverChecks b = checks(m, threads);
+        EXPECT_GT(a.max_non_orthogonality_deg, 1.0);
+        EXPECT_EQ(a.max_non_orthogonality_deg, b.max_non_orthogonality_deg);
+        EXPECT_EQ(a.mean_non_orthogonality_deg, b.mean_non_orthogonality_deg);
+        EXPECT_EQ(a.worst_non_orthogonal, b.worst_non_orthogonal);
+        EXPECT_EQ(a.max_skewness, b.max_skewness);
+        EXPECT_EQ(a.worst_skew, b.worst_skew);
+        EXPECT_EQ(a.max_aspect_ratio, b.max_aspect_ratio);
+        EXPECT_EQ(a.worst_aspect, b.worst_aspect);
+        EXPECT_EQ(a.severely_non_orthogonal, b.severely_non_orthogonal);
+        EXPECT_EQ(a.skew_faces, b.skew_faces);
+    }
+}
