@@ -68,7 +68,11 @@ std::vector<std::string> SolverChecks::failures() const {
     if (high_aspect_cells > 0)
         out.push_back(std::to_string(high_aspect_cells) + " cells with an aspect ratio above " +
                       format_number(kFoamAspectRatio) + ", the worst " + format_number(max_aspect_ratio, 4) + " (" +
-                      worst_aspect + ")");
+                      worst_aspect + ")" +
+                      (worst_aspect_type == CellType::Tet
+                           ? std::string()
+                           : ": layer cells lower than a thousandth of their wall face; a finer surface or a "
+                             "thicker first layer lowers it"));
     if (non_orthogonality_errors > 0)
         out.push_back(std::to_string(non_orthogonality_errors) + " faces at 90 degrees or more of non-orthogonality (" +
                       worst_non_orthogonal + ")");
@@ -129,6 +133,7 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
             r.max_aspect_ratio = a;
             const CellNumbering::Cell c = cells.locate(g);
             r.worst_aspect = describe_cell(mesh, c.type, c.index);
+            r.worst_aspect_type = c.type;
         }
     }
 

@@ -41,9 +41,10 @@ struct SolverChecks {
     Index skew_faces = 0;  ///< faces above kFoamSkewness
     double max_aspect_ratio = 0.0;
     std::string worst_aspect;
-    Index high_aspect_cells = 0;  ///< cells above kFoamAspectRatio
-    Index negative_pyramids = 0;  ///< faces whose pyramid to a cell's centre is not positive (fails)
-    std::string worst_pyramid;    ///< the first such face
+    CellType worst_aspect_type = CellType::Tet;  ///< the type of that cell
+    Index high_aspect_cells = 0;                 ///< cells above kFoamAspectRatio
+    Index negative_pyramids = 0;                 ///< faces whose pyramid to a cell's centre is not positive (fails)
+    std::string worst_pyramid;                   ///< the first such face
     /// What checkMesh's default run would fail on, one line each, naming the worst place;
     /// empty if it would say "Mesh OK".
     std::vector<std::string> failures() const;
