@@ -46,9 +46,6 @@
 
 namespace {
 
-using strata::LayerOptions;
-using strata::MeshOptions;
-
 // ---------------------------------------------------------------------------------------
 // Ctrl-C: the handler only sets a flag (all a signal handler may do); the stages poll it through
 // Progress::cancelled(). It also restores the default action, so a second Ctrl-C ends the
@@ -152,16 +149,46 @@ std::string in_flags(const std::string& message) {
 // ---------------------------------------------------------------------------------------
 // Options, bound to the Params structs (their defaults are the library's).
 
-/// What every subcommand takes: the input, the output and how the surface is made.
-struct Common : strata::SurfaceOptions {
+/// What a subcommand takes: the input, the output, and the front-ends' options (bound to the
+/// Params structs: their defaults are the library's).
+struct Common {
+    strata::Options o;
     std::string output, msh_version = "4.1";
     bool quiet = false;
     double timeout = 0.0;  ///< seconds, 0: none (Watchdog)
 };
 
+/// The flags of the front-ends' option table (frontend/options.h) for \p stage, bound to \p o.
+void add_table_options(CLI::App& cmd, strata::Options& o, std::initializer_list<strata::OptionStage> stages) {
+    for (const strata::OptionSpec& spec : strata::option_table()) {
+        if (spec.flag.empty() || std::find(stages.begin(), stages.end(), spec.stage) == stages.end()) continue;
+        CLI::Option* opt = std::visit(
+            [&](auto field) -> CLI::Option* {
+                auto& value = field(o);
+                using T = std::decay_t<decltype(value)>;
+                if constexpr (std::is_same_v<T, bool>) {
+                    if (spec.flag_sets_false)
+                        return cmd.add_flag_callback(
+                            spec.flag, [&value] { value = false; }, spec.help);
+                    return cmd.add_flag(spec.flag, value, spec.help);
+                } else if constexpr (std::is_same_v<T, std::vector<int>>) {
+                    return cmd.add_option(spec.flag, value, spec.help)->delimiter(',')->expected(1, -1);
+                } else {
+                    return cmd.add_option(spec.flag, value, spec.help);
+                }
+            },
+            spec.field);
+        if (spec.show_default && !std::holds_alternative<bool& (*)(strata::Options&)>(spec.field))
+            opt->capture_default_str();
+        if (spec.flag == "--layers") opt->required();
+        if (spec.flag == "--remesh") opt->check(CLI::NonNegativeNumber);
+        if (spec.flag == "--fan-angle") opt->check(CLI::Range(0.0, 180.0));
+        if (spec.flag == "--mixed") opt->excludes(cmd.get_option("--quads"));
+    }
+}
+
 void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help) {
-    strata::CadParams& cad = c.prepare.cad;
-    cmd.add_option("INPUT", c.inputs,
+    cmd.add_option("INPUT", c.o.surface.inputs,
                    "CAD (.step .stp .iges .igs .brep .brp .geo) or surface mesh (.stl .msh); several are read as one "
                    "surface, each keeping its patches")
         ->required();
@@ -174,119 +201,7 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
                    "that cannot be stopped (Gmsh's or TetGen's own meshing) is ended 5 s later (0: no limit)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
-    cmd.add_option("--size", cad.size,
-                   "target surface element size, model units (CAD or --remesh; 0: CAD 1/20 of the bounding-box "
-                   "diagonal, --remesh the input's median edge)")
-        ->capture_default_str();
-    cmd.add_option("--size-min", cad.size_min,
-                   "smallest element size under curvature refinement (CAD or --remesh; 0: size/20)")
-        ->capture_default_str();
-    cmd.add_option("--curvature", cad.curvature_points,
-                   "refine by curvature: elements per 2*pi of radius (CAD or --remesh; 0: off)")
-        ->capture_default_str();
-    auto* q = cmd.add_flag("--quads", c.quads, "recombine the surface mesh into quadrilaterals (CAD or --remesh)");
-    auto* m =
-        cmd.add_option("--mixed", c.mixed, "quadrilaterals on these CAD surface tags, triangles elsewhere (CAD only)")
-            ->delimiter(',')
-            ->expected(1, -1);
-    q->excludes(m);
-    cmd.add_flag("--fuse", cad.fuse,
-                 "fuse overlapping bodies into one: a CAD file's solids before meshing (OpenCASCADE), overlapping "
-                 "closed surface-mesh components after reading (exact corefinement, CGAL)");
-    cmd.add_option("--remesh", c.remesh,
-                   "--remesh [SIZE]: mesh the surface again with Gmsh (a dirty STL's needle faces, the cuts of "
-                   "--fuse): sharp edges (--feature-angle) and patches are kept; SIZE, or --size, is the element "
-                   "size (default: the input's median edge); --size-min, --curvature and --quads apply")
-        ->check(CLI::NonNegativeNumber);
-    cmd.add_option("--feature-angle", c.prepare.remeshing.feature_angle_deg,
-                   "with --remesh: edges whose faces turn more than this, degrees, stay sharp")
-        ->capture_default_str();
-    cmd.add_option("--units", cad.units,
-                   "STEP and IGES only: read the model in this length unit (mm, cm, m, km, in, ft, ...); default: "
-                   "the unit the file declares. Every length option is in the unit the summary states");
-    cmd.add_option("--scale", c.prepare.scale,
-                   "multiply every coordinate by this after reading (any input; STL and MSH carry no unit)")
-        ->capture_default_str();
-    cmd.add_flag("--internal", c.prepare.internal_flow,
-                 "the fluid is inside the closed walls (a duct, a wind tunnel), not around them: layers grow "
-                 "inward from the outermost walls and outward from the bodies inside, and strata mesh fills the "
-                 "walls instead of adding a farfield");
-    cmd.add_option("--patch", c.patches,
-                   "set a patch's kind, NAME=KIND with KIND wall|symmetry|farfield|other (repeatable)");
-}
-
-void add_layer_options(CLI::App& cmd, LayerOptions& o) {
-    strata::LayerParams& p = o.params;
-    strata::DistributionParams& d = p.distribution;
-    cmd.add_option("--layers", d.layers, "number of layers")->required();
-    cmd.add_option("--first-height", d.first_height, "height of the first layer, model units (or --yplus)");
-    cmd.add_option("--growth", d.growth, "growth ratio of geometric layers (0: 1.2)")->capture_default_str();
-    cmd.add_option("--thickness", d.thickness, "total thickness of the layers, model units");
-    cmd.add_option("--yplus", d.yplus, "first height from this target y+ (with --reynolds, --ref-length)");
-    cmd.add_option("--reynolds", d.reynolds, "Reynolds number for --yplus");
-    cmd.add_option("--ref-length", d.reference_length, "reference length of the Reynolds number, model units")
-        ->capture_default_str();
-    cmd.add_option("--distribution", o.distribution,
-                   "auto (thickness if --thickness is given without --growth, else geometric), geometric (first "
-                   "height + growth), thickness (first height + thickness: growth solved) or tanh (the paper's; "
-                   "first height + thickness)")
-        ->capture_default_str();
-    cmd.add_option("--sweeps", p.sweeps, "Poisson smoothing sweeps per layer")->capture_default_str();
-    cmd.add_option("--max-sweeps", p.max_sweeps, "more sweeps allowed while the update stays large")
-        ->capture_default_str();
-    cmd.add_flag("--no-control", o.no_control,
-                 "no control functions (Phi, Psi from the wall; Theta from the distribution)");
-    cmd.add_flag("--no-concave", o.no_concave, "no extra smoothing in concave regions");
-    cmd.add_flag("--no-hold-back", o.no_hold_back,
-                 "with --min-quality 0: where a layer's cells would invert, stop with an error instead of holding "
-                 "the layer back there");
-    cmd.add_option("--min-quality", p.min_quality,
-                   "a column stops where a cell it would make has a scaled Jacobian below this share of what its "
-                   "wall face allows; 0: no local stopping (every column gets every layer, held back where it "
-                   "would fold; a fold that holding back cannot save is an error)")
-        ->capture_default_str();
-    cmd.add_option("--max-turn", p.max_turn_deg, "a column stops where it would turn more than this, degrees")
-        ->capture_default_str();
-    cmd.add_option("--max-twist", p.max_twist_deg,
-                   "a column stops where a cell it would make has its top turned more than this about its axis "
-                   "against its bottom, degrees")
-        ->capture_default_str();
-    cmd.add_option("--fan-angle", p.fan_angle_deg,
-                   "a fan of columns (one per side, more between) at convex edges whose faces turn by this many "
-                   "degrees or more, and the convex edges that close their chains; 0: no fans")
-        ->check(CLI::Range(0.0, 180.0))
-        ->capture_default_str();
-    cmd.add_option("--normals", o.normals, "node normals: robust, area (the paper's), angle, max")
-        ->capture_default_str();
-    cmd.add_option("--proximity", o.proximity,
-                   "where the domain is narrower than the layers need: stop (fewer layers there, the first height "
-                   "kept), scale (thinner layers there) or off")
-        ->capture_default_str();
-    cmd.add_option("--threads", p.threads, "threads (0: all cores); the output is the same for any count")
-        ->capture_default_str();
-}
-
-void add_mesh_options(CLI::App& cmd, MeshOptions& o) {
-    strata::HybridParams& p = o.params;
-    cmd.add_option("--farfield", o.farfield,
-                   "generated outer boundary when the input has no farfield patch: sphere or box")
-        ->capture_default_str();
-    cmd.add_option("--farfield-size", p.farfield.size, "farfield extent as a multiple of the body size")
-        ->capture_default_str();
-    cmd.add_option("--pyramid-height", p.pyramids.height, "pyramid apex height relative to the quad size")
-        ->capture_default_str();
-    cmd.add_option("--radius-edge", p.tets.radius_edge, "tetrahedron quality bound, radius/edge (TetGen -q)")
-        ->capture_default_str();
-    cmd.add_option("--min-dihedral", p.tets.min_dihedral,
-                   "smallest dihedral angle of the tetrahedra TetGen should aim for, degrees (TetGen -q R/D; 0: "
-                   "TetGen's own)")
-        ->capture_default_str();
-    cmd.add_option("--max-dihedral", p.tets.max_dihedral,
-                   "largest dihedral angle of the tetrahedra TetGen's optimisation works down to, degrees (TetGen "
-                   "-o/A; 0: TetGen's own, 165)")
-        ->capture_default_str();
-    cmd.add_option("--tet-growth", p.tets.growth, "growth of the tetrahedron size with distance from the body")
-        ->capture_default_str();
+    add_table_options(cmd, c.o, {strata::OptionStage::Surface, strata::OptionStage::Patches});
 }
 
 // ---------------------------------------------------------------------------------------
@@ -632,8 +547,8 @@ Start start(const Common& c, const strata::PrepareParams& params, Output output,
         strata::check_surface_output(c.output, s.msh_version);
     else
         strata::check_volume_output(c.output, s.msh_version);
-    s.surface = strata::prepare_surfaces(c.inputs, params, &s.report, &terminal);
-    s.any_cad = strata::any_cad_input(c.inputs);
+    s.surface = strata::prepare_surfaces(c.o.surface.inputs, params, &s.report, &terminal);
+    s.any_cad = strata::any_cad_input(c.o.surface.inputs);
     s.seconds = seconds_since(t0);
     return s;
 }
@@ -641,7 +556,7 @@ Start start(const Common& c, const strata::PrepareParams& params, Output output,
 int run_surface(const Common& c) {
     const auto t0 = std::chrono::steady_clock::now();
     Terminal terminal(c.quiet);
-    const Start s = start(c, strata::prepare_params(c), Output::Surface, terminal);
+    const Start s = start(c, strata::prepare_params(c.o.surface), Output::Surface, terminal);
     begin_writing();
     strata::write_surface(s.surface, c.output, s.msh_version, &terminal);
     if (c.quiet) return 0;
@@ -650,16 +565,16 @@ int run_surface(const Common& c) {
     return 0;
 }
 
-int run_layers(const Common& c, const LayerOptions& o) {
-    const strata::LayerParams lp = strata::layer_params(o);
+int run_layers(const Common& c) {
+    const strata::LayerParams lp = strata::layer_params(c.o.layers);
     Terminal terminal(c.quiet);
-    const Start s = start(c, strata::prepare_params(c), Output::Volume, terminal);
+    const Start s = start(c, strata::prepare_params(c.o.surface), Output::Volume, terminal);
     const auto t1 = std::chrono::steady_clock::now();
     const strata::LayerMesh lm = strata::extrude_layers(s.surface, lp, &terminal);
     const double t_layers = seconds_since(t1);
     const auto t2 = std::chrono::steady_clock::now();
     const strata::ValidationReport v =
-        strata::require_valid_mesh(lm.mesh, c.input, {.threads = lp.threads, .progress = &terminal});
+        strata::require_valid_mesh(lm.mesh, c.o.surface.input, {.threads = lp.threads, .progress = &terminal});
     begin_writing();
     strata::write_volume(lm.mesh, c.output, s.msh_version, &terminal);
     const strata::LayerReport coverage = strata::layer_report(lm);
@@ -675,11 +590,11 @@ int run_layers(const Common& c, const LayerOptions& o) {
     return 0;
 }
 
-int run_mesh(const Common& c, const LayerOptions& lo, const MeshOptions& mo, const PlotOptions& po) {
-    const strata::HybridParams hp = strata::hybrid_params(lo, mo);
+int run_mesh(const Common& c, const PlotOptions& po) {
+    const strata::HybridParams hp = strata::hybrid_params(c.o.layers, c.o.mesh);
     const auto [cut_axis, cut_value] = parse_cut(po.cut);
     Terminal terminal(c.quiet);
-    const Start s = start(c, strata::prepare_params(c), Output::Volume, terminal);
+    const Start s = start(c, strata::prepare_params(c.o.surface), Output::Volume, terminal);
     strata::HybridReport hr;
     const strata::VolumeMesh mesh = strata::build_hybrid_mesh(s.surface, hp, &terminal, &hr);
     const auto t1 = std::chrono::steady_clock::now();
@@ -727,25 +642,21 @@ int main(int argc, char** argv) {
     add_common_options(*surface, sc, "output surface mesh (.msh; .vtk, .stl, ... by extension)");
 
     Common lc;
-    LayerOptions lo;
     CLI::App* layers =
         app.add_subcommand("layers", "extrude boundary-layer prisms and hexahedra from the walls; write the layers");
     add_common_options(*layers, lc,
                        "output volume mesh: .msh, .cgr/.cog/.grd (Cobalt60), .cgns (CGNS), CASE/constant/polyMesh "
                        "(OpenFOAM, a directory), .vtk, .su2, ... by extension");
-    add_layer_options(*layers, lo);
+    add_table_options(*layers, lc.o, {strata::OptionStage::Layers});
 
     Common mc;
-    LayerOptions mlo;
-    MeshOptions mo;
     CLI::App* meshcmd = app.add_subcommand("mesh",
                                            "the whole pipeline: surface, boundary layers, pyramids, tetrahedra; "
                                            "write one validated hybrid mesh");
     add_common_options(*meshcmd, mc,
                        "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .cgns (CGNS), CASE/constant/polyMesh "
                        "(OpenFOAM polyMesh, a directory), .msh, .vtk, .su2, ...");
-    add_layer_options(*meshcmd, mlo);
-    add_mesh_options(*meshcmd, mo);
+    add_table_options(*meshcmd, mc.o, {strata::OptionStage::Layers, strata::OptionStage::Mesh});
     PlotOptions po;
     meshcmd->add_option("--plots", po.dir,
                         "also draw the quality report's plots into DIR (PNG and index.md: strata report; writes "
@@ -797,12 +708,12 @@ int main(int argc, char** argv) {
         return 2;
     }
 
-    for (Common* c : {&sc, &lc, &mc}) c->input = strata::input_name(c->inputs);
+    for (Common* c : {&sc, &lc, &mc}) c->o.surface.input = strata::input_name(c->o.surface.inputs);
     const Watchdog watchdog(*surface ? sc.timeout : *layers ? lc.timeout : *meshcmd ? mc.timeout : 0.0);
     try {
         if (*surface) return run_surface(sc);
-        if (*layers) return run_layers(lc, lo);
-        if (*meshcmd) return run_mesh(mc, mlo, mo, po);
+        if (*layers) return run_layers(lc);
+        if (*meshcmd) return run_mesh(mc, po);
         if (*reportcmd) return run_report_script(report_file, report_dir, report_quiet);
     } catch (const strata::Cancelled& e) {
         if (g_timed_out.load()) {

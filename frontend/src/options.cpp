@@ -82,9 +82,6 @@ LayerParams layer_params(const LayerOptions& o) {
     p.distribution.kind = parse_distribution(o.distribution);
     p.normals = parse_normal_method(o.normals);
     p.proximity = parse_proximity_mode(o.proximity);
-    p.control_functions = p.control_functions && !o.no_control;
-    p.concave = p.concave && !o.no_concave;
-    p.hold_back = p.hold_back && !o.no_hold_back;
     return p;
 }
 
@@ -96,52 +93,294 @@ HybridParams hybrid_params(const LayerOptions& layers, const MeshOptions& mesh) 
     return hp;
 }
 
-const std::vector<std::pair<std::string, std::string>>& flag_of_parameter() {
-    static const std::vector<std::pair<std::string, std::string>> table = {
-        {"PrepareParams::patch_kinds", "--patch"},
-        {"CadParams::size", "--size"},
-        {"CadParams::size_min", "--size-min"},
-        {"CadParams::curvature_points", "--curvature"},
-        {"CadParams::elements", "--quads/--mixed"},
-        {"CadParams::quad_surfaces", "--mixed"},
-        {"CadParams::fuse", "--fuse"},
-        {"PrepareParams::internal_flow", "--internal"},
-        {"PrepareParams::scale", "--scale"},
-        {"CadParams::units", "--units"},
-        {"DistributionParams::layers", "--layers"},
-        {"DistributionParams::kind", "--distribution"},
-        {"DistributionParams::first_height", "--first-height"},
-        {"DistributionParams::growth", "--growth"},
-        {"DistributionParams::thickness", "--thickness"},
-        {"DistributionParams::yplus", "--yplus"},
-        {"DistributionParams::reynolds", "--reynolds"},
-        {"DistributionParams::reference_length", "--ref-length"},
-        {"LayerParams::sweeps", "--sweeps"},
-        {"LayerParams::max_sweeps", "--max-sweeps"},
-        // The switches whose flag turns them off: their "= false" first, as the flag itself.
-        {"LayerParams::control_functions = false", "--no-control"},
-        {"LayerParams::concave = false", "--no-concave"},
-        {"LayerParams::hold_back = false", "--no-hold-back"},
-        {"LayerParams::control_functions", "--no-control"},
-        {"LayerParams::concave", "--no-concave"},
-        {"LayerParams::hold_back", "--no-hold-back"},
-        {"LayerParams::normals", "--normals"},
-        {"LayerParams::proximity", "--proximity"},
-        {"LayerParams::min_quality", "--min-quality"},
-        {"LayerParams::max_turn_deg", "--max-turn"},
-        {"LayerParams::max_twist_deg", "--max-twist"},
-        {"LayerParams::fan_angle_deg", "--fan-angle"},
-        {"LayerParams::threads", "--threads"},
-        {"HybridParams::threads", "--threads"},
-        {"FarfieldParams::shape", "--farfield"},
-        {"FarfieldParams::size", "--farfield-size"},
-        {"PyramidParams::height", "--pyramid-height"},
-        {"TetFillParams::radius_edge", "--radius-edge"},
-        {"TetFillParams::min_dihedral", "--min-dihedral"},
-        {"TetFillParams::max_dihedral", "--max-dihedral"},
-        {"TetFillParams::growth", "--tet-growth"},
-    };
+namespace {
+
+using Stage = OptionStage;
+
+/// An option bound to the field \p f returns (a captureless lambda).
+template <class F>
+OptionSpec spec(std::string flag, std::string keyword, std::string param, Stage stage, F f, std::string help) {
+    OptionSpec o;
+    o.flag = std::move(flag);
+    o.keyword = std::move(keyword);
+    o.param = std::move(param);
+    o.stage = stage;
+    o.field = +f;
+    o.help = std::move(help);
+    return o;
+}
+
+OptionSpec no_default(OptionSpec o) {
+    o.show_default = false;
+    return o;
+}
+
+/// A switch on by default that the CLI's flag turns off; \p keyword_help says what it does on.
+OptionSpec turned_off(OptionSpec o, std::string keyword_help) {
+    o.flag_sets_false = true;
+    o.show_default = false;
+    o.keyword_help = std::move(keyword_help);
+    return o;
+}
+
+std::vector<OptionSpec> make_table() {
+    std::vector<OptionSpec> t;
+    // How the surface is made (CadParams, RemeshParams, PrepareParams; the switches quads, remesh).
+    t.push_back(spec(
+        "--size", "size", "CadParams::size", Stage::Surface,
+        [](Options& o) -> double& { return o.surface.prepare.cad.size; },
+        "target surface element size, model units (CAD or --remesh; 0: CAD 1/20 of the bounding-box diagonal, "
+        "--remesh the input's median edge)"));
+    t.push_back(spec(
+        "--size-min", "size_min", "CadParams::size_min", Stage::Surface,
+        [](Options& o) -> double& { return o.surface.prepare.cad.size_min; },
+        "smallest element size under curvature refinement (CAD or --remesh; 0: size/20)"));
+    t.push_back(spec(
+        "--curvature", "curvature_points", "CadParams::curvature_points", Stage::Surface,
+        [](Options& o) -> int& { return o.surface.prepare.cad.curvature_points; },
+        "refine by curvature: elements per 2*pi of radius (CAD or --remesh; 0: off)"));
+    t.push_back(spec(
+        "", "algorithm", "CadParams::algorithm", Stage::Surface,
+        [](Options& o) -> int& { return o.surface.prepare.cad.algorithm; },
+        "Gmsh 2D algorithm for CAD: 1, 2, 5, 6 or 9"));
+    t.push_back(no_default(spec(
+        "--quads", "quads", "", Stage::Surface, [](Options& o) -> bool& { return o.surface.quads; },
+        "recombine the surface mesh into quadrilaterals (CAD or --remesh)")));
+    t.push_back(no_default(spec(
+        "--mixed", "mixed", "CadParams::quad_surfaces", Stage::Surface,
+        [](Options& o) -> std::vector<int>& { return o.surface.mixed; },
+        "quadrilaterals on these CAD surface tags, triangles elsewhere (CAD only)")));
+    t.push_back(no_default(spec(
+        "--fuse", "fuse", "CadParams::fuse", Stage::Surface,
+        [](Options& o) -> bool& { return o.surface.prepare.cad.fuse; },
+        "fuse overlapping bodies into one: a CAD file's solids before meshing "
+        "(OpenCASCADE), overlapping closed surface-mesh components after reading (exact "
+        "corefinement, CGAL)")));
+    OptionSpec remesh = no_default(spec(
+        "--remesh", "remesh", "", Stage::Surface, [](Options& o) -> double& { return o.surface.remesh; },
+        "--remesh [SIZE]: mesh the surface again with Gmsh (a dirty STL's needle faces, the cuts of --fuse): sharp "
+        "edges (--feature-angle) and patches are kept; SIZE, or --size, is the element size (default: the "
+        "input's median edge); --size-min, --curvature and --quads apply"));
+    remesh.keyword_help =
+        "None, or mesh the surface again with Gmsh (a dirty STL's needle faces, the cuts of fuse) with this element "
+        "size (0: size, or the input's median edge): sharp edges (feature_angle_deg) and patches are kept";
+    t.push_back(std::move(remesh));
+    t.push_back(spec(
+        "--feature-angle", "feature_angle_deg", "RemeshParams::feature_angle_deg", Stage::Surface,
+        [](Options& o) -> double& { return o.surface.prepare.remeshing.feature_angle_deg; },
+        "with --remesh: edges whose faces turn more than this, degrees, stay sharp"));
+    t.push_back(no_default(spec(
+        "--units", "units", "CadParams::units", Stage::Surface,
+        [](Options& o) -> std::string& { return o.surface.prepare.cad.units; },
+        "STEP and IGES only: read the model in this length unit (mm, cm, m, km, in, ft, "
+        "...); default: the unit the file declares. Every length option is in the unit "
+        "the summary states")));
+    t.push_back(spec(
+        "--scale", "scale", "PrepareParams::scale", Stage::Surface,
+        [](Options& o) -> double& { return o.surface.prepare.scale; },
+        "multiply every coordinate by this after reading (any input; STL and MSH carry no unit)"));
+    t.push_back(spec(
+        "", "merge_tolerance", "PrepareParams::merge_tolerance", Stage::Patches,
+        [](Options& o) -> double& { return o.surface.prepare.merge_tolerance; },
+        "coincident-node merge distance, relative to the bounding-box diagonal"));
+    t.push_back(no_default(spec(
+        "--internal", "internal_flow", "PrepareParams::internal_flow", Stage::Patches,
+        [](Options& o) -> bool& { return o.surface.prepare.internal_flow; },
+        "the fluid is inside the closed walls (a duct, a wind tunnel), not around them: "
+        "layers grow inward from the outermost walls and outward from the bodies inside, "
+        "and strata mesh fills the walls instead of adding a farfield")));
+    OptionSpec patches = no_default(spec(
+        "--patch", "patches", "PrepareParams::patch_kinds", Stage::Patches,
+        [](Options& o) -> std::vector<std::string>& { return o.surface.patches; },
+        "set a patch's kind, NAME=KIND with KIND wall|symmetry|farfield|other "
+        "(repeatable)"));
+    patches.keyword_help = "None, or {patch name: 'wall' | 'symmetry' | 'farfield' | 'other'}";
+    t.push_back(std::move(patches));
+
+    // The layers (DistributionParams, LayerParams; enums as text).
+    t.push_back(no_default(spec(
+        "--layers", "layers", "DistributionParams::layers", Stage::Layers,
+        [](Options& o) -> int& { return o.layers.params.distribution.layers; }, "number of layers")));
+    t.push_back(no_default(spec(
+        "--first-height", "first_height", "DistributionParams::first_height", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.distribution.first_height; },
+        "height of the first layer, model units (or --yplus)")));
+    t.push_back(spec(
+        "--growth", "growth", "DistributionParams::growth", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.distribution.growth; },
+        "growth ratio of geometric layers (0: 1.2)"));
+    t.push_back(no_default(spec(
+        "--thickness", "thickness", "DistributionParams::thickness", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.distribution.thickness; },
+        "total thickness of the layers, model units")));
+    t.push_back(no_default(spec(
+        "--yplus", "yplus", "DistributionParams::yplus", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.distribution.yplus; },
+        "first height from this target y+ (with --reynolds, --ref-length)")));
+    t.push_back(no_default(spec(
+        "--reynolds", "reynolds", "DistributionParams::reynolds", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.distribution.reynolds; }, "Reynolds number for --yplus")));
+    t.push_back(spec(
+        "--ref-length", "reference_length", "DistributionParams::reference_length", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.distribution.reference_length; },
+        "reference length of the Reynolds number, model units"));
+    t.push_back(spec(
+        "--distribution", "distribution", "DistributionParams::kind", Stage::Layers,
+        [](Options& o) -> std::string& { return o.layers.distribution; },
+        "auto (thickness if --thickness is given without --growth, else geometric), geometric (first "
+        "height + growth), thickness (first height + thickness: growth solved) or tanh (the paper's; "
+        "first height + thickness)"));
+    t.push_back(spec(
+        "--sweeps", "sweeps", "LayerParams::sweeps", Stage::Layers,
+        [](Options& o) -> int& { return o.layers.params.sweeps; }, "Poisson smoothing sweeps per layer"));
+    t.push_back(spec(
+        "--max-sweeps", "max_sweeps", "LayerParams::max_sweeps", Stage::Layers,
+        [](Options& o) -> int& { return o.layers.params.max_sweeps; },
+        "more sweeps allowed while the update stays large"));
+    t.push_back(spec(
+        "", "tolerance", "LayerParams::tolerance", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.tolerance; },
+        "stop extra sweeps when the update is below this share of the layer height"));
+    t.push_back(turned_off(spec(
+                               "--no-control", "control_functions", "LayerParams::control_functions", Stage::Layers,
+                               [](Options& o) -> bool& { return o.layers.params.control_functions; },
+                               "no control functions (Phi, Psi from the wall; Theta from the distribution)"),
+                           "control functions (Phi, Psi from the wall; Theta from the distribution)"));
+    t.push_back(turned_off(
+        spec(
+            "--no-concave", "concave", "LayerParams::concave", Stage::Layers,
+            [](Options& o) -> bool& { return o.layers.params.concave; }, "no extra smoothing in concave regions"),
+        "extra smoothing in concave regions"));
+    t.push_back(turned_off(spec(
+                               "--no-hold-back", "hold_back", "LayerParams::hold_back", Stage::Layers,
+                               [](Options& o) -> bool& { return o.layers.params.hold_back; },
+                               "with --min-quality 0: where a layer's cells would invert, stop with an error "
+                               "instead of holding the layer back there"),
+                           "with min_quality 0: hold a layer back where its cells would invert instead of "
+                           "stopping with an error"));
+    t.push_back(spec(
+        "--min-quality", "min_quality", "LayerParams::min_quality", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.min_quality; },
+        "a column stops where a cell it would make has a scaled Jacobian below this share of what "
+        "its wall face allows; 0: no local stopping (every column gets every layer, held back where "
+        "it would fold; a fold that holding back cannot save is an error)"));
+    t.push_back(spec(
+        "--max-turn", "max_turn_deg", "LayerParams::max_turn_deg", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.max_turn_deg; },
+        "a column stops where it would turn more than this, degrees"));
+    t.push_back(spec(
+        "--max-twist", "max_twist_deg", "LayerParams::max_twist_deg", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.max_twist_deg; },
+        "a column stops where a cell it would make has its top turned more than this about its axis "
+        "against its bottom, degrees"));
+    t.push_back(spec(
+        "--fan-angle", "fan_angle_deg", "LayerParams::fan_angle_deg", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.fan_angle_deg; },
+        "a fan of columns (one per side, more between) at convex edges whose faces turn by this many "
+        "degrees or more, and the convex edges that close their chains; 0: no fans"));
+    t.push_back(spec(
+        "--normals", "normals", "LayerParams::normals", Stage::Layers,
+        [](Options& o) -> std::string& { return o.layers.normals; },
+        "node normals: robust, area (the paper's), angle, max"));
+    t.push_back(spec(
+        "--proximity", "proximity", "LayerParams::proximity", Stage::Layers,
+        [](Options& o) -> std::string& { return o.layers.proximity; },
+        "where the domain is narrower than the layers need: stop (fewer layers there, the first "
+        "height kept), scale (thinner layers there) or off"));
+    t.push_back(spec(
+        "--threads", "threads", "LayerParams::threads", Stage::Layers,
+        [](Options& o) -> int& { return o.layers.params.threads; },
+        "threads (0: all cores); the output is the same for any count"));
+
+    // The rest of the hybrid mesh (FarfieldParams, PyramidParams, TetFillParams).
+    t.push_back(spec(
+        "--farfield", "farfield", "FarfieldParams::shape", Stage::Mesh,
+        [](Options& o) -> std::string& { return o.mesh.farfield; },
+        "generated outer boundary when the input has no farfield patch: sphere or box"));
+    t.push_back(spec(
+        "--farfield-size", "farfield_size", "FarfieldParams::size", Stage::Mesh,
+        [](Options& o) -> double& { return o.mesh.params.farfield.size; },
+        "farfield extent as a multiple of the body size"));
+    t.push_back(spec(
+        "", "farfield_divisions", "FarfieldParams::divisions", Stage::Mesh,
+        [](Options& o) -> int& { return o.mesh.params.farfield.divisions; }, "resolution of the generated farfield"));
+    t.push_back(spec(
+        "--pyramid-height", "pyramid_height", "PyramidParams::height", Stage::Mesh,
+        [](Options& o) -> double& { return o.mesh.params.pyramids.height; },
+        "pyramid apex height relative to the quad size"));
+    t.push_back(spec(
+        "", "pyramid_min_height", "PyramidParams::min_height", Stage::Mesh,
+        [](Options& o) -> double& { return o.mesh.params.pyramids.min_height; },
+        "lowest pyramid apex, relative to the quad's shortest edge"));
+    t.push_back(spec(
+        "--radius-edge", "radius_edge", "TetFillParams::radius_edge", Stage::Mesh,
+        [](Options& o) -> double& { return o.mesh.params.tets.radius_edge; },
+        "tetrahedron quality bound, radius/edge (TetGen -q)"));
+    t.push_back(spec(
+        "--min-dihedral", "min_dihedral", "TetFillParams::min_dihedral", Stage::Mesh,
+        [](Options& o) -> double& { return o.mesh.params.tets.min_dihedral; },
+        "smallest dihedral angle of the tetrahedra TetGen should aim for, degrees (TetGen -q R/D; 0: "
+        "TetGen's own)"));
+    t.push_back(spec(
+        "--max-dihedral", "max_dihedral", "TetFillParams::max_dihedral", Stage::Mesh,
+        [](Options& o) -> double& { return o.mesh.params.tets.max_dihedral; },
+        "largest dihedral angle of the tetrahedra TetGen's optimisation works down to, degrees "
+        "(TetGen -o/A; 0: TetGen's own, 165)"));
+    t.push_back(spec(
+        "", "refine", "TetFillParams::refine", Stage::Mesh,
+        [](Options& o) -> bool& { return o.mesh.params.tets.refine; },
+        "add interior Steiner points for quality and size"));
+    t.push_back(spec(
+        "", "max_volume", "TetFillParams::max_volume", Stage::Mesh,
+        [](Options& o) -> double& { return o.mesh.params.tets.max_volume; }, "volume bound per tetrahedron (0: none)"));
+    t.push_back(spec(
+        "--tet-growth", "tet_growth", "TetFillParams::growth", Stage::Mesh,
+        [](Options& o) -> double& { return o.mesh.params.tets.growth; },
+        "growth of the tetrahedron size with distance from the body"));
+    t.push_back(spec(
+        "", "background_mesh", "TetFillParams::background_mesh", Stage::Mesh,
+        [](Options& o) -> bool& { return o.mesh.params.tets.background_mesh; },
+        "sample the size field on a background mesh"));
+    return t;
+}
+
+}  // namespace
+
+const std::vector<OptionSpec>& option_table() {
+    static const std::vector<OptionSpec> table = make_table();
     return table;
+}
+
+const std::vector<std::pair<std::string, std::string>>& flag_of_parameter() {
+    static const std::vector<std::pair<std::string, std::string>> names = [] {
+        std::vector<std::pair<std::string, std::string>> n;
+        // A switch the flag turns off: "= false" first, as the flag itself.
+        for (const OptionSpec& o : option_table())
+            if (o.flag_sets_false) n.emplace_back(o.param + " = false", o.flag);
+        for (const OptionSpec& o : option_table())
+            if (!o.flag.empty() && !o.param.empty()) n.emplace_back(o.param, o.flag);
+        // Parameters several options set, or none alone.
+        n.emplace_back("CadParams::elements", "--quads/--mixed");
+        n.emplace_back("HybridParams::threads", "--threads");
+        return n;
+    }();
+    return names;
+}
+
+const std::vector<std::pair<std::string, std::string>>& keyword_of_name() {
+    static const std::vector<std::pair<std::string, std::string>> names = [] {
+        std::vector<std::pair<std::string, std::string>> n;
+        for (const OptionSpec& o : option_table())
+            if (o.flag_sets_false && !o.keyword.empty()) n.emplace_back(o.param + " = false", o.keyword + "=False");
+        for (const OptionSpec& o : option_table())
+            if (!o.keyword.empty() && !o.param.empty()) n.emplace_back(o.param, o.keyword);
+        n.emplace_back("CadParams::elements", "quads/mixed");
+        n.emplace_back("HybridParams::threads", "threads");
+        for (const OptionSpec& o : option_table())
+            if (!o.keyword.empty() && !o.flag.empty()) n.emplace_back(o.flag, o.keyword);
+        return n;
+    }();
+    return names;
 }
 
 std::string translate_names(std::string message, const std::vector<std::pair<std::string, std::string>>& names) {

@@ -1,11 +1,11 @@
 // strata._strata: the pipeline for Python (the package strata wraps it, python/strata/).
 //
-// Options: one table (keywords()) maps each Python keyword onto a field of the front-end
-// options (strata::SurfaceOptions, LayerOptions, MeshOptions: the Params structs the CLI binds
-// to) with the library parameter it sets. Python reads the defaults from it (a default-
+// Options: the front-ends' one option table (strata::option_table, frontend/options.h: each
+// option's CLI flag, Python keyword, library parameter, help and field of strata::Options, the
+// Params structs) gives the keywords (keywords()). Python reads the defaults from it (a default-
 // constructed Options), builds the functions' signatures from it and passes the keywords back
 // as a dict; the same table translates library messages ("LayerParams::sweeps", "--sweeps")
-// into keyword names. So no default and no name is typed twice.
+// into keyword names. So no default, no name and no help is typed twice.
 //
 // Results: Mesh and Surface own the C++ mesh; their arrays are NumPy views into it (read-only,
 // kept alive by the object), the report a dict.
@@ -58,13 +58,6 @@ static_assert(sizeof(Vec3) == 3 * sizeof(double), "points are viewed as one #nod
 // ---------------------------------------------------------------------------------------
 // Options
 
-/// Everything a call can set: the front-ends' options (their defaults are the Params structs').
-struct Options {
-    SurfaceOptions surface;
-    LayerOptions layers;
-    MeshOptions mesh;
-};
-
 /// Which functions take a keyword (bit mask).
 enum Takes : int { kSurface = 1, kLayers = 2, kMesh = 4, kGmshModel = 8 };
 
@@ -78,10 +71,8 @@ struct Keyword {
 };
 
 /// A keyword bound to one field (\p field: Options& -> T&); Python values are cast to T.
-template <class F>
-Keyword field(std::string name, std::string param, int takes, F field, std::string doc) {
-    using T = std::decay_t<decltype(field(std::declval<Options&>()))>;
-    Keyword k{std::move(name), std::move(param), takes, std::move(doc), {}, {}};
+template <class T>
+void bind(Keyword& k, T& (*field)(Options&)) {
     k.get = [field](const Options& o) { return py::cast(field(const_cast<Options&>(o))); };
     k.set = [field, name = k.name](Options& o, py::handle v) {
         try {
@@ -90,221 +81,74 @@ Keyword field(std::string name, std::string param, int takes, F field, std::stri
             throw py::type_error(name + "=" + py::repr(v).cast<std::string>() + ": expected " + py::type_id<T>());
         }
     };
-    return k;
 }
 
+/// The front-ends' option table (frontend/options.h) as keywords: its flags in the help named
+/// as keywords; remesh is None or a size, patches None or a dict.
 const std::vector<Keyword>& keywords() {
-    constexpr int S = kSurface | kLayers | kMesh;               // how the surface is made
-    constexpr int L = kLayers | kMesh | kGmshModel;             // the layers
-    constexpr int M = kMesh | kGmshModel;                       // beyond the layers
-    constexpr int P = kSurface | kLayers | kMesh | kGmshModel;  // patch kinds and orientation
-    static const std::vector<Keyword> table = [&] {
+    static const std::vector<Keyword> table = [] {
         std::vector<Keyword> t;
-        // Surface (CadParams, RemeshParams, PrepareParams; front-end switches quads, remesh).
-        t.push_back(field(
-            "size", "CadParams::size", S, [](Options & o) -> auto& { return o.surface.prepare.cad.size; },
-            "target surface element size, model units (CAD or remesh; 0: automatic)"));
-        t.push_back(field(
-            "size_min", "CadParams::size_min", S, [](Options & o) -> auto& { return o.surface.prepare.cad.size_min; },
-            "smallest element size under curvature refinement (0: size/20)"));
-        t.push_back(field(
-            "curvature_points", "CadParams::curvature_points", S,
-            [](Options & o) -> auto& { return o.surface.prepare.cad.curvature_points; },
-            "refine by curvature: elements per 2*pi of radius (0: off)"));
-        t.push_back(field(
-            "algorithm", "CadParams::algorithm", S,
-            [](Options & o) -> auto& { return o.surface.prepare.cad.algorithm; },
-            "Gmsh 2D algorithm for CAD: 1, 2, 5, 6 or 9"));
-        t.push_back(field(
-            "quads", "", S, [](Options & o) -> auto& { return o.surface.quads; },
-            "recombine the surface mesh into quadrilaterals (CAD or remesh)"));
-        t.push_back(field(
-            "mixed", "CadParams::quad_surfaces", S, [](Options & o) -> auto& { return o.surface.mixed; },
-            "CAD surface tags meshed with quadrilaterals, triangles elsewhere"));
-        t.push_back(field(
-            "fuse", "CadParams::fuse", S, [](Options & o) -> auto& { return o.surface.prepare.cad.fuse; },
-            "fuse overlapping bodies into one"));
-        Keyword remesh{"remesh",
-                       "",
-                       S,
-                       "None, or mesh the surface again with Gmsh with this element size (0: --size, or the "
-                       "input's median edge)",
-                       {},
-                       {}};
-        remesh.get = [](const Options& o) -> py::object {
-            if (o.surface.remesh < 0.0) return py::none();
-            return py::float_(o.surface.remesh);
-        };
-        remesh.set = [](Options& o, py::handle v) {
-            if (v.is_none()) {
-                o.surface.remesh = -1.0;
-                return;
+        for (const OptionSpec& spec : option_table()) {
+            if (spec.keyword.empty()) continue;
+            int takes = 0;
+            switch (spec.stage) {
+                case OptionStage::Surface:
+                    takes = kSurface | kLayers | kMesh;
+                    break;
+                case OptionStage::Patches:
+                    takes = kSurface | kLayers | kMesh | kGmshModel;
+                    break;
+                case OptionStage::Layers:
+                    takes = kLayers | kMesh | kGmshModel;
+                    break;
+                case OptionStage::Mesh:
+                    takes = kMesh | kGmshModel;
+                    break;
             }
-            const double size = v.cast<double>();
-            if (!(size >= 0.0))
-                throw InputError("remesh=" + py::repr(v).cast<std::string>() +
-                                 ": expected None or a size >= 0 (0: automatic)");
-            o.surface.remesh = size;
-        };
-        t.push_back(std::move(remesh));
-        t.push_back(field(
-            "feature_angle_deg", "RemeshParams::feature_angle_deg", S,
-            [](Options & o) -> auto& { return o.surface.prepare.remeshing.feature_angle_deg; },
-            "with remesh: edges whose faces turn more than this, degrees, stay sharp"));
-        t.push_back(field(
-            "units", "CadParams::units", S, [](Options & o) -> auto& { return o.surface.prepare.cad.units; },
-            "STEP and IGES only: the length unit to read the model in (mm, m, in, ...)"));
-        t.push_back(field(
-            "scale", "PrepareParams::scale", S, [](Options & o) -> auto& { return o.surface.prepare.scale; },
-            "multiply every coordinate by this after reading"));
-        t.push_back(field(
-            "merge_tolerance", "PrepareParams::merge_tolerance", P,
-            [](Options & o) -> auto& { return o.surface.prepare.merge_tolerance; },
-            "coincident-node merge distance, relative to the bounding-box diagonal"));
-        t.push_back(field(
-            "internal_flow", "PrepareParams::internal_flow", P,
-            [](Options & o) -> auto& { return o.surface.prepare.internal_flow; },
-            "the fluid is inside the closed walls (a duct), not around them"));
-        Keyword patches{"patches", "PrepareParams::patch_kinds",
-                        P,         "None, or {patch name: 'wall' | 'symmetry' | 'farfield' | 'other'}",
-                        {},        {}};
-        patches.get = [](const Options& o) -> py::object {
-            if (o.surface.patches.empty()) return py::none();
-            py::dict d;
-            for (const auto& [name, kind] : parse_patch_options(o.surface.patches)) d[py::str(name)] = to_string(kind);
-            return py::object(std::move(d));
-        };
-        patches.set = [](Options& o, py::handle v) {
-            o.surface.patches.clear();
-            if (v.is_none()) return;
-            if (!py::isinstance<py::dict>(v))
-                throw py::type_error("patches=" + py::repr(v).cast<std::string>() +
-                                     ": expected a dict {patch name: kind}");
-            for (const auto& [name, kind] : v.cast<py::dict>())
-                o.surface.patches.push_back(py::str(name).cast<std::string>() + "=" +
-                                            py::str(kind).cast<std::string>());
-        };
-        t.push_back(std::move(patches));
-        // Layers (DistributionParams, LayerParams; enums as text as on the command line).
-        t.push_back(field(
-            "layers", "DistributionParams::layers", L,
-            [](Options & o) -> auto& { return o.layers.params.distribution.layers; }, "number of layers"));
-        t.push_back(field(
-            "distribution", "DistributionParams::kind", L, [](Options & o) -> auto& { return o.layers.distribution; },
-            "auto, geometric, thickness or tanh"));
-        t.push_back(field(
-            "first_height", "DistributionParams::first_height", L,
-            [](Options & o) -> auto& { return o.layers.params.distribution.first_height; },
-            "height of the first layer, model units (0: from yplus)"));
-        t.push_back(field(
-            "growth", "DistributionParams::growth", L,
-            [](Options & o) -> auto& { return o.layers.params.distribution.growth; },
-            "growth ratio of geometric layers (0: 1.2)"));
-        t.push_back(field(
-            "thickness", "DistributionParams::thickness", L,
-            [](Options & o) -> auto& { return o.layers.params.distribution.thickness; },
-            "total thickness of the layers, model units (thickness, tanh)"));
-        t.push_back(field(
-            "yplus", "DistributionParams::yplus", L,
-            [](Options & o) -> auto& { return o.layers.params.distribution.yplus; },
-            "first height from this target y+ (with reynolds, reference_length)"));
-        t.push_back(field(
-            "reynolds", "DistributionParams::reynolds", L,
-            [](Options & o) -> auto& { return o.layers.params.distribution.reynolds; }, "Reynolds number for yplus"));
-        t.push_back(field(
-            "reference_length", "DistributionParams::reference_length", L,
-            [](Options & o) -> auto& { return o.layers.params.distribution.reference_length; },
-            "reference length of the Reynolds number, model units"));
-        t.push_back(field(
-            "sweeps", "LayerParams::sweeps", L, [](Options & o) -> auto& { return o.layers.params.sweeps; },
-            "Poisson smoothing sweeps per layer"));
-        t.push_back(field(
-            "max_sweeps", "LayerParams::max_sweeps", L, [](Options & o) -> auto& { return o.layers.params.max_sweeps; },
-            "more sweeps allowed while the update stays large"));
-        t.push_back(field(
-            "tolerance", "LayerParams::tolerance", L, [](Options & o) -> auto& { return o.layers.params.tolerance; },
-            "stop extra sweeps when the update is below this share of the layer height"));
-        t.push_back(field(
-            "control_functions", "LayerParams::control_functions", L,
-            [](Options & o) -> auto& { return o.layers.params.control_functions; },
-            "control functions (Phi, Psi from the wall; Theta from the distribution)"));
-        t.push_back(field(
-            "concave", "LayerParams::concave", L, [](Options & o) -> auto& { return o.layers.params.concave; },
-            "extra smoothing in concave regions"));
-        t.push_back(field(
-            "hold_back", "LayerParams::hold_back", L, [](Options & o) -> auto& { return o.layers.params.hold_back; },
-            "hold a layer back where its cells would invert instead of failing"));
-        t.push_back(field(
-            "normals", "LayerParams::normals", L, [](Options & o) -> auto& { return o.layers.normals; },
-            "node normals: robust, area, angle, max"));
-        t.push_back(field(
-            "proximity", "LayerParams::proximity", L, [](Options & o) -> auto& { return o.layers.proximity; },
-            "where the domain is narrow: stop, scale or off"));
-        t.push_back(field(
-            "min_quality", "LayerParams::min_quality", L,
-            [](Options & o) -> auto& { return o.layers.params.min_quality; },
-            "a column stops where a cell would fall below this scaled Jacobian (0: never)"));
-        t.push_back(field(
-            "max_turn_deg", "LayerParams::max_turn_deg", L,
-            [](Options & o) -> auto& { return o.layers.params.max_turn_deg; },
-            "a column stops where it would turn more than this, degrees"));
-        t.push_back(field(
-            "max_twist_deg", "LayerParams::max_twist_deg", L,
-            [](Options & o) -> auto& { return o.layers.params.max_twist_deg; },
-            "a column stops where a cell would twist more than this, degrees"));
-        t.push_back(field(
-            "fan_angle_deg", "LayerParams::fan_angle_deg", L,
-            [](Options & o) -> auto& { return o.layers.params.fan_angle_deg; },
-            "fans of columns at convex edges turning this much or more, degrees (0: none)"));
-        t.push_back(field(
-            "threads", "LayerParams::threads", L, [](Options & o) -> auto& { return o.layers.params.threads; },
-            "threads (0: all cores); the mesh is the same for any count"));
-        // The rest of the hybrid mesh (FarfieldParams, PyramidParams, TetFillParams).
-        t.push_back(field(
-            "farfield", "FarfieldParams::shape", M, [](Options & o) -> auto& { return o.mesh.farfield; },
-            "generated outer boundary when the input has none: sphere or box"));
-        t.push_back(field(
-            "farfield_size", "FarfieldParams::size", M,
-            [](Options & o) -> auto& { return o.mesh.params.farfield.size; },
-            "farfield extent as a multiple of the body's bounding-box diagonal"));
-        t.push_back(field(
-            "farfield_divisions", "FarfieldParams::divisions", M,
-            [](Options & o) -> auto& { return o.mesh.params.farfield.divisions; },
-            "resolution of the generated farfield"));
-        t.push_back(field(
-            "pyramid_height", "PyramidParams::height", M,
-            [](Options & o) -> auto& { return o.mesh.params.pyramids.height; },
-            "pyramid apex height relative to the quad size"));
-        t.push_back(field(
-            "pyramid_min_height", "PyramidParams::min_height", M,
-            [](Options & o) -> auto& { return o.mesh.params.pyramids.min_height; },
-            "lowest pyramid apex, relative to the quad's shortest edge"));
-        t.push_back(field(
-            "radius_edge", "TetFillParams::radius_edge", M,
-            [](Options & o) -> auto& { return o.mesh.params.tets.radius_edge; },
-            "tetrahedron quality bound, radius/edge (TetGen -q)"));
-        t.push_back(field(
-            "min_dihedral", "TetFillParams::min_dihedral", M,
-            [](Options & o) -> auto& { return o.mesh.params.tets.min_dihedral; },
-            "smallest dihedral angle TetGen aims for, degrees (0: TetGen's)"));
-        t.push_back(field(
-            "max_dihedral", "TetFillParams::max_dihedral", M,
-            [](Options & o) -> auto& { return o.mesh.params.tets.max_dihedral; },
-            "largest dihedral angle TetGen's optimisation works down to, degrees"));
-        t.push_back(field(
-            "refine", "TetFillParams::refine", M, [](Options & o) -> auto& { return o.mesh.params.tets.refine; },
-            "add interior Steiner points for quality and size"));
-        t.push_back(field(
-            "max_volume", "TetFillParams::max_volume", M,
-            [](Options & o) -> auto& { return o.mesh.params.tets.max_volume; },
-            "volume bound per tetrahedron (0: none)"));
-        t.push_back(field(
-            "tet_growth", "TetFillParams::growth", M, [](Options & o) -> auto& { return o.mesh.params.tets.growth; },
-            "growth of the tetrahedron size with distance from the body (0: TetGen's)"));
-        t.push_back(field(
-            "background_mesh", "TetFillParams::background_mesh", M,
-            [](Options & o) -> auto& { return o.mesh.params.tets.background_mesh; },
-            "sample the size field on a background mesh"));
+            Keyword k{spec.keyword,
+                      spec.param,
+                      takes,
+                      spec.keyword_help.empty() ? translate_names(spec.help, keyword_of_name()) : spec.keyword_help,
+                      {},
+                      {}};
+            std::visit([&k](auto field) { bind(k, field); }, spec.field);
+            if (spec.keyword == "remesh") {
+                k.get = [](const Options& o) -> py::object {
+                    if (o.surface.remesh < 0.0) return py::none();
+                    return py::float_(o.surface.remesh);
+                };
+                k.set = [](Options& o, py::handle v) {
+                    if (v.is_none()) {
+                        o.surface.remesh = -1.0;
+                        return;
+                    }
+                    const double size = v.cast<double>();
+                    if (!(size >= 0.0))
+                        throw InputError("remesh=" + py::repr(v).cast<std::string>() +
+                                         ": expected None or a size >= 0 (0: automatic)");
+                    o.surface.remesh = size;
+                };
+            } else if (spec.keyword == "patches") {
+                k.get = [](const Options& o) -> py::object {
+                    if (o.surface.patches.empty()) return py::none();
+                    py::dict d;
+                    for (const auto& [name, kind] : parse_patch_options(o.surface.patches))
+                        d[py::str(name)] = to_string(kind);
+                    return py::object(std::move(d));
+                };
+                k.set = [](Options& o, py::handle v) {
+                    o.surface.patches.clear();
+                    if (v.is_none()) return;
+                    if (!py::isinstance<py::dict>(v))
+                        throw py::type_error("patches=" + py::repr(v).cast<std::string>() +
+                                             ": expected a dict {patch name: kind}");
+                    for (const auto& [name, kind] : v.cast<py::dict>())
+                        o.surface.patches.push_back(py::str(name).cast<std::string>() + "=" +
+                                                    py::str(kind).cast<std::string>());
+                };
+            }
+            t.push_back(std::move(k));
+        }
         return t;
     }();
     return table;
@@ -325,34 +169,6 @@ Options options_from(const py::dict& kwargs) {
         if (!found) throw py::type_error("unknown keyword '" + name + "'");
     }
     return o;
-}
-
-/// Library names -> Python keywords: parameters ("LayerParams::sweeps" -> "sweeps") and, for the
-/// front-end's own messages, the CLI flags of those parameters ("--sweeps" -> "sweeps").
-const std::vector<std::pair<std::string, std::string>>& python_names() {
-    static const std::vector<std::pair<std::string, std::string>> names = [] {
-        std::vector<std::pair<std::string, std::string>> n;
-        auto keyword_of = [](const std::string& param) -> std::string {
-            for (const Keyword& k : keywords())
-                if (!k.param.empty() && k.param == param) return k.name;
-            return {};
-        };
-        for (const Keyword& k : keywords())
-            if (!k.param.empty()) n.emplace_back(k.param, k.name);
-        n.emplace_back("HybridParams::threads", "threads");
-        n.emplace_back("CadParams::elements", "quads/mixed");
-        for (const auto& [param, flag] : flag_of_parameter()) {
-            const std::string k = keyword_of(param);
-            if (!k.empty()) n.emplace_back(flag, k);
-        }
-        // Flags of front-end switches, which set no single parameter.
-        n.emplace_back("--remesh", "remesh");
-        n.emplace_back("--quads", "quads");
-        n.emplace_back("--feature-angle", "feature_angle_deg");
-        n.emplace_back("--patch", "patches");
-        return n;
-    }();
-    return names;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -443,7 +259,7 @@ auto with_progress(const py::object& callback, F&& f) -> decltype(f(std::declval
 
 void translate_exception(std::exception_ptr p) {
     auto raise = [](PyObject* type, const std::exception& e) {
-        PyErr_SetString(type, translate_names(e.what(), python_names()).c_str());
+        PyErr_SetString(type, translate_names(e.what(), keyword_of_name()).c_str());
     };
     try {
         if (p) std::rethrow_exception(p);
@@ -820,7 +636,7 @@ PYBIND11_MODULE(_strata, m) {
         "default-constructed Params struct), the library parameter it sets, which functions take it, and a line "
         "of help.");
     m.def(
-        "translate", [](const std::string& message) { return translate_names(message, python_names()); },
+        "translate", [](const std::string& message) { return translate_names(message, keyword_of_name()); },
         "A library message with its parameter names and CLI flags in Python keywords.");
 
     py::class_<PySurface>(m, "Surface", "A checked, oriented surface mesh with patches (strata.surface).")

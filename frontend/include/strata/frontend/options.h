@@ -3,14 +3,17 @@
 /// The options every front-end (the strata program, the Python package) maps onto the Params
 /// structs: the surface (PrepareParams with the switches a user spells differently), the layers
 /// (LayerParams with its enums as text) and the rest of the hybrid mesh (HybridParams).
-/// Defaults are the Params structs' own. Messages name the CLI's flags (--size, --remesh);
-/// a front-end with other names translates them (translate_names).
+/// Defaults are the Params structs' own. Each option is listed once (option_table: its flag,
+/// keyword, parameter, help and field): the CLI and Python both register from that list.
+/// Messages name the CLI's flags (--size, --remesh); a front-end with other names translates
+/// them (translate_names).
 
 #include <strata/geometry/prepare.h>
 #include <strata/hybrid/hybrid_mesh.h>
 
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace strata {
@@ -40,13 +43,12 @@ std::vector<std::pair<std::string, PatchKind>> parse_patch_options(const std::ve
 /// sizes at once and --mixed with --remesh are refused (InputError).
 PrepareParams prepare_params(const SurfaceOptions& options);
 
-/// Layer options: the LayerParams fields, plus the enums as text and the switches a user turns off.
+/// Layer options: the LayerParams fields, plus the enums as text.
 struct LayerOptions {
     LayerParams params;
     std::string distribution{to_string(Distribution::Auto)};
     std::string normals{to_string(LayerParams{}.normals)};
     std::string proximity{to_string(LayerParams{}.proximity)};
-    bool no_control = false, no_concave = false, no_hold_back = false;
 };
 
 /// The LayerParams of \p options (InputError for an unknown enum name).
@@ -61,8 +63,47 @@ struct MeshOptions {
 /// The HybridParams of \p layers and \p mesh: the layers' threads are every stage's.
 HybridParams hybrid_params(const LayerOptions& layers, const MeshOptions& mesh);
 
+/// Everything a front-end sets: how the surface is made, the layers, the rest of the mesh.
+struct Options {
+    SurfaceOptions surface;
+    LayerOptions layers;
+    MeshOptions mesh;
+};
+
+/// Where an option applies: how the surface is made (every CLI command; Python's surface(),
+/// layers() and mesh()), the patches and orientation (those, and a Gmsh model meshed in
+/// place: Python's gmsh.mesh_current_model()), the layers (layers and mesh, and a Gmsh
+/// model), the rest of the hybrid mesh (mesh, and a Gmsh model).
+enum class OptionStage { Surface, Patches, Layers, Mesh };
+
+/// One option of the front-ends: the CLI's flag, the Python keyword, the library parameter it
+/// sets, its help and the field it binds. The one list of them (option_table): the CLI
+/// registers its flags from it, Python its keywords, and the messages' names are translated
+/// by it.
+struct OptionSpec {
+    using Field =
+        std::variant<double& (*)(Options&), int& (*)(Options&), bool& (*)(Options&), std::string& (*)(Options&),
+                     std::vector<int>& (*)(Options&), std::vector<std::string>& (*)(Options&)>;
+    std::string flag;     ///< "--size"; empty: not on the command line
+    std::string keyword;  ///< "size"; empty: not a Python keyword
+    std::string param;    ///< the parameter library messages name ("CadParams::size"); empty: a front-end switch
+    OptionStage stage = OptionStage::Surface;
+    std::string help;          ///< the CLI's help (Python's doc: the same, its flags named as keywords)
+    std::string keyword_help;  ///< Python's doc where it says something else (a switch the flag turns off)
+    Field field;
+    bool flag_sets_false = false;  ///< a switch the flag turns off (--no-control: control_functions false)
+    bool show_default = true;      ///< the CLI's help shows the default
+};
+
+/// Every option, in the order of the CLI's help.
+const std::vector<OptionSpec>& option_table();
+
 /// Library messages name parameters ("LayerParams::sweeps"); the CLI's flag of each (--sweeps).
 const std::vector<std::pair<std::string, std::string>>& flag_of_parameter();
+
+/// The same to Python keywords: parameters and flags ("LayerParams::sweeps", "--sweeps" ->
+/// "sweeps").
+const std::vector<std::pair<std::string, std::string>>& keyword_of_name();
 
 /// \p message with every name of \p names' first members replaced by the second ("LayerParams::
 /// sweeps" -> "--sweeps"); a name followed by more identifier characters or a '-'
