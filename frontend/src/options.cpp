@@ -351,35 +351,37 @@ const std::vector<OptionSpec>& option_table() {
     return table;
 }
 
+namespace {
+
+/// Library names to the CLI's flags or (\p keywords) Python's: a switch's "= false" first (as
+/// what turns it off), then the parameters, then for Python the flags of the front-end's own
+/// messages.
+std::vector<std::pair<std::string, std::string>> names_for(bool keywords) {
+    std::vector<std::pair<std::string, std::string>> n;
+    auto name = [keywords](const OptionSpec& o) -> const std::string& { return keywords ? o.keyword : o.flag; };
+    for (const OptionSpec& o : option_table())
+        if (o.flag_sets_false && !name(o).empty())
+            n.emplace_back(o.param + " = false", keywords ? o.keyword + "=False" : o.flag);
+    for (const OptionSpec& o : option_table())
+        if (!name(o).empty() && !o.param.empty()) n.emplace_back(o.param, name(o));
+    // Parameters several options set, or no option alone.
+    n.emplace_back("CadParams::elements", keywords ? "quads/mixed" : "--quads/--mixed");
+    n.emplace_back("HybridParams::threads", keywords ? "threads" : "--threads");
+    if (keywords)
+        for (const OptionSpec& o : option_table())
+            if (!o.keyword.empty() && !o.flag.empty()) n.emplace_back(o.flag, o.keyword);
+    return n;
+}
+
+}  // namespace
+
 const std::vector<std::pair<std::string, std::string>>& flag_of_parameter() {
-    static const std::vector<std::pair<std::string, std::string>> names = [] {
-        std::vector<std::pair<std::string, std::string>> n;
-        // A switch the flag turns off: "= false" first, as the flag itself.
-        for (const OptionSpec& o : option_table())
-            if (o.flag_sets_false) n.emplace_back(o.param + " = false", o.flag);
-        for (const OptionSpec& o : option_table())
-            if (!o.flag.empty() && !o.param.empty()) n.emplace_back(o.param, o.flag);
-        // Parameters several options set, or none alone.
-        n.emplace_back("CadParams::elements", "--quads/--mixed");
-        n.emplace_back("HybridParams::threads", "--threads");
-        return n;
-    }();
+    static const std::vector<std::pair<std::string, std::string>> names = names_for(false);
     return names;
 }
 
 const std::vector<std::pair<std::string, std::string>>& keyword_of_name() {
-    static const std::vector<std::pair<std::string, std::string>> names = [] {
-        std::vector<std::pair<std::string, std::string>> n;
-        for (const OptionSpec& o : option_table())
-            if (o.flag_sets_false && !o.keyword.empty()) n.emplace_back(o.param + " = false", o.keyword + "=False");
-        for (const OptionSpec& o : option_table())
-            if (!o.keyword.empty() && !o.param.empty()) n.emplace_back(o.param, o.keyword);
-        n.emplace_back("CadParams::elements", "quads/mixed");
-        n.emplace_back("HybridParams::threads", "threads");
-        for (const OptionSpec& o : option_table())
-            if (!o.keyword.empty() && !o.flag.empty()) n.emplace_back(o.flag, o.keyword);
-        return n;
-    }();
+    static const std::vector<std::pair<std::string, std::string>> names = names_for(true);
     return names;
 }
 

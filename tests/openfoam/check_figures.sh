@@ -8,15 +8,10 @@
 set -euo pipefail
 strata=$1
 shift
-for tool in gmshToFoam checkMesh python3; do
-  command -v "$tool" >/dev/null || { echo "$tool not found: install Debian's openfoam (scripts/setup.sh does)"; exit 1; }
-done
 # shellcheck source=foam_case.sh
 source "$(dirname "$0")/foam_case.sh"
-new_foam_case
-"$strata" mesh "$@" -o "$case_dir/mesh.msh" --msh-version 2.2 -q
-gmshToFoam -keepOrientation -case "$case_dir" "$case_dir/mesh.msh" >"$case_dir/gmshToFoam.log" 2>&1 ||
-  { tail -20 "$case_dir/gmshToFoam.log"; exit 1; }
+require_tools gmshToFoam checkMesh python3
+strata_foam_case "$strata" "$@"
 checkMesh -case "$case_dir" >"$case_dir/checkMesh.log" 2>&1 || true
 python3 - "$case_dir/mesh.msh.report.json" "$case_dir/checkMesh.log" <<'PY'
 import json, re, sys

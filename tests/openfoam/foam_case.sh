@@ -3,6 +3,10 @@
 #   new_foam_case           sets case_dir: a temporary case (removed on exit) with system/
 #                           controlDict, fvSchemes and fvSolution, and an empty constant/
 #   check_foam_case         runs checkMesh on case_dir, prints its figures; fails unless "Mesh OK."
+#   require_tools TOOL...   exits with a message naming the first tool missing
+#   strata_foam_case STRATA ARGS...
+#                           a new case holding `strata mesh ARGS` as MSH 2.2 (case_dir/mesh.msh,
+#                           its report beside it) converted by gmshToFoam
 # Needs Debian's openfoam package (scripts/setup.sh installs it).
 export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
 
@@ -37,4 +41,22 @@ check_foam_case() {
     exit 1
   fi
   echo "checkMesh: Mesh OK."
+}
+
+require_tools() {
+  for tool in "$@"; do
+    command -v "$tool" >/dev/null || { echo "$tool not found: scripts/setup.sh installs it (Debian's openfoam)"; exit 1; }
+  done
+}
+
+# gmshToFoam needs -keepOrientation: without it, it "corrects" the orientation of hexahedra
+# and prisms by its own test, which turns thin, curved layer cells inside out (1733 of the
+# quad sphere's 15360 hexahedra).
+strata_foam_case() {
+  local strata=$1
+  shift
+  new_foam_case
+  "$strata" mesh "$@" -o "$case_dir/mesh.msh" --msh-version 2.2 -q
+  gmshToFoam -keepOrientation -case "$case_dir" "$case_dir/mesh.msh" >"$case_dir/gmshToFoam.log" 2>&1 ||
+    { tail -20 "$case_dir/gmshToFoam.log"; exit 1; }
 }
