@@ -11,7 +11,10 @@
 surface(), layers() and mesh() are the strata program's subcommands. Their keywords are the
 Params structs' fields (strata.keywords() lists each with its default and the C++ parameter
 it sets); every default is the library's own. progress=callable(stage, fraction) is called as
-the stages run; Ctrl-C cancels at the next check (strata.Cancelled, a KeyboardInterrupt).
+the stages run; Ctrl-C cancels at the next check (strata.Cancelled, a KeyboardInterrupt);
+timeout=seconds raises TimeoutError at the first check after that long (a design loop's guard;
+Gmsh's and TetGen's own meshing cannot be stopped inside, so it acts when they return), and
+nothing is written.
 Errors raise strata.InputError (also a ValueError), TopologyError, BackendError, all
 strata.Error (a RuntimeError), with Strata's message in keyword names.
 
@@ -21,6 +24,7 @@ python3 -m strata.gmsh_gui MODEL opens Gmsh's window with Strata's options (stra
 
 import inspect as _inspect
 import sys as _sys
+import time as _time
 
 from . import _strata
 from ._strata import (  # noqa: F401  (re-exported)
@@ -71,6 +75,23 @@ def _document(function, summary):
     return "\n".join(lines)
 
 
+def _with_timeout(progress, timeout):
+    """progress, raising TimeoutError once timeout seconds have passed (None: no limit)."""
+    if timeout is None:
+        return progress
+    if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not timeout >= 0:
+        raise ValueError(f"timeout={timeout!r}: expected None or a number of seconds >= 0")
+    start = _time.monotonic()
+
+    def checked(stage, fraction):
+        if progress is not None:
+            progress(stage, fraction)
+        if _time.monotonic() - start > timeout:
+            raise TimeoutError(f"stopped by timeout={timeout} s in stage {stage}; nothing was written")
+
+    return checked
+
+
 def _pipeline(name, summary):
     run = getattr(_strata, name)
     leading = [
@@ -80,6 +101,7 @@ def _pipeline(name, summary):
         _inspect.Parameter("output", _inspect.Parameter.KEYWORD_ONLY, default=None),
         _inspect.Parameter("msh_version", _inspect.Parameter.KEYWORD_ONLY, default="4.1"),
         _inspect.Parameter("progress", _inspect.Parameter.KEYWORD_ONLY, default=None),
+        _inspect.Parameter("timeout", _inspect.Parameter.KEYWORD_ONLY, default=None),
     ]
     signature = _inspect.Signature(_signature(name, leading) + trailing)
     defaults = {k["name"]: k["default"] for k in keywords(name)}
@@ -93,6 +115,7 @@ def _pipeline(name, summary):
         progress = given.pop("progress", None)
         if progress is not None and not callable(progress):
             raise TypeError(f"progress={progress!r}: expected a callable(stage, fraction) or None")
+        progress = _with_timeout(progress, given.pop("timeout", None))
         options = {k: v for k, v in given.items() if k in defaults}
         _note_gmsh_user()
         return run(input_, options, None if output is None else str(output), msh_version, progress)

@@ -164,6 +164,22 @@ def test_progress_exception_propagates_and_nothing_is_written(tmp_path):
     assert not out.exists()
 
 
+def test_timeout_raises_timeout_error_and_nothing_is_written(tmp_path):
+    stages = []
+    out = tmp_path / "x.msh"
+    # A limit of 0 s has passed at the first check: the run stops there, after the user's
+    # callback saw that stage, and leaves no file.
+    with pytest.raises(TimeoutError, match=r"stopped by timeout=0 s in stage \w+; nothing was written"):
+        strata.mesh(SPHERE_STL, output=str(out), timeout=0, progress=lambda s, f: stages.append(s), **SMALL)
+    assert not out.exists() and len(stages) == 1
+    # A generous limit changes nothing; a negative or non-numeric one is refused before running.
+    m = strata.mesh(SPHERE_STL, timeout=600, **SMALL)
+    assert len(m.prisms) > 0
+    for bad in (-1, "10", True):
+        with pytest.raises(ValueError, match="timeout="):
+            strata.mesh(SPHERE_STL, timeout=bad, **SMALL)
+
+
 def test_ctrl_c_cancels_as_keyboard_interrupt(tmp_path):
     # No callback: only the progress hook's PyErr_CheckSignals can see the signal while C++
     # runs. The alarm fires 50 ms in (the run takes over a second) and its handler is Python's
