@@ -93,16 +93,12 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
     // Cell centres and volumes, and the aspect ratios (each cell from its own faces).
     std::vector<Vec3> centre(static_cast<std::size_t>(nc));
     std::vector<double> aspect(static_cast<std::size_t>(nc), 0.0);
-    std::vector<std::uint64_t> first_slot(static_cast<std::size_t>(nc) + 1, 0);
-    for (std::int64_t g = 0; g < nc; ++g) {
-        const CellNumbering::Cell c = cells.locate(g);
-        first_slot[static_cast<std::size_t>(g) + 1] =
-            first_slot[static_cast<std::size_t>(g)] + static_cast<std::uint64_t>(cell_faces(c.type).count);
-    }
 #pragma omp parallel for schedule(static) num_threads(thread_count(threads))
     for (std::int64_t g = 0; g < nc; ++g) {
-        const std::uint64_t s0 = first_slot[static_cast<std::size_t>(g)],
-                            s1 = first_slot[static_cast<std::size_t>(g) + 1];
+        // A cell's faces are consecutive slots (face_match.h).
+        const CellNumbering::Cell c = cells.locate(g);
+        const auto count = static_cast<std::uint64_t>(cell_faces(c.type).count);
+        const std::uint64_t s0 = slots.start(c.type) + static_cast<std::uint64_t>(c.index) * count, s1 = s0 + count;
         std::array<FaceGeometry, 6> fg;
         Vec3 est = Vec3::Zero();
         for (std::uint64_t s = s0; s < s1; ++s) {
@@ -145,6 +141,13 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
 #pragma omp parallel for schedule(dynamic, 1) num_threads(thread_count(threads))
     for (std::int64_t k = 0; k < chunks; ++k) {
         Partial& q = part[static_cast<std::size_t>(k)];
+        // The pyramid from a face (outward area \p area, centre \p fc) to a cell centre \p cc,
+        // inverted below checkMesh's -1e-15.
+        auto pyramid = [&q](const Vec3& area, const Vec3& fc, const Vec3& cc, std::uint64_t s) {
+            if (!(area.dot(fc - cc) / 3.0 < -1e-15)) return;
+            ++q.pyramids;
+            if (!q.has_pyramid) q.first_pyramid = s, q.has_pyramid = true;
+        };
         const auto end = std::min<std::uint64_t>(ns, static_cast<std::uint64_t>(k + 1) * kChunk);
         for (auto s = static_cast<std::uint64_t>(k) * kChunk; s < end; ++s) {
             const std::int64_t other = match.across[s];
@@ -174,10 +177,7 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
                 const Vec3 sv = cpf - (f.area.dot(cpf) / (f.area.dot(d) + kRootVSmall)) * d;
                 const double m = sv.norm();
                 skew = m / std::max(0.2 * d.norm() + kRootVSmall, extent(sv / (m + kRootVSmall)));
-                // The neighbour's pyramid (its outward area is -area).
-                if (-f.area.dot(f.centre - cn) / 3.0 < -1e-15 && !q.has_pyramid)
-                    q.first_pyramid = s, q.has_pyramid = true;
-                q.pyramids += -f.area.dot(f.centre - cn) / 3.0 < -1e-15 ? 1 : 0;
+                pyramid(-f.area, f.centre, cn, s);  // the neighbour's: its outward area is -area
             } else {
                 const Vec3 nrm = f.area / (f.area.norm() + kRootVSmall);
                 const Vec3 d = nrm * nrm.dot(cpf);
@@ -187,10 +187,7 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
             }
             if (skew > kFoamSkewness) ++q.skew;
             if (skew > q.max_skew) q.max_skew = skew, q.worst_skew = s, q.has_skew = true;
-            if (f.area.dot(f.centre - co) / 3.0 < -1e-15) {
-                ++q.pyramids;
-                if (!q.has_pyramid) q.first_pyramid = s, q.has_pyramid = true;
-            }
+            pyramid(f.area, f.centre, co, s);
         }
     }
 
