@@ -4,6 +4,7 @@
 #include <strata/core/face_geometry.h>
 #include <strata/core/format.h>
 #include <strata/geometry/check.h>
+#include <strata/geometry/feature_cuts.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/remesh.h>
 #include <strata/io/gmsh_model.h>
@@ -139,8 +140,10 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
         options.set("Mesh.Algorithm", p.algorithm);
         options.set("Mesh.RecombineAll", p.quads ? 1 : 0);
         options.set("Mesh.RecombinationAlgorithm", 1);  // Blossom
-        // The old surface as one discrete surface, and its patch boundaries as one discrete
-        // curve: classifySurfaces never lets a new surface cross an existing curve's lines.
+        // The old surface as one discrete surface, and as one discrete curve its patch
+        // boundaries and the cuts that put every long sharp edge between two regions
+        // (feature_cuts.h): classifySurfaces never lets a new surface cross an existing curve's
+        // lines, and it keeps a sharp edge only where its two sides are different surfaces.
         std::vector<std::size_t> node_tags(in.points.size());
         std::vector<double> xyz;
         xyz.reserve(3 * in.points.size());
@@ -158,13 +161,17 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             for (Index v : tris.tri[t]) elem_nodes.push_back(static_cast<std::size_t>(v) + 1);
         }
         gmsh::model::mesh::addElementsByType(1, 2, elem_tags, elem_nodes);
-        if (!seams.empty()) {
+        std::vector<std::array<Index, 2>> lines = feature_cuts(in.points, tris.tri, seams, angle_deg, 2.0 * size);
+        lines.insert(lines.end(), seams.begin(), seams.end());
+        std::sort(lines.begin(), lines.end());
+        lines.erase(std::unique(lines.begin(), lines.end()), lines.end());
+        if (!lines.empty()) {
             gmsh::model::addDiscreteEntity(1, 1);
-            std::vector<std::size_t> line_tags(seams.size()), line_nodes;
-            for (std::size_t s = 0; s < seams.size(); ++s) {
+            std::vector<std::size_t> line_tags(lines.size()), line_nodes;
+            for (std::size_t s = 0; s < lines.size(); ++s) {
                 line_tags[s] = tris.tri.size() + s + 1;
-                line_nodes.push_back(static_cast<std::size_t>(seams[s][0]) + 1);
-                line_nodes.push_back(static_cast<std::size_t>(seams[s][1]) + 1);
+                line_nodes.push_back(static_cast<std::size_t>(lines[s][0]) + 1);
+                line_nodes.push_back(static_cast<std::size_t>(lines[s][1]) + 1);
             }
             gmsh::model::mesh::addElementsByType(1, 1, line_tags, line_nodes);
         }

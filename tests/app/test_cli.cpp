@@ -316,6 +316,29 @@ TEST(Cli, RemeshRebuildsANeedleStlIntoAValidMesh) {
     EXPECT_GT(m.tets.size(), 0u);
 }
 
+TEST(Cli, RemeshKeepsASharpTrailingEdgeWhoseSidesMeetRoundTheLeadingEdge) {
+    // The same STL at a size of 10 mm, 10 times finer than its median edge. Its trailing edge is
+    // one straight edge 1243 mm long between the upper and lower sides, which meet round the
+    // leading edge: Gmsh's classification alone made no curve of it, and the new faces ran
+    // across the thin wedge and folded (43 faces at 40 degrees, every feature angle failed).
+    // feature_cuts splits the sides along the leading edge: the first angle works, and the
+    // trailing edge is a line of new nodes about 10 mm apart.
+    test::ScratchDir dir("cli_remesh_trailing_edge");
+    std::string out;
+    const SurfaceMesh m =
+        surface_via_cli(dir, example_data("onera_m6_brepmesh_needles.stl"), "m6.msh", "--remesh 10", &out);
+    ASSERT_GT(m.num_faces(), 0) << out;
+    EXPECT_NE(out.find("size 10, feature angle 40 degrees;"), std::string::npos) << out;
+    const Vec3 root(810.491, 0.0, 0.0), tip(1146.57, 1196.3, 0.0);  // the trailing edge's ends
+    const Vec3 along = (tip - root).normalized();
+    int on_edge = 0;
+    for (const Vec3& q : m.points) {
+        const double t = (q - root).dot(along);
+        if (t > -1e-3 && t < (tip - root).norm() + 1e-3 && (q - root - t * along).norm() < 1e-3) ++on_edge;
+    }
+    EXPECT_GE(on_edge, 110) << out;
+}
+
 TEST(Cli, TouchingBodiesOfATessellatedStlAreJoinedAndRemeshed) {
     // Issue 10's case: OpenCASCADE's coarse tessellation of wing_fuselage.step, whose glider is
     // two halves touching at y = 0, each closed there by its own disc (64 faces back to back,

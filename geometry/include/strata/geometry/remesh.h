@@ -53,9 +53,12 @@ struct RemeshReport {
 /// cross, and the nodes on them are shared by the faces either side. Each new face keeps the
 /// orientation of the old faces under it. Needs a surface that passed check_surface.
 ///
-/// Gmsh's parametrization of a discrete surface can fold where a sharp edge was not detected
-/// (a needle strip across a thin trailing edge): faces come out inverted against the old
-/// surface or with no area. The result is checked for both, face by face against the old faces
+/// Gmsh keeps a sharp edge only where its two sides are different surfaces of its
+/// classification; a wing's trailing edge, whose sides meet round the leading edge, would be
+/// meshed across and fold. feature_cuts.h's cuts are given to Gmsh with the patch seams, so
+/// every long sharp edge whose faces' normals differ by over 100 degrees is kept. Gmsh's
+/// parametrization can still fold elsewhere: faces come out inverted against the old surface
+/// or with no area. The result is checked for both, face by face against the old faces
 /// of its surface; where it fails, the feature angle is lowered (×0.75, down to half the one
 /// asked) so that more edges become curves, and the report says which angle gave the result.
 /// Throws InputError for bad parameters, BackendError (naming \p source, how many faces and

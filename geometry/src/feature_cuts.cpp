@@ -1,0 +1,208 @@
+// Cuts that make every long sharp edge a boundary between regions: feature_cuts.h.
+
+#include <strata/core/union_find.h>
+#include <strata/geometry/feature_cuts.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <tuple>
+
+namespace strata {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+/// A sharp edge whose faces' normals differ by more than 100 degrees (a wedge under 80 degrees)
+/// is cut out of its region: a new face across it would fold. Milder creases inside a region
+/// are left to Gmsh, which rounds them (as without cuts). Above 90 so that a box's right
+/// angles, whose normals' product rounds either side of 0, never count.
+const double kCosFolding = std::cos(100.0 * kPi / 180.0);
+
+/// One undirected edge and the triangles on it.
+struct Edge {
+    Index a = 0, b = 0;  ///< a < b
+    Index t0 = kNone, t1 = kNone;
+    bool t0_has_ab = false;  ///< t0 runs a → b (so t1, if consistent, runs b → a)
+    bool manifold = false;   ///< exactly two triangles
+    bool sharp = false;
+    bool barrier = false;
+};
+
+std::vector<Edge> edges_of(const std::vector<std::array<Index, 3>>& triangles) {
+    struct Half {
+        Index a, b, tri;
+        bool ab;
+    };
+    std::vector<Half> halves;
+    halves.reserve(3 * triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+        for (int i = 0; i < 3; ++i) {
+            const Index u = triangles[t][static_cast<std::size_t>(i)],
+                        v = triangles[t][static_cast<std::size_t>((i + 1) % 3)];
+            halves.push_back({std::min(u, v), std::max(u, v), static_cast<Index>(t), u < v});
+        }
+    std::sort(halves.begin(), halves.end(),
+              [](const Half& x, const Half& y) { return std::tie(x.a, x.b, x.tri) < std::tie(y.a, y.b, y.tri); });
+    std::vector<Edge> edges;
+    for (std::size_t i = 0; i < halves.size();) {
+        std::size_t j = i;
+        while (j < halves.size() && halves[j].a == halves[i].a && halves[j].b == halves[i].b) ++j;
+        Edge e;
+        e.a = halves[i].a;
+        e.b = halves[i].b;
+        e.t0 = halves[i].tri;
+        e.t0_has_ab = halves[i].ab;
+        e.manifold = j - i == 2 && halves[i].tri != halves[i + 1].tri;
+        if (e.manifold) e.t1 = halves[i + 1].tri;
+        edges.push_back(e);
+        i = j;
+    }
+    return edges;
+}
+
+}  // namespace
+
+std::vector<std::array<Index, 2>> feature_cuts(const std::vector<Vec3>& points,
+                                               const std::vector<std::array<Index, 3>>& triangles,
+                                               const std::vector<std::array<Index, 2>>& barriers,
+                                               double feature_angle_deg, double min_length) {
+    const std::size_t nt = triangles.size();
+    auto at = [&](Index v) -> const Vec3& { return points[static_cast<std::size_t>(v)]; };
+    std::vector<Vec3> normal(nt), centre(nt);
+    for (std::size_t t = 0; t < nt; ++t) {
+        const auto& tri = triangles[t];
+        const Vec3 n = (at(tri[1]) - at(tri[0])).cross(at(tri[2]) - at(tri[0]));
+        const double len = n.norm();
+        normal[t] = len > 0.0 && std::isfinite(len) ? Vec3(n / len) : Vec3::Zero();
+        centre[t] = (at(tri[0]) + at(tri[1]) + at(tri[2])) / 3.0;
+    }
+    std::vector<Edge> edges = edges_of(triangles);
+    const double cos_feature = std::cos(feature_angle_deg * kPi / 180.0);
+    for (Edge& e : edges) {
+        e.barrier = std::binary_search(barriers.begin(), barriers.end(), std::array<Index, 2>{e.a, e.b});
+        if (!e.manifold) continue;
+        const Vec3 &n0 = normal[static_cast<std::size_t>(e.t0)], &n1 = normal[static_cast<std::size_t>(e.t1)];
+        e.sharp = !n0.isZero() && !n1.isZero() && n0.dot(n1) < cos_feature;
+    }
+    auto passable = [](const Edge& e) { return e.manifold && !e.sharp && !e.barrier; };
+
+    // Regions, and the sharp edges inside one.
+    UnionFind regions(nt);
+    for (const Edge& e : edges)
+        if (passable(e)) regions.unite(e.t0, e.t1);
+    std::vector<std::size_t> inner;  // edges' positions
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        const Edge& e = edges[i];
+        if (e.manifold && e.sharp && !e.barrier && regions.find(e.t0) == regions.find(e.t1) &&
+            normal[static_cast<std::size_t>(e.t0)].dot(normal[static_cast<std::size_t>(e.t1)]) < kCosFolding)
+            inner.push_back(i);
+    }
+    if (inner.empty()) return {};
+
+    // Chains: paths of inner edges through nodes with two of them. (node, inner edge) pairs,
+    // sorted by node, give each node's inner edges.
+    std::vector<std::pair<Index, std::size_t>> incident;
+    for (std::size_t k = 0; k < inner.size(); ++k) {
+        incident.emplace_back(edges[inner[k]].a, k);
+        incident.emplace_back(edges[inner[k]].b, k);
+    }
+    std::sort(incident.begin(), incident.end());
+    auto at_node = [&](Index v) {
+        const auto lo = std::lower_bound(incident.begin(), incident.end(), std::make_pair(v, std::size_t{0}));
+        auto hi = lo;
+        while (hi != incident.end() && hi->first == v) ++hi;
+        return std::make_pair(lo, hi);
+    };
+    auto degree = [&](Index v) {
+        const auto [lo, hi] = at_node(v);
+        return hi - lo;
+    };
+    std::vector<char> walked(inner.size(), 0);
+    std::vector<std::vector<std::pair<std::size_t, bool>>> chains;  // (inner edge, walked a → b)
+    auto walk = [&](Index from, std::size_t k) {
+        std::vector<std::pair<std::size_t, bool>> chain;
+        while (true) {
+            walked[k] = 1;
+            const Edge& e = edges[inner[k]];
+            const bool forward = e.a == from;
+            chain.emplace_back(k, forward);
+            const Index to = forward ? e.b : e.a;
+            if (degree(to) != 2) break;
+            const auto [lo, hi] = at_node(to);
+            const std::size_t next = lo->second == k ? (lo + 1)->second : lo->second;
+            if (walked[next]) break;
+            from = to;
+            k = next;
+        }
+        chains.push_back(std::move(chain));
+    };
+    for (const auto& [v, k] : incident)  // open chains start at their ends (or at branch nodes)
+        if (!walked[k] && degree(v) != 2) walk(v, k);
+    for (std::size_t k = 0; k < inner.size(); ++k)  // the rest are loops
+        if (!walked[k]) walk(edges[inner[k]].a, k);
+
+    // Each long chain's two sides seed labels 2c and 2c + 1: the triangle running along the
+    // chain's direction is side 0.
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    std::vector<Index> label(nt, kNone);
+    std::vector<double> dist(nt, kInf);
+    Index kept = 0;
+    for (const auto& chain : chains) {
+        double length = 0.0;
+        for (const auto& [k, fwd] : chain) length += (at(edges[inner[k]].b) - at(edges[inner[k]].a)).norm();
+        if (!(length >= min_length)) continue;
+        for (const auto& [k, fwd] : chain) {
+            const Edge& e = edges[inner[k]];
+            const bool t0_along = e.t0_has_ab == fwd;
+            const Index side0 = t0_along ? e.t0 : e.t1, side1 = t0_along ? e.t1 : e.t0;
+            for (const auto& [t, l] : {std::pair{side0, 2 * kept}, std::pair{side1, 2 * kept + 1}}) {
+                Index& mine = label[static_cast<std::size_t>(t)];
+                if (mine == kNone || l < mine) mine = l;
+                dist[static_cast<std::size_t>(t)] = 0.0;
+            }
+        }
+        ++kept;
+    }
+    if (kept == 0) return {};
+
+    // Triangle adjacency across passable edges, then a Dijkstra from every seed at once over
+    // centre-to-centre distances: each triangle takes the label of the nearest side.
+    std::vector<std::pair<Index, Index>> links;  // (triangle, neighbour), both ways
+    for (const Edge& e : edges)
+        if (passable(e)) {
+            links.emplace_back(e.t0, e.t1);
+            links.emplace_back(e.t1, e.t0);
+        }
+    std::sort(links.begin(), links.end());
+    using Item = std::tuple<double, Index, Index>;  // distance, label, triangle
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (std::size_t t = 0; t < nt; ++t)
+        if (label[t] != kNone) queue.emplace(0.0, label[t], static_cast<Index>(t));
+    while (!queue.empty()) {
+        const auto [d, l, t] = queue.top();
+        queue.pop();
+        if (d != dist[static_cast<std::size_t>(t)] || l != label[static_cast<std::size_t>(t)]) continue;
+        auto lo = std::lower_bound(links.begin(), links.end(), std::make_pair(t, Index{0}));
+        for (; lo != links.end() && lo->first == t; ++lo) {
+            const auto u = static_cast<std::size_t>(lo->second);
+            const double du = d + (centre[u] - centre[static_cast<std::size_t>(t)]).norm();
+            if (du < dist[u] || (du == dist[u] && l < label[u])) {
+                dist[u] = du;
+                label[u] = l;
+                queue.emplace(du, l, lo->second);
+            }
+        }
+    }
+
+    std::vector<std::array<Index, 2>> cuts;
+    for (const Edge& e : edges)
+        if (e.manifold && !e.barrier) {
+            const Index l0 = label[static_cast<std::size_t>(e.t0)], l1 = label[static_cast<std::size_t>(e.t1)];
+            if (l0 != kNone && l1 != kNone && l0 != l1) cuts.push_back({e.a, e.b});
+        }
+    return cuts;  // edges_of sorted them
+}
+
+}  // namespace strata
