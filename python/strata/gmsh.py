@@ -17,7 +17,7 @@ inside libgmsh: tests/python/test_gmsh_inprocess.py checks both in one process.
 
 import gmsh as _gmsh  # noqa: F401  the top-level gmsh module (absolute import): Strata shares its Gmsh
 
-from . import _document, _note_gmsh_user, _signature, _strata, keywords
+from . import _document, _note_gmsh_user, _signature, _strata, _with_timeout, keywords
 
 __all__ = ["mesh_current_model"]
 
@@ -30,6 +30,7 @@ def mesh_current_model(**kwargs):
     progress = given.pop("progress", None)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress={progress!r}: expected a callable(stage, fraction) or None")
+    progress = _with_timeout(progress, given.pop("timeout", None))
     _note_gmsh_user()
     return _strata.mesh_current_gmsh_model(given, progress)
 
@@ -40,6 +41,7 @@ def _setup():
     global _SIGNATURE
     params = _signature("gmsh", [])
     params.append(inspect.Parameter("progress", inspect.Parameter.KEYWORD_ONLY, default=None))
+    params.append(inspect.Parameter("timeout", inspect.Parameter.KEYWORD_ONLY, default=None))
     _SIGNATURE = inspect.Signature(params)
     mesh_current_model.__signature__ = _SIGNATURE
     mesh_current_model.__doc__ = _document(
@@ -47,7 +49,9 @@ def _setup():
         "mesh_current_model(...) -> dict: replace the current Gmsh model's surface mesh (its triangles and "
         "quadrangles, one patch per 2D physical group) by a hybrid volume mesh built on it; returns the report "
         "(cells, min_scaled_jacobian per type, coverage per patch, times). gmsh.initialize() first: "
-        "strata.InputError otherwise. If meshing fails, the model is left as it was.")
+        "strata.InputError otherwise. If meshing fails, the model is left as it was. timeout=SECONDS: "
+        "TimeoutError at the first progress check after that long, the model left as it was (Gmsh's and "
+        "TetGen's own meshing end first: they cannot be stopped from outside).")
 
 
 _setup()

@@ -129,3 +129,17 @@ def test_failure_leaves_the_model_as_it_was(session):
     with pytest.raises(strata.InputError):
         strata.gmsh.mesh_current_model(layers=2, first_height=0.0)  # no first height, no y+
     assert count(2) == before and count(3) == {}
+
+
+def test_timeout_leaves_the_model_as_it_was(session):
+    # The same limit as strata.mesh(timeout=): 0 s has passed at the first check; the model
+    # keeps its surface and gets no volume. A bad limit is refused before anything runs.
+    sphere_surface()
+    before = count(2)
+    with pytest.raises(TimeoutError, match=r"stopped by timeout=0 s in stage \w+"):
+        strata.gmsh.mesh_current_model(layers=2, first_height=0.01, farfield_size=5, timeout=0)
+    assert count(2) == before and count(3) == {}
+    with pytest.raises(ValueError, match="timeout="):
+        strata.gmsh.mesh_current_model(layers=2, first_height=0.01, timeout=-1)
+    report = strata.gmsh.mesh_current_model(layers=2, first_height=0.01, farfield_size=5, timeout=600)
+    assert count(3).get(PRISM, 0) == 2 * before[TRIANGLE] and report["cells"] > 0
