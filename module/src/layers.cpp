@@ -815,6 +815,9 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     if (!(params.max_twist_deg > 0.0 && params.max_twist_deg <= 180.0))
         throw InputError("LayerParams::max_twist_deg = " + format_number(params.max_twist_deg) +
                          ": need an angle above 0 and at most 180 degrees");
+    if (!(params.fan_angle_deg >= 0.0 && params.fan_angle_deg <= 180.0))
+        throw InputError("LayerParams::fan_angle_deg = " + format_number(params.fan_angle_deg) +
+                         ": need an angle in [0, 180] degrees (0: no fans)");
     Wall w = extract_wall(surface);
     const Index nwall = w.mesh.num_points();
     // Fans at sharp convex edges (fans.h): with local stopping, where smoothing runs.

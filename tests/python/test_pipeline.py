@@ -144,6 +144,10 @@ def test_errors_carry_strata_messages_in_keyword_names(tmp_path):
     assert "size" in str(e.value) and "--size" not in str(e.value)
     with pytest.raises(strata.InputError, match="distribution"):
         strata.mesh(SPHERE_STL, distribution="cubic", **SMALL)
+    # the CLI's range for the fan angle holds for Python too (it is the library's own check)
+    for bad in (200, -1, float("nan")):
+        with pytest.raises(strata.InputError, match=r"fan_angle_deg = \S+: need an angle in \[0, 180\]"):
+            strata.layers(SPHERE_STL, fan_angle_deg=bad, **SMALL)
     with pytest.raises(strata.TopologyError):
         strata.surface(os.path.join(TEST_DATA, "cli_nonmanifold.stl"))
     with pytest.raises(strata.InputError):
