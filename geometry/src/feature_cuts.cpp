@@ -2,6 +2,7 @@
 
 #include <strata/core/union_find.h>
 #include <strata/geometry/feature_cuts.h>
+#include <strata/geometry/topology.h>
 
 #include <algorithm>
 #include <cmath>
@@ -30,34 +31,24 @@ struct Edge {
     bool barrier = false;
 };
 
-std::vector<Edge> edges_of(const std::vector<std::array<Index, 3>>& triangles) {
-    struct Half {
-        Index a, b, tri;
-        bool ab;
-    };
-    std::vector<Half> halves;
-    halves.reserve(3 * triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-        for (int i = 0; i < 3; ++i) {
-            const Index u = triangles[t][static_cast<std::size_t>(i)],
-                        v = triangles[t][static_cast<std::size_t>((i + 1) % 3)];
-            halves.push_back({std::min(u, v), std::max(u, v), static_cast<Index>(t), u < v});
-        }
-    std::sort(halves.begin(), halves.end(),
-              [](const Half& x, const Half& y) { return std::tie(x.a, x.b, x.tri) < std::tie(y.a, y.b, y.tri); });
-    std::vector<Edge> edges;
-    for (std::size_t i = 0; i < halves.size();) {
-        std::size_t j = i;
-        while (j < halves.size() && halves[j].a == halves[i].a && halves[j].b == halves[i].b) ++j;
-        Edge e;
-        e.a = halves[i].a;
-        e.b = halves[i].b;
-        e.t0 = halves[i].tri;
-        e.t0_has_ab = halves[i].ab;
-        e.manifold = j - i == 2 && halves[i].tri != halves[i + 1].tri;
-        if (e.manifold) e.t1 = halves[i + 1].tri;
-        edges.push_back(e);
-        i = j;
+/// The triangles' edges from geometry/topology.h's edge table, sorted by (a, b), t0 < t1.
+std::vector<Edge> edges_of(const std::vector<Vec3>& points, const std::vector<std::array<Index, 3>>& triangles) {
+    SurfaceMesh mesh;
+    mesh.points = points;
+    for (const auto& t : triangles) mesh.add_face(t.data(), 3, 0);
+    const EdgeTable table = edge_table(mesh);
+    std::vector<Edge> edges(table.nodes.size());
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        Edge& e = edges[i];
+        e.a = table.nodes[i][0];
+        e.b = table.nodes[i][1];
+        const auto k = static_cast<Index>(i);
+        e.t0 = *table.faces.row_begin(k);
+        e.manifold = table.faces.row_size(k) == 2;
+        if (e.manifold) e.t1 = table.faces.row_begin(k)[1];
+        const auto& tri = triangles[static_cast<std::size_t>(e.t0)];
+        for (int j = 0; j < 3; ++j)
+            e.t0_has_ab |= tri[static_cast<std::size_t>(j)] == e.a && tri[static_cast<std::size_t>((j + 1) % 3)] == e.b;
     }
     return edges;
 }
@@ -78,7 +69,7 @@ std::vector<std::array<Index, 2>> feature_cuts(const std::vector<Vec3>& points,
         normal[t] = len > 0.0 && std::isfinite(len) ? Vec3(n / len) : Vec3::Zero();
         centre[t] = (at(tri[0]) + at(tri[1]) + at(tri[2])) / 3.0;
     }
-    std::vector<Edge> edges = edges_of(triangles);
+    std::vector<Edge> edges = edges_of(points, triangles);
     const double cos_feature = std::cos(feature_angle_deg * kPi / 180.0);
     for (Edge& e : edges) {
         e.barrier = std::binary_search(barriers.begin(), barriers.end(), std::array<Index, 2>{e.a, e.b});
@@ -202,7 +193,7 @@ std::vector<std::array<Index, 2>> feature_cuts(const std::vector<Vec3>& points,
             const Index l0 = label[static_cast<std::size_t>(e.t0)], l1 = label[static_cast<std::size_t>(e.t1)];
             if (l0 != kNone && l1 != kNone && l0 != l1) cuts.push_back({e.a, e.b});
         }
-    return cuts;  // edges_of sorted them
+    return cuts;  // the edge table sorted them
 }
 
 }  // namespace strata
