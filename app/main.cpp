@@ -280,6 +280,16 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
     if (rep.fused_components > 0)
         std::printf("fused: %d overlapping components replaced by their union (--fuse)\n",
                     static_cast<int>(rep.fused_components));
+    if (rep.short_edges.collapsed > 0) {
+        const strata::ShortEdgeReport& e = rep.short_edges;
+        std::printf(
+            "short edges: %d collapsed (shorter than --collapse-edges of the edges around them; the longest %s, %.3g "
+            "of "
+            "its neighbourhood, a node moved that far at %s)%s\n",
+            static_cast<int>(e.collapsed), strata::format_number(e.longest).c_str(), e.largest_share,
+            strata::format_point(e.where).c_str(),
+            e.left > 0 ? (", " + std::to_string(e.left) + " left where collapsing was not safe").c_str() : "");
+    }
     if (rep.remeshed) {
         const strata::RemeshReport& r = rep.remesh;
         std::printf(

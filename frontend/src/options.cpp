@@ -180,6 +180,11 @@ std::vector<OptionSpec> make_table() {
         [](Options& o) -> double& { return o.surface.prepare.scale; },
         "multiply every coordinate by this after reading (any input; STL and MSH carry no unit)"));
     t.push_back(spec(
+        "--collapse-edges", "collapse_ratio", "PrepareParams::collapse_ratio", Stage::Patches,
+        [](Options& o) -> double& { return o.surface.prepare.collapse_ratio; },
+        "collapse edges shorter than this share of the edges around them (a CAD model's small edges and sliver "
+        "faces, whose needle faces cap the layer cells on them; in [0, 0.5], 0: off)"));
+    t.push_back(spec(
         "", "merge_tolerance", "PrepareParams::merge_tolerance", Stage::Patches,
         [](Options& o) -> double& { return o.surface.prepare.merge_tolerance; },
         "coincident-node merge distance, relative to the bounding-box diagonal"));

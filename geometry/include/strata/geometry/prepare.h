@@ -9,6 +9,7 @@
 #include <strata/geometry/check.h>
 #include <strata/geometry/fuse.h>
 #include <strata/geometry/remesh.h>
+#include <strata/geometry/short_edges.h>
 
 #include <string>
 #include <utility>
@@ -37,18 +38,24 @@ struct PrepareParams {
     /// leaves. CAD input is meshed well by Gmsh in the first place; the option applies to it too.
     bool remesh = false;
     RemeshParams remeshing;
+    /// Edges shorter than this share of their local size are collapsed (collapse_short_edges),
+    /// after fusing: the small edges of a CAD model's sliver faces and Boolean seams, whose
+    /// needle faces cap the layer cells on them. Not with \p remesh, which rebuilds the surface
+    /// from the input's own edges (and made worse surfaces of collapsed ones). In [0, 0.5]; 0: off.
+    double collapse_ratio = 0.01;
 };
 
 /// What prepare_surface did, for the CLI's summary.
 struct PrepareReport {
-    Index merged_nodes = 0;      ///< nodes removed by merging
-    Index collapsed_faces = 0;   ///< faces with a repeated node removed (remove_collapsed_faces)
-    CadUnits units;              ///< CAD input: the unit read in and the one the file declares
-    double scale = 1.0;          ///< PrepareParams::scale applied
-    Index fused_components = 0;  ///< components replaced by their union (PrepareParams::fuse)
-    Index touching_faces = 0;    ///< faces removed where bodies touch back to back (PrepareParams::fuse)
-    bool internal_flow = false;  ///< PrepareParams::internal_flow: oriented for the fluid inside the walls
-    bool remeshed = false;       ///< PrepareParams::remesh done; \p remesh says how
+    Index merged_nodes = 0;       ///< nodes removed by merging
+    Index collapsed_faces = 0;    ///< faces with a repeated node removed (remove_collapsed_faces)
+    CadUnits units;               ///< CAD input: the unit read in and the one the file declares
+    double scale = 1.0;           ///< PrepareParams::scale applied
+    Index fused_components = 0;   ///< components replaced by their union (PrepareParams::fuse)
+    Index touching_faces = 0;     ///< faces removed where bodies touch back to back (PrepareParams::fuse)
+    bool internal_flow = false;   ///< PrepareParams::internal_flow: oriented for the fluid inside the walls
+    ShortEdgeReport short_edges;  ///< PrepareParams::collapse_ratio: the edges collapsed
+    bool remeshed = false;        ///< PrepareParams::remesh done; \p remesh says how
     RemeshReport remesh;
     OrientReport orient;
 };
@@ -77,7 +84,8 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
 /// \p report->collapsed_faces), with \p params.fuse the touching_faces removed (counted in
 /// \p report->touching_faces), check_surface (whose TopologyError, without \p params.fuse,
 /// says where bodies touch and suggests fusing them), orient_surface, and
-/// if asked fuse_components and remesh_surface (each followed by the checks and orientation).
+/// if asked fuse_components, then collapse_short_edges (\p params.collapse_ratio, unless
+/// remeshing) and remesh_surface (each followed by the checks).
 /// \p source names the mesh in errors ("wing.stl", "Gmsh model 'sphere'"). InputError if
 /// \p raw has no faces.
 SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source,
