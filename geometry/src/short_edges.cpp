@@ -260,6 +260,32 @@ SurfaceMesh collapse_short_edges(const SurfaceMesh& mesh, double ratio, ShortEdg
         if (report) *report = rep;
         return mesh;
     }
+    // The usual case first, in one pass over the faces: no edge shorter than the share asked of
+    // the longest edge at either end (which bounds the local size from above) means no work
+    // (the mesh's node → face lists cost a quarter of the surface stage on 200k triangles).
+    {
+        std::vector<double> longest(static_cast<std::size_t>(mesh.num_points()), 0.0);
+        for (Index f = 0; f < mesh.num_faces(); ++f)
+            for (Index i = 0, n = mesh.face_size(f); i < n; ++i) {
+                const Index p = mesh.face_node(f, i), q = mesh.face_node(f, (i + 1) % n);
+                const double l =
+                    (mesh.points[static_cast<std::size_t>(p)] - mesh.points[static_cast<std::size_t>(q)]).norm();
+                for (const Index v : {p, q})
+                    longest[static_cast<std::size_t>(v)] = std::max(longest[static_cast<std::size_t>(v)], l);
+            }
+        bool any = false;
+        for (Index f = 0; f < mesh.num_faces() && !any; ++f)
+            for (Index i = 0, n = mesh.face_size(f); i < n && !any; ++i) {
+                const Index p = mesh.face_node(f, i), q = mesh.face_node(f, (i + 1) % n);
+                const double l =
+                    (mesh.points[static_cast<std::size_t>(p)] - mesh.points[static_cast<std::size_t>(q)]).norm();
+                any = l < ratio * std::max(longest[static_cast<std::size_t>(p)], longest[static_cast<std::size_t>(q)]);
+            }
+        if (!any) {
+            if (report) *report = rep;
+            return mesh;
+        }
+    }
     Work w(mesh);
     // A collapse changes the lengths around it: look again until nothing changes (a few rounds
     // at most; bounded in case a mesh keeps offering new ones).
