@@ -1,23 +1,25 @@
 // Edges far shorter than the mesh around them, collapsed: short_edges.h.
 
+#include <strata/geometry/check.h>
 #include <strata/geometry/short_edges.h>
 #include <strata/geometry/topology.h>
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <tuple>
 
 namespace strata {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
+constexpr double kPi = std::numbers::pi;
 /// An edge whose faces' normals differ by more than this is a feature line (a node on it does
 /// not move onto a smooth patch).
 const double kCosFeature = std::cos(40.0 * kPi / 180.0);
 /// A face that stays may turn by at most this much.
 const double kCosMaxTurn = std::cos(45.0 * kPi / 180.0);
-/// Nor get a corner sharper than both its old sharpest one and this (check.h's needle bound).
-const double kSinNeedle = std::sin(5.0 * kPi / 180.0);
+/// Nor get a corner sharper than both its old sharpest one and check.h's needle bound.
+const double kSinNeedle = std::sin(kNeedleCornerDeg * kPi / 180.0);
 
 Vec3 normal_of(const Vec3& a, const Vec3& b, const Vec3& c) {
     return (b - a).cross(c - a);
