@@ -457,8 +457,13 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     if (hr.front_rounds > 0)
         std::printf(
             "front: %d column lowerings in %d rounds where the layers folded, left no room for a pyramid or "
-            "their top intersected itself\n",
-            static_cast<int>(hr.front_lowered_nodes), hr.front_rounds);
+            "their top intersected itself%s\n",
+            static_cast<int>(hr.front_lowered_nodes), hr.front_rounds,
+            hr.tet_retries > 0 ? (" (in " + std::to_string(hr.tet_retries) +
+                                  " of them TetGen stopped on one of its internal checks at a layer-top face, and the "
+                                  "columns around it were lowered)")
+                                     .c_str()
+                               : "");
     if (!hr.remeshed_patches.empty()) {
         std::string names;
         for (strata::Index p : hr.remeshed_patches)

@@ -10,6 +10,7 @@
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/hybrid/outer_boundary.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -227,35 +228,64 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
 /// Rounds of lowering colliding columns before giving up (each halves their thickness).
 constexpr int kFrontRounds = 8;
 
-/// Lower the thickness limit of the columns under the layer-top faces of \p pairs to half
-/// what they reached. Region node ids below the wall's node count are wall nodes; the next ones
-/// pyramid apexes (their quad's nodes count); outer points are left alone. Returns the number
-/// of surface nodes lowered.
-Index lower_colliding_columns(const SurfaceMesh& region, Index top_patch, const std::vector<FacePair>& pairs,
-                              const LayerMesh& lm, const PyramidLayer& pyr, std::vector<double>& limit) {
-    const Index nw = lm.wall_nodes();
-    std::vector<char> lowered(static_cast<std::size_t>(nw), 0);
-    auto lower = [&](Index w) { lowered[static_cast<std::size_t>(w)] = 1; };
-    for (const FacePair& p : pairs)
-        for (const Index f : {p.a, p.b}) {
-            if (region.face_patch[f] != top_patch) continue;
-            for (const Index* v = region.face_begin(f); v != region.face_end(f); ++v) {
-                if (*v < nw) {
-                    lower(*v);
-                } else if (*v < nw + static_cast<Index>(pyr.pyramids.size())) {
-                    for (int c = 0; c < 4; ++c) lower(pyr.pyramids[static_cast<std::size_t>(*v - nw)][c]);
-                }
-            }
+/// Mark the wall columns under layer-top face \p f of \p region: region node ids below the
+/// wall's node count are wall nodes; the next ones pyramid apexes (their quad's nodes count);
+/// outer points are left alone.
+void mark_columns(const SurfaceMesh& region, Index f, Index nw, const PyramidLayer& pyr, std::vector<char>& marked) {
+    for (const Index* v = region.face_begin(f); v != region.face_end(f); ++v) {
+        if (*v < nw) {
+            marked[static_cast<std::size_t>(*v)] = 1;
+        } else if (*v < nw + static_cast<Index>(pyr.pyramids.size())) {
+            for (int c = 0; c < 4; ++c)
+                marked[static_cast<std::size_t>(pyr.pyramids[static_cast<std::size_t>(*v - nw)][c])] = 1;
         }
-    Index count = 0;
-    for (Index w = 0; w < nw; ++w) {
-        if (!lowered[static_cast<std::size_t>(w)]) continue;
+    }
+}
+
+/// Lower the thickness limit of the \p marked columns to half what they reached. Returns the
+/// number of surface nodes lowered; \p grown, if given, is set to the number of those that
+/// had grown at all (the others' limit becomes 0, which changes nothing this round).
+Index lower_marked_columns(const std::vector<char>& marked, const LayerMesh& lm, std::vector<double>& limit,
+                           Index* grown = nullptr) {
+    Index count = 0, grew = 0;
+    for (Index w = 0; w < lm.wall_nodes(); ++w) {
+        if (!marked[static_cast<std::size_t>(w)]) continue;
         const double reached = (lm.mesh.points[lm.top_node(w)] - lm.mesh.points[lm.level_node(0, w)]).norm();
         double& l = limit[static_cast<std::size_t>(lm.input_node[static_cast<std::size_t>(w)])];
         l = std::min(l, 0.5 * reached);
         ++count;
+        if (reached > 0.0) ++grew;
     }
+    if (grown) *grown = grew;
     return count;
+}
+
+/// Lower the thickness limit of the columns under the layer-top faces of \p pairs to half
+/// what they reached. Returns the number of surface nodes lowered.
+Index lower_colliding_columns(const SurfaceMesh& region, Index top_patch, const std::vector<FacePair>& pairs,
+                              const LayerMesh& lm, const PyramidLayer& pyr, std::vector<double>& limit) {
+    std::vector<char> marked(static_cast<std::size_t>(lm.wall_nodes()), 0);
+    for (const FacePair& p : pairs)
+        for (const Index f : {p.a, p.b})
+            if (region.face_patch[f] == top_patch) mark_columns(region, f, lm.wall_nodes(), pyr, marked);
+    return lower_marked_columns(marked, lm, limit);
+}
+
+/// TetGen stopped at region nodes \p nodes (recovering the face or edge they make): lower the
+/// columns under every layer-top face touching them to half what they reached, so that the
+/// front there changes shape. Returns the number of surface nodes lowered; \p grown: how many
+/// of them had grown (0: nothing there can change).
+Index lower_columns_around(const SurfaceMesh& region, Index top_patch, const std::vector<Index>& nodes,
+                           const LayerMesh& lm, const PyramidLayer& pyr, std::vector<double>& limit, Index& grown) {
+    std::vector<char> marked(static_cast<std::size_t>(lm.wall_nodes()), 0);
+    for (Index f = 0; f < region.num_faces(); ++f) {
+        if (region.face_patch[f] != top_patch) continue;
+        bool touches = false;
+        for (const Index* v = region.face_begin(f); v != region.face_end(f) && !touches; ++v)
+            touches = std::find(nodes.begin(), nodes.end(), *v) != nodes.end();
+        if (touches) mark_columns(region, f, lm.wall_nodes(), pyr, marked);
+    }
+    return lower_marked_columns(marked, lm, limit, &grown);
 }
 
 }  // namespace
@@ -293,6 +323,8 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     if (!has_outer)
         check_layers_fit_farfield(surface, params.farfield, asked, params.layers.proximity_limits.other_patch);
     std::vector<Index> uncapped;  // input nodes whose fan's face on the layer top took no pyramid
+    TetFillParams tet_params = params.tets;
+    TetFill fill;
     for (int round = 0;; ++round) {
         auto t0 = std::chrono::steady_clock::now();
         try {
@@ -344,10 +376,35 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         region = region_to_fill(surface.patches, pyr, outer, farfield_patch, top_patch);
         const std::vector<FacePair> pairs = self_intersections(region, 0, params.threads);
         rep.seconds_tets += seconds_since(t0);
-        if (pairs.empty()) break;
-        if (round == kFrontRounds) throw_front_intersects(region, pairs, round);
-        rep.front_lowered_nodes += lower_colliding_columns(region, top_patch, pairs, lm, pyr, limit);
-        rep.front_rounds = round + 1;
+        if (!pairs.empty()) {
+            if (round == kFrontRounds) throw_front_intersects(region, pairs, round);
+            rep.front_lowered_nodes += lower_colliding_columns(region, top_patch, pairs, lm, pyr, limit);
+            rep.front_rounds = round + 1;
+            continue;
+        }
+        // Region to fill: between the pyramid-capped layer top and the outer boundary. Where
+        // TetGen stops on one of its internal checks recovering a face of the layer top (a
+        // configuration of the front it cannot handle, though no face crosses another), the
+        // columns around that face are lowered and the layers marched again.
+        t0 = std::chrono::steady_clock::now();
+        strata::report(progress, "tetrahedra", 0.0);
+        tet_params.background_mesh = params.tets.background_mesh && outer.remeshed.empty();  // see TetFillParams
+        try {
+            fill = fill_with_tets(region, points_in_layers(lm), tet_params);
+        } catch (const LocalTopologyError& e) {
+            rep.seconds_tets += seconds_since(t0);
+            if (round == kFrontRounds) throw;
+            Index grown = 0;
+            const Index lowered = lower_columns_around(region, top_patch, e.nodes(), lm, pyr, limit, grown);
+            if (grown == 0) throw;  // a face of the outer boundary or of walls with no layers
+            rep.front_lowered_nodes += lowered;
+            rep.tet_retries += 1;
+            rep.front_rounds = round + 1;
+            continue;
+        }
+        rep.seconds_tets += seconds_since(t0);
+        strata::report(progress, "tetrahedra", 1.0);
+        break;
     }
     rep.layer_stats = lm.stats;
     rep.unsmoothed_nodes = lm.unsmoothed_nodes;
@@ -362,16 +419,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
               [](const NoFanNode& a, const NoFanNode& b) { return a.node < b.node; });
     rep.remeshed_patches = outer.remeshed;
 
-    // Region to fill: between the pyramid-capped layer top and the outer boundary.
     auto t0 = std::chrono::steady_clock::now();
-    strata::report(progress, "tetrahedra", 0.0);
-    TetFillParams tet_params = params.tets;
-    tet_params.background_mesh = params.tets.background_mesh && outer.remeshed.empty();  // see TetFillParams
-    const TetFill fill = fill_with_tets(region, points_in_layers(lm), tet_params);
-    rep.seconds_tets += seconds_since(t0);
-    strata::report(progress, "tetrahedra", 1.0);
-
-    t0 = std::chrono::steady_clock::now();
     const std::vector<Patch> patches(region.patches.begin(), region.patches.begin() + top_patch);
     const VolumeMesh mesh = assemble(lm, pyr, region, top_patch, fill, patches);
     rep.validation = require_valid_mesh(mesh, "hybrid mesh", {.threads = params.threads, .progress = progress});

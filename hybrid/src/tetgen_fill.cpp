@@ -269,6 +269,36 @@ TetFill convert_and_check(const SurfaceMesh& b, const FaceIndex& face_of, const 
     return fill;
 }
 
+/// run(), and where TetGen stops on one of its internal checks, the place: its run repeated
+/// with its trace finds the boundary face (or edge) it was recovering, and the failure becomes
+/// a LocalTopologyError at that face's nodes (the caller may change the boundary there and
+/// try again). Where the trace names no place the BackendError stands.
+void run_locating(const std::string& switches, const SurfaceMesh& b, const FaceIndex& face_of, tetgenio& in,
+                  tetgenio& out, tetgenio* background) {
+    try {
+        tetgen::run(switches, in, out, background);
+    } catch (const tetgen::InternalCheckFailed& e) {
+        const std::vector<int> ids = tetgen::locate_failure(switches, in, background);
+        if (ids.empty()) throw;
+        std::vector<Index> nodes(ids.begin(), ids.end());
+        std::string where;
+        if (nodes.size() == 3) {
+            if (const auto it = face_of.find(tri_key(nodes[0], nodes[1], nodes[2])); it != face_of.end())
+                where = face_name(b, it->second);
+        }
+        if (where.empty()) {
+            where = nodes.size() == 2 ? "boundary edge" : "boundary nodes";
+            Vec3 c = Vec3::Zero();
+            for (const Index v : nodes) {
+                where += " " + std::to_string(v);
+                c += b.points[static_cast<std::size_t>(v)];
+            }
+            where += " at " + format_point(c / static_cast<double>(nodes.size()));
+        }
+        throw LocalTopologyError(std::string(e.what()) + "; it was recovering " + where, std::move(nodes));
+    }
+}
+
 }  // namespace
 
 TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& holes, const TetFillParams& params) {
@@ -285,14 +315,14 @@ TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& hol
     tetgenio in, out;
     set_plc(in, boundary, holes);
     if (!sizing) {
-        tetgen::run(tetgen::switches(params, false, false, tolerance), in, out, nullptr);
+        run_locating(tetgen::switches(params, false, false, tolerance), boundary, face_of, in, out, nullptr);
         return convert_and_check(boundary, face_of, out, volume);
     }
 
     const tetgen::SizeField h(boundary, params.growth, params.max_volume);
     if (!params.background_mesh) {  // sizes at the boundary points only, interpolated by TetGen
         tetgen::set_sizes(in, boundary.num_points(), h);
-        tetgen::run(tetgen::switches(params, true, false, tolerance), in, out, nullptr);
+        run_locating(tetgen::switches(params, true, false, tolerance), boundary, face_of, in, out, nullptr);
         return convert_and_check(boundary, face_of, out, volume);
     }
     tetgenio background;
@@ -307,7 +337,7 @@ TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& hol
             "check the hole points (inside the cavities) and merge coincident nodes");
     tetgen::set_sizes(background, boundary.num_points(), h);
     tetgen::set_sizes(in, boundary.num_points(), h);
-    tetgen::run(tetgen::switches(params, true, false, tolerance), in, out, &background);
+    run_locating(tetgen::switches(params, true, false, tolerance), boundary, face_of, in, out, &background);
     return convert_and_check(boundary, face_of, out, volume);
 }
 

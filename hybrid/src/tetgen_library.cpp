@@ -47,11 +47,15 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <cstdarg>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <mutex>
 #include <new>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -76,6 +80,64 @@ struct FailedAssertion {
     std::string where = file != nullptr ? file : "tetgen";
     if (const auto slash = where.rfind('/'); slash != std::string::npos) where.erase(0, slash + 1);
     throw FailedAssertion{where + ":" + std::to_string(line) + ": " + (assertion != nullptr ? assertion : "")};
+}
+
+// TetGen's trace. libtet prints through __printf_chk, puts and putchar (its verbose levels V,
+// VV, VVV; with Q nothing but a stray line on some failures). Those slots are redirected too:
+// outside a capture the text goes to stdout as before; during one (locate_failure) the lines
+// naming a boundary face or segment are kept, the last kTraceLines of them, and nothing is
+// printed. Only touched under tetgen_mutex(), like TetGen itself.
+constexpr std::size_t kTraceLines = 64;
+struct Trace {
+    bool capturing = false;
+    std::string line;               // the line being printed
+    std::vector<std::string> last;  // the last kTraceLines lines of its boundary recovery, oldest first
+    void add(const char* text) {
+        for (const char* c = text; *c != '\0'; ++c) {
+            if (*c != '\n') {
+                line += *c;
+                continue;
+            }
+            if (line.find("subface (") != std::string::npos || line.find("segment (") != std::string::npos) {
+                if (last.size() == kTraceLines) last.erase(last.begin());
+                last.push_back(std::move(line));
+            }
+            line.clear();
+        }
+    }
+};
+Trace& trace() {
+    static Trace t;
+    return t;
+}
+
+int capturing_printf_chk(int /*flag*/, const char* format, ...) {
+    std::va_list args;
+    va_start(args, format);
+    int n = 0;
+    if (!trace().capturing) {
+        n = std::vprintf(format, args);
+    } else {
+        char buf[512];
+        n = std::vsnprintf(buf, sizeof buf, format, args);
+        trace().add(buf);
+    }
+    va_end(args);
+    return n;
+}
+
+int capturing_puts(const char* text) {
+    if (!trace().capturing) return std::puts(text);
+    trace().add(text);
+    trace().add("\n");
+    return 1;
+}
+
+int capturing_putchar(int c) {
+    if (!trace().capturing) return std::putchar(c);
+    const char s[2] = {static_cast<char>(c), '\0'};
+    trace().add(s);
+    return c;
 }
 
 /// Point every GOT slot of the loaded object \p handle that binds \p symbol (JUMP_SLOT or
@@ -214,12 +276,23 @@ Library load(const Symbols& symbols) {
                            "x86-64 and AArch64");
     // Its internal checks too, where it has any (none if built with NDEBUG).
     lib.assert_slots = replace_got_slots(handle, "__assert_fail", reinterpret_cast<void*>(&throwing_assert_fail));
+    // Its printing, so that locate_failure can read its trace.
+    lib.print_slots = replace_got_slots(handle, "__printf_chk", reinterpret_cast<void*>(&capturing_printf_chk)) +
+                      replace_got_slots(handle, "puts", reinterpret_cast<void*>(&capturing_puts)) +
+                      replace_got_slots(handle, "putchar", reinterpret_cast<void*>(&capturing_putchar));
     return lib;
 }
 
-void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background) {
-    std::lock_guard<std::mutex> lock(tetgen_mutex());
+namespace {
+
+const Library& library() {
     static const Library lib = load();
+    return lib;
+}
+
+/// tetrahedralize, its failures as exceptions; the caller holds tetgen_mutex().
+void run_locked(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background) {
+    const Library& lib = library();
     std::vector<char> buf(switches.begin(), switches.end());
     buf.push_back('\0');
     try {
@@ -227,7 +300,7 @@ void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* bac
     } catch (int code) {
         throw BackendError(failure_message(code));
     } catch (const FailedAssertion& a) {
-        throw BackendError(
+        throw InternalCheckFailed(
             "TetGen stopped on one of its internal checks (" + a.text +
             "): it met a configuration it assumes cannot happen, usually boundary points exactly on another "
             "boundary face's plane or nearly coincident (a needle or sliver face on the layer top, or layers "
@@ -236,6 +309,78 @@ void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* bac
     } catch (const std::bad_alloc&) {
         throw BackendError(failure_message(1));
     }
+}
+
+/// The input points (ids below \p points) named by a trace line "... subface (a, b, c)." or
+/// "... segment (a, b).", TetGen's VVV lines of its boundary recovery; empty otherwise.
+std::vector<int> boundary_points_of(const std::string& line, int points) {
+    std::vector<int> ids;
+    const bool recovery = line.find("Recover ") != std::string::npos || line.find("Steiner point") != std::string::npos;
+    const std::size_t open = line.find('(');
+    if (!recovery || open == std::string::npos ||
+        (line.find("subface (") == std::string::npos && line.find("segment (") == std::string::npos))
+        return ids;
+    const std::size_t close = line.find(')', open);
+    if (close == std::string::npos) return ids;
+    std::istringstream in(line.substr(open + 1, close - open - 1));
+    std::string token;
+    while (std::getline(in, token, ',')) {
+        try {
+            const int id = std::stoi(token);
+            if (id >= 0 && id < points) ids.push_back(id);
+        } catch (const std::exception&) {
+            return {};
+        }
+    }
+    return ids;
+}
+
+}  // namespace
+
+void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background) {
+    std::lock_guard<std::mutex> lock(tetgen_mutex());
+    run_locked(switches, in, out, background);
+}
+
+std::vector<int> locate_failure(const std::string& switches, tetgenio& in, tetgenio* background) {
+    std::lock_guard<std::mutex> lock(tetgen_mutex());
+    if (library().print_slots == 0) return {};
+    std::string traced;
+    for (const char c : switches)
+        if (c != 'Q') traced += c;
+    traced += "VVV";
+    Trace& t = trace();
+    t = Trace{};
+    t.capturing = true;
+    tetgenio out;
+    bool failed = false;
+    try {
+        run_locked(traced, in, out, background);
+    } catch (const Error&) {
+        failed = true;
+    } catch (...) {
+        t.capturing = false;
+        throw;
+    }
+    t.capturing = false;
+    std::vector<int> ids;
+    if (failed) {
+        // The last boundary face or segment it was recovering, by the input points it names
+        // (its Steiner points have ids from numberofpoints on).
+        auto line = t.last.rbegin();
+        for (; line != t.last.rend() && ids.size() < 2; ++line) ids = boundary_points_of(*line, in.numberofpoints);
+        if (ids.size() < 2) ids.clear();
+        // An edge of a face it was recovering with Steiner points in it: the face, from an
+        // earlier line, where the trace still holds it.
+        for (; ids.size() == 2 && line != t.last.rend(); ++line) {
+            const std::vector<int> face = boundary_points_of(*line, in.numberofpoints);
+            if (face.size() == 3 && std::find(face.begin(), face.end(), ids[0]) != face.end() &&
+                std::find(face.begin(), face.end(), ids[1]) != face.end())
+                ids = face;
+        }
+    }
+    t = Trace{};
+    return ids;
 }
 
 std::string failure_message(int code) {

@@ -11,7 +11,10 @@
 #endif
 #include <tetgen.h>
 
+#include <strata/core/error.h>
+
 #include <string>
+#include <vector>
 
 namespace strata::tetgen {
 
@@ -30,6 +33,7 @@ struct Library {
     TetrahedralizeFn tetrahedralize = nullptr;
     int replaced_slots = 0;  ///< terminatetetgen GOT slots pointed at the throwing replacement (≥ 1)
     int assert_slots = 0;    ///< __assert_fail GOT slots pointed at a throwing replacement (0 if built with NDEBUG)
+    int print_slots = 0;     ///< __printf_chk, puts, putchar GOT slots pointed at the trace's (locate_failure)
 };
 
 /// Load libtet privately (RTLD_LOCAL | RTLD_DEEPBIND) and point its terminatetetgen at a
@@ -44,6 +48,19 @@ Library load(const Symbols& symbols = {});
 /// library loaded once per process. TetGen's failures are BackendError with its code
 /// explained (failure_message).
 void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background);
+
+/// TetGen stopped on one of its assert()s: a configuration of the boundary it assumes cannot
+/// happen, met at one place (locate_failure finds it).
+class InternalCheckFailed : public BackendError {
+public:
+    using BackendError::BackendError;
+};
+
+/// Run TetGen again as run() did when it threw InternalCheckFailed, now with its trace (VVV,
+/// captured, not printed), and return the input points of the boundary face or segment it was
+/// recovering when it stopped: 2 or 3 point ids of \p in. Empty when it stopped elsewhere than
+/// in the boundary recovery, did not stop, or its printing could not be redirected.
+std::vector<int> locate_failure(const std::string& switches, tetgenio& in, tetgenio* background);
 
 /// TetGen's exit code (terminatetetgen in tetgen.h) as a message saying what to do.
 std::string failure_message(int code);

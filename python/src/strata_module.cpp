@@ -433,6 +433,7 @@ py::dict hybrid_report(const VolumeMesh& mesh, const HybridReport& hr) {
     d["internal_flow"] = hr.internal_flow;
     d["closed_half_model"] = hr.closed_half_model;
     d["front_rounds"] = hr.front_rounds;
+    d["tet_retries"] = hr.tet_retries;
     d["thinned_nodes"] = hr.thinned_nodes;
     d["fan_edges"] = hr.fan_edges;
     d["times"] = py::dict("layers"_a = hr.seconds_layers, "pyramids"_a = hr.seconds_pyramids,

@@ -406,6 +406,27 @@ TEST(Cli, ShortEdgesOfAFusedCadModelAreCollapsed) {
     expect_clean_failure(args + "x.msh --collapse-edges 0.7", "--collapse-edges", "collapse_range");
 }
 
+TEST(Cli, TetGenStoppingOnAnInternalCheckLowersTheColumnsThere) {
+    // tests/data/cli_wingbody_tangent.stl: a thin wing nearly tangent to a fuselage, fused by
+    // OpenCASCADE and tessellated by it (cli_wingbody_tangent.geo says how), 1171 of its 3416
+    // faces needles. With its short edges collapsed, TetGen (Debian's libtet 1.5.0) stops on
+    // an internal check (tetgen.cxx:7854, scount == 1) recovering a layer-top face near the
+    // wing root, though no face of the front crosses another: its run repeated with its trace
+    // names the face, the columns around it are lowered and the fill succeeds.
+    test::ScratchDir dir("cli_tetgen_retry");
+    const CliResult r = strata_cli(
+        dir, "mesh '" + test_data("cli_wingbody_tangent.stl") + "' --layers 10 --first-height 1e-3 -o m.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("short edges: 6 collapsed"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("of them TetGen stopped on one of its internal checks at a layer-top face"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("valid: "), std::string::npos) << r.out;
+    // Nothing of TetGen's trace reached stdout.
+    EXPECT_EQ(r.out.find("Recover subface"), std::string::npos);
+    const VolumeMesh m = read_volume_msh(dir.file("m.msh"));
+    EXPECT_GT(m.prisms.size(), 10000u);
+}
+
 TEST(Cli, RemeshAfterFuseClearsTheCutsNeedles) {
     // The union of the missile's five parts cuts their triangles along the fin roots into 222
     // needles; remeshed, a handful are left and every part keeps its patch.

@@ -8,6 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "test_support.h"
 
 namespace strata {
@@ -45,6 +51,75 @@ TEST(TetgenLibrary, FailureMessagesSayWhatToDo) {
         EXPECT_EQ(m.find("strata check"), std::string::npos) << m;  // no such command
     }
     EXPECT_NE(tetgen::failure_message(3).find("intersects itself"), std::string::npos);
+}
+
+/// tests/data/tetgen_internal_check.txt as TetGen's input (points, one triangle per facet).
+void read_plc(const std::string& path, tetgenio& io) {
+    std::ifstream in(path);
+    ASSERT_TRUE(in) << path;
+    std::string line, word;
+    while (std::getline(in, line) && (line.empty() || line[0] == '#')) {
+    }
+    std::istringstream head(line);
+    int n = 0;
+    head >> word >> n;
+    ASSERT_EQ(word, "points");
+    io.firstnumber = 0;
+    io.numberofpoints = n;
+    io.pointlist = new REAL[3 * static_cast<std::size_t>(n)];
+    for (int i = 0; i < 3 * n; ++i) in >> io.pointlist[i];
+    int m = 0;
+    in >> word >> m;
+    ASSERT_EQ(word, "faces");
+    io.facetlist = new tetgenio::facet[static_cast<std::size_t>(m)];
+    io.numberoffacets = m;
+    for (int f = 0; f < m; ++f) {
+        tetgenio::facet& fa = io.facetlist[f];
+        tetgenio::init(&fa);
+        fa.polygonlist = new tetgenio::polygon[1];
+        tetgenio::init(&fa.polygonlist[0]);
+        fa.numberofpolygons = 1;
+        fa.polygonlist[0].vertexlist = new int[3];
+        fa.polygonlist[0].numberofvertices = 3;
+        for (int k = 0; k < 3; ++k) in >> fa.polygonlist[0].vertexlist[k];
+    }
+    ASSERT_TRUE(in) << path;
+}
+
+TEST(TetgenLibrary, InternalCheckIsLocatedAtTheFaceBeingRecovered) {
+    // TetGen stops on an assert() while recovering a boundary face: run() says so as
+    // InternalCheckFailed, and its run repeated with its trace names that face.
+    tetgenio in;
+    read_plc(test::test_data("tetgen_internal_check.txt"), in);
+    ASSERT_EQ(in.numberofpoints, 919);
+    const std::string switches = "pYzQc";
+    {
+        tetgenio out;
+        expect_error<tetgen::InternalCheckFailed>([&] { tetgen::run(switches, in, out, nullptr); },
+                                                  {"internal checks", "scount == 1"});
+    }
+    testing::internal::CaptureStdout();
+    std::vector<int> ids = tetgen::locate_failure(switches, in, nullptr);
+    const std::string printed = testing::internal::GetCapturedStdout();
+    EXPECT_EQ(printed, "");  // its trace is read, not printed
+    // The face (786, 785, x) it was recovering when it gave up and added Steiner points.
+    ASSERT_EQ(ids.size(), 3u);
+    EXPECT_NE(std::find(ids.begin(), ids.end(), 785), ids.end());
+    EXPECT_NE(std::find(ids.begin(), ids.end(), 786), ids.end());
+    for (const int id : ids) EXPECT_LT(id, in.numberofpoints);
+    // The library still works afterwards, and prints nothing with Q.
+    tetgenio box, out;
+    box.firstnumber = 0;
+    box.numberofpoints = 8;
+    box.pointlist = new REAL[24];
+    for (int i = 0; i < 8; ++i)
+        for (int k = 0; k < 3; ++k) box.pointlist[3 * i + k] = (i >> k) & 1;
+    testing::internal::CaptureStdout();
+    tetgen::run("zQ", box, out, nullptr);
+    EXPECT_EQ(testing::internal::GetCapturedStdout(), "");
+    EXPECT_GE(out.numberoftetrahedra, 5);
+    // A run that does not fail locates nothing.
+    EXPECT_TRUE(tetgen::locate_failure("zQ", box, nullptr).empty());
 }
 
 }  // namespace

@@ -35,6 +35,9 @@ struct HybridReport {
     /// face on the layer top could not take a pyramid.
     LayerReport coverage;
     Index front_lowered_nodes = 0;  ///< column lowerings over those rounds
+    /// Rounds where TetGen stopped on one of its internal checks recovering a layer-top face
+    /// (fill_with_tets' LocalTopologyError) and the columns around it were lowered.
+    int tet_retries = 0;
     std::vector<Index>
         remeshed_patches;  ///< patches (of the result's boundary) re-meshed around the layers' side faces
     /// The input was a half model (walls open along one plane): a half farfield and a
