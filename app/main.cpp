@@ -460,8 +460,8 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
             "their top intersected itself%s\n",
             static_cast<int>(hr.front_lowered_nodes), hr.front_rounds,
             hr.tet_retries > 0 ? (" (in " + std::to_string(hr.tet_retries) +
-                                  " of them TetGen stopped on one of its internal checks at a layer-top face, and the "
-                                  "columns around it were lowered)")
+                                  " of them TetGen failed recovering a layer-top face, and the columns around it were "
+                                  "lowered)")
                                      .c_str()
                                : "");
     if (!hr.remeshed_patches.empty()) {

@@ -269,15 +269,15 @@ TetFill convert_and_check(const SurfaceMesh& b, const FaceIndex& face_of, const 
     return fill;
 }
 
-/// run(), and where TetGen stops on one of its internal checks, the place: its run repeated
-/// with its trace finds the boundary face (or edge) it was recovering, and the failure becomes
-/// a LocalTopologyError at that face's nodes (the caller may change the boundary there and
-/// try again). Where the trace names no place the BackendError stands.
+/// run(), and where TetGen fails at a place of the boundary (one of its internal checks, or
+/// its codes 2-5), the place: its run repeated with its trace finds the boundary face (or
+/// edge) it was recovering, and the failure becomes a LocalTopologyError at that face's nodes (the caller may change
+/// the boundary there and try again). Where the trace names no place the BackendError stands.
 void run_locating(const std::string& switches, const SurfaceMesh& b, const FaceIndex& face_of, tetgenio& in,
                   tetgenio& out, tetgenio* background) {
     try {
         tetgen::run(switches, in, out, background);
-    } catch (const tetgen::InternalCheckFailed& e) {
+    } catch (const tetgen::LocalFailure& e) {
         const std::vector<int> ids = tetgen::locate_failure(switches, in, background);
         if (ids.empty()) throw;
         std::vector<Index> nodes(ids.begin(), ids.end());

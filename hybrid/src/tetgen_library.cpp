@@ -298,9 +298,10 @@ void run_locked(const std::string& switches, tetgenio& in, tetgenio& out, tetgen
     try {
         lib.tetrahedralize(buf.data(), &in, &out, nullptr, background);
     } catch (int code) {
+        if (code >= 2 && code <= 5) throw LocalFailure(failure_message(code));
         throw BackendError(failure_message(code));
     } catch (const FailedAssertion& a) {
-        throw InternalCheckFailed(
+        throw LocalFailure(
             "TetGen stopped on one of its internal checks (" + a.text +
             "): it met a configuration it assumes cannot happen, usually boundary points exactly on another "
             "boundary face's plane or nearly coincident (a needle or sliver face on the layer top, or layers "

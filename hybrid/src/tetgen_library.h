@@ -46,17 +46,19 @@ Library load(const Symbols& symbols = {});
 /// tetrahedralize(\p switches, in, out, nullptr, \p background) under the process-wide lock
 /// (TetGen is not reentrant: exactinit() sets process-wide predicate bounds), with the
 /// library loaded once per process. TetGen's failures are BackendError with its code
-/// explained (failure_message).
+/// explained (failure_message), LocalFailure where it failed at a place.
 void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background);
 
-/// TetGen stopped on one of its assert()s: a configuration of the boundary it assumes cannot
-/// happen, met at one place (locate_failure finds it).
-class InternalCheckFailed : public BackendError {
+/// A TetGen failure met at one place of the boundary, which locate_failure may find: one of
+/// its assert()s (a configuration it assumes cannot happen) or its codes 2 to 5 (an internal
+/// failure, a self-intersection, a very small feature, two nearly overlapping facets), all met
+/// while it recovers the boundary. Not out of memory (1) or a rejected input (10).
+class LocalFailure : public BackendError {
 public:
     using BackendError::BackendError;
 };
 
-/// Run TetGen again as run() did when it threw InternalCheckFailed, now with its trace (VVV,
+/// Run TetGen again as run() did when it threw LocalFailure, now with its trace (VVV,
 /// captured, not printed), and return the input points of the boundary face or segment it was
 /// recovering when it stopped: 2 or 3 point ids of \p in. Empty when it stopped elsewhere than
 /// in the boundary recovery, did not stop, or its printing could not be redirected.

@@ -88,15 +88,15 @@ void read_plc(const std::string& path, tetgenio& io) {
 
 TEST(TetgenLibrary, InternalCheckIsLocatedAtTheFaceBeingRecovered) {
     // TetGen stops on an assert() while recovering a boundary face: run() says so as
-    // InternalCheckFailed, and its run repeated with its trace names that face.
+    // LocalFailure, and its run repeated with its trace names that face.
     tetgenio in;
     read_plc(test::test_data("tetgen_internal_check.txt"), in);
     ASSERT_EQ(in.numberofpoints, 919);
     const std::string switches = "pYzQc";
     {
         tetgenio out;
-        expect_error<tetgen::InternalCheckFailed>([&] { tetgen::run(switches, in, out, nullptr); },
-                                                  {"internal checks", "scount == 1"});
+        expect_error<tetgen::LocalFailure>([&] { tetgen::run(switches, in, out, nullptr); },
+                                           {"internal checks", "scount == 1"});
     }
     testing::internal::CaptureStdout();
     std::vector<int> ids = tetgen::locate_failure(switches, in, nullptr);
@@ -120,6 +120,43 @@ TEST(TetgenLibrary, InternalCheckIsLocatedAtTheFaceBeingRecovered) {
     EXPECT_GE(out.numberoftetrahedra, 5);
     // A run that does not fail locates nothing.
     EXPECT_TRUE(tetgen::locate_failure("zQ", box, nullptr).empty());
+}
+
+TEST(TetgenLibrary, SelfIntersectionIsLocated) {
+    // A unit cube's boundary and a triangle lying in its top face: TetGen finds them crossing
+    // (code 3) while recovering the top face's diagonal, and its trace names that edge.
+    const double p[11][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0},     {0, 1, 0},     {0, 0, 1},    {1, 0, 1},
+                             {1, 1, 1}, {0, 1, 1}, {0.2, 0.2, 1}, {0.8, 0.2, 1}, {0.2, 0.8, 1}};
+    const int t[13][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4}, {1, 2, 6},
+                          {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}, {8, 9, 10}};
+    tetgenio in;
+    in.firstnumber = 0;
+    in.numberofpoints = 11;
+    in.pointlist = new REAL[33];
+    for (int i = 0; i < 11; ++i)
+        for (int k = 0; k < 3; ++k) in.pointlist[3 * i + k] = p[i][k];
+    in.numberoffacets = 13;
+    in.facetlist = new tetgenio::facet[13];
+    for (int f = 0; f < 13; ++f) {
+        tetgenio::facet& fa = in.facetlist[f];
+        tetgenio::init(&fa);
+        fa.polygonlist = new tetgenio::polygon[1];
+        tetgenio::init(&fa.polygonlist[0]);
+        fa.numberofpolygons = 1;
+        fa.polygonlist[0].vertexlist = new int[3];
+        fa.polygonlist[0].numberofvertices = 3;
+        for (int k = 0; k < 3; ++k) fa.polygonlist[0].vertexlist[k] = t[f][k];
+    }
+    {
+        tetgenio out;
+        expect_error<tetgen::LocalFailure>([&] { tetgen::run("pYzQ", in, out, nullptr); },
+                                           {"intersects itself", "code 3"});
+    }
+    testing::internal::CaptureStdout();
+    const std::vector<int> ids = tetgen::locate_failure("pYzQ", in, nullptr);
+    EXPECT_EQ(testing::internal::GetCapturedStdout(), "");
+    ASSERT_GE(ids.size(), 2u);
+    for (const int id : ids) EXPECT_TRUE(id >= 4 && id <= 10) << id;  // the top face's or the triangle's
 }
 
 }  // namespace

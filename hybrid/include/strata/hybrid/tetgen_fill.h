@@ -48,7 +48,8 @@ struct TetFill {
 /// layers). The boundary is preserved: no Steiner point on it (TetGen -Y), its triangles are
 /// exactly faces of the result. TetGen's failures become BackendError naming the cause
 /// (self-intersecting boundary, ...) and what to do; where it stops on one of its internal
-/// checks while recovering a boundary face or edge, a LocalTopologyError whose nodes are that
+/// checks, or finds the boundary crossing or nearly touching itself, while recovering a
+/// boundary face or edge, a LocalTopologyError whose nodes are that
 /// face's (boundary ids; its run repeated with TetGen's trace finds it), so that a caller can
 /// change the boundary there and try again.
 TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& holes, const TetFillParams& params);
