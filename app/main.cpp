@@ -67,7 +67,8 @@ const char* after_bar() {
 
 // ---------------------------------------------------------------------------------------
 // --timeout: a watchdog thread. At the deadline it asks the running stage to stop, as Ctrl-C
-// does (exit 124, nothing written). A stage that cannot poll (Gmsh's or TetGen's own meshing,
+// does (exit 124, nothing written; TetGen, run in a child process, is killed then). A stage that
+// cannot poll (Gmsh's own meshing,
 // which can run on for hours on a degenerate input) gets kTimeoutGrace seconds more; then the
 // program ends there, unless the writers have started (they finish, so no file is left half
 // written under a temporary name).
@@ -102,7 +103,7 @@ private:
         if (wake_.wait_for(lock, Seconds(kTimeoutGrace), [this] { return done_; })) return;
         if (g_writing.load()) return;
         std::fprintf(stderr,
-                     "%sstrata: error: stopped by --timeout %g s: the running stage (Gmsh's or TetGen's own "
+                     "%sstrata: error: stopped by --timeout %g s: the running stage (Gmsh's own "
                      "meshing, which cannot be asked to stop) went on %g s beyond it; nothing was written\n",
                      after_bar(), seconds_, kTimeoutGrace);
         std::fflush(stderr);
@@ -198,7 +199,7 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
     cmd.add_flag("-q,--quiet", c.quiet, "print nothing but errors");
     cmd.add_option("--timeout", c.timeout,
                    "stop a run that takes longer than this many seconds (exit 124, nothing written); a stage "
-                   "that cannot be stopped (Gmsh's or TetGen's own meshing) is ended 5 s later (0: no limit)")
+                   "that cannot be stopped (Gmsh's own meshing) is ended 5 s later (0: no limit)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     add_table_options(cmd, c.o, {strata::OptionStage::Surface, strata::OptionStage::Patches});

@@ -390,7 +390,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         strata::report(progress, "tetrahedra", 0.0);
         tet_params.background_mesh = params.tets.background_mesh && outer.remeshed.empty();  // see TetFillParams
         try {
-            fill = fill_with_tets(region, points_in_layers(lm), tet_params);
+            fill = fill_with_tets(region, points_in_layers(lm), tet_params, progress);
         } catch (const LocalTopologyError& e) {
             rep.seconds_tets += seconds_since(t0);
             if (round == kFrontRounds) throw;

@@ -274,11 +274,11 @@ TetFill convert_and_check(const SurfaceMesh& b, const FaceIndex& face_of, const 
 /// edge) it was recovering, and the failure becomes a LocalTopologyError at that face's nodes (the caller may change
 /// the boundary there and try again). Where the trace names no place the BackendError stands.
 void run_locating(const std::string& switches, const SurfaceMesh& b, const FaceIndex& face_of, tetgenio& in,
-                  tetgenio& out, tetgenio* background) {
+                  tetgenio& out, tetgenio* background, const Progress* progress) {
     try {
-        tetgen::run(switches, in, out, background);
+        tetgen::run(switches, in, out, background, progress);
     } catch (const tetgen::LocalFailure& e) {
-        const std::vector<int> ids = tetgen::locate_failure(switches, in, background);
+        const std::vector<int> ids = tetgen::locate_failure(switches, in, background, progress);
         if (ids.empty()) throw;
         std::vector<Index> nodes(ids.begin(), ids.end());
         std::string where;
@@ -301,7 +301,8 @@ void run_locating(const std::string& switches, const SurfaceMesh& b, const FaceI
 
 }  // namespace
 
-TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& holes, const TetFillParams& params) {
+TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& holes, const TetFillParams& params,
+                       const Progress* progress) {
     check_input(boundary, holes, params);
     const double volume = enclosed_volume(boundary);
     if (!(volume > 0.0))
@@ -315,21 +316,21 @@ TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& hol
     tetgenio in, out;
     set_plc(in, boundary, holes);
     if (!sizing) {
-        run_locating(tetgen::switches(params, false, false, tolerance), boundary, face_of, in, out, nullptr);
+        run_locating(tetgen::switches(params, false, false, tolerance), boundary, face_of, in, out, nullptr, progress);
         return convert_and_check(boundary, face_of, out, volume);
     }
 
     const tetgen::SizeField h(boundary, params.growth, params.max_volume);
     if (!params.background_mesh) {  // sizes at the boundary points only, interpolated by TetGen
         tetgen::set_sizes(in, boundary.num_points(), h);
-        run_locating(tetgen::switches(params, true, false, tolerance), boundary, face_of, in, out, nullptr);
+        run_locating(tetgen::switches(params, true, false, tolerance), boundary, face_of, in, out, nullptr, progress);
         return convert_and_check(boundary, face_of, out, volume);
     }
     tetgenio background;
     {
         tetgenio bg_in;
         set_plc(bg_in, tetgen::background_boundary(boundary), {});  // convex, cavities included (c, no holes)
-        tetgen::run(tetgen::switches(params, false, true, tolerance), bg_in, background, nullptr);
+        tetgen::run(tetgen::switches(params, false, true, tolerance), bg_in, background, nullptr, progress);
     }
     if (background.numberofpoints < boundary.num_points() || background.numberoftetrahedra <= 0)
         throw BackendError(
@@ -337,7 +338,7 @@ TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& hol
             "check the hole points (inside the cavities) and merge coincident nodes");
     tetgen::set_sizes(background, boundary.num_points(), h);
     tetgen::set_sizes(in, boundary.num_points(), h);
-    run_locating(tetgen::switches(params, true, false, tolerance), boundary, face_of, in, out, &background);
+    run_locating(tetgen::switches(params, true, false, tolerance), boundary, face_of, in, out, &background, progress);
     return convert_and_check(boundary, face_of, out, volume);
 }
 

@@ -43,16 +43,22 @@
 
 #include <dlfcn.h>
 #include <elf.h>
+#include <fcntl.h>
 #include <link.h>
+#include <poll.h>
 #include <sys/mman.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <csignal>
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <mutex>
 #include <new>
 #include <sstream>
@@ -84,25 +90,74 @@ struct FailedAssertion {
 
 // TetGen's trace. libtet prints through __printf_chk, puts and putchar (its verbose levels V,
 // VV, VVV; with Q nothing but a stray line on some failures). Those slots are redirected too:
-// outside a capture the text goes to stdout as before; during one (locate_failure) the lines
-// naming a boundary face or segment are kept, the last kTraceLines of them, and nothing is
-// printed. Only touched under tetgen_mutex(), like TetGen itself.
-constexpr std::size_t kTraceLines = 64;
+// outside a capture the text goes to stdout as before; during one (locate_failure) nothing is
+// printed, and each line naming a boundary face or segment it is recovering updates where it
+// is (Located, in memory the parent process shares, so that it survives the child's crash).
+// Only touched under tetgen_mutex(), like TetGen itself.
+
+/// The input points (ids below \p points) named by a trace line "... subface (a, b, c)." or
+/// "... segment (a, b).", TetGen's VVV lines of its boundary recovery; empty otherwise.
+std::vector<int> boundary_points_of(const std::string& line, int points) {
+    std::vector<int> ids;
+    const bool recovery = line.find("Recover ") != std::string::npos || line.find("Steiner point") != std::string::npos;
+    const std::size_t open = line.find('(');
+    if (!recovery || open == std::string::npos ||
+        (line.find("subface (") == std::string::npos && line.find("segment (") == std::string::npos))
+        return ids;
+    const std::size_t close = line.find(')', open);
+    if (close == std::string::npos) return ids;
+    std::istringstream in(line.substr(open + 1, close - open - 1));
+    std::string token;
+    while (std::getline(in, token, ',')) {
+        try {
+            const int id = std::stoi(token);
+            if (id >= 0 && id < points) ids.push_back(id);
+        } catch (const std::exception&) {
+            return {};
+        }
+    }
+    return ids;
+}
+
+/// Where TetGen's boundary recovery is: the input points of the face (3) or segment (2) it
+/// named last; where that was an edge with a Steiner point of the face it named before, that
+/// face.
+struct Located {
+    int count = 0;
+    int ids[3] = {0, 0, 0};
+    int face[3] = {0, 0, 0};  // the last face named with three input points
+    bool has_face = false;
+};
+
 struct Trace {
     bool capturing = false;
-    std::string line;               // the line being printed
-    std::vector<std::string> last;  // the last kTraceLines lines of its boundary recovery, oldest first
+    int points = 0;              // the input's points: ids from there on are Steiner points
+    Located* located = nullptr;  // updated line by line while capturing
+    std::string line;            // the line being printed
     void add(const char* text) {
         for (const char* c = text; *c != '\0'; ++c) {
             if (*c != '\n') {
                 line += *c;
                 continue;
             }
-            if (line.find("subface (") != std::string::npos || line.find("segment (") != std::string::npos) {
-                if (last.size() == kTraceLines) last.erase(last.begin());
-                last.push_back(std::move(line));
-            }
+            if (located != nullptr) note(boundary_points_of(line, points));
             line.clear();
+        }
+    }
+    void note(const std::vector<int>& ids) {
+        if (ids.size() < 2) return;
+        Located& l = *located;
+        const auto in_face = [&](int id) { return std::find(l.face, l.face + 3, id) != l.face + 3; };
+        if (ids.size() == 3) {
+            std::copy(ids.begin(), ids.end(), l.face);
+            l.has_face = true;
+        }
+        if (ids.size() == 2 && l.has_face && in_face(ids[0]) && in_face(ids[1])) {
+            std::copy(l.face, l.face + 3, l.ids);
+            l.count = 3;
+        } else {
+            std::copy(ids.begin(), ids.end(), l.ids);
+            l.count = static_cast<int>(ids.size());
         }
     }
 };
@@ -290,97 +345,312 @@ const Library& library() {
     return lib;
 }
 
-/// tetrahedralize, its failures as exceptions; the caller holds tetgen_mutex().
-void run_locked(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background) {
-    const Library& lib = library();
+// TetGen in a child process. A TetGen failure that is neither an exit code nor an assert()
+// (a SIGSEGV: Debian's libtet 1.5.0 crashes in sremovevertex on some fronts whose facets it
+// cannot recover) would end the whole process, a FreeCAD or Gmsh session with it. So each run
+// is forked: the child runs tetrahedralize on its copy of the input and writes its outcome down
+// a pipe (the output arrays, or the failure), then _exit()s; the parent reads it back into
+// `out`. A child that dies on a signal is a BackendError naming the signal. Where fork() is
+// not available (EAGAIN, ENOMEM, a sandbox) TetGen runs in this process as before.
+
+/// The outcome of a run, as the child sends it.
+enum class Outcome : char { Done = 0, Code = 1, Assert = 2, NoMemory = 3, Other = 4 };
+
+/// Bytes out (child) and back in (parent).
+struct Bytes {
+    std::vector<char> data;
+    std::size_t at = 0;
+    template <class T>
+    void put(const T& v) {
+        const char* p = reinterpret_cast<const char*>(&v);
+        data.insert(data.end(), p, p + sizeof(T));
+    }
+    template <class T>
+    void put_array(const T* p, std::size_t n) {  // a presence flag, then n items if present
+        put<char>(p != nullptr);
+        if (p == nullptr) return;
+        const char* c = reinterpret_cast<const char*>(p);
+        data.insert(data.end(), c, c + n * sizeof(T));
+    }
+    void put_string(const std::string& text) {
+        put<std::uint64_t>(text.size());
+        data.insert(data.end(), text.begin(), text.end());
+    }
+    template <class T>
+    T get() {
+        T v{};
+        if (at + sizeof(T) > data.size()) throw BackendError("TetGen's child process sent a truncated result");
+        std::memcpy(&v, data.data() + at, sizeof(T));
+        at += sizeof(T);
+        return v;
+    }
+    template <class T>
+    T* get_array(std::size_t n) {  // new[]ed, as tetgenio::deinitialize delete[]s it
+        if (!get<char>()) return nullptr;
+        if (at + n * sizeof(T) > data.size()) throw BackendError("TetGen's child process sent a truncated result");
+        T* p = new T[n > 0 ? n : 1];
+        std::memcpy(p, data.data() + at, n * sizeof(T));
+        at += n * sizeof(T);
+        return p;
+    }
+    std::string get_string() {
+        const auto n = static_cast<std::size_t>(get<std::uint64_t>());
+        if (at + n > data.size()) throw BackendError("TetGen's child process sent a truncated result");
+        std::string text(data.data() + at, n);
+        at += n;
+        return text;
+    }
+};
+
+/// TetGen's output arrays (those its switches here can produce; the Voronoi ones are not used).
+void put_output(Bytes& b, const tetgenio& o) {
+    const auto n = static_cast<std::size_t>(std::max(o.numberofpoints, 0));
+    const auto nt = static_cast<std::size_t>(std::max(o.numberoftetrahedra, 0));
+    const auto nf = static_cast<std::size_t>(std::max(o.numberoftrifaces, 0));
+    const auto ne = static_cast<std::size_t>(std::max(o.numberofedges, 0));
+    for (const int v : {o.firstnumber, o.mesh_dim, o.numberofpoints, o.numberofpointattributes, o.numberofpointmtrs,
+                        o.numberoftetrahedra, o.numberofcorners, o.numberoftetrahedronattributes, o.numberoftrifaces,
+                        o.numberofedges})
+        b.put<int>(v);
+    b.put_array(o.pointlist, 3 * n);
+    b.put_array(o.pointattributelist, n * static_cast<std::size_t>(std::max(o.numberofpointattributes, 0)));
+    b.put_array(o.pointmtrlist, n * static_cast<std::size_t>(std::max(o.numberofpointmtrs, 0)));
+    b.put_array(o.pointmarkerlist, n);
+    b.put_array(o.tetrahedronlist, nt * static_cast<std::size_t>(std::max(o.numberofcorners, 0)));
+    b.put_array(o.tetrahedronattributelist,
+                nt * static_cast<std::size_t>(std::max(o.numberoftetrahedronattributes, 0)));
+    b.put_array(o.tetrahedronvolumelist, nt);
+    b.put_array(o.neighborlist, 4 * nt);
+    b.put_array(o.trifacelist, 3 * nf);
+    b.put_array(o.trifacemarkerlist, nf);
+    b.put_array(o.o2facelist, 3 * nf);
+    b.put_array(o.adjtetlist, 2 * nf);
+    b.put_array(o.edgelist, 2 * ne);
+    b.put_array(o.edgemarkerlist, ne);
+    b.put_array(o.o2edgelist, ne);
+    b.put_array(o.edgeadjtetlist, ne);
+}
+
+void get_output(Bytes& b, tetgenio& o) {
+    o.firstnumber = b.get<int>();
+    o.mesh_dim = b.get<int>();
+    o.numberofpoints = b.get<int>();
+    o.numberofpointattributes = b.get<int>();
+    o.numberofpointmtrs = b.get<int>();
+    o.numberoftetrahedra = b.get<int>();
+    o.numberofcorners = b.get<int>();
+    o.numberoftetrahedronattributes = b.get<int>();
+    o.numberoftrifaces = b.get<int>();
+    o.numberofedges = b.get<int>();
+    const auto n = static_cast<std::size_t>(std::max(o.numberofpoints, 0));
+    const auto nt = static_cast<std::size_t>(std::max(o.numberoftetrahedra, 0));
+    const auto nf = static_cast<std::size_t>(std::max(o.numberoftrifaces, 0));
+    const auto ne = static_cast<std::size_t>(std::max(o.numberofedges, 0));
+    o.pointlist = b.get_array<REAL>(3 * n);
+    o.pointattributelist = b.get_array<REAL>(n * static_cast<std::size_t>(std::max(o.numberofpointattributes, 0)));
+    o.pointmtrlist = b.get_array<REAL>(n * static_cast<std::size_t>(std::max(o.numberofpointmtrs, 0)));
+    o.pointmarkerlist = b.get_array<int>(n);
+    o.tetrahedronlist = b.get_array<int>(nt * static_cast<std::size_t>(std::max(o.numberofcorners, 0)));
+    o.tetrahedronattributelist =
+        b.get_array<REAL>(nt * static_cast<std::size_t>(std::max(o.numberoftetrahedronattributes, 0)));
+    o.tetrahedronvolumelist = b.get_array<REAL>(nt);
+    o.neighborlist = b.get_array<int>(4 * nt);
+    o.trifacelist = b.get_array<int>(3 * nf);
+    o.trifacemarkerlist = b.get_array<int>(nf);
+    o.o2facelist = b.get_array<int>(3 * nf);
+    o.adjtetlist = b.get_array<int>(2 * nf);
+    o.edgelist = b.get_array<int>(2 * ne);
+    o.edgemarkerlist = b.get_array<int>(ne);
+    o.o2edgelist = b.get_array<int>(ne);
+    o.edgeadjtetlist = b.get_array<int>(ne);
+}
+
+bool write_all(int fd, const char* p, std::size_t n) {
+    while (n > 0) {
+        const ssize_t w = ::write(fd, p, n);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) return false;
+        p += w;
+        n -= static_cast<std::size_t>(w);
+    }
+    return true;
+}
+
+/// tetrahedralize here, its outcome into \p b (the output's arrays if it succeeded).
+void tetrahedralize_into(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background, Bytes& b) {
     std::vector<char> buf(switches.begin(), switches.end());
     buf.push_back('\0');
     try {
-        lib.tetrahedralize(buf.data(), &in, &out, nullptr, background);
+        library().tetrahedralize(buf.data(), &in, &out, nullptr, background);
+        b.put(Outcome::Done);
+        return;
     } catch (int code) {
-        if (code >= 2 && code <= 5) throw LocalFailure(failure_message(code));
-        throw BackendError(failure_message(code));
+        b.put(Outcome::Code);
+        b.put<int>(code);
     } catch (const FailedAssertion& a) {
-        throw LocalFailure(
-            "TetGen stopped on one of its internal checks (" + a.text +
-            "): it met a configuration it assumes cannot happen, usually boundary points exactly on another "
-            "boundary face's plane or nearly coincident (a needle or sliver face on the layer top, or layers "
-            "nearly touching); remesh the surface (needle faces) or change the layers (fewer or thinner) there, "
-            "and retry");
+        b.put(Outcome::Assert);
+        b.put_string(a.text);
     } catch (const std::bad_alloc&) {
-        throw BackendError(failure_message(1));
+        b.put(Outcome::NoMemory);
+    } catch (...) {
+        b.put(Outcome::Other);
     }
 }
 
-/// The input points (ids below \p points) named by a trace line "... subface (a, b, c)." or
-/// "... segment (a, b).", TetGen's VVV lines of its boundary recovery; empty otherwise.
-std::vector<int> boundary_points_of(const std::string& line, int points) {
-    std::vector<int> ids;
-    const bool recovery = line.find("Recover ") != std::string::npos || line.find("Steiner point") != std::string::npos;
-    const std::size_t open = line.find('(');
-    if (!recovery || open == std::string::npos ||
-        (line.find("subface (") == std::string::npos && line.find("segment (") == std::string::npos))
-        return ids;
-    const std::size_t close = line.find(')', open);
-    if (close == std::string::npos) return ids;
-    std::istringstream in(line.substr(open + 1, close - open - 1));
-    std::string token;
-    while (std::getline(in, token, ',')) {
-        try {
-            const int id = std::stoi(token);
-            if (id >= 0 && id < points) ids.push_back(id);
-        } catch (const std::exception&) {
-            return {};
+/// The failure \p b holds as Strata's exception (nothing if it holds a success).
+void throw_outcome(Bytes& b) {
+    const Outcome o = b.get<Outcome>();
+    switch (o) {
+        case Outcome::Done:
+            return;
+        case Outcome::Code: {
+            const int code = b.get<int>();
+            if (code >= 2 && code <= 5) throw LocalFailure(failure_message(code));
+            throw BackendError(failure_message(code));
         }
+        case Outcome::Assert:
+            throw LocalFailure(
+                "TetGen stopped on one of its internal checks (" + b.get_string() +
+                "): it met a configuration it assumes cannot happen, usually boundary points exactly on another "
+                "boundary face's plane or nearly coincident (a needle or sliver face on the layer top, or layers "
+                "nearly touching); remesh the surface (needle faces) or change the layers (fewer or thinner) "
+                "there, and retry");
+        case Outcome::NoMemory:
+            throw BackendError(failure_message(1));
+        case Outcome::Other:
+            break;
     }
-    return ids;
+    throw BackendError("TetGen failed with an exception it does not document");
+}
+
+/// \p body run in a forked child (which sends what it puts into its Bytes and _exit()s), its
+/// bytes returned; false (nothing run) where fork() is not available. BackendError when the
+/// child dies on a signal. The caller holds tetgen_mutex().
+bool in_child(const std::function<void(Bytes&)>& body, Bytes& result, const Progress* progress) {
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) return false;
+    std::fflush(nullptr);  // nothing buffered twice
+    const pid_t parent = ::getpid();
+    const pid_t pid = ::fork();
+    if (pid < 0) {
+        ::close(fds[0]);
+        ::close(fds[1]);
+        return false;
+    }
+    if (pid == 0) {  // the child: run, send, leave without unwinding or atexit handlers
+        ::close(fds[0]);
+        // Ends with this process (the CLI's --timeout ends it while TetGen runs).
+        if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent) ::_exit(1);
+        Bytes b;
+        try {
+            body(b);
+        } catch (...) {
+            b.data.clear();
+            b.put(Outcome::Other);
+        }
+        const bool sent = write_all(fds[1], b.data.data(), b.data.size());
+        ::_exit(sent ? 0 : 1);
+    }
+    ::close(fds[1]);
+    result.data.clear();
+    result.at = 0;
+    // Read until the child closes its end, asking \p progress every 0.1 s whether to stop:
+    // then the child is killed (TetGen itself cannot be asked).
+    char chunk[1 << 16];
+    bool cancelled = false;
+    for (;;) {
+        pollfd p{fds[0], POLLIN, 0};
+        const int ready = ::poll(&p, 1, 100);
+        if (ready < 0 && errno != EINTR) break;
+        if (progress != nullptr && progress->cancelled()) {
+            cancelled = true;
+            ::kill(pid, SIGKILL);
+            break;
+        }
+        if (ready <= 0) continue;
+        const ssize_t r = ::read(fds[0], chunk, sizeof chunk);
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0) break;
+        result.data.insert(result.data.end(), chunk, chunk + r);
+    }
+    ::close(fds[0]);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (cancelled) throw Cancelled();
+    if (WIFSIGNALED(status)) {
+        const int sig = WTERMSIG(status);
+        const char* name = sigdescr_np(sig);
+        throw LocalFailure("TetGen crashed (signal " + std::to_string(sig) + ", " + (name ? name : "unknown") +
+                           "), usually on boundary faces it could not recover (nearly coplanar or nearly "
+                           "touching faces of the layer top); remesh the surface (needle faces) or change the "
+                           "layers (fewer or thinner) there, and retry");
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || result.data.empty())
+        throw BackendError("TetGen's child process ended without sending its result (exit status " +
+                           std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+    return true;
+}
+
+/// tetrahedralize, its failures as exceptions, in a child process where possible; the caller
+/// holds tetgen_mutex().
+void run_locked(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background,
+                const Progress* progress) {
+    library();  // loaded (and patched) before any fork
+    Bytes b;
+    const bool forked = in_child(
+        [&](Bytes& sent) {
+            tetgenio child_out;
+            tetrahedralize_into(switches, in, child_out, background, sent);
+            if (sent.data.size() == 1 && static_cast<Outcome>(sent.data[0]) == Outcome::Done)
+                put_output(sent, child_out);
+        },
+        b, progress);
+    if (!forked) tetrahedralize_into(switches, in, out, background, b);
+    throw_outcome(b);
+    if (forked) get_output(b, out);
 }
 
 }  // namespace
 
-void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background) {
+void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background, const Progress* progress) {
     std::lock_guard<std::mutex> lock(tetgen_mutex());
-    run_locked(switches, in, out, background);
+    run_locked(switches, in, out, background, progress);
 }
 
-std::vector<int> locate_failure(const std::string& switches, tetgenio& in, tetgenio* background) {
+std::vector<int> locate_failure(const std::string& switches, tetgenio& in, tetgenio* background,
+                                const Progress* progress) {
     std::lock_guard<std::mutex> lock(tetgen_mutex());
     if (library().print_slots == 0) return {};
     std::string traced;
     for (const char c : switches)
         if (c != 'Q') traced += c;
     traced += "VVV";
-    Trace& t = trace();
-    t = Trace{};
-    t.capturing = true;
-    tetgenio out;
-    bool failed = false;
+    // Where it was, in a page the child shares with this process: what the trace said last
+    // stays readable even if the child crashes.
+    void* page = ::mmap(nullptr, sizeof(Located), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    Located here;
+    Located* located = page != MAP_FAILED ? new (page) Located : &here;
+    const auto traced_run = [&](Bytes& sent) {
+        Trace& t = trace();
+        t = Trace{};
+        t.capturing = true;
+        t.points = in.numberofpoints;
+        t.located = located;
+        tetgenio out;
+        tetrahedralize_into(traced, in, out, background, sent);
+        t = Trace{};
+    };
+    Bytes b;
+    bool failed = true;  // a crash is a failure too
     try {
-        run_locked(traced, in, out, background);
+        if (!in_child(traced_run, b, progress)) traced_run(b);
+        failed = b.get<Outcome>() != Outcome::Done;
     } catch (const Error&) {
-        failed = true;
-    } catch (...) {
-        t.capturing = false;
-        throw;
     }
-    t.capturing = false;
     std::vector<int> ids;
-    if (failed) {
-        // The last boundary face or segment it was recovering, by the input points it names
-        // (its Steiner points have ids from numberofpoints on).
-        auto line = t.last.rbegin();
-        for (; line != t.last.rend() && ids.size() < 2; ++line) ids = boundary_points_of(*line, in.numberofpoints);
-        if (ids.size() < 2) ids.clear();
-        // An edge of a face it was recovering with Steiner points in it: the face, from an
-        // earlier line, where the trace still holds it.
-        for (; ids.size() == 2 && line != t.last.rend(); ++line) {
-            const std::vector<int> face = boundary_points_of(*line, in.numberofpoints);
-            if (face.size() == 3 && std::find(face.begin(), face.end(), ids[0]) != face.end() &&
-                std::find(face.begin(), face.end(), ids[1]) != face.end())
-                ids = face;
-        }
-    }
-    t = Trace{};
+    if (failed) ids.assign(located->ids, located->ids + located->count);
+    if (page != MAP_FAILED) ::munmap(page, sizeof(Located));
     return ids;
 }
 

@@ -12,6 +12,7 @@
 #include <tetgen.h>
 
 #include <strata/core/error.h>
+#include <strata/core/progress.h>
 
 #include <string>
 #include <vector>
@@ -45,9 +46,13 @@ Library load(const Symbols& symbols = {});
 
 /// tetrahedralize(\p switches, in, out, nullptr, \p background) under the process-wide lock
 /// (TetGen is not reentrant: exactinit() sets process-wide predicate bounds), with the
-/// library loaded once per process. TetGen's failures are BackendError with its code
-/// explained (failure_message), LocalFailure where it failed at a place.
-void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background);
+/// library loaded once per process. TetGen runs in a forked child process (in this one where
+/// fork() fails), so that its crash is an error here, not the end of the process, and
+/// \p progress can stop it: Cancelled within 0.1 s of progress->cancelled(), the child killed.
+/// TetGen's failures are BackendError with its code explained (failure_message), LocalFailure
+/// where it failed at a place, including a crash (signal).
+void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background,
+         const Progress* progress = nullptr);
 
 /// A TetGen failure met at one place of the boundary, which locate_failure may find: one of
 /// its assert()s (a configuration it assumes cannot happen) or its codes 2 to 5 (an internal
@@ -62,7 +67,8 @@ public:
 /// captured, not printed), and return the input points of the boundary face or segment it was
 /// recovering when it stopped: 2 or 3 point ids of \p in. Empty when it stopped elsewhere than
 /// in the boundary recovery, did not stop, or its printing could not be redirected.
-std::vector<int> locate_failure(const std::string& switches, tetgenio& in, tetgenio* background);
+std::vector<int> locate_failure(const std::string& switches, tetgenio& in, tetgenio* background,
+                                const Progress* progress = nullptr);
 
 /// TetGen's exit code (terminatetetgen in tetgen.h) as a message saying what to do.
 std::string failure_message(int code);

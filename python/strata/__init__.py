@@ -13,7 +13,8 @@ Params structs' fields (strata.keywords() lists each with its default and the C+
 it sets); every default is the library's own. progress=callable(stage, fraction) is called as
 the stages run; Ctrl-C cancels at the next check (strata.Cancelled, a KeyboardInterrupt);
 timeout=seconds raises TimeoutError at the first check after that long (a design loop's guard;
-Gmsh's and TetGen's own meshing cannot be stopped inside, so it acts when they return), and
+Gmsh's and TetGen's own meshing make no progress checks, so it acts when they return; Ctrl-C
+stops TetGen at once, its child process killed), and
 nothing is written.
 Errors raise strata.InputError (also a ValueError), TopologyError, BackendError, all
 strata.Error (a RuntimeError), with Strata's message in keyword names.

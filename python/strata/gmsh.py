@@ -51,7 +51,7 @@ def _setup():
         "(cells, min_scaled_jacobian per type, coverage per patch, times). gmsh.initialize() first: "
         "strata.InputError otherwise. If meshing fails, the model is left as it was. timeout=SECONDS: "
         "TimeoutError at the first progress check after that long, the model left as it was (Gmsh's and "
-        "TetGen's own meshing end first: they cannot be stopped from outside).")
+        "TetGen's own meshing end first; Ctrl-C stops TetGen at once).")
 
 
 _setup()

@@ -5,6 +5,7 @@
 #include "tetgen_library.h"
 
 #include <strata/core/error.h>
+#include <strata/core/progress.h>
 
 #include <gtest/gtest.h>
 
@@ -122,22 +123,38 @@ TEST(TetgenLibrary, InternalCheckIsLocatedAtTheFaceBeingRecovered) {
     EXPECT_TRUE(tetgen::locate_failure("zQ", box, nullptr).empty());
 }
 
-TEST(TetgenLibrary, SelfIntersectionIsLocated) {
-    // A unit cube's boundary and a triangle lying in its top face: TetGen finds them crossing
-    // (code 3) while recovering the top face's diagonal, and its trace names that edge.
+TEST(TetgenLibrary, CrashIsAnErrorAndLocated) {
+    // TetGen dies of a SIGSEGV on this front (removing a Steiner point from a face it could not
+    // recover): run in a child process, that is an error here, the process goes on, and the
+    // traced run (which crashes too) still says where it was.
+    tetgenio in;
+    read_plc(test::test_data("tetgen_crash.txt"), in);
+    ASSERT_EQ(in.numberofpoints, 667);
+    {
+        tetgenio out;
+        expect_error<tetgen::LocalFailure>([&] { tetgen::run("pYzQc", in, out, nullptr); },
+                                           {"TetGen crashed (signal 11", "remesh"});
+    }
+    const std::vector<int> ids = tetgen::locate_failure("pYzQc", in, nullptr);
+    ASSERT_GE(ids.size(), 2u);
+    for (const int id : ids) EXPECT_TRUE(id >= 0 && id < in.numberofpoints) << id;
+}
+
+/// A unit cube's boundary as 12 triangles (points 0-7), and if \p inner a triangle lying in its
+/// top face (points 8-10).
+void cube_plc(tetgenio& in, bool inner) {
     const double p[11][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0},     {0, 1, 0},     {0, 0, 1},    {1, 0, 1},
                              {1, 1, 1}, {0, 1, 1}, {0.2, 0.2, 1}, {0.8, 0.2, 1}, {0.2, 0.8, 1}};
     const int t[13][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4}, {1, 2, 6},
                           {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}, {8, 9, 10}};
-    tetgenio in;
     in.firstnumber = 0;
-    in.numberofpoints = 11;
-    in.pointlist = new REAL[33];
-    for (int i = 0; i < 11; ++i)
+    in.numberofpoints = inner ? 11 : 8;
+    in.pointlist = new REAL[3 * in.numberofpoints];
+    for (int i = 0; i < in.numberofpoints; ++i)
         for (int k = 0; k < 3; ++k) in.pointlist[3 * i + k] = p[i][k];
-    in.numberoffacets = 13;
-    in.facetlist = new tetgenio::facet[13];
-    for (int f = 0; f < 13; ++f) {
+    in.numberoffacets = inner ? 13 : 12;
+    in.facetlist = new tetgenio::facet[in.numberoffacets];
+    for (int f = 0; f < in.numberoffacets; ++f) {
         tetgenio::facet& fa = in.facetlist[f];
         tetgenio::init(&fa);
         fa.polygonlist = new tetgenio::polygon[1];
@@ -147,6 +164,40 @@ TEST(TetgenLibrary, SelfIntersectionIsLocated) {
         fa.polygonlist[0].numberofvertices = 3;
         for (int k = 0; k < 3; ++k) fa.polygonlist[0].vertexlist[k] = t[f][k];
     }
+}
+
+/// Asks to stop once polled \p after times.
+class StopAfter : public Progress {
+public:
+    explicit StopAfter(int after) : left_(after) {}
+    void report(std::string_view, double) override {}
+    bool cancelled() const override { return --left_ < 0; }
+
+private:
+    mutable int left_;
+};
+
+TEST(TetgenLibrary, CancelStopsTetGen) {
+    // A unit cube filled with tetrahedra of volume at most 1e-7 (millions: many seconds): asked
+    // to stop at its third poll (0.2-0.3 s in), TetGen's child is killed and run() throws
+    // Cancelled instead of finishing.
+    tetgenio in;
+    cube_plc(in, false);
+    tetgenio out;
+    StopAfter stop(2);
+    EXPECT_THROW(tetgen::run("pzQqa1e-7", in, out, nullptr, &stop), Cancelled);
+    EXPECT_EQ(out.numberoftetrahedra, 0);
+    // Afterwards TetGen runs as before.
+    tetgenio again;
+    tetgen::run("pzQ", in, again, nullptr);
+    EXPECT_GE(again.numberoftetrahedra, 5);
+}
+
+TEST(TetgenLibrary, SelfIntersectionIsLocated) {
+    // A unit cube's boundary and a triangle lying in its top face: TetGen finds them crossing
+    // (code 3) while recovering the top face's diagonal, and its trace names that edge.
+    tetgenio in;
+    cube_plc(in, true);
     {
         tetgenio out;
         expect_error<tetgen::LocalFailure>([&] { tetgen::run("pYzQ", in, out, nullptr); },

@@ -4,8 +4,9 @@
 /// cancellation. Library users pass nothing (a null pointer); the CLI draws a bar and cancels
 /// on Ctrl-C. Stages report at their start (fraction 0) and between steps: "surface", "layers",
 /// "pyramids", "tetrahedra", "validation", "writing". A stage that sees cancelled() throws
-/// Cancelled at its next check; writers then leave no output file. (Third-party calls, Gmsh's
-/// meshing and TetGen, cannot be interrupted: the check comes when they return.)
+/// Cancelled at its next check; writers then leave no output file. (Gmsh's meshing cannot be
+/// interrupted: the check comes when it returns. TetGen runs in a child process, killed
+/// within 0.1 s of cancelled().)
 
 #include <string_view>
 

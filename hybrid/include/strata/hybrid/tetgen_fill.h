@@ -4,6 +4,7 @@
 /// linked: hybrid/src/tetgen_library.cpp says why): the region enclosed by a closed
 /// triangulated boundary is meshed with tetrahedra, the boundary preserved exactly.
 
+#include <strata/core/progress.h>
 #include <strata/core/surface_mesh.h>
 
 #include <array>
@@ -51,7 +52,10 @@ struct TetFill {
 /// checks, or finds the boundary crossing or nearly touching itself, while recovering a
 /// boundary face or edge, a LocalTopologyError whose nodes are that
 /// face's (boundary ids; its run repeated with TetGen's trace finds it), so that a caller can
-/// change the boundary there and try again.
-TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& holes, const TetFillParams& params);
+/// change the boundary there and try again. TetGen runs in a child process: its crash is a
+/// BackendError (a LocalTopologyError where its trace places it), and \p progress can stop it
+/// (Cancelled within 0.1 s).
+TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& holes, const TetFillParams& params,
+                       const Progress* progress = nullptr);
 
 }  // namespace strata
