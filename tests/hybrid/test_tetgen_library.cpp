@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -54,6 +55,22 @@ TEST(TetgenLibrary, FailureMessagesSayWhatToDo) {
     EXPECT_NE(tetgen::failure_message(3).find("intersects itself"), std::string::npos);
 }
 
+/// \p triangles as \p io's facets, one polygon each (new[]ed: tetgenio delete[]s them).
+void set_triangles(tetgenio& io, const std::vector<std::array<int, 3>>& triangles) {
+    io.numberoffacets = static_cast<int>(triangles.size());
+    io.facetlist = new tetgenio::facet[triangles.size()];
+    for (std::size_t f = 0; f < triangles.size(); ++f) {
+        tetgenio::facet& fa = io.facetlist[f];
+        tetgenio::init(&fa);
+        fa.polygonlist = new tetgenio::polygon[1];
+        tetgenio::init(&fa.polygonlist[0]);
+        fa.numberofpolygons = 1;
+        fa.polygonlist[0].vertexlist = new int[3];
+        fa.polygonlist[0].numberofvertices = 3;
+        for (int k = 0; k < 3; ++k) fa.polygonlist[0].vertexlist[k] = triangles[f][static_cast<std::size_t>(k)];
+    }
+}
+
 /// tests/data/tetgen_internal_check.txt as TetGen's input (points, one triangle per facet).
 void read_plc(const std::string& path, tetgenio& io) {
     std::ifstream in(path);
@@ -72,19 +89,10 @@ void read_plc(const std::string& path, tetgenio& io) {
     int m = 0;
     in >> word >> m;
     ASSERT_EQ(word, "faces");
-    io.facetlist = new tetgenio::facet[static_cast<std::size_t>(m)];
-    io.numberoffacets = m;
-    for (int f = 0; f < m; ++f) {
-        tetgenio::facet& fa = io.facetlist[f];
-        tetgenio::init(&fa);
-        fa.polygonlist = new tetgenio::polygon[1];
-        tetgenio::init(&fa.polygonlist[0]);
-        fa.numberofpolygons = 1;
-        fa.polygonlist[0].vertexlist = new int[3];
-        fa.polygonlist[0].numberofvertices = 3;
-        for (int k = 0; k < 3; ++k) in >> fa.polygonlist[0].vertexlist[k];
-    }
+    std::vector<std::array<int, 3>> triangles(static_cast<std::size_t>(m));
+    for (std::array<int, 3>& t : triangles) in >> t[0] >> t[1] >> t[2];
     ASSERT_TRUE(in) << path;
+    set_triangles(io, triangles);
 }
 
 TEST(TetgenLibrary, InternalCheckIsLocatedAtTheFaceBeingRecovered) {
@@ -152,18 +160,9 @@ void cube_plc(tetgenio& in, bool inner) {
     in.pointlist = new REAL[3 * in.numberofpoints];
     for (int i = 0; i < in.numberofpoints; ++i)
         for (int k = 0; k < 3; ++k) in.pointlist[3 * i + k] = p[i][k];
-    in.numberoffacets = inner ? 13 : 12;
-    in.facetlist = new tetgenio::facet[in.numberoffacets];
-    for (int f = 0; f < in.numberoffacets; ++f) {
-        tetgenio::facet& fa = in.facetlist[f];
-        tetgenio::init(&fa);
-        fa.polygonlist = new tetgenio::polygon[1];
-        tetgenio::init(&fa.polygonlist[0]);
-        fa.numberofpolygons = 1;
-        fa.polygonlist[0].vertexlist = new int[3];
-        fa.polygonlist[0].numberofvertices = 3;
-        for (int k = 0; k < 3; ++k) fa.polygonlist[0].vertexlist[k] = t[f][k];
-    }
+    std::vector<std::array<int, 3>> triangles;
+    for (int f = 0; f < (inner ? 13 : 12); ++f) triangles.push_back({t[f][0], t[f][1], t[f][2]});
+    set_triangles(in, triangles);
 }
 
 /// Asks to stop once polled \p after times.
