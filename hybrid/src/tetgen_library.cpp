@@ -578,6 +578,9 @@ bool in_child(const std::function<void(Bytes&)>& body, Bytes& result, const Prog
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
     if (cancelled) throw Cancelled();
+    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL)  // not its own doing: the system's
+        throw BackendError("TetGen was killed (signal 9), most likely by the system for want of memory: " +
+                           failure_message(1));
     if (WIFSIGNALED(status)) {
         const int sig = WTERMSIG(status);
         const char* name = sigdescr_np(sig);
