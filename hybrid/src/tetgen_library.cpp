@@ -476,14 +476,14 @@ bool write_all(int fd, const char* p, std::size_t n) {
     return true;
 }
 
-/// tetrahedralize here, its outcome into \p b (the output's arrays if it succeeded).
-void tetrahedralize_into(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background, Bytes& b) {
+/// tetrahedralize here, its outcome into \p b; true if it succeeded.
+bool tetrahedralize_into(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background, Bytes& b) {
     std::vector<char> buf(switches.begin(), switches.end());
     buf.push_back('\0');
     try {
         library().tetrahedralize(buf.data(), &in, &out, nullptr, background);
         b.put(Outcome::Done);
-        return;
+        return true;
     } catch (int code) {
         b.put(Outcome::Code);
         b.put<int>(code);
@@ -495,6 +495,7 @@ void tetrahedralize_into(const std::string& switches, tetgenio& in, tetgenio& ou
     } catch (...) {
         b.put(Outcome::Other);
     }
+    return false;
 }
 
 /// The failure \p b holds as Strata's exception (nothing if it holds a success).
@@ -604,9 +605,7 @@ void run_locked(const std::string& switches, tetgenio& in, tetgenio& out, tetgen
     const bool forked = in_child(
         [&](Bytes& sent) {
             tetgenio child_out;
-            tetrahedralize_into(switches, in, child_out, background, sent);
-            if (sent.data.size() == 1 && static_cast<Outcome>(sent.data[0]) == Outcome::Done)
-                put_output(sent, child_out);
+            if (tetrahedralize_into(switches, in, child_out, background, sent)) put_output(sent, child_out);
         },
         b, progress);
     if (!forked) tetrahedralize_into(switches, in, out, background, b);
