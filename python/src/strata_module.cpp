@@ -180,19 +180,30 @@ PyObject* g_topology_error = nullptr;
 PyObject* g_backend_error = nullptr;
 PyObject* g_cancelled = nullptr;
 
-/// Progress for Python: calls the callback (stage, fraction) and checks for Ctrl-C on the
-/// calling thread; an exception from either is kept, the stage is cancelled and the exception
-/// re-raised by the binding (rethrow_kept).
+/// Progress for Python: calls the callback (stage, fraction), checks for Ctrl-C on the
+/// calling thread and, with a timeout, raises TimeoutError once it has passed; an exception
+/// from any of these is kept, the stage is cancelled and the exception re-raised by the
+/// binding (rethrow_kept). cancelled() checks too, so the timeout also stops a stage between
+/// its reports (TetGen's child process is killed within 0.1 s).
 class PythonProgress : public Progress {
 public:
-    explicit PythonProgress(py::object callback)
-        : callback_(std::move(callback)), thread_(std::this_thread::get_id()) {}
+    PythonProgress(py::object callback, const py::object& timeout)
+        : callback_(std::move(callback)), thread_(std::this_thread::get_id()) {
+        if (!timeout.is_none()) {
+            timeout_text_ = py::str(py::repr(timeout));
+            deadline_ =
+                std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                       std::chrono::duration<double>(timeout.cast<double>()));
+        }
+    }
 
     void report(std::string_view stage, double fraction) override {
         if (stop_.load() || std::this_thread::get_id() != thread_) return;
+        stage_.assign(stage);
         try {
             if (!callback_.is_none()) callback_(py::str(stage.data(), stage.size()), fraction);
             check_signals();
+            check_deadline();
         } catch (py::error_already_set& e) {
             keep(std::move(e));
         }
@@ -207,6 +218,7 @@ public:
         last_check_ = now;
         try {
             check_signals();
+            check_deadline();
         } catch (py::error_already_set& e) {
             keep(std::move(e));
         }
@@ -233,6 +245,13 @@ private:
     static void check_signals() {
         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     }
+    void check_deadline() const {
+        if (!deadline_ || std::chrono::steady_clock::now() <= *deadline_) return;
+        const std::string message = "stopped by timeout=" + timeout_text_ + " s in stage " +
+                                    (stage_.empty() ? std::string("surface") : stage_) + "; nothing was written";
+        PyErr_SetString(PyExc_TimeoutError, message.c_str());
+        throw py::error_already_set();
+    }
     void keep(py::error_already_set&& e) const {
         if (!kept_) kept_.emplace(std::move(e));
         stop_.store(true);
@@ -240,6 +259,9 @@ private:
 
     py::object callback_;
     std::thread::id thread_;
+    std::optional<std::chrono::steady_clock::time_point> deadline_;  ///< none: no timeout
+    std::string timeout_text_;                                       ///< the timeout as given, for the message
+    std::string stage_;                                              ///< the stage last reported
     mutable std::atomic<bool> stop_{false};
     mutable std::optional<py::error_already_set> kept_;
     mutable std::chrono::steady_clock::time_point last_check_{};
@@ -248,8 +270,9 @@ private:
 /// Run \p f with a PythonProgress; C++ exceptions become Strata's Python exceptions with
 /// the message's parameter names in keywords.
 template <class F>
-auto with_progress(const py::object& callback, F&& f) -> decltype(f(std::declval<Progress*>())) {
-    PythonProgress progress(callback);
+auto with_progress(const py::object& callback, const py::object& timeout, F&& f)
+    -> decltype(f(std::declval<Progress*>())) {
+    PythonProgress progress(callback, timeout);
     try {
         return f(&progress);
     } catch (const Cancelled&) {
@@ -480,12 +503,12 @@ std::vector<std::string> as_inputs(const py::handle& input) {
 }
 
 py::object run_surface(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
-                       const std::string& msh_version, const py::object& callback) {
+                       const std::string& msh_version, const py::object& callback, const py::object& timeout) {
     Options o = options_from(kwargs);
     const std::vector<std::string> inputs = as_inputs(input);
     const double version = parse_msh_version(msh_version);
     if (output) check_surface_output(*output, version);
-    return with_progress(callback, [&](Progress* progress) -> py::object {
+    return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
         Prepared p = prepare(inputs, o, progress);
         if (output) write_surface(p.surface, *output, version, progress);
         auto result = std::make_unique<PySurface>();
@@ -496,13 +519,13 @@ py::object run_surface(const py::object& input, const py::dict& kwargs, const st
 }
 
 py::object run_layers(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
-                      const std::string& msh_version, const py::object& callback) {
+                      const std::string& msh_version, const py::object& callback, const py::object& timeout) {
     Options o = options_from(kwargs);
     const LayerParams lp = layer_params(o.layers);
     const std::vector<std::string> inputs = as_inputs(input);
     const double version = parse_msh_version(msh_version);
     if (output) check_volume_output(*output, version);
-    return with_progress(callback, [&](Progress* progress) -> py::object {
+    return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
         Prepared p = prepare(inputs, o, progress);
         auto t = std::chrono::steady_clock::now();
         LayerMesh lm = extrude_layers(p.surface, lp, progress);
@@ -531,13 +554,13 @@ py::object run_layers(const py::object& input, const py::dict& kwargs, const std
 }
 
 py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
-                    const std::string& msh_version, const py::object& callback) {
+                    const std::string& msh_version, const py::object& callback, const py::object& timeout) {
     Options o = options_from(kwargs);
     const HybridParams hp = hybrid_params(o.layers, o.mesh);
     const std::vector<std::string> inputs = as_inputs(input);
     const double version = parse_msh_version(msh_version);
     if (output) check_volume_output(*output, version);
-    return with_progress(callback, [&](Progress* progress) -> py::object {
+    return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
         Prepared p = prepare(inputs, o, progress);
         HybridReport hr;
         auto result = std::make_unique<PyMesh>();
@@ -556,12 +579,12 @@ py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::
     });
 }
 
-py::dict run_gmsh_model(const py::dict& kwargs, const py::object& callback) {
+py::dict run_gmsh_model(const py::dict& kwargs, const py::object& callback, const py::object& timeout) {
     Options o = options_from(kwargs);
     const HybridParams hp = hybrid_params(o.layers, o.mesh);
     PrepareParams pp = o.surface.prepare;  // patch kinds, internal flow, merge tolerance: what applies to a model
     pp.patch_kinds = parse_patch_options(o.surface.patches);
-    return with_progress(callback, [&](Progress* progress) {
+    return with_progress(callback, timeout, [&](Progress* progress) {
         const auto t0 = std::chrono::steady_clock::now();
         const HybridReport hr = mesh_current_gmsh_model(hp, pp, progress);
         // The report's cell counts come from the model's new mesh through the report's validation.
@@ -727,14 +750,14 @@ PYBIND11_MODULE(_strata, m) {
                    std::to_string(s.mesh.hexes.size()) + " hexahedra>";
         });
 
-    const char* run_doc = "(input, options: dict, output, msh_version, progress); see strata.";
+    const char* run_doc = "(input, options: dict, output, msh_version, progress, timeout); see strata.";
     m.def("surface", &run_surface, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),
-          py::arg("progress"), run_doc);
+          py::arg("progress"), py::arg("timeout"), run_doc);
     m.def("layers", &run_layers, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),
-          py::arg("progress"), run_doc);
+          py::arg("progress"), py::arg("timeout"), run_doc);
     m.def("mesh", &run_mesh, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),
-          py::arg("progress"), run_doc);
-    m.def("mesh_current_gmsh_model", &run_gmsh_model, py::arg("options"), py::arg("progress"),
+          py::arg("progress"), py::arg("timeout"), run_doc);
+    m.def("mesh_current_gmsh_model", &run_gmsh_model, py::arg("options"), py::arg("progress"), py::arg("timeout"),
           "strata::mesh_current_gmsh_model on the current Gmsh model; returns the report dict.");
     m.def(
         "note_gmsh_user",

@@ -13,9 +13,8 @@ Params structs' fields (strata.keywords() lists each with its default and the C+
 it sets); every default is the library's own. progress=callable(stage, fraction) is called as
 the stages run; Ctrl-C cancels at the next check (strata.Cancelled, a KeyboardInterrupt);
 timeout=seconds raises TimeoutError at the first check after that long (a design loop's guard;
-Gmsh's and TetGen's own meshing make no progress checks, so it acts when they return; Ctrl-C
-stops TetGen at once, its child process killed), and
-nothing is written.
+checks come at least every 0.1 s, and TetGen's child process is killed; Gmsh's own surface
+meshing makes none, so there it acts when Gmsh returns), and nothing is written.
 Errors raise strata.InputError (also a ValueError), TopologyError, BackendError, all
 strata.Error (a RuntimeError), with Strata's message in keyword names.
 
@@ -25,7 +24,6 @@ python3 -m strata.gmsh_gui MODEL opens Gmsh's window with Strata's options (stra
 
 import inspect as _inspect
 import sys as _sys
-import time as _time
 
 from . import _strata
 from ._strata import (  # noqa: F401  (re-exported)
@@ -76,21 +74,15 @@ def _document(function, summary):
     return "\n".join(lines)
 
 
-def _with_timeout(progress, timeout):
-    """progress, raising TimeoutError once timeout seconds have passed (None: no limit)."""
+def _checked_timeout(timeout):
+    """timeout as given, after checking it is None or a number of seconds >= 0. The extension
+    module keeps the deadline: it is checked at every progress report and between them (every
+    50 ms while a stage polls for Ctrl-C, every 0.1 s while TetGen runs in its child process)."""
     if timeout is None:
-        return progress
+        return None
     if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not timeout >= 0:
         raise ValueError(f"timeout={timeout!r}: expected None or a number of seconds >= 0")
-    start = _time.monotonic()
-
-    def checked(stage, fraction):
-        if progress is not None:
-            progress(stage, fraction)
-        if _time.monotonic() - start > timeout:
-            raise TimeoutError(f"stopped by timeout={timeout} s in stage {stage}; nothing was written")
-
-    return checked
+    return timeout
 
 
 def _pipeline(name, summary):
@@ -116,10 +108,10 @@ def _pipeline(name, summary):
         progress = given.pop("progress", None)
         if progress is not None and not callable(progress):
             raise TypeError(f"progress={progress!r}: expected a callable(stage, fraction) or None")
-        progress = _with_timeout(progress, given.pop("timeout", None))
+        timeout = _checked_timeout(given.pop("timeout", None))
         options = {k: v for k, v in given.items() if k in defaults}
         _note_gmsh_user()
-        return run(input_, options, None if output is None else str(output), msh_version, progress)
+        return run(input_, options, None if output is None else str(output), msh_version, progress, timeout)
 
     function.__name__ = function.__qualname__ = name
     function.__signature__ = signature

@@ -17,7 +17,7 @@ inside libgmsh: tests/python/test_gmsh_inprocess.py checks both in one process.
 
 import gmsh as _gmsh  # noqa: F401  the top-level gmsh module (absolute import): Strata shares its Gmsh
 
-from . import _document, _note_gmsh_user, _signature, _strata, _with_timeout, keywords
+from . import _checked_timeout, _document, _note_gmsh_user, _signature, _strata, keywords
 
 __all__ = ["mesh_current_model"]
 
@@ -30,9 +30,9 @@ def mesh_current_model(**kwargs):
     progress = given.pop("progress", None)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress={progress!r}: expected a callable(stage, fraction) or None")
-    progress = _with_timeout(progress, given.pop("timeout", None))
+    timeout = _checked_timeout(given.pop("timeout", None))
     _note_gmsh_user()
-    return _strata.mesh_current_gmsh_model(given, progress)
+    return _strata.mesh_current_gmsh_model(given, progress, timeout)
 
 
 def _setup():
@@ -50,8 +50,8 @@ def _setup():
         "quadrangles, one patch per 2D physical group) by a hybrid volume mesh built on it; returns the report "
         "(cells, min_scaled_jacobian per type, coverage per patch, times). gmsh.initialize() first: "
         "strata.InputError otherwise. If meshing fails, the model is left as it was. timeout=SECONDS: "
-        "TimeoutError at the first progress check after that long, the model left as it was (Gmsh's and "
-        "TetGen's own meshing end first; Ctrl-C stops TetGen at once).")
+        "TimeoutError at the first check after that long (at least every 0.1 s; TetGen's child process is "
+        "killed), the model left as it was.")
 
 
 _setup()

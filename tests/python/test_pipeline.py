@@ -184,6 +184,20 @@ def test_timeout_raises_timeout_error_and_nothing_is_written(tmp_path):
             strata.mesh(SPHERE_STL, timeout=bad, **SMALL)
 
 
+
+def test_timeout_stops_tetgen_while_it_runs(tmp_path):
+    # tet_growth=0.01 asks TetGen for 16.8 million tetrahedra (144 s on the development
+    # machine) and the stage reports nothing between its start and its end: the limit must be
+    # seen while TetGen runs (the extension polls it, and kills TetGen's child process), so the
+    # last report is still the stage's start, not its end (tetrahedra 1.0).
+    reports = []
+    out = tmp_path / "x.msh"
+    with pytest.raises(TimeoutError, match=r"stopped by timeout=2 s in stage tetrahedra; nothing was written"):
+        strata.mesh(SPHERE_STL, output=str(out), timeout=2, tet_growth=0.01,
+                    progress=lambda s, f: reports.append((s, f)), **SMALL)
+    assert reports[-1] == ("tetrahedra", 0.0)
+    assert not out.exists()
+
 def test_ctrl_c_cancels_as_keyboard_interrupt(tmp_path):
     # No callback: only the progress hook's PyErr_CheckSignals can see the signal while C++
     # runs. The alarm fires 50 ms in (the run takes over a second) and its handler is Python's
