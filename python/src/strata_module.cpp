@@ -189,7 +189,9 @@ class PythonProgress : public Progress {
 public:
     PythonProgress(py::object callback, const py::object& timeout)
         : callback_(std::move(callback)), thread_(std::this_thread::get_id()) {
-        if (!timeout.is_none()) {
+        // Beyond 1e9 s (an infinite timeout among them) there is no limit: the clock's ticks
+        // would overflow.
+        if (!timeout.is_none() && timeout.cast<double>() < 1e9) {
             timeout_text_ = py::str(py::repr(timeout));
             deadline_ =
                 std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
