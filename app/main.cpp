@@ -183,7 +183,7 @@ void add_table_options(CLI::App& cmd, strata::Options& o, std::initializer_list<
             opt->capture_default_str();
         if (spec.flag == "--layers") opt->required();
         if (spec.flag == "--remesh") opt->check(CLI::NonNegativeNumber);
-        if (spec.flag == "--fan-angle") opt->check(CLI::Range(0.0, 180.0));
+        if (spec.flag == "--fan-angle" || spec.flag == "--sharp-edge-stop") opt->check(CLI::Range(0.0, 180.0));
         if (spec.flag == "--mixed") opt->excludes(cmd.get_option("--quads"));
     }
 }
@@ -385,24 +385,26 @@ void print_coverage(const strata::LayerReport& r) {
     using strata::Shortfall;
     std::printf("coverage: %d layers asked, %.4g thick (first %.3g); per wall patch, what the columns reached:\n",
                 r.layers, r.thickness, r.first_height);
-    std::printf("  %-20s %7s %7s %6s %6s %6s %6s %6s  short: %5s %5s %5s %5s %5s %5s %5s %5s\n", "patch", "faces",
+    std::printf("  %-20s %7s %7s %6s %6s %6s %6s %6s  short: %5s %5s %5s %5s %5s %5s %5s %5s %5s\n", "patch", "faces",
                 "nodes", "full", "all L", "mean L", "min L", "thick", "prox", "front", "held", "qual", "turn", "twist",
-                "nbrs", "nan");
+                "nbrs", "nan", "sharp");
     for (const strata::PatchCoverage& c : r.patches) {
         const double n = c.nodes > 0 ? static_cast<double>(c.nodes) : 1.0;
         std::printf(
-            "  %-20s %7d %7d %5.1f%% %5.1f%% %6.1f %6d %5.1f%%         %5d %5d %5d %5d %5d %5d %5d %5d\n",
+            "  %-20s %7d %7d %5.1f%% %5.1f%% %6.1f %6d %5.1f%%         %5d %5d %5d %5d %5d %5d %5d %5d %5d\n",
             c.name.c_str(), static_cast<int>(c.faces), static_cast<int>(c.nodes),
             100.0 * static_cast<double>(c.full_nodes) / n, 100.0 * static_cast<double>(c.all_layers) / n, c.mean_layers,
             c.min_layers, 100.0 * c.mean_share, static_cast<int>(c.short_nodes(Shortfall::Proximity)),
             static_cast<int>(c.short_nodes(Shortfall::Front)), static_cast<int>(c.short_nodes(Shortfall::HeldBack)),
             static_cast<int>(c.short_nodes(Shortfall::Quality)), static_cast<int>(c.short_nodes(Shortfall::Turning)),
             static_cast<int>(c.short_nodes(Shortfall::Twist)), static_cast<int>(c.short_nodes(Shortfall::Neighbours)),
-            static_cast<int>(c.short_nodes(Shortfall::NonFinite)));
+            static_cast<int>(c.short_nodes(Shortfall::NonFinite)),
+            static_cast<int>(c.short_nodes(Shortfall::SharpEdge)));
     }
     std::printf(
         "  (full: every layer at the thickness asked; all L: every layer; thick: mean thickness reached; short: "
-        "nodes by why their column fell short, in OUT.report.json with positions)\n");
+        "nodes by why their column fell short, in OUT.report.json with positions; sharp: stopped at the wall on a "
+        "convex edge too sharp for one direction that got no fan, --sharp-edge-stop)\n");
 }
 
 /// Scaled Jacobian below which the summary warns that a solver may not use the cells.

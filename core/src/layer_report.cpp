@@ -4,8 +4,9 @@
 namespace strata {
 
 std::string_view to_string(Shortfall reason) {
-    static constexpr EnumNames<Shortfall, kShortfalls> kNames{
-        {"none", "proximity", "front", "held back", "quality", "turning", "twist", "neighbours", "non-finite"}};
+    static constexpr EnumNames<Shortfall, kShortfalls> kNames{{"none", "proximity", "front", "held back", "quality",
+                                                               "turning", "twist", "neighbours", "non-finite",
+                                                               "sharp edge"}};
     return kNames.name(reason);
 }
 

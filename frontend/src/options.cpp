@@ -284,6 +284,11 @@ std::vector<OptionSpec> make_table() {
         "a fan of columns (one per side, more between) at convex edges whose faces turn by this many "
         "degrees or more, and the convex edges that close their chains; 0: no fans"));
     t.push_back(spec(
+        "--sharp-edge-stop", "sharp_edge_stop_deg", "LayerParams::sharp_edge_stop_deg", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.sharp_edge_stop_deg; },
+        "columns stop at the wall on convex edges whose faces turn by this many degrees or more and "
+        "that get no fan (one direction there leaves the cells on both sides skewed); 0: never"));
+    t.push_back(spec(
         "--normals", "normals", "LayerParams::normals", Stage::Layers,
         [](Options& o) -> std::string& { return o.layers.normals; },
         "node normals: robust, area (the paper's), angle, max"));

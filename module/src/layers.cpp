@@ -197,6 +197,46 @@ void freeze_sharp_convex_nodes(const SurfaceMesh& wall, const Csr& vf, Stencils&
     }
 }
 
+/// Wall nodes on a convex edge whose faces turn by \p min_turn_deg or more and that has no fan
+/// (ALGORITHM.md, "Sharp edges without a fan"): an edge between two faces of \p wall (a fan's
+/// strips, of zero area, keep the two sides of a fanned edge apart, so it is not one), or an
+/// edge of the wall's open boundary whose nodes are held in one plane (\p plane_normal, zero
+/// where none) together with the face's mirror image in that plane. Nodes of a fan (\p fixed
+/// non-zero) and those sharing a face with one are left out: a column stopped at the wall
+/// beside a fan's column leaves that column's first cells unusable, and the fan would go.
+std::vector<char> sharp_single_nodes(const SurfaceMesh& wall, const std::vector<Vec3>& plane_normal,
+                                     const std::vector<Vec3>& fixed, double min_turn_deg) {
+    const auto n = static_cast<std::size_t>(wall.num_points());
+    std::vector<char> sharp(n, 0);
+    const double cos_min = std::cos(min_turn_deg * std::numbers::pi / 180.0);
+    // Faces f, g meet at node a along a convex edge turning min_turn_deg or more.
+    auto sharp_pair = [&](const Vec3& nf, const Vec3& cf, const Vec3& ng, const Vec3& cg, const Vec3& a) {
+        return nf.dot(ng) <= cos_min && (cg - a).dot(nf) < 0.0 && (cf - a).dot(ng) < 0.0;
+    };
+    const EdgeTable et = edge_table(wall);
+    for (Index e = 0; e < et.faces.rows(); ++e) {
+        const Index a = et.nodes[static_cast<std::size_t>(e)][0], b = et.nodes[static_cast<std::size_t>(e)][1];
+        const Index* fs = et.faces.row_begin(e);
+        const Vec3 nf = face_area_vector(wall, fs[0]);
+        if (!(nf.norm() > 0.0)) continue;
+        const Vec3 cf = face_centroid(wall, wall.points, fs[0]);
+        const Vec3& pa = wall.points[a];
+        bool hit = false;
+        if (et.faces.row_size(e) == 2) {
+            const Vec3 ng = face_area_vector(wall, fs[1]);
+            if (!(ng.norm() > 0.0)) continue;
+            hit = sharp_pair(nf.normalized(), cf, ng.normalized(), face_centroid(wall, wall.points, fs[1]), pa);
+        } else if (et.faces.row_size(e) == 1 && static_cast<std::size_t>(b) < plane_normal.size()) {
+            const Vec3& p = plane_normal[static_cast<std::size_t>(a)];
+            if (p == Vec3::Zero() || (p - plane_normal[static_cast<std::size_t>(b)]).norm() > 1e-12) continue;
+            const Vec3 u = nf.normalized();
+            hit = sharp_pair(u, cf, u - 2.0 * u.dot(p) * p, cf - 2.0 * (cf - pa).dot(p) * p, pa);
+        }
+        if (hit) sharp[static_cast<std::size_t>(a)] = sharp[static_cast<std::size_t>(b)] = 1;
+    }
+    return sharp;
+}
+
 /// f(α) of Eq. 18: full weight for neighbours leaning towards the normal, none beyond 90°.
 double concave_ramp(double alpha) {
     constexpr double q = std::numbers::pi / 4.0, h = std::numbers::pi / 2.0;
@@ -764,9 +804,12 @@ void layer_orthogonality(const Columns& col, int k, const std::vector<Vec3>& r0,
                                           format_number(needle.sharpest_deg, 3) + " degrees at " +
                                           format_point(needle.where) + "): remesh the surface into well-shaped faces"
                                     : "";
-    throw TopologyError("no wall node could grow a single layer; the columns stopped for: " + why + needles +
-                        ". Quality: the first layer's cells would be poor (a smaller first height, a finer surface, "
-                        "or a lower LayerParams::min_quality); proximity: the gaps are narrower than the first layer");
+    throw TopologyError(
+        "no wall node could grow a single layer; the columns stopped for: " + why + needles +
+        ". Quality: the first layer's cells would be poor (a smaller first height, a finer surface, "
+        "or a lower LayerParams::min_quality); proximity: the gaps are narrower than the first layer; sharp edge: "
+        "convex edges too sharp for one direction that got no fan (a lower "
+        "LayerParams::fan_angle_deg gives them fans, sharp_edge_stop_deg 0 keeps one direction)");
 }
 
 /// Per edge of the wall's open boundary loops, in order, the patch of the input face across it
@@ -815,6 +858,9 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     if (!(params.max_twist_deg > 0.0 && params.max_twist_deg <= 180.0))
         throw InputError("LayerParams::max_twist_deg = " + format_number(params.max_twist_deg) +
                          ": need an angle above 0 and at most 180 degrees");
+    if (!(params.sharp_edge_stop_deg >= 0.0 && params.sharp_edge_stop_deg <= 180.0))
+        throw InputError("LayerParams::sharp_edge_stop_deg = " + format_number(params.sharp_edge_stop_deg) +
+                         ": need an angle in [0, 180] degrees (0: never stop there)");
     if (!(params.fan_angle_deg >= 0.0 && params.fan_angle_deg <= 180.0))
         throw InputError("LayerParams::fan_angle_deg = " + format_number(params.fan_angle_deg) +
                          ": need an angle in [0, 180] degrees (0: no fans)");
@@ -874,6 +920,16 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         const double share = mc.height_scale[u];
         if (share < 1.0) ++out.thinned_nodes;
         out.min_thickness_share = std::min(out.min_thickness_share, share);
+    }
+    if (params.sharp_edge_stop_deg > 0.0 && params.min_quality > 0.0 && !params.keep_invalid && params.smoothing) {
+        // Sharp edges without a fan: their columns stop at the wall (ALGORITHM.md).
+        const std::vector<char> sharp = sharp_single_nodes(w.mesh, plane_normal, mc.fixed, params.sharp_edge_stop_deg);
+        for (std::size_t u = 0; u < sharp.size(); ++u)
+            if (sharp[u]) {
+                col.max_levels[u] = 0;
+                col.limit[u] = Shortfall::SharpEdge;
+                scale_reason[u] = Shortfall::None;
+            }
     }
     out.scale_reason = std::move(scale_reason);
     out.mesh.points.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(layers + 1));

@@ -418,8 +418,7 @@ TEST(Cli, TetGenStoppingOnAnInternalCheckLowersTheColumnsThere) {
         dir, "mesh '" + test_data("cli_wingbody_tangent.stl") + "' --layers 10 --first-height 1e-3 -o m.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("short edges: 6 collapsed"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("of them TetGen failed recovering a layer-top face"), std::string::npos)
-        << r.out;
+    EXPECT_NE(r.out.find("of them TetGen failed recovering a layer-top face"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("valid: "), std::string::npos) << r.out;
     // Nothing of TetGen's trace reached stdout.
     EXPECT_EQ(r.out.find("Recover subface"), std::string::npos);
@@ -485,6 +484,7 @@ TEST(Cli, LayersBadInputsFailCleanly) {
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --min-quality 1.5", "--min-quality", "quality");
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --max-turn 0", "--max-turn", "turn");
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --fan-angle 200", "--fan-angle", "fan");
+    expect_clean_failure(in + " --layers 5 --first-height 1e-3 --sharp-edge-stop 200", "--sharp-edge-stop", "sharp");
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --max-twist 0", "--max-twist", "twist");
     // Plain extrusion into the notched box's concave corner folds: with local stopping off,
     // reported, nothing written.
@@ -631,12 +631,15 @@ TEST(Cli, FighterHalfModelWithInletDuct) {
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("planes re-meshed around the layers' sides: symmetry"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("valid: "), std::string::npos) << r.out;
-    // Coverage, share of wall nodes with every layer (measured: inlet 100 %, fuselage 97.0 %,
-    // wing 91.9 %; the rest of the wing's, the tails' and the fuselage's nodes are at the
-    // sharp trailing edges, whose columns stop at the wall).
+    // Coverage, share of wall nodes with every layer (measured: inlet 100 %, fuselage 96.8 %,
+    // wing 84.3 %; the rest of the wing's, the tails' and the fuselage's nodes are at the
+    // sharp edges, whose columns stop at the wall: 73 of the wing's for --sharp-edge-stop).
     EXPECT_GE(coverage_share(r.out, "inlet", 3), 98.0) << r.out;
     EXPECT_GE(coverage_share(r.out, "fuselage", 3), 93.0) << r.out;
-    EXPECT_GE(coverage_share(r.out, "wing", 3), 85.0) << r.out;
+    EXPECT_GE(coverage_share(r.out, "wing", 3), 82.0) << r.out;
+    // With one direction at those edges, checkMesh found the faces between their two sides'
+    // cells skewed (above 4); stopped at the wall, it passes the mesh.
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
 
     const VolumeMesh m = read_volume_msh(dir.file("fighter.msh"));
     EXPECT_GT(m.tets.size(), 0u);

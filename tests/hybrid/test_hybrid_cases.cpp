@@ -151,12 +151,19 @@ TEST(HybridCases, FinnedMissileHalfModelOnASting) {
     EXPECT_EQ(names(s, rep.remeshed_patches), (std::vector<std::string>{"symmetry", "outflow"}));
     expect_patch_in_plane(m, "symmetry", 1, 0.0);
     expect_patch_in_plane(m, "outflow", 0, 1.4);
-    // Measured: every layer on 97.6 % of the fins' nodes (their sharp tips and trailing-edge
-    // roots stop), 99.6-100 % elsewhere.
+    // Measured: every layer on 88.0 % of the fins' nodes (their sharp edges, in the symmetry
+    // plane too, stop at the wall: --sharp-edge-stop), 99.6-100 % elsewhere.
     ASSERT_EQ(rep.coverage.patches.size(), 5u);
     for (const PatchCoverage& c : rep.coverage.patches)
-        EXPECT_GE(static_cast<double>(c.all_layers) / static_cast<double>(c.nodes), c.name == "fins" ? 0.95 : 0.99)
+        EXPECT_GE(static_cast<double>(c.all_layers) / static_cast<double>(c.nodes), c.name == "fins" ? 0.85 : 0.99)
             << c.name;
+    Index sharp = 0;
+    for (const ShortNode& n : rep.coverage.short_nodes)
+        if (n.reason == Shortfall::SharpEdge) {
+            ++sharp;
+            EXPECT_EQ(n.layers, 0);
+        }
+    EXPECT_GT(sharp, 0);
     expect_valid_case("finned_missile", s, m, rep);
 }
 
@@ -252,11 +259,20 @@ TEST(HybridCases, Naca0012BetweenWallsWithThirtyLayers) {
     EXPECT_TRUE(rep.internal_flow);
     EXPECT_EQ(find_patch(m.boundary, "farfield"), kNone);
     EXPECT_NEAR(rep.validation.cell_volume, 4000.0, 1.0);  // the wing's volume is 0.08
-    // The trailing edge (15.4 deg, no fan: its chain ends on the floor) keeps its columns: a
-    // single direction there is as good as the edge allows, and the cells are judged on that.
-    int fewest = 30;
-    for (const PatchCoverage& c : rep.coverage.patches) fewest = std::min(fewest, c.min_layers);
-    EXPECT_GE(fewest, 20);
+    // The trailing edge (15.4 deg, no fan: its chain ends on the floor) and the leading edge,
+    // faceted at 120 deg and more per face, stop at the wall (--sharp-edge-stop): with one
+    // direction there OpenFOAM found 352 faces between their two sides' cells skewed above 4
+    // (to 18.2). Nothing else stops there; the tunnel walls away from the wing keep every layer.
+    Index sharp = 0;
+    for (const ShortNode& n : rep.coverage.short_nodes)
+        if (n.reason == Shortfall::SharpEdge) {
+            ++sharp;
+            EXPECT_EQ(n.layers, 0);
+            EXPECT_TRUE(n.position.x() > 0.99 || n.position.x() < 0.01) << n.position.transpose();
+        }
+    EXPECT_GT(sharp, 0);
+    for (const PatchCoverage& c : rep.coverage.patches)
+        if (c.name.size() == 12 && c.name >= "surface_1102") EXPECT_EQ(c.min_layers, 30) << c.name;  // 1102-1106
     expect_valid_case("naca0012_walls", s, m, rep);
     // The tunnel alone, without internal flow, is a body: a farfield is generated around it.
     const SurfaceMesh body = prepare_surface(example_data("naca0012_wing_between_walls.geo"), {});

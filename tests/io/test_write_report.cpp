@@ -44,7 +44,7 @@ TEST(WriteLayerReport, PatchesAndShortNodesWithEscapedNames) {
          {"\"layers\": 30", "\"first_height\": 0.0001", "\"thickness\": 0.125",
           "\"name\": \"wing \\\"upper\\\"\\\\tip\\n\"", "\"faces\": 10", "\"full_nodes\": 9", "\"min_share\": 0.25",
           "\"short\": {\"proximity\": 2, \"front\": 1, \"held back\": 0, \"quality\": 3, \"turning\": 0, "
-          "\"twist\": 0, \"neighbours\": 0, \"non-finite\": 0}",
+          "\"twist\": 0, \"neighbours\": 0, \"non-finite\": 0, \"sharp edge\": 0}",
           "\"min_layers\": 4", "\"mean_layers\": 12.5", "\"all_layers\": 8",
           "{\"node\": 7, \"position\": [1, 2, 3], \"share\": 0.25, \"layers\": 30, "
           "\"reason\": \"proximity\"}",

@@ -121,7 +121,9 @@ TEST(Fans, LiftTheQualityCapOfOneDirectionAtASharpEdge) {
     EXPECT_THROW(extrude_layers(wall, blade_layers(0.0)), TopologyError);
     // A blunter blade (40°) without fans grows, its sharp edge's cells poor or its columns short.
     const SurfaceMesh blunt = blade(8, 40.0);
-    const LayerMesh without = extrude_layers(blunt, blade_layers(0.0));
+    LayerParams single = blade_layers(0.0);
+    single.sharp_edge_stop_deg = 0.0;  // one direction at the sharp edge (else it stops at the wall, below)
+    const LayerMesh without = extrude_layers(blunt, single);
     EXPECT_EQ(without.fan_edges, 0);
     bool edge_short = false;
     for (Index j = 0; j <= 8; ++j) edge_short |= without.node_layers(3 * j + 2) < 5;
@@ -153,6 +155,7 @@ TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
     // the chain through it goes too, and the run says how many nodes lost their fan.
     const SurfaceMesh wall = blade(8, 40.0);  // grows without fans too
     LayerParams p = blade_layers(120.0);
+    p.sharp_edge_stop_deg = 0.0;  // the edges whose fans go keep one direction, and grow
     p.node_thickness_limit.assign(static_cast<std::size_t>(wall.num_points()), std::numeric_limits<double>::infinity());
     p.node_thickness_limit[3 * 4 + 2] = 0.005;
     const LayerMesh lm = extrude_layers(wall, p);
@@ -173,6 +176,47 @@ TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
     const ValidationReport v = validate_mesh(lm.mesh);
     EXPECT_TRUE(v.ok()) << (v.problems.empty() ? std::string() : v.problems.front());
     EXPECT_TRUE(extrude_layers(wall, blade_layers(120.0)).fans_dropped.empty());
+}
+
+TEST(Fans, SharpEdgesWithoutAFanStopAtTheWall) {
+    // A 40° blade without fans: its sharp edge turns 140°, its base's edges 110°. From
+    // sharp_edge_stop_deg on, the nodes of such an edge stop at the wall (the faces between
+    // the two sides' cells would be skewed), the others grow, and the report says why.
+    const SurfaceMesh wall = blade(8, 40.0);
+    LayerParams p = blade_layers(0.0);
+    p.sharp_edge_stop_deg = 120.0;
+    const LayerMesh lm = extrude_layers(wall, p);
+    for (Index j = 0; j <= 8; ++j) {
+        EXPECT_EQ(lm.node_layers(3 * j + 2), 0) << j;
+        EXPECT_GT(lm.node_layers(3 * j), 0) << j;
+        EXPECT_GT(lm.node_layers(3 * j + 1), 0) << j;
+    }
+    const ValidationReport v = validate_mesh(lm.mesh);
+    EXPECT_TRUE(v.ok()) << (v.problems.empty() ? std::string() : v.problems.front());
+    const LayerReport r = layer_report(lm);
+    ASSERT_EQ(r.patches.size(), 1u);
+    EXPECT_EQ(r.patches[0].short_nodes(Shortfall::SharpEdge), 9);
+    Index sharp = 0;
+    for (const ShortNode& s : r.short_nodes)
+        if (s.reason == Shortfall::SharpEdge) {
+            ++sharp;
+            EXPECT_EQ(s.layers, 0);
+            EXPECT_DOUBLE_EQ(s.position.x(), 1.0);  // on the sharp edge
+        }
+    EXPECT_EQ(sharp, 9);
+    // Lower than the base's 110°: those stop too, and with them every node.
+    p.sharp_edge_stop_deg = 100.0;
+    EXPECT_THROW(extrude_layers(wall, p), TopologyError);
+    // 0: one direction there, and the edge's columns grow.
+    p.sharp_edge_stop_deg = 0.0;
+    const LayerMesh single = extrude_layers(wall, p);
+    Index grown = 0;
+    for (Index j = 0; j <= 8; ++j) grown += single.node_layers(3 * j + 2) > 0 ? 1 : 0;
+    EXPECT_GT(grown, 0);
+    for (const ShortNode& s : layer_report(single).short_nodes) EXPECT_NE(s.reason, Shortfall::SharpEdge);
+    // Out of range: an error naming the parameter.
+    p.sharp_edge_stop_deg = 200.0;
+    EXPECT_THROW(extrude_layers(wall, p), InputError);
 }
 
 TEST(Fans, NoFanWhereTheNodesAreExcluded) {

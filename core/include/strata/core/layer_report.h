@@ -28,10 +28,11 @@ enum class Shortfall : std::uint8_t {
     Twist,       ///< stopped: a cell it would make twists more than LayerParams::max_twist_deg
     Neighbours,  ///< stopped: with its neighbours stopped, the cell closing the step would be unusable
     NonFinite,   ///< stopped: its next position could not be computed
+    SharpEdge,   ///< stopped at the wall: on a convex edge too sharp for one direction, without a fan
 };
-inline constexpr std::size_t kShortfalls = 9;
+inline constexpr std::size_t kShortfalls = 10;
 /// "none", "proximity", "front", "held back", "quality", "turning", "twist", "neighbours",
-/// "non-finite".
+/// "non-finite", "sharp edge".
 std::string_view to_string(Shortfall reason);
 
 /// One wall patch.

@@ -75,6 +75,15 @@ struct LayerParams {
     /// direction per node would cap them near cos(turn / 2) (0.26 at 150°). 0: no fans. Only
     /// with local stopping (min_quality > 0). ALGORITHM.md says why 150° and not lower.
     double fan_angle_deg = 150.0;
+    /// Where a convex edge whose faces turn by this many degrees or more gets no fan (its chain
+    /// ends on a concave junction: a trailing edge on a fuselage or a tunnel wall; or the fan
+    /// angle is higher), the columns of its nodes stop at the wall (ALGORITHM.md, "Sharp edges
+    /// without a fan"): one direction there stands more than 60° off a face at the default 120°,
+    /// and OpenFOAM finds the faces between the two sides' cells skewed by about 2 / sin(α/2) for
+    /// a wedge of angle α = 180° − turn, above its limit of 4 from about 120° on. An edge of
+    /// the wall on a symmetry or outflow plane counts with its mirror image. 0: never (such
+    /// nodes keep one direction). Only with local stopping (min_quality > 0).
+    double sharp_edge_stop_deg = 110.0;
     /// Empty, or one per node of the surface given to extrude_layers: 1 where no fan may be
     /// (build_hybrid_mesh marks the nodes of a fan whose face on the layer top no pyramid can cap).
     std::vector<char> no_fan_nodes;
