@@ -38,6 +38,14 @@ Vec3 slerp(const Vec3& a, const Vec3& b, double t) {
     return unit(std::sin((1.0 - t) * ang) / s * a + std::sin(t * ang) / s * b);
 }
 
+/// The angle (degrees) by which unit normals \p nf and \p ng of two faces meeting at an edge
+/// through \p a turn, if the edge is convex (each face's centroid, \p cf, \p cg, lies behind the
+/// other's plane); else -1.
+double convex_turn_deg(const Vec3& nf, const Vec3& cf, const Vec3& ng, const Vec3& cg, const Vec3& a) {
+    if (!((cg - a).dot(nf) < 0.0 && (cf - a).dot(ng) < 0.0)) return -1.0;
+    return std::acos(std::clamp(nf.dot(ng), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
 /// Whether face \p f goes from \p a to \p b.
 bool goes(const SurfaceMesh& m, Index f, Index a, Index b) {
     const Index n = m.face_size(f);
@@ -352,10 +360,9 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_d
         const Index f = et.faces.row_begin(static_cast<Index>(e))[0], g = et.faces.row_begin(static_cast<Index>(e))[1];
         const Vec3 &nf_ = normal[static_cast<std::size_t>(f)], &ng = normal[static_cast<std::size_t>(g)];
         if (nf_ == Vec3::Zero() || ng == Vec3::Zero()) continue;
-        const double t = std::acos(std::clamp(nf_.dot(ng), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-        const bool convex = (face_centroid(wall, wall.points, g) - wall.points[a]).dot(nf_) < 0.0 &&
-                            (face_centroid(wall, wall.points, f) - wall.points[a]).dot(ng) < 0.0;
-        if (!convex || t < kFeatureDeg) continue;
+        const double t = convex_turn_deg(nf_, face_centroid(wall, wall.points, f), ng,
+                                         face_centroid(wall, wall.points, g), wall.points[a]);
+        if (t < kFeatureDeg) continue;
         turn[e] = t;
         keep[e] = 1;
         chains.unite(a, b);
@@ -377,6 +384,33 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_d
         if (bad.empty()) return fw;
         for (const Index e : bad) keep[static_cast<std::size_t>(e)] = 0;
     }
+}
+
+std::vector<char> sharp_single_nodes(const SurfaceMesh& wall, const std::vector<Vec3>& plane_normal,
+                                     double min_turn_deg) {
+    const auto n = static_cast<std::size_t>(wall.num_points());
+    std::vector<char> sharp(n, 0);
+    const EdgeTable et = edge_table(wall);
+    for (Index e = 0; e < et.faces.rows(); ++e) {
+        const Index a = et.nodes[static_cast<std::size_t>(e)][0], b = et.nodes[static_cast<std::size_t>(e)][1];
+        const Index* fs = et.faces.row_begin(e);
+        const Vec3 nf = unit(face_area_vector(wall, fs[0]));
+        if (nf == Vec3::Zero()) continue;
+        const Vec3 cf = face_centroid(wall, wall.points, fs[0]);
+        const Vec3& pa = wall.points[a];
+        double turn = -1.0;
+        if (et.faces.row_size(e) == 2) {
+            const Vec3 ng = unit(face_area_vector(wall, fs[1]));
+            if (ng == Vec3::Zero()) continue;
+            turn = convex_turn_deg(nf, cf, ng, face_centroid(wall, wall.points, fs[1]), pa);
+        } else if (et.faces.row_size(e) == 1 && static_cast<std::size_t>(b) < plane_normal.size()) {
+            const Vec3& p = plane_normal[static_cast<std::size_t>(a)];
+            if (p == Vec3::Zero() || (p - plane_normal[static_cast<std::size_t>(b)]).norm() > 1e-12) continue;
+            turn = convex_turn_deg(nf, cf, nf - 2.0 * nf.dot(p) * p, cf - 2.0 * (cf - pa).dot(p) * p, pa);
+        }
+        if (turn >= min_turn_deg) sharp[static_cast<std::size_t>(a)] = sharp[static_cast<std::size_t>(b)] = 1;
+    }
+    return sharp;
 }
 
 bool collapse_cell(CellType& type, std::array<Index, 8>& id) {

@@ -40,6 +40,17 @@ struct FanWall {
 /// ceil(turn / 90°) wedges. Empty (fan_edges 0) if no edge qualifies or \p fan_angle_deg is 0.
 FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_deg, const std::vector<char>& excluded);
 
+/// The nodes of \p wall (a fan wall: FanWall::mesh, or the wall itself) on a convex edge whose
+/// faces turn by \p min_turn_deg or more and that has no fan (ALGORITHM.md, "Sharp edges
+/// without a fan"): an edge between two faces (a fan's strips, of zero area, keep the two sides
+/// of a fanned edge apart, so it is not one), or an edge of the wall's open boundary whose nodes
+/// are held in one plane (\p plane_normal, unit, zero where none) with the face's mirror image
+/// in that plane. A fan's column on such an edge (a trailing edge without a fan that meets a
+/// tip's fan loop) is one too: its fan's first cells are then unusable, and extrude_layers
+/// drops that fan and marches again.
+std::vector<char> sharp_single_nodes(const SurfaceMesh& wall, const std::vector<Vec3>& plane_normal,
+                                     double min_turn_deg);
+
 /// A cell of \p type over node ids \p id (Gmsh order) some of which repeat (columns of a fan
 /// on the wall) as the standard cell of its distinct nodes: a hexahedron whose bottom is a
 /// collapsed edge pair becomes a prism, whose bottom is one node a pyramid; a prism or pyramid

@@ -197,46 +197,6 @@ void freeze_sharp_convex_nodes(const SurfaceMesh& wall, const Csr& vf, Stencils&
     }
 }
 
-/// Wall nodes on a convex edge whose faces turn by \p min_turn_deg or more and that has no fan
-/// (ALGORITHM.md, "Sharp edges without a fan"): an edge between two faces of \p wall (a fan's
-/// strips, of zero area, keep the two sides of a fanned edge apart, so it is not one), or an
-/// edge of the wall's open boundary whose nodes are held in one plane (\p plane_normal, zero
-/// where none) together with the face's mirror image in that plane. Nodes of a fan (\p fixed
-/// non-zero) and those sharing a face with one are left out: a column stopped at the wall
-/// beside a fan's column leaves that column's first cells unusable, and the fan would go.
-std::vector<char> sharp_single_nodes(const SurfaceMesh& wall, const std::vector<Vec3>& plane_normal,
-                                     const std::vector<Vec3>& fixed, double min_turn_deg) {
-    const auto n = static_cast<std::size_t>(wall.num_points());
-    std::vector<char> sharp(n, 0);
-    const double cos_min = std::cos(min_turn_deg * std::numbers::pi / 180.0);
-    // Faces f, g meet at node a along a convex edge turning min_turn_deg or more.
-    auto sharp_pair = [&](const Vec3& nf, const Vec3& cf, const Vec3& ng, const Vec3& cg, const Vec3& a) {
-        return nf.dot(ng) <= cos_min && (cg - a).dot(nf) < 0.0 && (cf - a).dot(ng) < 0.0;
-    };
-    const EdgeTable et = edge_table(wall);
-    for (Index e = 0; e < et.faces.rows(); ++e) {
-        const Index a = et.nodes[static_cast<std::size_t>(e)][0], b = et.nodes[static_cast<std::size_t>(e)][1];
-        const Index* fs = et.faces.row_begin(e);
-        const Vec3 nf = face_area_vector(wall, fs[0]);
-        if (!(nf.norm() > 0.0)) continue;
-        const Vec3 cf = face_centroid(wall, wall.points, fs[0]);
-        const Vec3& pa = wall.points[a];
-        bool hit = false;
-        if (et.faces.row_size(e) == 2) {
-            const Vec3 ng = face_area_vector(wall, fs[1]);
-            if (!(ng.norm() > 0.0)) continue;
-            hit = sharp_pair(nf.normalized(), cf, ng.normalized(), face_centroid(wall, wall.points, fs[1]), pa);
-        } else if (et.faces.row_size(e) == 1 && static_cast<std::size_t>(b) < plane_normal.size()) {
-            const Vec3& p = plane_normal[static_cast<std::size_t>(a)];
-            if (p == Vec3::Zero() || (p - plane_normal[static_cast<std::size_t>(b)]).norm() > 1e-12) continue;
-            const Vec3 u = nf.normalized();
-            hit = sharp_pair(u, cf, u - 2.0 * u.dot(p) * p, cf - 2.0 * (cf - pa).dot(p) * p, pa);
-        }
-        if (hit) sharp[static_cast<std::size_t>(a)] = sharp[static_cast<std::size_t>(b)] = 1;
-    }
-    return sharp;
-}
-
 /// f(α) of Eq. 18: full weight for neighbours leaning towards the normal, none beyond 90°.
 double concave_ramp(double alpha) {
     constexpr double q = std::numbers::pi / 4.0, h = std::numbers::pi / 2.0;
@@ -866,9 +826,11 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
                          ": need an angle in [0, 180] degrees (0: no fans)");
     Wall w = extract_wall(surface);
     const Index nwall = w.mesh.num_points();
-    // Fans at sharp convex edges (fans.h): with local stopping, where smoothing runs.
+    // Fans at sharp convex edges, and the stops at sharp edges without one (fans.h): with local
+    // stopping, where smoothing runs.
     FanWall fans;
-    if (params.min_quality > 0.0 && !params.keep_invalid && params.smoothing) {
+    const bool fans_on = params.min_quality > 0.0 && !params.keep_invalid && params.smoothing;
+    if (fans_on) {
         std::vector<char> excluded;
         if (!params.no_fan_nodes.empty()) {
             if (params.no_fan_nodes.size() != surface.points.size())
@@ -921,9 +883,9 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         if (share < 1.0) ++out.thinned_nodes;
         out.min_thickness_share = std::min(out.min_thickness_share, share);
     }
-    if (params.sharp_edge_stop_deg > 0.0 && params.min_quality > 0.0 && !params.keep_invalid && params.smoothing) {
+    if (fans_on && params.sharp_edge_stop_deg > 0.0) {
         // Sharp edges without a fan: their columns stop at the wall (ALGORITHM.md).
-        const std::vector<char> sharp = sharp_single_nodes(w.mesh, plane_normal, mc.fixed, params.sharp_edge_stop_deg);
+        const std::vector<char> sharp = sharp_single_nodes(w.mesh, plane_normal, params.sharp_edge_stop_deg);
         for (std::size_t u = 0; u < sharp.size(); ++u)
             if (sharp[u]) {
                 col.max_levels[u] = 0;
