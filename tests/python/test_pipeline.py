@@ -148,6 +148,8 @@ def test_errors_carry_strata_messages_in_keyword_names(tmp_path):
     for bad in (200, -1, float("nan")):
         with pytest.raises(strata.InputError, match=r"fan_angle_deg = \S+: need an angle in \[0, 180\]"):
             strata.layers(SPHERE_STL, fan_angle_deg=bad, **SMALL)
+        with pytest.raises(strata.InputError, match=r"sharp_edge_stop_deg = \S+: need an angle in \[0, 180\]"):
+            strata.layers(SPHERE_STL, sharp_edge_stop_deg=bad, **SMALL)
     with pytest.raises(strata.TopologyError):
         strata.surface(os.path.join(TEST_DATA, "cli_nonmanifold.stl"))
     with pytest.raises(strata.InputError):
