@@ -254,6 +254,25 @@ void print_units(const strata::PrepareReport& rep) {
     std::printf("units: %s; every length below and every length option is in them\n", text.c_str());
 }
 
+/// What --max-aspect-ratio did to the CAD walls (nothing to say when their first layer was fine).
+void print_wall_sizing(const strata::WallSizeReport& w) {
+    if (w.surfaces > 0 || w.curves > 0)
+        std::printf(
+            "walls: meshed again finer (%d CAD surfaces, %d curves under fans; down to size %s) so that the first "
+            "layer's aspect ratio stays under --max-aspect-ratio %s (OpenFOAM's checkMesh fails above 1000): worst "
+            "%.4g before, %.4g after\n",
+            static_cast<int>(w.surfaces), static_cast<int>(w.curves), strata::format_number(w.cap, 3).c_str(),
+            strata::format_number(w.max_aspect_ratio).c_str(), w.worst_before, w.worst_after);
+    else if (w.over_budget)
+        std::printf(
+            "warning: the first layer over the CAD walls reaches an aspect ratio of %.4g, above --max-aspect-ratio "
+            "%s; keeping it under needs wall faces of size %s, about %.3g of them, more than Strata makes unasked "
+            "(%s): give --size %s, or a thicker first layer (--max-aspect-ratio 0 silences this)\n",
+            w.worst_before, strata::format_number(w.max_aspect_ratio).c_str(), strata::format_number(w.cap, 3).c_str(),
+            w.faces_estimate, strata::format_number(strata::CadParams{}.wall_faces_budget).c_str(),
+            strata::format_number(w.cap, 3).c_str());
+}
+
 void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep, bool any_cad) {
     const strata::Csr loops = strata::boundary_loops(mesh);
     std::printf("surface: %d nodes, %d triangles, %d quadrilaterals, %d patches\n", static_cast<int>(mesh.num_points()),
@@ -307,6 +326,7 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
             static_cast<int>(r.needles_before), static_cast<int>(r.needles_after), r.sharpest_before_deg,
             r.sharpest_after_deg);
     }
+    print_wall_sizing(rep.walls);
     print_needles(mesh, rep, any_cad);
 }
 
@@ -586,7 +606,7 @@ int run_surface(const Common& c) {
 int run_layers(const Common& c) {
     const strata::LayerParams lp = strata::layer_params(c.o.layers);
     Terminal terminal(c.quiet);
-    const Start s = start(c, strata::prepare_params(c.o.surface), Output::Volume, terminal);
+    const Start s = start(c, strata::prepare_params(c.o.surface, &lp), Output::Volume, terminal);
     const auto t1 = std::chrono::steady_clock::now();
     const strata::LayerMesh lm = strata::extrude_layers(s.surface, lp, &terminal);
     const double t_layers = seconds_since(t1);
@@ -612,7 +632,7 @@ int run_mesh(const Common& c, const PlotOptions& po) {
     const strata::HybridParams hp = strata::hybrid_params(c.o.layers, c.o.mesh);
     const auto [cut_axis, cut_value] = parse_cut(po.cut);
     Terminal terminal(c.quiet);
-    const Start s = start(c, strata::prepare_params(c.o.surface), Output::Volume, terminal);
+    const Start s = start(c, strata::prepare_params(c.o.surface, &hp.layers), Output::Volume, terminal);
     strata::HybridReport hr;
     const strata::VolumeMesh mesh = strata::build_hybrid_mesh(s.surface, hp, &terminal, &hr);
     const auto t1 = std::chrono::steady_clock::now();

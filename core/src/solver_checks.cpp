@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 
 namespace strata {
@@ -80,6 +81,43 @@ std::vector<std::string> SolverChecks::failures() const {
         out.push_back(std::to_string(negative_pyramids) + " faces whose pyramid to a cell centre is inverted (" +
                       worst_pyramid + ")");
     return out;
+}
+
+namespace {
+
+/// checkMesh's aspect ratio from a cell's summed absolute face-area components and its volume
+/// (primitiveMeshTools::cellClosedness).
+double aspect_ratio_of(const Vec3& mag, double volume) {
+    const double v = std::max(kRootVSmall, volume);
+    return std::max(mag.maxCoeff() / (mag.minCoeff() + kRootVSmall), mag.sum() / 6.0 / std::pow(v, 2.0 / 3.0));
+}
+
+}  // namespace
+
+double fan_wedge_aspect_ratio(const Vec3& a, const Vec3& b, const Vec3& d1, const Vec3& d2, double h) {
+    const Vec3 e = b - a, p1 = h * d1, p2 = h * d2;
+    const Vec3 end = 0.5 * p1.cross(p2);  // each end triangle's area vector
+    // The ends, the two sides along the directions and the outer side.
+    const Vec3 mag =
+        2.0 * end.cwiseAbs() + e.cross(p1).cwiseAbs() + e.cross(p2).cwiseAbs() + e.cross(p2 - p1).cwiseAbs();
+    const double volume = std::abs(end.dot(e));
+    if (!(volume > 0.0)) return std::numeric_limits<double>::infinity();
+    return aspect_ratio_of(mag, volume);
+}
+
+double right_prism_aspect_ratio(const Vec3* corners, int n, double h) {
+    Vec3 c = Vec3::Zero();
+    for (int i = 0; i < n; ++i) c += corners[i];
+    c /= static_cast<double>(n);
+    Vec3 area = Vec3::Zero();
+    for (int i = 0; i < n; ++i) area += 0.5 * (corners[i] - c).cross(corners[(i + 1) % n] - c);
+    const double a = area.norm();
+    if (!(a > 0.0) || !(h > 0.0)) return std::numeric_limits<double>::infinity();
+    const Vec3 normal = area / a;
+    // The same sums as a cell's in solver_checks: the bottom and top faces, then the sides.
+    Vec3 mag = 2.0 * area.cwiseAbs();
+    for (int i = 0; i < n; ++i) mag += (h * (corners[(i + 1) % n] - corners[i]).cross(normal)).cwiseAbs();
+    return aspect_ratio_of(mag, a * h);
 }
 
 SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads) {

@@ -23,9 +23,27 @@ std::string lower(std::string s) {
 }
 
 /// The reader for \p path's extension: CAD through Gmsh (mesh_cad), STL and MSH through io/.
-SurfaceMesh read_any(const std::string& path, const CadParams& cad, CadUnits* units) {
+SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const CadParams& cad, CadUnits* units,
+                     WallSizeReport* walls) {
     check_input_file(path);
-    if (is_cad_file(path)) return mesh_cad(path, cad, units);
+    if (is_cad_file(path)) {
+        CadParams with_kinds = cad;
+        with_kinds.wall_patch_kinds = params.patch_kinds;
+        WallSizeReport one;
+        SurfaceMesh mesh = mesh_cad(path, with_kinds, units, &one);
+        if (walls) {
+            // Several inputs: the worst of them, the caps' surfaces and faces summed.
+            walls->max_aspect_ratio = one.max_aspect_ratio;
+            walls->worst_before = std::max(walls->worst_before, one.worst_before);
+            walls->worst_after = std::max(walls->worst_after, one.worst_after);
+            walls->cap = std::max(walls->cap, one.cap);
+            walls->surfaces += one.surfaces;
+            walls->curves += one.curves;
+            walls->faces_estimate += one.faces_estimate;
+            walls->over_budget = walls->over_budget || one.over_budget;
+        }
+        return mesh;
+    }
     const std::string ext = lower_extension(path);
     if (ext == ".stl") return read_stl(path);
     if (ext == ".msh") return read_msh(path);
@@ -36,17 +54,18 @@ SurfaceMesh read_any(const std::string& path, const CadParams& cad, CadUnits* un
 
 }  // namespace
 
+PatchKind patch_kind_of(const std::string& name, const std::vector<std::pair<std::string, PatchKind>>& kinds) {
+    for (auto it = kinds.rbegin(); it != kinds.rend(); ++it)
+        if (it->first == name) return it->second;
+    const std::string n = lower(name);
+    if (n.find("symmetry") != std::string::npos) return PatchKind::Symmetry;
+    if (n.find("farfield") != std::string::npos) return PatchKind::Farfield;
+    return PatchKind::Wall;
+}
+
 void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::string, PatchKind>>& kinds,
                         const std::string& source) {
-    for (Patch& p : mesh.patches) {
-        const std::string n = lower(p.name);
-        if (n.find("symmetry") != std::string::npos)
-            p.kind = PatchKind::Symmetry;
-        else if (n.find("farfield") != std::string::npos)
-            p.kind = PatchKind::Farfield;
-        else
-            p.kind = PatchKind::Wall;
-    }
+    for (Patch& p : mesh.patches) p.kind = patch_kind_of(p.name, {});
     for (const auto& [name, kind] : kinds) {
         const Index i = find_patch(mesh, name);
         if (i == kNone) {
@@ -164,6 +183,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
     strata::report(progress, "surface", 0.0);
     CadParams cad = params.cad;
     CadUnits units;
+    WallSizeReport walls;
     SurfaceMesh all;
     std::string source;
     for (const std::string& path : paths) {
@@ -173,7 +193,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
         const bool has_unit = ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
         CadParams this_cad = cad;
         if (!has_unit) this_cad.units = params.cad.units;
-        const SurfaceMesh one = read_any(path, this_cad, &read_in);
+        const SurfaceMesh one = read_any(path, params, this_cad, &read_in, &walls);
         // The first CAD file with a unit sets it for the others (unless one was asked).
         if (!read_in.unit.empty() && units.unit.empty()) {
             units = read_in;
@@ -197,7 +217,10 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
         source += (source.empty() ? "" : " + ") + path;
     }
     SurfaceMesh out = prepare_mesh(std::move(all), params, source, report, progress);
-    if (report) report->units = units;
+    if (report) {
+        report->units = units;
+        report->walls = walls;
+    }
     return out;
 }
 
@@ -205,9 +228,13 @@ SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params
                             Progress* progress) {
     strata::report(progress, "surface", 0.0);
     CadUnits units;
-    SurfaceMesh raw = read_any(path, params.cad, &units);
+    WallSizeReport walls;
+    SurfaceMesh raw = read_any(path, params, params.cad, &units, &walls);
     SurfaceMesh out = prepare_mesh(std::move(raw), params, path, report, progress);
-    if (report) report->units = units;
+    if (report) {
+        report->units = units;
+        report->walls = walls;
+    }
     return out;
 }
 

@@ -332,4 +332,14 @@ void merge_msh_file(const std::string& path) {
     }
 }
 
+std::vector<std::pair<int, std::string>> surface_patch_names(const std::vector<int>& surfaces) {
+    const GmshLock lock("surface_patch_names");
+    std::vector<Patch> patches;
+    std::map<int, Index> patch_of;
+    gmsh_call("naming the patches of the surfaces", [&] { patch_of = plan_patches(surfaces, patches); });
+    std::vector<std::pair<int, std::string>> out;
+    for (const auto& [s, p] : patch_of) out.emplace_back(s, patches[static_cast<std::size_t>(p)].name);
+    return out;
+}
+
 }  // namespace strata

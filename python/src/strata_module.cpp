@@ -370,13 +370,17 @@ py::list patch_kinds(const SurfaceMesh& s) {
 }
 
 py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double seconds) {
-    return py::dict("nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
-                    "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes,
-                    "collapsed_faces"_a = r.collapsed_faces, "flipped_faces"_a = r.orient.flipped_faces,
-                    "components"_a = r.orient.components, "closed_components"_a = r.orient.closed_components,
-                    "fused_components"_a = r.fused_components, "touching_faces"_a = r.touching_faces,
-                    "remeshed"_a = r.remeshed, "internal_flow"_a = r.internal_flow, "units"_a = r.units.unit,
-                    "scale"_a = r.scale, "seconds"_a = seconds);
+    return py::dict(
+        "nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
+        "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes, "collapsed_faces"_a = r.collapsed_faces,
+        "flipped_faces"_a = r.orient.flipped_faces, "components"_a = r.orient.components,
+        "closed_components"_a = r.orient.closed_components, "fused_components"_a = r.fused_components,
+        "touching_faces"_a = r.touching_faces, "remeshed"_a = r.remeshed, "internal_flow"_a = r.internal_flow,
+        "units"_a = r.units.unit, "scale"_a = r.scale, "seconds"_a = seconds,
+        "walls"_a = py::dict("max_aspect_ratio"_a = r.walls.max_aspect_ratio, "worst_before"_a = r.walls.worst_before,
+                             "worst_after"_a = r.walls.worst_after, "size"_a = r.walls.cap,
+                             "surfaces"_a = r.walls.surfaces, "curves"_a = r.walls.curves,
+                             "faces_estimate"_a = r.walls.faces_estimate, "over_budget"_a = r.walls.over_budget));
 }
 
 py::dict coverage_report(const LayerReport& r) {
@@ -485,13 +489,14 @@ struct Prepared {
 };
 
 /// The inputs read and prepared as the CLI does (strata::prepare_params, prepare_surfaces).
-Prepared prepare(const std::vector<std::string>& inputs, Options& o, Progress* progress) {
+Prepared prepare(const std::vector<std::string>& inputs, Options& o, Progress* progress,
+                 const LayerParams* layers = nullptr) {
     const auto t0 = std::chrono::steady_clock::now();
     if (inputs.empty()) throw InputError("no input: give a CAD or surface-mesh file, or a list of them");
     o.surface.inputs = inputs;
     o.surface.input = input_name(inputs);
     Prepared p;
-    p.surface = prepare_surfaces(inputs, prepare_params(o.surface), &p.report, progress);
+    p.surface = prepare_surfaces(inputs, prepare_params(o.surface, layers), &p.report, progress);
     p.seconds = seconds_since(t0);
     return p;
 }
@@ -528,7 +533,7 @@ py::object run_layers(const py::object& input, const py::dict& kwargs, const std
     const double version = parse_msh_version(msh_version);
     if (output) check_volume_output(*output, version);
     return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
-        Prepared p = prepare(inputs, o, progress);
+        Prepared p = prepare(inputs, o, progress, &lp);
         auto t = std::chrono::steady_clock::now();
         LayerMesh lm = extrude_layers(p.surface, lp, progress);
         const double t_layers = seconds_since(t);
@@ -563,7 +568,7 @@ py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::
     const double version = parse_msh_version(msh_version);
     if (output) check_volume_output(*output, version);
     return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
-        Prepared p = prepare(inputs, o, progress);
+        Prepared p = prepare(inputs, o, progress, &hp.layers);
         HybridReport hr;
         auto result = std::make_unique<PyMesh>();
         result->mesh = build_hybrid_mesh(p.surface, hp, progress, &hr);

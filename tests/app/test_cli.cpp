@@ -677,6 +677,34 @@ TEST(Cli, FighterHalfModelWithInletDuct) {
     EXPECT_GT(below, -1e-9);
 }
 
+// --max-aspect-ratio (CadParams::max_aspect_ratio): a unit box (its edges in sevenths) under a
+// first layer of 5e-5 has prisms near 1900 in aspect ratio, which checkMesh fails. Its walls are
+// meshed again finer, the summary says so, and the mesh passes; 0 keeps the surface; too many
+// faces for the budget keeps it too, with a warning naming the size that would do.
+TEST(Cli, WallsAreMeshedFinerForTheFirstLayersAspectRatio) {
+    test::ScratchDir dir("cli_max_aspect");
+    const std::string box = "mesh '" + test_data("cad_box_groups.geo") + "' --layers 3 --first-height 5e-5 ";
+    CliResult r = strata_cli(dir, box + "-o fine.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("walls: meshed again finer (6 CAD surfaces, 0 curves under fans; down to size 0.035)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    r = strata_cli(dir, box + "--max-aspect-ratio 0 -o coarse.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out.find("walls: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("cells with an aspect ratio above 1000"), std::string::npos) << r.out;
+    // A thousand times thinner: about 11 million faces, far over the budget.
+    r = strata_cli(dir, "mesh '" + test_data("cad_box_groups.geo") + "' --layers 3 --first-height 5e-8 -o thin.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("more than Strata makes unasked (200000): give --size 3.5e-05"), std::string::npos) << r.out;
+    // Bad values, and the option on a surface mesh (it sizes CAD walls only).
+    expect_clean_failure(box + "-o out.msh --max-aspect-ratio 5", "--max-aspect-ratio", "aspect_small");
+    expect_clean_failure(
+        "mesh '" + example_data("sphere.stl") + "' -o out.msh --layers 3 --first-height 1e-3 --max-aspect-ratio 500",
+        "--max-aspect-ratio", "aspect_stl");
+}
+
 TEST(Cli, MeshBadInputsFailCleanly) {
     // Open, but not along one plane: not a half model that could be closed.
     expect_clean_failure("mesh '" + test_data("cli_open_bent.stl") + "' -o out.cgr --layers 2 --first-height 1e-3",

@@ -135,3 +135,86 @@ TEST(SolverChecks, FiguresAreTheSameForAnyThreadCount) {
         EXPECT_EQ(a.skew_faces, b.skew_faces);
     }
 }
+
+namespace {
+
+/// One cell of \p type on \p points (in Strata's node order, the bottom either way round: it
+/// is turned to give the cell a positive volume), its faces the boundary.
+template <std::size_t N>
+VolumeMesh one_cell(std::vector<Vec3> points, CellType type) {
+    const Vec3 bottom = (points[1] - points[0]).cross(points[2] - points[0]);
+    if (bottom.dot(points[N / 2] - points[0]) < 0.0) {  // Strata's bottom faces its top
+        std::swap(points[1], points[N / 2 - 1]);
+        std::swap(points[N / 2 + 1], points[N - 1]);
+    }
+    VolumeMesh m;
+    m.points = std::move(points);
+    std::array<Index, N> cell{};
+    for (std::size_t i = 0; i < N; ++i) cell[i] = static_cast<Index>(i);
+    if constexpr (N == 6) m.prisms.push_back(cell);
+    if constexpr (N == 8) m.hexes.push_back(cell);
+    m.boundary.patches.push_back({"wall", PatchKind::Wall});
+    const CellFaceTable& t = cell_faces(type);
+    for (int f = 0; f < t.count; ++f) {
+        Index v[4];
+        const int n = t.size[f];
+        for (int c = 0; c < n; ++c) v[c] = cell[static_cast<std::size_t>(t.node[f][c])];
+        m.boundary.add_face(v, n, 0);
+    }
+    return m;
+}
+
+}  // namespace
+
+TEST(SolverChecks, RightPrismAspectRatioIsThatOfTheCellItPredicts) {
+    // A triangle and a quad tilted against the axes (the Cartesian components are what count),
+    // and the right prism and hexahedron of height h on them, measured as cells.
+    const Vec3 u = Vec3(1.0, 0.3, 0.2).normalized(), w = Vec3(-0.2, 1.0, 0.4);
+    const Vec3 n = u.cross(w).normalized(), v = n.cross(u);
+    for (double h : {1e-4, 1e-2, 0.5}) {
+        const std::array<Vec3, 3> tri{Vec3(0.1, 0.2, 0.3), Vec3(0.1, 0.2, 0.3) + 0.9 * u,
+                                      Vec3(0.1, 0.2, 0.3) + 0.2 * u + 0.5 * v};
+        std::vector<Vec3> p(tri.begin(), tri.end());
+        for (const Vec3& x : tri) p.push_back(x + h * n);
+        const double predicted = right_prism_aspect_ratio(tri.data(), 3, h);
+        const SolverChecks s = checks(one_cell<6>(p, CellType::Prism));
+        EXPECT_EQ(s.negative_pyramids, 0);
+        EXPECT_NEAR(s.max_aspect_ratio, predicted, 1e-9 * predicted) << h;
+        // The other orientation of the face: the same cell.
+        const std::array<Vec3, 3> back{tri[0], tri[2], tri[1]};
+        EXPECT_NEAR(right_prism_aspect_ratio(back.data(), 3, h), predicted, 1e-9 * predicted);
+
+        const std::array<Vec3, 4> quad{Vec3::Zero(), 0.7 * u, 0.7 * u + 0.4 * v, 0.4 * v};
+        std::vector<Vec3> q(quad.begin(), quad.end());
+        for (const Vec3& x : quad) q.push_back(x + h * n);
+        const double hex = right_prism_aspect_ratio(quad.data(), 4, h);
+        EXPECT_NEAR(checks(one_cell<8>(q, CellType::Hex)).max_aspect_ratio, hex, 1e-9 * hex) << h;
+    }
+    // An axis-aligned unit square under 1e-4: Σ|S| = (2h, 2h, 2), the ratio 1 / h.
+    const std::array<Vec3, 4> square{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
+    EXPECT_NEAR(right_prism_aspect_ratio(square.data(), 4, 1e-4), 1e4, 1e-6);
+    const std::array<Vec3, 3> flat{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};
+    EXPECT_TRUE(std::isinf(right_prism_aspect_ratio(flat.data(), 3, 1e-4)));
+}
+
+TEST(SolverChecks, FanWedgeAspectRatioIsThatOfTheCellItPredicts) {
+    // A fan's first wedge on an edge along y (the worst case: its ends face y alone) and on a
+    // skewed edge, 75 degrees between its directions (a 150-degree edge's two wedges).
+    const double h = 1e-3, angle = 75.0 * std::numbers::pi / 180.0;
+    for (const Vec3& along : {Vec3(0, 1, 0), Vec3(0.3, 1.0, -0.2).normalized()}) {
+        const Vec3 d1 = along.cross(Vec3(0, 0, 1)).normalized(), side = along.cross(d1);
+        const Vec3 d2 = std::cos(angle) * d1 + std::sin(angle) * side;
+        const Vec3 a(0.5, -0.1, 0.2), b = a + 0.4 * along;
+        const double predicted = fan_wedge_aspect_ratio(a, b, d1, d2, h);
+        // Strata's prism order: bottom a, a + h d1, a + h d2; top the same at b.
+        std::vector<Vec3> p{a, a + h * d1, a + h * d2, b, b + h * d1, b + h * d2};
+        const SolverChecks s = checks(one_cell<6>(p, CellType::Prism));
+        EXPECT_EQ(s.negative_pyramids, 0);
+        EXPECT_NEAR(s.max_aspect_ratio, predicted, 1e-9 * predicted);
+    }
+    // Along y: about twice the edge's length over h sin(angle) (0.4 / 1e-3 / 0.966 ≈ 414).
+    const double y = fan_wedge_aspect_ratio(Vec3::Zero(), Vec3(0, 0.4, 0), Vec3(1, 0, 0),
+                                            Vec3(std::cos(angle), 0, std::sin(angle)), h);
+    EXPECT_GT(y, 1.5 * 0.4 / h / std::sin(angle));
+    EXPECT_LT(y, 2.5 * 0.4 / h / std::sin(angle));
+}

@@ -3,6 +3,7 @@
 // topology.h, so these tests do not lean on another unit's code.
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/solver_checks.h>
 #include <strata/geometry/cad.h>
 #include <strata/io/gmsh_session.h>
 
@@ -138,6 +139,20 @@ std::string error_text(F&& f) {
         return e.what();
     }
     return "<no exception>";
+}
+
+/// The largest first-layer aspect ratio (right_prism_aspect_ratio) over the faces of \p m's
+/// wall patches, and the longest edge of the patch named \p patch.
+double worst_wall_aspect(const SurfaceMesh& m, double h) {
+    double worst = 0.0;
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        if (m.patches[static_cast<std::size_t>(m.face_patch[f])].kind != PatchKind::Wall) continue;
+        std::array<Vec3, 4> c;
+        for (Index i = 0; i < m.face_size(f); ++i)
+            c[static_cast<std::size_t>(i)] = m.points[static_cast<std::size_t>(m.face_node(f, i))];
+        worst = std::max(worst, right_prism_aspect_ratio(c.data(), static_cast<int>(m.face_size(f)), h));
+    }
+    return worst;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -570,6 +585,136 @@ TEST(MeshCadErrors, FuseNeedsOpenCascadeSolids) {
     const SurfaceMesh m = mesh_cad(path, {});
     EXPECT_TRUE(closed(m));
     EXPECT_EQ(components(m), 2);
+}
+
+}  // namespace
+}  // namespace strata
+
+namespace strata {
+namespace {
+
+TEST(MeshCadWalls, WallsTooCoarseForTheFirstLayerAreMeshedAgainFiner) {
+    // The unit box (Gmsh meshes its edges in sevenths) under a first layer of 5e-5: prisms near
+    // 1900, above checkMesh's 1000. Meshed again, every wall face stays under the limit.
+    CadParams p;
+    p.size = 0.5;
+    const SurfaceMesh coarse = mesh_cad(test_data("cad_box_groups.geo"), p);
+    EXPECT_GT(worst_wall_aspect(coarse, 5e-5), 1000.0);
+    p.first_height = 5e-5;
+    WallSizeReport r;
+    const SurfaceMesh fine = mesh_cad(test_data("cad_box_groups.geo"), p, nullptr, &r);
+    expect_well_formed(fine);
+    EXPECT_TRUE(closed(fine));
+    EXPECT_EQ(r.max_aspect_ratio, 1000.0);
+    EXPECT_NEAR(r.worst_before, worst_wall_aspect(coarse, 5e-5), 1e-9 * r.worst_before);
+    EXPECT_NEAR(r.worst_after, worst_wall_aspect(fine, 5e-5), 1e-9 * r.worst_after);
+    EXPECT_LE(r.worst_after, 1000.0);
+    EXPECT_EQ(r.surfaces, 6);  // every face is a wall
+    EXPECT_EQ(r.curves, 0);    // a box has no fan edge (and no fan angle was given)
+    EXPECT_NEAR(r.cap, 0.035, 1e-12);
+    EXPECT_FALSE(r.over_budget);
+    EXPECT_GT(fine.num_faces(), 10 * coarse.num_faces());
+    EXPECT_LT(fine.num_faces(), 2.0 * r.faces_estimate);
+    EXPECT_GT(fine.num_faces(), 0.5 * r.faces_estimate);
+
+    // A patch that is not a wall is not capped (the inlet named a farfield; Gmsh still grades it
+    // from its curves, which it shares with the walls, so here it is as fine).
+    p.wall_patch_kinds = {{"inlet", PatchKind::Farfield}};
+    const SurfaceMesh five = mesh_cad(test_data("cad_box_groups.geo"), p, nullptr, &r);
+    EXPECT_EQ(r.surfaces, 5);
+    EXPECT_LE(r.worst_after, 1000.0);
+
+    // The same settings give the same mesh.
+    const SurfaceMesh again = mesh_cad(test_data("cad_box_groups.geo"), p);
+    EXPECT_EQ(again.points, five.points);
+    EXPECT_EQ(again.face_nodes, five.face_nodes);
+}
+
+TEST(MeshCadWalls, NothingChangesWhereTheFirstLayerIsFineOrTheLimitIsOff) {
+    CadParams p;
+    p.size = 0.5;
+    const SurfaceMesh plain = mesh_cad(test_data("cad_box_groups.geo"), p);
+    WallSizeReport r;
+    p.first_height = 0.01;  // prisms near 10
+    SurfaceMesh m = mesh_cad(test_data("cad_box_groups.geo"), p, nullptr, &r);
+    EXPECT_EQ(m.points, plain.points);
+    EXPECT_EQ(r.surfaces + r.curves, 0);
+    EXPECT_LT(r.worst_before, 1000.0);
+    EXPECT_EQ(r.worst_after, r.worst_before);
+    p.first_height = 5e-5;
+    p.max_aspect_ratio = 0.0;
+    m = mesh_cad(test_data("cad_box_groups.geo"), p, nullptr, &r);
+    EXPECT_EQ(m.points, plain.points);
+    EXPECT_EQ(r.worst_before, 0.0);
+}
+
+TEST(MeshCadWalls, OverTheFaceBudgetTheSizeIsKeptAndTheReportSaysWhy) {
+    CadParams p;
+    p.size = 0.5;
+    const SurfaceMesh plain = mesh_cad(test_data("cad_box_groups.geo"), p);
+    p.first_height = 5e-5;
+    p.wall_faces_budget = 5000;  // the box would need about 6 / (0.433 * 0.035^2) = 11,300
+    WallSizeReport r;
+    const SurfaceMesh m = mesh_cad(test_data("cad_box_groups.geo"), p, nullptr, &r);
+    EXPECT_EQ(m.points, plain.points);
+    EXPECT_TRUE(r.over_budget);
+    EXPECT_EQ(r.surfaces, 0);
+    EXPECT_GT(r.faces_estimate, 10000.0);
+    EXPECT_LT(r.faces_estimate, 13000.0);
+    EXPECT_NEAR(r.cap, 0.035, 1e-12);
+    EXPECT_GT(r.worst_after, 1000.0);
+}
+
+TEST(MeshCadWalls, FanEdgesAreMeshedFinerAlongTheirCurve) {
+    // A blade with a 20-degree edge along y (its faces turn by 160 degrees: a fan at the default
+    // 150) at size 0.15: the fan's first wedge is about twice the edge over h, 2 * 0.14 / 1.5e-4
+    // = 1900, while a prism on a face is near 500. Only the edge's curve is refined.
+    const ScratchDir dir("mesh_cad_fan");
+    const std::string geo =
+        write_file(dir, "blade.geo",
+                   "SetFactory(\"OpenCASCADE\");\n"
+                   "Point(1) = {0, 0, 0};\nPoint(2) = {1, 0, 0.1763};\nPoint(3) = {1, 0, -0.1763};\n"
+                   "Line(1) = {1, 2};\nLine(2) = {2, 3};\nLine(3) = {3, 1};\n"
+                   "Curve Loop(1) = {1, 2, 3};\nPlane Surface(1) = {1};\n"
+                   "Extrude {0, 1, 0} { Surface{1}; }\n");
+    CadParams p;
+    p.size = 0.15;
+    p.first_height = 1.5e-4;
+    WallSizeReport r;
+    SurfaceMesh m = mesh_cad(geo, p, nullptr, &r);
+    EXPECT_EQ(r.surfaces + r.curves, 0);  // no fan angle given: no fan is predicted
+    p.fan_angle_deg = 150.0;
+    m = mesh_cad(geo, p, nullptr, &r);
+    expect_well_formed(m);
+    EXPECT_TRUE(closed(m));
+    EXPECT_GT(r.worst_before, 1500.0);
+    EXPECT_LE(r.worst_after, 1000.0);
+    EXPECT_EQ(r.surfaces, 0);
+    EXPECT_EQ(r.curves, 1);
+    // The edge at x = 0 is now in segments of at most about r.cap.
+    double longest = 0.0;
+    for (Index f = 0; f < m.num_faces(); ++f)
+        for (Index i = 0, n = m.face_size(f); i < n; ++i) {
+            const Vec3& a = m.points[static_cast<std::size_t>(m.face_node(f, i))];
+            const Vec3& b = m.points[static_cast<std::size_t>(m.face_node(f, (i + 1) % n))];
+            if (std::abs(a.x()) < 1e-9 && std::abs(b.x()) < 1e-9) longest = std::max(longest, (a - b).norm());
+        }
+    EXPECT_GT(longest, 0.0);
+    EXPECT_LE(longest, 1.5 * r.cap);
+    EXPECT_LT(r.cap, 0.1);
+}
+
+TEST(MeshCadWalls, BadLimitsAreInputErrors) {
+    const std::string path = test_data("cad_unit_sphere.geo");
+    CadParams p;
+    p.max_aspect_ratio = 5.0;
+    EXPECT_NE(error_text([&] { mesh_cad(path, p); }).find("CadParams::max_aspect_ratio = 5"), std::string::npos);
+    p = {};
+    p.first_height = -1.0;
+    EXPECT_THROW(mesh_cad(path, p), InputError);
+    p = {};
+    p.wall_faces_budget = 0.0;
+    EXPECT_THROW(mesh_cad(path, p), InputError);
 }
 
 }  // namespace

@@ -131,6 +131,23 @@ def test_patches_keyword(tmp_path):
         strata.surface(os.path.join(TEST_DATA, "cad_box_groups.geo"), patches={"nosuch": "wall"})
 
 
+def test_cad_walls_are_meshed_finer_for_the_first_layers_aspect_ratio():
+    # The unit box under a first layer of 5e-5: its prisms would be near 1900 in OpenFOAM's
+    # aspect ratio (checkMesh fails above 1000); layers() and mesh() mesh its walls finer,
+    # surface() (no layers) and max_aspect_ratio=0 leave them.
+    box = os.path.join(TEST_DATA, "cad_box_groups.geo")
+    r = strata.layers(box, layers=2, first_height=5e-5).report
+    walls = r["surface"]["walls"]
+    assert walls["surfaces"] == 6 and walls["worst_before"] > 1000 and walls["worst_after"] <= 1000
+    assert walls["size"] == pytest.approx(0.035)
+    assert r["surface"]["triangles"] > 10000
+    off = strata.layers(box, layers=2, first_height=5e-5, max_aspect_ratio=0).report["surface"]
+    assert off["walls"]["surfaces"] == 0 and off["triangles"] < r["surface"]["triangles"] / 5
+    assert strata.surface(box).report["walls"]["worst_before"] == 0
+    with pytest.raises(strata.InputError, match=r"max_aspect_ratio = 5"):
+        strata.layers(box, layers=2, first_height=5e-5, max_aspect_ratio=5)
+
+
 def test_errors_carry_strata_messages_in_keyword_names(tmp_path):
     with pytest.raises(strata.InputError, match="missing.stl") as e:
         strata.mesh(str(tmp_path / "missing.stl"), **SMALL)

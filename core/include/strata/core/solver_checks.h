@@ -56,4 +56,16 @@ struct SolverChecks {
 /// chunks merged in order (ties to the lower face): the same for any \p threads.
 SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads = 0);
 
+/// checkMesh's aspect ratio of the right prism (hexahedron for a quad) of height \p h standing
+/// on the wall face with corners \p corners (3 or 4, either orientation): what the first layer
+/// over that face will show, before the layers exist (for sizing the surface). A face without
+/// area gives infinity.
+double right_prism_aspect_ratio(const Vec3* corners, int n, double h);
+
+/// checkMesh's aspect ratio of the first cell of a fan (ALGORITHM.md, "Fans") on the wall edge
+/// \p a - \p b: the wedge between the directions \p d1 and \p d2 (unit, square to the edge),
+/// \p h long. Its end triangles are about h² small against sides of the edge's length, so it is
+/// about twice the edge length over h sin(angle): fans want shorter edges than faces do.
+double fan_wedge_aspect_ratio(const Vec3& a, const Vec3& b, const Vec3& d1, const Vec3& d2, double h);
+
 }  // namespace strata

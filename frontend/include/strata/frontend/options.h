@@ -40,8 +40,10 @@ bool any_cad_input(const std::vector<std::string>& inputs);
 std::vector<std::pair<std::string, PatchKind>> parse_patch_options(const std::vector<std::string>& items);
 
 /// The surface parameters from the options; surface-meshing options on a surface mesh, two
-/// sizes at once and --mixed with --remesh are refused (InputError).
-PrepareParams prepare_params(const SurfaceOptions& options);
+/// sizes at once and --mixed with --remesh are refused (InputError). With \p layers (the
+/// layers and mesh commands), CAD walls are sized for the first layer's height
+/// (CadParams::first_height, in the CAD's unit: the height over PrepareParams::scale).
+PrepareParams prepare_params(const SurfaceOptions& options, const LayerParams* layers = nullptr);
 
 /// Layer options: the LayerParams fields, plus the enums as text.
 struct LayerOptions {

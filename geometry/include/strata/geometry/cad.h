@@ -6,6 +6,7 @@
 #include <strata/core/surface_mesh.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace strata {
@@ -62,6 +63,42 @@ struct CadParams {
     /// parse_length_unit); empty: the unit the file declares (millimetres if it declares none
     /// Strata knows). InputError for an unknown unit, or for a BREP or .geo file (no unit).
     std::string units;
+    /// The first boundary-layer height, in the unit of the result, and the largest OpenFOAM
+    /// aspect ratio its cells may have (checkMesh fails a mesh above 1000); either 0: no limit.
+    /// A first layer much thinner than its wall face is flatter than checkMesh accepts (about
+    /// the face's longest edge over the height, right_prism_aspect_ratio). After meshing, every
+    /// wall surface with a face whose right prism of this height would exceed
+    /// max_aspect_ratio is meshed again (with all the others, so shared curves stay
+    /// conforming) at 0.7 max_aspect_ratio first_height there: a Gmsh size callback on
+    /// those surfaces, their curves and points, below the sizes they would get. A surface is a
+    /// wall if its patch is one by patch_kind_of with \p wall_patch_kinds (prepare.h): farfield,
+    /// symmetry and other surfaces are not capped (Gmsh grades them from their curves, finer
+    /// where they meet a capped wall).
+    double first_height = 0.0;
+    double max_aspect_ratio = 1000.0;
+    /// The layers' fan angle (LayerParams::fan_angle_deg, set by the front-ends; 0: no fans):
+    /// a wall edge whose faces turn by this much or more gets a fan, whose first cells are about
+    /// twice the edge's length over the height (fan_wedge_aspect_ratio), so a curve carrying
+    /// such edges is meshed finer where they would exceed max_aspect_ratio (the surfaces beside
+    /// it grade from it).
+    double fan_angle_deg = 0.0;
+    std::vector<std::pair<std::string, PatchKind>> wall_patch_kinds;
+    /// The walls are not meshed again (WallSizeReport says so) when they would get more than
+    /// about this many faces from it, estimated from the surfaces' areas: a 20 x 10 x 20 tunnel
+    /// lined with layers from 1e-4 would need 370,000 (and tens of millions of tetrahedra).
+    double wall_faces_budget = 200000;
+};
+
+/// What CadParams::max_aspect_ratio did.
+struct WallSizeReport {
+    double max_aspect_ratio = 0.0;  ///< asked (0: no limit)
+    double worst_before = 0.0;      ///< the largest first-layer aspect ratio of the first mesh's wall faces
+    double worst_after = 0.0;       ///< and of the mesh returned
+    double cap = 0.0;               ///< the smallest size the walls needed (0: none needed)
+    Index surfaces = 0;             ///< wall surfaces meshed again at \p cap (0: none)
+    Index curves = 0;               ///< fan curves meshed again finer (0: none)
+    double faces_estimate = 0.0;    ///< faces those surfaces were estimated to get
+    bool over_budget = false;       ///< not meshed again: faces_estimate above CadParams::wall_faces_budget
 };
 
 /// What mesh_cad read the coordinates in.
@@ -84,7 +121,9 @@ struct CadUnits {
 /// Throws InputError for bad parameters, a missing, unreadable or corrupt file, or a model
 /// without surfaces (each naming the file); BackendError when Gmsh fails to mesh or leaves a
 /// surface without elements (naming the surface).
-SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units = nullptr);
+/// \p walls, if given, receives what the wall-size cap did.
+SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units = nullptr,
+                     WallSizeReport* walls = nullptr);
 
 /// True for the extensions mesh_cad understands (case-insensitive); looks at the name only.
 bool is_cad_file(const std::string& path);

@@ -50,6 +50,7 @@ struct PrepareReport {
     Index merged_nodes = 0;       ///< nodes removed by merging
     Index collapsed_faces = 0;    ///< faces with a repeated node removed (remove_collapsed_faces)
     CadUnits units;               ///< CAD input: the unit read in and the one the file declares
+    WallSizeReport walls;         ///< CAD input: what CadParams::max_aspect_ratio did (sizes as CadParams's)
     double scale = 1.0;           ///< PrepareParams::scale applied
     Index fused_components = 0;   ///< components replaced by their union (PrepareParams::fuse)
     Index touching_faces = 0;     ///< faces removed where bodies touch back to back (PrepareParams::fuse)
@@ -90,6 +91,11 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
 /// \p raw has no faces.
 SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source,
                          PrepareReport* report = nullptr, Progress* progress = nullptr);
+
+/// The kind of the patch named \p name by the rule of prepare_surface: the last mapping of
+/// \p kinds that names it, else symmetry or farfield if the name contains the word (any case),
+/// else a wall.
+PatchKind patch_kind_of(const std::string& name, const std::vector<std::pair<std::string, PatchKind>>& kinds);
 
 /// Apply the naming rule and mappings above to \p mesh's patch table.
 void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::string, PatchKind>>& kinds,

@@ -67,6 +67,11 @@ enum class NodeOrder {
 SurfaceMesh surface_from_gmsh_model(const std::string& context, NodeOrder order = NodeOrder::Tags,
                                     std::vector<int>* face_surface = nullptr);
 
+/// The patch each of \p surfaces would belong to by the rule above, before they are meshed
+/// (the same names surface_from_gmsh_model gives once they have faces): surface tag → patch
+/// name. For a CAD model's surfaces, all of which get faces.
+std::vector<std::pair<int, std::string>> surface_patch_names(const std::vector<int>& surfaces);
+
 /// The current model's volume mesh: its 4-node tetrahedra, 5-node pyramids, 6-node prisms and
 /// 8-node hexahedra (other 3D types: InputError naming the volume), each type in element-tag
 /// order, every node of the model in tag order, and its 2D elements as the boundary with
