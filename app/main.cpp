@@ -258,14 +258,14 @@ void print_units(const strata::PrepareReport& rep) {
 void print_wall_sizing(const strata::WallSizeReport& w) {
     if (w.surfaces > 0 || w.curves > 0)
         std::printf(
-            "walls: meshed again finer (%d CAD surfaces, %d curves under fans; down to size %s) so that the first "
+            "walls: meshed again finer (%d surfaces, %d curves under fans; down to size %s) so that the first "
             "layer's aspect ratio stays under --max-aspect-ratio %s (OpenFOAM's checkMesh fails above 1000): worst "
             "%.4g before, %.4g after\n",
             static_cast<int>(w.surfaces), static_cast<int>(w.curves), strata::format_number(w.cap, 3).c_str(),
             strata::format_number(w.max_aspect_ratio).c_str(), w.worst_before, w.worst_after);
     else if (w.over_budget)
         std::printf(
-            "warning: the first layer over the CAD walls reaches an aspect ratio of %.4g, above --max-aspect-ratio "
+            "warning: the first layer over the walls reaches an aspect ratio of %.4g, above --max-aspect-ratio "
             "%s; keeping it under needs wall faces of size %s, about %.3g of them, more than Strata makes unasked "
             "(%s): give --size %s, or a thicker first layer (--max-aspect-ratio 0 silences this)\n",
             w.worst_before, strata::format_number(w.max_aspect_ratio).c_str(), strata::format_number(w.cap, 3).c_str(),

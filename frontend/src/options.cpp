@@ -62,19 +62,24 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
     }
     const bool cad_options = c.quads || !c.mixed.empty() || p.cad.size != none.size ||
                              p.cad.curvature_points != none.curvature_points || p.cad.size_min != none.size_min ||
-                             !p.cad.units.empty() || p.cad.max_aspect_ratio != none.max_aspect_ratio;
+                             !p.cad.units.empty();
     const bool any_cad = any_cad_input(c.inputs);
     if (!any_cad && !p.remesh && cad_options)
         throw InputError("'" + c.input +
-                         "' is already a surface mesh: --size, --size-min, --curvature, --quads, --mixed and "
-                         "--max-aspect-ratio apply to CAD input or with --remesh only, --units to STEP and IGES; "
-                         "remove them "
+                         "' is already a surface mesh: --size, --size-min, --curvature, --quads and --mixed "
+                         "apply to CAD input or with --remesh only, --units to STEP and IGES; remove them "
                          "(--scale scales any input) or add --remesh");
+    if (!any_cad && p.cad.max_aspect_ratio != none.max_aspect_ratio)
+        throw InputError("'" + c.input +
+                         "' is a surface mesh: --max-aspect-ratio sizes the walls Strata meshes from CAD only; for "
+                         "a surface mesh, remesh it (--remesh SIZE) with SIZE under about 700 times the first "
+                         "height, or remove the option");
     if (!any_cad && !p.cad.units.empty())
         throw InputError("'" + c.input +
                          "' is a surface mesh, which carries no unit: --units applies to STEP and IGES "
                          "only; use --scale to convert");
     p.patch_kinds = parse_patch_options(c.patches);
+    // CAD walls sized for the first layer, in the CAD's unit (before --scale).
     if (layers && any_cad && p.cad.max_aspect_ratio > 0.0) {
         p.cad.first_height = resolve(layers->distribution).first_height / p.scale;
         p.cad.fan_angle_deg = layers->min_quality > 0.0 ? layers->fan_angle_deg : 0.0;
@@ -243,8 +248,9 @@ std::vector<OptionSpec> make_table() {
     t.push_back(spec(
         "--max-aspect-ratio", "max_aspect_ratio", "CadParams::max_aspect_ratio", Stage::Layers,
         [](Options& o) -> double& { return o.surface.prepare.cad.max_aspect_ratio; },
-        "CAD input: wall surfaces whose first-layer cells would have an OpenFOAM aspect ratio above this "
-        "are meshed again finer, up to about 200,000 faces (checkMesh fails above 1000; 0: keep the size)"));
+        "CAD input: wall surfaces whose first-layer cells would have an OpenFOAM aspect ratio above this (fans' "
+        "first cells too) are meshed again finer, up to about 200,000 faces (checkMesh fails above 1000; 0: keep "
+        "the size)"));
     t.push_back(spec(
         "--sweeps", "sweeps", "LayerParams::sweeps", Stage::Layers,
         [](Options& o) -> int& { return o.layers.params.sweeps; }, "Poisson smoothing sweeps per layer"));

@@ -4,7 +4,6 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
-#include <strata/core/solver_checks.h>
 #include <strata/geometry/prepare.h>
 #include <strata/io/cad_units.h>
 #include <strata/io/files.h>
@@ -16,9 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <set>
 #include <string>
@@ -253,202 +250,17 @@ SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces, s
     return mesh;
 }
 
-/// The first layer's aspect ratio over the wall of a mesh just made (its faces' Gmsh surfaces
-/// in \p face_surface), and the sizes that would bring it under the limit.
-struct WallAspect {
-    double worst = 0.0;                ///< the largest predicted, faces and fans
-    std::vector<int> surfaces;         ///< wall surfaces with a face over the limit
-    std::map<int, double> curve_need;  ///< fan curves over the limit → the edge length they need
-    std::map<int, double> area;        ///< wall surface → its area
-    std::map<int, Index> faces;        ///< wall surface → its faces
-};
-
-/// The point of each mesh node, to find Gmsh's curve nodes in \p mesh (the same coordinates).
-std::map<std::array<double, 3>, Index> node_at(const SurfaceMesh& mesh) {
-    std::map<std::array<double, 3>, Index> at;
-    for (Index i = 0; i < mesh.num_points(); ++i) {
-        const Vec3& p = mesh.points[static_cast<std::size_t>(i)];
-        at.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, i);
-    }
-    return at;
-}
-
-WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_surface, const std::set<int>& walls,
-                       const CadParams& params) {
-    const double h = params.first_height, limit = params.max_aspect_ratio;
-    WallAspect out;
-    std::map<int, double> worst;
-    std::map<int, double>& area = out.area;
-    std::map<int, Index>& faces = out.faces;
-    auto corner = [&](Index f, Index i) -> const Vec3& {
-        return mesh.points[static_cast<std::size_t>(mesh.face_node(f, i))];
-    };
-    auto face_area = [&](Index f) -> Vec3 {
-        Vec3 a = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
-        if (mesh.face_size(f) == 4) a += (corner(f, 2) - corner(f, 0)).cross(corner(f, 3) - corner(f, 0));
-        return 0.5 * a;
-    };
-    // Wall edges → their faces, for the fans below.
-    std::map<std::array<Index, 2>, std::vector<Index>> faces_of_edge;
-    for (Index f = 0; f < mesh.num_faces(); ++f) {
-        const int s = face_surface[static_cast<std::size_t>(f)];
-        if (!walls.count(s)) continue;
-        std::array<Vec3, 4> c;
-        const Index n = mesh.face_size(f);
-        for (Index i = 0; i < n; ++i) c[static_cast<std::size_t>(i)] = corner(f, i);
-        double& w = worst[s];
-        w = std::max(w, right_prism_aspect_ratio(c.data(), static_cast<int>(n), h));
-        area[s] += face_area(f).norm();
-        ++faces[s];
-        if (params.fan_angle_deg > 0.0)
-            for (Index i = 0; i < n; ++i) {
-                const Index a = mesh.face_node(f, i), b = mesh.face_node(f, (i + 1) % n);
-                faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(f);
-            }
-    }
-    for (const auto& [s, w] : worst) {
-        out.worst = std::max(out.worst, w);
-        if (w > limit) out.surfaces.push_back(s);
-    }
-    if (params.fan_angle_deg <= 0.0) return out;
-
-    // Fans: the first cell of a fan on a wall edge whose faces turn by the fan angle or more. Only
-    // the curve is meshed finer (Gmsh grades the surfaces beside it from their boundary sizes).
-    const auto at = node_at(mesh);
-    for (int c : entity_tags(1)) {
-        std::vector<int> up, down;
-        gmsh::model::getAdjacencies(1, c, up, down);
-        if (up.size() != 2 || !walls.count(up[0]) || !walls.count(up[1])) continue;
-        std::vector<std::size_t> tags, line_nodes;
-        std::vector<double> xyz, uvw;
-        gmsh::model::mesh::getNodes(tags, xyz, uvw, 1, c, true, false);
-        std::map<std::size_t, Index> index_of;
-        for (std::size_t i = 0; i < tags.size(); ++i) {
-            const auto it = at.find({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
-            if (it != at.end()) index_of.emplace(tags[i], it->second);
-        }
-        std::vector<std::size_t> line_tags;
-        gmsh::model::mesh::getElementsByType(1, line_tags, line_nodes, c);
-        double curve_worst = 0.0, need = std::numeric_limits<double>::infinity();
-        for (std::size_t l = 0; l + 1 < line_nodes.size(); l += 2) {
-            const auto ia = index_of.find(line_nodes[l]), ib = index_of.find(line_nodes[l + 1]);
-            if (ia == index_of.end() || ib == index_of.end()) continue;
-            const Index a = ia->second, b = ib->second;
-            const auto fe = faces_of_edge.find({std::min(a, b), std::max(a, b)});
-            if (fe == faces_of_edge.end() || fe->second.size() != 2) continue;
-            const Index f1 = fe->second[0], f2 = fe->second[1];
-            // Gmsh orients each surface by its own parametrization: one whose faces run the edge the
-            // same way as the other's is turned round.
-            auto runs_forward = [&](Index f) {
-                for (Index i = 0, n = mesh.face_size(f); i < n; ++i)
-                    if (mesh.face_node(f, i) == a) return mesh.face_node(f, (i + 1) % n) == b;
-                return false;
-            };
-            const Vec3 n1 = face_area(f1).normalized();
-            Vec3 n2 = face_area(f2).normalized();
-            if (runs_forward(f1) == runs_forward(f2)) n2 = -n2;
-            const double turn = std::acos(std::clamp(n1.dot(n2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-            const Vec3 pa = mesh.points[static_cast<std::size_t>(a)], pb = mesh.points[static_cast<std::size_t>(b)];
-            if (turn < params.fan_angle_deg) continue;
-            // The fan's first wedge: columns at most 90 degrees apart (fans.cpp), from n1 towards n2.
-            const double wedge = turn / std::ceil(turn / 90.0) * std::numbers::pi / 180.0;
-            const Vec3 t = (n2 - n1.dot(n2) * n1).normalized();
-            const Vec3 d2 = std::cos(wedge) * n1 + std::sin(wedge) * t;
-            const double ar = fan_wedge_aspect_ratio(pa, pb, n1, d2, h);
-            if (!std::isfinite(ar)) continue;
-            curve_worst = std::max(curve_worst, ar);
-            // The aspect ratio grows with the edge's length: the length that gives 0.7 of the limit.
-            need = std::min(need, (pb - pa).norm() * 0.7 * limit / ar);
-        }
-        out.worst = std::max(out.worst, curve_worst);
-        if (curve_worst > limit) out.curve_need[c] = need;
-    }
-    return out;
-}
-
-/// CadParams::max_aspect_ratio: where the first layer over the wall of the mesh just made would
-/// be too flat, the walls are meshed again finer there (and every other surface with them, so
-/// their shared curves stay conforming), unless that would exceed the face budget. A surface
-/// meshed again changes its neighbours' meshes too, and a capped one can stay over (a thin face
-/// the geometry forces): up to three rounds, each adding what is still over, a surface capped
-/// again at 0.7 of its last size.
+/// CadParams::max_aspect_ratio on the mesh just made (refine_walls): its wall surfaces by the
+/// patch each will belong to.
 SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, const std::vector<int>& surfaces,
                               SurfaceMesh mesh, std::vector<int>& face_surface, WallSizeReport& r) {
-    r.max_aspect_ratio = params.max_aspect_ratio;
     std::set<int> walls;
     for (const auto& [s, name] : surface_patch_names(surfaces))
         if (patch_kind_of(name, params.wall_patch_kinds) == PatchKind::Wall) walls.insert(s);
-    auto measure = [&](const SurfaceMesh& m) {
-        WallAspect a;
-        gmsh_call(path + ": measuring the first layer's aspect ratio over the walls",
-                  [&] { a = wall_aspect(m, face_surface, walls, params); });
-        return a;
-    };
-    WallAspect now = measure(mesh);
-    r.worst_before = r.worst_after = now.worst;
-    std::map<int, double> surface_cap, curve_cap;
-    // Gmsh multiplies every size by Mesh.MeshSizeFactor, the callback's too.
-    const double factor = get_number("Mesh.MeshSizeFactor");
-    constexpr int kRounds = 3;
-    for (int round = 0; round < kRounds && (!now.surfaces.empty() || !now.curve_need.empty()); ++round) {
-        for (int s : now.surfaces) {
-            const auto [it, fresh] = surface_cap.emplace(s, 0.7 * params.max_aspect_ratio * params.first_height);
-            if (!fresh) it->second *= 0.7;
-        }
-        for (const auto& [c, need] : now.curve_need) {
-            const auto [it, fresh] = curve_cap.emplace(c, need);
-            if (!fresh) it->second = std::min(it->second, need);
-        }
-        // The faces to expect: the capped surfaces at their cap, the others as they are, and the
-        // surfaces beside a finer curve graded from it (counted at the geometric mean of the two
-        // sizes: a rough figure, for the budget only).
-        double estimate = 0.0;
-        for (const auto& [s, a] : now.area) {
-            const auto capped = surface_cap.find(s);
-            estimate +=
-                capped != surface_cap.end() ? faces_at_size(a, capped->second) : static_cast<double>(now.faces.at(s));
-        }
-        EntitySizes sizes;
-        gmsh_call(path + ": the entities the walls' sizes apply to", [&] {
-            for (const auto& [s, size] : surface_cap) sizes.cap_surface(s, size);
-            for (const auto& [c, need] : curve_cap) {
-                sizes.cap_curve(c, need);
-                std::vector<int> up, down;
-                gmsh::model::getAdjacencies(1, c, up, down);
-                for (int s : up) {
-                    if (!now.area.count(s) || surface_cap.count(s)) continue;
-                    const double a = now.area.at(s);
-                    const double current = std::sqrt(a / (0.4330127 * static_cast<double>(now.faces.at(s))));
-                    estimate += faces_at_size(a, std::sqrt(need * std::max(current, need))) -
-                                static_cast<double>(now.faces.at(s));
-                }
-            }
-        });
-        r.faces_estimate = estimate;
-        r.cap = std::numeric_limits<double>::infinity();
-        for (const auto& [entity, size] : sizes.sizes()) r.cap = std::min(r.cap, size);
-        if (estimate > params.wall_faces_budget) {
-            r.over_budget = round == 0;  // later rounds keep the better mesh they have
-            break;
-        }
-        {
-            std::optional<SizeCallback> callback;
-            gmsh_call(path + ": meshing the walls again finer for the first layer's aspect ratio (max_aspect_ratio " +
-                          format_number(params.max_aspect_ratio) + ")",
-                      [&] {
-                          gmsh::model::mesh::clear();
-                          callback.emplace(sizes, factor);
-                          gmsh::model::mesh::generate(2);
-                      });
-        }
-        face_surface.clear();
-        mesh = extract(path, surfaces, face_surface);
-        now = measure(mesh);
-        r.worst_after = now.worst;
-        r.surfaces = static_cast<Index>(surface_cap.size());
-        r.curves = static_cast<Index>(curve_cap.size());
-    }
-    return mesh;
+    const WallLimits limits{params.first_height, params.max_aspect_ratio, params.fan_angle_deg,
+                            params.wall_faces_budget};
+    return refine_walls(path, limits, walls, std::move(mesh), face_surface, r,
+                        [&](std::vector<int>& fs) { return extract(path, surfaces, fs); });
 }
 
 }  // namespace

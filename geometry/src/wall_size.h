@@ -2,7 +2,13 @@
 // The wall sizing of CadParams::max_aspect_ratio: a Gmsh size callback on chosen entities
 // (inside a GmshSession).
 
+#include <strata/core/surface_mesh.h>
+#include <strata/geometry/cad.h>
+
+#include <functional>
 #include <map>
+#include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -45,5 +51,23 @@ public:
 private:
     std::map<std::pair<int, int>, double> size_;
 };
+
+/// What the first layer may be: its height, the largest OpenFOAM aspect ratio of its cells, the
+/// layers' fan angle (0: no fans), the most faces the walls may get for it.
+struct WallLimits {
+    double first_height = 0.0;
+    double max_aspect_ratio = 0.0;
+    double fan_angle_deg = 0.0;
+    double faces_budget = 0.0;
+};
+
+/// Where the first layer over the walls of \p mesh (the current Gmsh model's mesh, each face's
+/// Gmsh surface in \p face_surface, the wall surfaces \p walls) would be flatter than
+/// \p limits allow, mesh the model again finer there (CadParams::max_aspect_ratio says how),
+/// reading it back with \p extract (which refills the face surfaces). \p r says what was done.
+/// Inside a GmshSession; \p context names the model in errors.
+SurfaceMesh refine_walls(const std::string& context, const WallLimits& limits, const std::set<int>& walls,
+                         SurfaceMesh mesh, std::vector<int>& face_surface, WallSizeReport& r,
+                         const std::function<SurfaceMesh(std::vector<int>&)>& extract);
 
 }  // namespace strata
