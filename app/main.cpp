@@ -258,7 +258,7 @@ void print_units(const strata::PrepareReport& rep) {
 void print_wall_sizing(const strata::WallSizeReport& w) {
     if (w.surfaces > 0 || w.curves > 0)
         std::printf(
-            "walls: meshed again finer (%d surfaces, %d curves under fans; down to size %s) so that the first "
+            "walls: meshed again finer (%d surfaces, %d curves under fans; size %s) so that the first "
             "layer's aspect ratio stays under --max-aspect-ratio %s (OpenFOAM's checkMesh fails above 1000): worst "
             "%.4g before, %.4g after\n",
             static_cast<int>(w.surfaces), static_cast<int>(w.curves), strata::format_number(w.cap, 3).c_str(),

@@ -235,8 +235,11 @@ SurfaceMesh refine_walls(const std::string& context, const WallLimits& params, c
             }
         });
         r.faces_estimate = estimate;
+        // The size to name: the surfaces' (what --size can give), else the finest curve's.
         r.cap = std::numeric_limits<double>::infinity();
-        for (const auto& [entity, size] : sizes.sizes()) r.cap = std::min(r.cap, size);
+        for (const auto& [s, size] : surface_cap) r.cap = std::min(r.cap, size);
+        if (surface_cap.empty())
+            for (const auto& [c, size] : curve_cap) r.cap = std::min(r.cap, size);
         if (estimate > params.faces_budget) {
             r.over_budget = round == 0;  // later rounds keep the better mesh they have
             break;

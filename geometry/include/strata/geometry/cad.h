@@ -94,7 +94,7 @@ struct WallSizeReport {
     double max_aspect_ratio = 0.0;  ///< asked (0: no limit)
     double worst_before = 0.0;      ///< the largest first-layer aspect ratio of the first mesh's wall faces
     double worst_after = 0.0;       ///< and of the mesh returned
-    double cap = 0.0;               ///< the smallest size the walls needed (0: none needed)
+    double cap = 0.0;               ///< the surfaces' size (else the finest fan curve's) the walls needed (0: none)
     Index surfaces = 0;             ///< wall surfaces meshed again at \p cap (0: none)
     Index curves = 0;               ///< fan curves meshed again finer (0: none)
     double faces_estimate = 0.0;    ///< faces those surfaces were estimated to get
