@@ -326,7 +326,7 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
             static_cast<int>(r.needles_before), static_cast<int>(r.needles_after), r.sharpest_before_deg,
             r.sharpest_after_deg);
     }
-    print_wall_sizing(rep.walls);
+    print_wall_sizing(rep.remeshed ? rep.remesh.walls : rep.walls);
     print_needles(mesh, rep, any_cad);
 }
 

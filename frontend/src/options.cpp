@@ -69,20 +69,25 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
                          "' is already a surface mesh: --size, --size-min, --curvature, --quads and --mixed "
                          "apply to CAD input or with --remesh only, --units to STEP and IGES; remove them "
                          "(--scale scales any input) or add --remesh");
-    if (!any_cad && p.cad.max_aspect_ratio != none.max_aspect_ratio)
+    if (!any_cad && !p.remesh && p.cad.max_aspect_ratio != none.max_aspect_ratio)
         throw InputError("'" + c.input +
-                         "' is a surface mesh: --max-aspect-ratio sizes the walls Strata meshes from CAD only; for "
-                         "a surface mesh, remesh it (--remesh SIZE) with SIZE under about 700 times the first "
-                         "height, or remove the option");
+                         "' is a surface mesh, which Strata keeps as it is: --max-aspect-ratio sizes the walls it "
+                         "meshes (CAD input, or with --remesh); add --remesh or remove the option");
     if (!any_cad && !p.cad.units.empty())
         throw InputError("'" + c.input +
                          "' is a surface mesh, which carries no unit: --units applies to STEP and IGES "
                          "only; use --scale to convert");
     p.patch_kinds = parse_patch_options(c.patches);
-    // CAD walls sized for the first layer, in the CAD's unit (before --scale).
-    if (layers && any_cad && p.cad.max_aspect_ratio > 0.0) {
-        p.cad.first_height = resolve(layers->distribution).first_height / p.scale;
-        p.cad.fan_angle_deg = layers->min_quality > 0.0 ? layers->fan_angle_deg : 0.0;
+    // Walls sized for the first layer: CAD in its own unit (before --scale), a remeshed surface
+    // in the model's (after it).
+    p.remeshing.max_aspect_ratio = p.cad.max_aspect_ratio;
+    if (layers && (any_cad || p.remesh) && p.cad.max_aspect_ratio > 0.0) {
+        const double h = resolve(layers->distribution).first_height;
+        const double fan = layers->min_quality > 0.0 ? layers->fan_angle_deg : 0.0;
+        p.cad.first_height = h / p.scale;
+        p.cad.fan_angle_deg = fan;
+        p.remeshing.first_height = h;
+        p.remeshing.fan_angle_deg = fan;
     }
     return p;
 }
@@ -248,9 +253,9 @@ std::vector<OptionSpec> make_table() {
     t.push_back(spec(
         "--max-aspect-ratio", "max_aspect_ratio", "CadParams::max_aspect_ratio", Stage::Layers,
         [](Options& o) -> double& { return o.surface.prepare.cad.max_aspect_ratio; },
-        "CAD input: wall surfaces whose first-layer cells would have an OpenFOAM aspect ratio above this (fans' "
-        "first cells too) are meshed again finer, up to about 200,000 faces (checkMesh fails above 1000; 0: keep "
-        "the size)"));
+        "CAD input and --remesh: wall surfaces whose first-layer cells would have an OpenFOAM aspect ratio "
+        "above this (fans' first cells too) are meshed again finer, up to about 200,000 faces (checkMesh fails "
+        "above 1000; 0: keep the size)"));
     t.push_back(spec(
         "--sweeps", "sweeps", "LayerParams::sweeps", Stage::Layers,
         [](Options& o) -> int& { return o.layers.params.sweeps; }, "Poisson smoothing sweeps per layer"));

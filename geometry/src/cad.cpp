@@ -251,7 +251,8 @@ SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces, s
 }
 
 /// CadParams::max_aspect_ratio on the mesh just made (refine_walls): its wall surfaces by the
-/// patch each will belong to.
+/// patch each will belong to, each round the whole model meshed again (so the curves the walls
+/// share with the other surfaces stay conforming).
 SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, const std::vector<int>& surfaces,
                               SurfaceMesh mesh, std::vector<int>& face_surface, WallSizeReport& r) {
     std::set<int> walls;
@@ -259,8 +260,28 @@ SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, 
         if (patch_kind_of(name, params.wall_patch_kinds) == PatchKind::Wall) walls.insert(s);
     const WallLimits limits{params.first_height, params.max_aspect_ratio, params.fan_angle_deg,
                             params.wall_faces_budget};
-    return refine_walls(path, limits, walls, std::move(mesh), face_surface, r,
-                        [&](std::vector<int>& fs) { return extract(path, surfaces, fs); });
+    const std::string measuring = path + ": measuring the first layer's aspect ratio over the walls";
+    WallAspect first;
+    gmsh_call(measuring, [&] { first = wall_aspect(mesh, face_surface, walls, limits); });
+    // Gmsh multiplies every size by Mesh.MeshSizeFactor, the callback's too.
+    const double factor = get_number("Mesh.MeshSizeFactor");
+    refine_walls(limits, std::move(first), r, [&](const WallCaps& caps, WallAspect& measured) {
+        {
+            std::optional<SizeCallback> callback;
+            gmsh_call(path + ": meshing the walls again finer for the first layer's aspect ratio (max_aspect_ratio " +
+                          format_number(params.max_aspect_ratio) + ")",
+                      [&] {
+                          gmsh::model::mesh::clear();
+                          callback.emplace(entity_sizes(caps), factor);
+                          gmsh::model::mesh::generate(2);
+                      });
+        }
+        face_surface.clear();
+        mesh = extract(path, surfaces, face_surface);
+        gmsh_call(measuring, [&] { measured = wall_aspect(mesh, face_surface, walls, limits); });
+        return true;
+    });
+    return mesh;
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
 
+#include "wall_size.h"
+
 #include "cgal_kernel.h"
 
 #include <CGAL/AABB_traits.h>
@@ -21,6 +23,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 #include <vector>
 
 namespace strata {
@@ -47,6 +50,13 @@ void validate(const RemeshParams& p, const std::string& source) {
     if (std::find(kAlgorithms.begin(), kAlgorithms.end(), p.algorithm) == kAlgorithms.end())
         throw InputError(ctx + "Gmsh 2D algorithm " + std::to_string(p.algorithm) +
                          " is not supported; use 1, 2, 5, 6 or 9 (as for CAD meshing)");
+    if (!(p.first_height >= 0.0) || !std::isfinite(p.first_height))
+        throw InputError(ctx + "first_height must be a finite number >= 0, got " + format_number(p.first_height));
+    if (!(p.max_aspect_ratio == 0.0 || p.max_aspect_ratio >= 10.0) || !std::isfinite(p.max_aspect_ratio))
+        throw InputError("RemeshParams::max_aspect_ratio = " + format_number(p.max_aspect_ratio) +
+                         ": give 0 (no limit) or a ratio of at least 10 (OpenFOAM's checkMesh fails above 1000)");
+    if (!(p.wall_faces_budget > 0.0))
+        throw InputError(ctx + "wall_faces_budget must be positive, got " + format_number(p.wall_faces_budget));
 }
 
 /// The input as triangles (a quad split along its shorter diagonal), each with its face.
@@ -105,11 +115,13 @@ struct Attempt {
     Index surfaces = 0;
     Index bad = 0;  ///< faces inverted against the old surface or without area
     Index first_bad = kNone;
+    WallAspect aspect;  ///< with RemeshParams::first_height: the first layer over its walls
 };
 
 /// One run of Gmsh's route at feature angle \p angle_deg, the result checked against \p in.
 Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vector<std::array<Index, 2>>& seams,
-                    const RemeshParams& p, double size, double angle_deg, const std::string& source) {
+                    const RemeshParams& p, double size, double angle_deg, const std::string& source,
+                    const WallCaps* caps = nullptr) {
     const std::string ctx = source + ": remeshing with Gmsh (feature angle " + format_number(angle_deg) + " degrees)";
     // Gmsh scales its tolerances by the model's bounding box, which it computes when it reads a
     // file but not for entities made through the API (it then takes 1): the surface goes in
@@ -185,9 +197,37 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             for (std::size_t& t : tags) t -= 1;
             old_of_surface[tag] = std::move(tags);
         }
+        // The walls' sizes (RemeshParams::max_aspect_ratio), in the frame: the same input and angle
+        // give the same entities, so the tags measured on the attempt before name them here.
+        std::optional<SizeCallback> callback;
+        if (caps) {
+            WallCaps scaled = *caps;
+            for (auto& [tag, s] : scaled.surface) s /= frame.scale;
+            for (auto& [tag, s] : scaled.curve) s /= frame.scale;
+            callback.emplace(entity_sizes(scaled), 1.0);
+        }
         gmsh::model::mesh::generate(2);
     });
     out.mesh = surface_from_gmsh_model("the remeshed " + source, NodeOrder::FirstUse, &face_surface);
+    if (p.first_height > 0.0 && p.max_aspect_ratio > 0.0) {
+        // The wall surfaces: those made mostly of a wall patch's old faces. Measured in the frame,
+        // the sizes it asks for given back in the mesh's unit.
+        std::set<int> walls;
+        for (const auto& [surface, olds] : old_of_surface) {
+            std::map<Index, std::size_t> votes;
+            for (std::size_t t : olds) ++votes[in.face_patch[tris.face[t]]];
+            if (votes.empty()) continue;
+            const Index patch = std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) {
+                                    return x.second < y.second;
+                                })->first;
+            if (in.patches[static_cast<std::size_t>(patch)].kind == PatchKind::Wall) walls.insert(surface);
+        }
+        const WallLimits limits{p.first_height / frame.scale, p.max_aspect_ratio, p.fan_angle_deg, p.wall_faces_budget};
+        gmsh_call(ctx + ": measuring the first layer's aspect ratio over the walls",
+                  [&] { out.aspect = wall_aspect(out.mesh, face_surface, walls, limits); });
+        for (auto& [c, need] : out.aspect.curve_need) need *= frame.scale;
+        for (auto& [surface, a] : out.aspect.area) a *= frame.scale * frame.scale;
+    }
     for (Vec3& q : out.mesh.points) q = frame.centre + q * frame.scale;
     out.surfaces = static_cast<Index>(old_of_surface.size());
 
@@ -314,9 +354,29 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
             rep.faces_after = a->mesh.num_faces();
             rep.surfaces = a->surfaces;
             rep.feature_angle_deg = angle;
-            const NeedleReport after = needle_faces(a->mesh, kNeedleCornerDeg);
-            rep.needles_after = after.needles;
-            rep.sharpest_after_deg = after.sharpest_deg;
+            if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0) {
+                // RemeshParams::max_aspect_ratio: the route again with the walls' sizes, as long as
+                // it succeeds; the last good mesh stands.
+                const WallLimits limits{params.first_height, params.max_aspect_ratio, params.fan_angle_deg,
+                                        params.wall_faces_budget};
+                refine_walls(limits, a->aspect, rep.walls, [&](const WallCaps& caps, WallAspect& measured) {
+                    std::optional<Attempt> b;
+                    try {
+                        b = remesh_once(mesh, tris, seams, params, h, angle, source, &caps);
+                    } catch (const BackendError&) {
+                        return false;
+                    }
+                    if (b->bad > 0) return false;
+                    measured = b->aspect;
+                    a = std::move(b);
+                    return true;
+                });
+                rep.faces_after = a->mesh.num_faces();
+                rep.surfaces = a->surfaces;
+            }
+            const NeedleReport final_needles = needle_faces(a->mesh, kNeedleCornerDeg);
+            rep.needles_after = final_needles.needles;
+            rep.sharpest_after_deg = final_needles.sharpest_deg;
             if (report) *report = rep;
             return std::move(a->mesh);
         }

@@ -60,16 +60,6 @@ SizeCallback::~SizeCallback() {
 
 namespace {
 
-/// The first layer's aspect ratio over the wall of a mesh just made (its faces' Gmsh surfaces
-/// in \p face_surface), and the sizes that would bring it under the limit.
-struct WallAspect {
-    double worst = 0.0;                ///< the largest predicted, faces and fans
-    std::vector<int> surfaces;         ///< wall surfaces with a face over the limit
-    std::map<int, double> curve_need;  ///< fan curves over the limit → the edge length they need
-    std::map<int, double> area;        ///< wall surface → its area
-    std::map<int, Index> faces;        ///< wall surface → its faces
-};
-
 /// The point of each mesh node, to find Gmsh's curve nodes in \p mesh (the same coordinates).
 std::map<std::array<double, 3>, Index> node_at(const SurfaceMesh& mesh) {
     std::map<std::array<double, 3>, Index> at;
@@ -79,6 +69,8 @@ std::map<std::array<double, 3>, Index> node_at(const SurfaceMesh& mesh) {
     }
     return at;
 }
+
+}  // namespace
 
 WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_surface, const std::set<int>& walls,
                        const WallLimits& params) {
@@ -128,6 +120,7 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
         std::vector<int> up, down;
         gmsh::model::getAdjacencies(1, c, up, down);
         if (up.size() != 2 || !walls.count(up[0]) || !walls.count(up[1])) continue;
+        out.curve_up[c] = up;
         std::vector<std::size_t> tags, line_nodes;
         std::vector<double> xyz, uvw;
         gmsh::model::mesh::getNodes(tags, xyz, uvw, 1, c, true, false);
@@ -175,38 +168,26 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
     return out;
 }
 
-}  // namespace
+EntitySizes entity_sizes(const WallCaps& caps) {
+    EntitySizes sizes;
+    for (const auto& [s, size] : caps.surface) sizes.cap_surface(s, size);
+    for (const auto& [c, size] : caps.curve) sizes.cap_curve(c, size);
+    return sizes;
+}
 
-/// Where the first layer over the wall of the mesh just made would be too flat, the walls are meshed again finer there
-/// (and every other surface with them, so their shared curves stay conforming), unless that would exceed the face
-/// budget. A surface meshed again changes its neighbours' meshes too, and a capped one can stay over (a thin face the
-/// geometry forces): up to three rounds, each adding what is still over, a surface capped again at 0.7 of its last
-/// size.
-SurfaceMesh refine_walls(const std::string& context, const WallLimits& params, const std::set<int>& walls,
-                         SurfaceMesh mesh, std::vector<int>& face_surface, WallSizeReport& r,
-                         const std::function<SurfaceMesh(std::vector<int>&)>& extract) {
+void refine_walls(const WallLimits& params, WallAspect now, WallSizeReport& r,
+                  const std::function<bool(const WallCaps&, WallAspect&)>& remesh) {
     r.max_aspect_ratio = params.max_aspect_ratio;
-    auto measure = [&](const SurfaceMesh& m) {
-        WallAspect a;
-        gmsh_call(context + ": measuring the first layer's aspect ratio over the walls",
-                  [&] { a = wall_aspect(m, face_surface, walls, params); });
-        return a;
-    };
-    WallAspect now = measure(mesh);
     r.worst_before = r.worst_after = now.worst;
-    std::map<int, double> surface_cap, curve_cap;
-    // Gmsh multiplies every size by Mesh.MeshSizeFactor, the callback's too.
-    double factor = 1.0;
-    gmsh_call(context + ": reading Mesh.MeshSizeFactor",
-              [&] { gmsh::option::getNumber("Mesh.MeshSizeFactor", factor); });
+    WallCaps caps;
     constexpr int kRounds = 3;
     for (int round = 0; round < kRounds && (!now.surfaces.empty() || !now.curve_need.empty()); ++round) {
         for (int s : now.surfaces) {
-            const auto [it, fresh] = surface_cap.emplace(s, 0.7 * params.max_aspect_ratio * params.first_height);
+            const auto [it, fresh] = caps.surface.emplace(s, 0.7 * params.max_aspect_ratio * params.first_height);
             if (!fresh) it->second *= 0.7;
         }
         for (const auto& [c, need] : now.curve_need) {
-            const auto [it, fresh] = curve_cap.emplace(c, need);
+            const auto [it, fresh] = caps.curve.emplace(c, need);
             if (!fresh) it->second = std::min(it->second, need);
         }
         // The faces to expect: the capped surfaces at their cap, the others as they are, and the
@@ -214,55 +195,37 @@ SurfaceMesh refine_walls(const std::string& context, const WallLimits& params, c
         // sizes: a rough figure, for the budget only).
         double estimate = 0.0;
         for (const auto& [s, a] : now.area) {
-            const auto capped = surface_cap.find(s);
+            const auto capped = caps.surface.find(s);
             estimate +=
-                capped != surface_cap.end() ? faces_at_size(a, capped->second) : static_cast<double>(now.faces.at(s));
+                capped != caps.surface.end() ? faces_at_size(a, capped->second) : static_cast<double>(now.faces.at(s));
         }
-        EntitySizes sizes;
-        gmsh_call(context + ": the entities the walls' sizes apply to", [&] {
-            for (const auto& [s, size] : surface_cap) sizes.cap_surface(s, size);
-            for (const auto& [c, need] : curve_cap) {
-                sizes.cap_curve(c, need);
-                std::vector<int> up, down;
-                gmsh::model::getAdjacencies(1, c, up, down);
-                for (int s : up) {
-                    if (!now.area.count(s) || surface_cap.count(s)) continue;
-                    const double a = now.area.at(s);
-                    const double current = std::sqrt(a / (0.4330127 * static_cast<double>(now.faces.at(s))));
-                    estimate += faces_at_size(a, std::sqrt(need * std::max(current, need))) -
-                                static_cast<double>(now.faces.at(s));
-                }
+        for (const auto& [c, need] : caps.curve) {
+            const auto up = now.curve_up.find(c);
+            if (up == now.curve_up.end()) continue;
+            for (int s : up->second) {
+                if (!now.area.count(s) || caps.surface.count(s)) continue;
+                const double a = now.area.at(s), n = static_cast<double>(now.faces.at(s));
+                const double current = std::sqrt(a / (0.4330127 * n));
+                estimate += faces_at_size(a, std::sqrt(need * std::max(current, need))) - n;
             }
-        });
+        }
         r.faces_estimate = estimate;
         // The size to name: the surfaces' (what --size can give), else the finest curve's.
         r.cap = std::numeric_limits<double>::infinity();
-        for (const auto& [s, size] : surface_cap) r.cap = std::min(r.cap, size);
-        if (surface_cap.empty())
-            for (const auto& [c, size] : curve_cap) r.cap = std::min(r.cap, size);
+        for (const auto& [s, size] : caps.surface) r.cap = std::min(r.cap, size);
+        if (caps.surface.empty())
+            for (const auto& [c, size] : caps.curve) r.cap = std::min(r.cap, size);
         if (estimate > params.faces_budget) {
             r.over_budget = round == 0;  // later rounds keep the better mesh they have
             break;
         }
-        {
-            std::optional<SizeCallback> callback;
-            gmsh_call(context +
-                          ": meshing the walls again finer for the first layer's aspect ratio (max_aspect_ratio " +
-                          format_number(params.max_aspect_ratio) + ")",
-                      [&] {
-                          gmsh::model::mesh::clear();
-                          callback.emplace(sizes, factor);
-                          gmsh::model::mesh::generate(2);
-                      });
-        }
-        face_surface.clear();
-        mesh = extract(face_surface);
-        now = measure(mesh);
+        WallAspect measured;
+        if (!remesh(caps, measured)) break;  // the mesh of the round before stands
+        now = std::move(measured);
         r.worst_after = now.worst;
-        r.surfaces = static_cast<Index>(surface_cap.size());
-        r.curves = static_cast<Index>(curve_cap.size());
+        r.surfaces = static_cast<Index>(caps.surface.size());
+        r.curves = static_cast<Index>(caps.curve.size());
     }
-    return mesh;
 }
 
 }  // namespace strata

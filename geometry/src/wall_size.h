@@ -61,13 +61,40 @@ struct WallLimits {
     double faces_budget = 0.0;
 };
 
-/// Where the first layer over the walls of \p mesh (the current Gmsh model's mesh, each face's
-/// Gmsh surface in \p face_surface, the wall surfaces \p walls) would be flatter than
-/// \p limits allow, mesh the model again finer there (CadParams::max_aspect_ratio says how),
-/// reading it back with \p extract (which refills the face surfaces). \p r says what was done.
-/// Inside a GmshSession; \p context names the model in errors.
-SurfaceMesh refine_walls(const std::string& context, const WallLimits& limits, const std::set<int>& walls,
-                         SurfaceMesh mesh, std::vector<int>& face_surface, WallSizeReport& r,
-                         const std::function<SurfaceMesh(std::vector<int>&)>& extract);
+/// The first layer's aspect ratio over the walls of a mesh just made, and where it is over.
+struct WallAspect {
+    double worst = 0.0;                        ///< the largest predicted, faces and fans
+    std::vector<int> surfaces;                 ///< wall surfaces with a face over the limit
+    std::map<int, double> curve_need;          ///< fan curves over the limit → the edge length they need
+    std::map<int, double> area;                ///< wall surface → its area
+    std::map<int, Index> faces;                ///< wall surface → its faces
+    std::map<int, std::vector<int>> curve_up;  ///< curve between two wall surfaces → those surfaces
+};
+
+/// Measure \p mesh, the current Gmsh model's mesh (each face's Gmsh surface in \p face_surface,
+/// \p walls the wall surfaces; the coordinates the model's): each wall face's right prism of the
+/// first height (right_prism_aspect_ratio), and on each curve between two wall surfaces whose
+/// faces turn by the fan angle or more, the fan's first wedge (fan_wedge_aspect_ratio).
+/// Inside a GmshSession (Gmsh's exceptions pass through).
+WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_surface, const std::set<int>& walls,
+                       const WallLimits& limits);
+
+/// The sizes asked of the walls, by Gmsh tag: surfaces (with their curves and points) and fan
+/// curves (with their points).
+struct WallCaps {
+    std::map<int, double> surface, curve;
+};
+
+/// \p caps as sizes per entity (their boundaries from the current model: inside a GmshSession).
+EntitySizes entity_sizes(const WallCaps& caps);
+
+/// The rounds of CadParams::max_aspect_ratio from the measure \p now of the first mesh: each
+/// round caps what is over (a surface at 0.7 × limit × first height, again 0.7 of that if still
+/// over; a fan curve at the length its worst edge needs), stops if the faces that would take
+/// exceed \p limits.faces_budget, and calls \p remesh to mesh the model with the caps and
+/// measure it (false: that failed, the mesh before stands). Up to three rounds. \p r says what
+/// was done.
+void refine_walls(const WallLimits& limits, WallAspect now, WallSizeReport& r,
+                  const std::function<bool(const WallCaps&, WallAspect&)>& remesh);
 
 }  // namespace strata

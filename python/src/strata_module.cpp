@@ -370,7 +370,7 @@ py::list patch_kinds(const SurfaceMesh& s) {
 }
 
 py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double seconds) {
-    const WallSizeReport& w = r.walls;
+    const WallSizeReport& w = r.remeshed ? r.remesh.walls : r.walls;
     return py::dict("nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
                     "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes,
                     "collapsed_faces"_a = r.collapsed_faces, "flipped_faces"_a = r.orient.flipped_faces,

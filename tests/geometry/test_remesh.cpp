@@ -5,6 +5,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/solver_checks.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/primitives.h>
 #include <strata/geometry/remesh.h>
@@ -14,6 +15,7 @@
 #include "test_support.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -195,6 +197,61 @@ TEST(Remesh, BadParametersAreRefused) {
     test::expect_error<InputError>(with([](RemeshParams& p) { p.curvature_points = -2; }),
                                    {"part.stl", "curvature_points"});
     test::expect_error<InputError>([] { remesh_surface(SurfaceMesh{}, {}, "empty.stl"); }, {"empty.stl", "no faces"});
+}
+
+}  // namespace
+}  // namespace strata
+
+namespace strata {
+namespace {
+
+/// The largest first-layer aspect ratio (right_prism_aspect_ratio) over \p m's wall faces.
+double worst_wall_aspect(const SurfaceMesh& m, double h) {
+    double worst = 0.0;
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        if (m.patches[static_cast<std::size_t>(m.face_patch[f])].kind != PatchKind::Wall) continue;
+        std::array<Vec3, 4> c;
+        for (Index i = 0; i < m.face_size(f); ++i)
+            c[static_cast<std::size_t>(i)] = m.points[static_cast<std::size_t>(m.face_node(f, i))];
+        worst = std::max(worst, right_prism_aspect_ratio(c.data(), static_cast<int>(m.face_size(f)), h));
+    }
+    return worst;
+}
+
+TEST(Remesh, WallsTooCoarseForTheFirstLayerAreMeshedAgainFiner) {
+    // The unit box remeshed at 0.25 under a first layer of 5e-5: prisms near 3000 (checkMesh
+    // fails above 1000). The route is run again with the walls at 0.035: every face under 1000.
+    const SurfaceMesh box = lattice_box(4, 4, 4);
+    RemeshParams p;
+    p.size = 0.25;
+    const SurfaceMesh coarse = remesh_surface(box, p, "box");
+    EXPECT_GT(worst_wall_aspect(coarse, 5e-5), 1000.0);
+    p.first_height = 5e-5;
+    RemeshReport rep;
+    const SurfaceMesh fine = remesh_surface(box, p, "box", &rep);
+    EXPECT_TRUE(test::closed_manifold(fine));
+    EXPECT_NEAR(test::enclosed_volume(fine), 1.0, 1e-9);
+    EXPECT_NEAR(rep.walls.worst_before, worst_wall_aspect(coarse, 5e-5), 1e-9 * rep.walls.worst_before);
+    EXPECT_NEAR(rep.walls.worst_after, worst_wall_aspect(fine, 5e-5), 1e-9 * rep.walls.worst_after);
+    EXPECT_LE(rep.walls.worst_after, 1000.0);
+    EXPECT_GE(rep.walls.surfaces, 6);
+    EXPECT_NEAR(rep.walls.cap, 0.035, 1e-12);
+    EXPECT_EQ(rep.faces_after, fine.num_faces());
+    EXPECT_GT(fine.num_faces(), 20 * coarse.num_faces());
+    // A symmetry patch is not a wall: nothing to size, nothing changes.
+    SurfaceMesh plane = box;
+    plane.patches[0].kind = PatchKind::Symmetry;
+    const SurfaceMesh kept = remesh_surface(plane, p, "box", &rep);
+    EXPECT_EQ(kept.points, coarse.points);
+    EXPECT_EQ(rep.walls.worst_before, 0.0);
+    // Over the budget: kept, and said.
+    p.wall_faces_budget = 5000;
+    const SurfaceMesh over = remesh_surface(box, p, "box", &rep);
+    EXPECT_EQ(over.points, coarse.points);
+    EXPECT_TRUE(rep.walls.over_budget);
+    p = {};
+    p.max_aspect_ratio = 3.0;
+    EXPECT_THROW(remesh_surface(box, p, "box"), InputError);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 /// triangulation is not.
 
 #include <strata/core/surface_mesh.h>
+#include <strata/geometry/cad.h>
 
 #include <string>
 
@@ -30,6 +31,15 @@ struct RemeshParams {
     /// Gmsh 2D algorithm: 1 MeshAdapt, 2 Automatic, 5 Delaunay, 6 Frontal-Delaunay, 9 packing of
     /// parallelograms (the values CadParams::algorithm accepts).
     int algorithm = 6;
+    /// The first layer's height and the limit on its cells' OpenFOAM aspect ratio, in the
+    /// mesh's unit, as for CAD (CadParams::first_height, max_aspect_ratio, fan_angle_deg,
+    /// wall_faces_budget): the wall patches' new surfaces whose first layer would be flatter are
+    /// meshed finer (the whole route run again with the sizes). Set by the front-ends from the
+    /// layers; first_height 0: no limit.
+    double first_height = 0.0;
+    double max_aspect_ratio = 1000.0;
+    double fan_angle_deg = 0.0;
+    double wall_faces_budget = 200000;
 };
 
 /// What remesh_surface did, for the summary.
@@ -46,6 +56,7 @@ struct RemeshReport {
     Index needles_after = 0;               ///< and after
     double sharpest_before_deg = 180.0;    ///< sharpest corner before
     double sharpest_after_deg = 180.0;     ///< and after
+    WallSizeReport walls;                  ///< what RemeshParams::max_aspect_ratio did
 };
 
 /// Mesh the surface \p mesh again (triangles, or quadrilaterals if asked). Each patch keeps its
