@@ -2,12 +2,14 @@
 // Helpers shared by the test suites: data paths, scratch directories, tiny meshes.
 
 #include <strata/core/face_geometry.h>
+#include <strata/core/solver_checks.h>
 #include <strata/core/surface_mesh.h>
 
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 #include <algorithm>
+#include <array>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -94,6 +96,20 @@ inline bool closed_manifold(const SurfaceMesh& m) {
 
 /// Σ (1/3) centroid · area vector over the faces of \p m, the faces indexing \p points: the volume a
 /// closed surface encloses, positive when its normals point out.
+/// The largest first-layer aspect ratio (right_prism_aspect_ratio, OpenFOAM's) of a layer of
+/// height \p h over \p m's wall faces: what CadParams::max_aspect_ratio holds down.
+inline double worst_wall_aspect(const SurfaceMesh& m, double h) {
+    double worst = 0.0;
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        if (m.patches[static_cast<std::size_t>(m.face_patch[f])].kind != PatchKind::Wall) continue;
+        std::array<Vec3, 4> c;
+        for (Index i = 0; i < m.face_size(f); ++i)
+            c[static_cast<std::size_t>(i)] = m.points[static_cast<std::size_t>(m.face_node(f, i))];
+        worst = std::max(worst, right_prism_aspect_ratio(c.data(), static_cast<int>(m.face_size(f)), h));
+    }
+    return worst;
+}
+
 inline double enclosed_volume(const SurfaceMesh& m, const std::vector<Vec3>& points) {
     double v = 0.0;
     for (Index f = 0; f < m.num_faces(); ++f)

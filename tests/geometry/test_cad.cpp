@@ -141,20 +141,6 @@ std::string error_text(F&& f) {
     return "<no exception>";
 }
 
-/// The largest first-layer aspect ratio (right_prism_aspect_ratio) over the faces of \p m's
-/// wall patches, and the longest edge of the patch named \p patch.
-double worst_wall_aspect(const SurfaceMesh& m, double h) {
-    double worst = 0.0;
-    for (Index f = 0; f < m.num_faces(); ++f) {
-        if (m.patches[static_cast<std::size_t>(m.face_patch[f])].kind != PatchKind::Wall) continue;
-        std::array<Vec3, 4> c;
-        for (Index i = 0; i < m.face_size(f); ++i)
-            c[static_cast<std::size_t>(i)] = m.points[static_cast<std::size_t>(m.face_node(f, i))];
-        worst = std::max(worst, right_prism_aspect_ratio(c.data(), static_cast<int>(m.face_size(f)), h));
-    }
-    return worst;
-}
-
 // ---------------------------------------------------------------------------------------
 
 TEST(CadFile, RecognisesExtensionsCaseInsensitively) {
@@ -599,15 +585,15 @@ TEST(MeshCadWalls, WallsTooCoarseForTheFirstLayerAreMeshedAgainFiner) {
     CadParams p;
     p.size = 0.5;
     const SurfaceMesh coarse = mesh_cad(test_data("cad_box_groups.geo"), p);
-    EXPECT_GT(worst_wall_aspect(coarse, 5e-5), 1000.0);
+    EXPECT_GT(test::worst_wall_aspect(coarse, 5e-5), 1000.0);
     p.first_height = 5e-5;
     WallSizeReport r;
     const SurfaceMesh fine = mesh_cad(test_data("cad_box_groups.geo"), p, nullptr, &r);
     expect_well_formed(fine);
     EXPECT_TRUE(closed(fine));
     EXPECT_EQ(r.max_aspect_ratio, 1000.0);
-    EXPECT_NEAR(r.worst_before, worst_wall_aspect(coarse, 5e-5), 1e-9 * r.worst_before);
-    EXPECT_NEAR(r.worst_after, worst_wall_aspect(fine, 5e-5), 1e-9 * r.worst_after);
+    EXPECT_NEAR(r.worst_before, test::worst_wall_aspect(coarse, 5e-5), 1e-9 * r.worst_before);
+    EXPECT_NEAR(r.worst_after, test::worst_wall_aspect(fine, 5e-5), 1e-9 * r.worst_after);
     EXPECT_LE(r.worst_after, 1000.0);
     EXPECT_EQ(r.surfaces, 6);  // every face is a wall
     EXPECT_EQ(r.curves, 0);    // a box has no fan edge (and no fan angle was given)

@@ -205,19 +205,6 @@ TEST(Remesh, BadParametersAreRefused) {
 namespace strata {
 namespace {
 
-/// The largest first-layer aspect ratio (right_prism_aspect_ratio) over \p m's wall faces.
-double worst_wall_aspect(const SurfaceMesh& m, double h) {
-    double worst = 0.0;
-    for (Index f = 0; f < m.num_faces(); ++f) {
-        if (m.patches[static_cast<std::size_t>(m.face_patch[f])].kind != PatchKind::Wall) continue;
-        std::array<Vec3, 4> c;
-        for (Index i = 0; i < m.face_size(f); ++i)
-            c[static_cast<std::size_t>(i)] = m.points[static_cast<std::size_t>(m.face_node(f, i))];
-        worst = std::max(worst, right_prism_aspect_ratio(c.data(), static_cast<int>(m.face_size(f)), h));
-    }
-    return worst;
-}
-
 TEST(Remesh, WallsTooCoarseForTheFirstLayerAreMeshedAgainFiner) {
     // The unit box remeshed at 0.25 under a first layer of 5e-5: prisms near 3000 (checkMesh
     // fails above 1000). The route is run again with the walls at 0.035: every face under 1000.
@@ -225,14 +212,14 @@ TEST(Remesh, WallsTooCoarseForTheFirstLayerAreMeshedAgainFiner) {
     RemeshParams p;
     p.size = 0.25;
     const SurfaceMesh coarse = remesh_surface(box, p, "box");
-    EXPECT_GT(worst_wall_aspect(coarse, 5e-5), 1000.0);
+    EXPECT_GT(test::worst_wall_aspect(coarse, 5e-5), 1000.0);
     p.first_height = 5e-5;
     RemeshReport rep;
     const SurfaceMesh fine = remesh_surface(box, p, "box", &rep);
     EXPECT_TRUE(test::closed_manifold(fine));
     EXPECT_NEAR(test::enclosed_volume(fine), 1.0, 1e-9);
-    EXPECT_NEAR(rep.walls.worst_before, worst_wall_aspect(coarse, 5e-5), 1e-9 * rep.walls.worst_before);
-    EXPECT_NEAR(rep.walls.worst_after, worst_wall_aspect(fine, 5e-5), 1e-9 * rep.walls.worst_after);
+    EXPECT_NEAR(rep.walls.worst_before, test::worst_wall_aspect(coarse, 5e-5), 1e-9 * rep.walls.worst_before);
+    EXPECT_NEAR(rep.walls.worst_after, test::worst_wall_aspect(fine, 5e-5), 1e-9 * rep.walls.worst_after);
     EXPECT_LE(rep.walls.worst_after, 1000.0);
     EXPECT_GE(rep.walls.surfaces, 6);
     EXPECT_NEAR(rep.walls.cap, 0.035, 1e-12);
