@@ -44,6 +44,7 @@ OPTIONS = [
     ("yplus", "Boundary layers", None),
     ("reynolds", "Boundary layers", None),
     ("reference_length", "Boundary layers", "length"),
+    ("max_aspect_ratio", "Boundary layers", None),
     ("farfield", "Farfield", ("sphere", "box")),
     ("farfield_size", "Farfield", None),
     ("farfield_divisions", "Farfield", None),
