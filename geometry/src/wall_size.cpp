@@ -111,8 +111,18 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
     }
     if (params.fan_angle_deg <= 0.0) return out;
 
-    // Fans: the first cell of a fan on a wall edge whose faces turn by the fan angle or more. Only
-    // the curve is meshed finer (Gmsh grades the surfaces beside it from their boundary sizes).
+    // Fans: the first cell of a fan on a wall edge whose faces turn by the fan angle or more, and
+    // on the convex edges of 30 degrees or more that close its chain (fans.cpp: a wing's tip and
+    // root; here the curves of 30 degrees or more that share an end point with such a curve,
+    // convex or not: the surface's orientation is not known yet). Only the curves are
+    // meshed finer (Gmsh grades the surfaces beside them from their boundary sizes).
+    constexpr double kChainDeg = 30.0;
+    struct Edge {
+        Vec3 a, b, n1, n2;
+        double turn;
+    };
+    std::map<int, std::vector<Edge>> edges_of;  // curve between two wall surfaces → its sharp edges
+    std::map<int, double> sharpest;             // and its largest turn
     const auto at = node_at(mesh);
     gmsh::vectorpair curves;
     gmsh::model::getEntities(curves, 1);
@@ -131,7 +141,6 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
         }
         std::vector<std::size_t> line_tags;
         gmsh::model::mesh::getElementsByType(1, line_tags, line_nodes, c);
-        double curve_worst = 0.0, need = std::numeric_limits<double>::infinity();
         for (std::size_t l = 0; l + 1 < line_nodes.size(); l += 2) {
             const auto ia = index_of.find(line_nodes[l]), ib = index_of.find(line_nodes[l + 1]);
             if (ia == index_of.end() || ib == index_of.end()) continue;
@@ -150,17 +159,41 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
             Vec3 n2 = face_area(f2).normalized();
             if (runs_forward(f1) == runs_forward(f2)) n2 = -n2;
             const double turn = std::acos(std::clamp(n1.dot(n2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-            const Vec3 pa = mesh.points[static_cast<std::size_t>(a)], pb = mesh.points[static_cast<std::size_t>(b)];
-            if (turn < params.fan_angle_deg) continue;
+            if (!(turn >= kChainDeg)) continue;
+            edges_of[c].push_back(
+                {mesh.points[static_cast<std::size_t>(a)], mesh.points[static_cast<std::size_t>(b)], n1, n2, turn});
+            double& m = sharpest[c];
+            m = std::max(m, turn);
+        }
+    }
+    // The fan curves: those at the fan angle, and the sharp ones that share an end point with them.
+    std::map<int, std::vector<int>> points_of;
+    std::set<int> fan;
+    for (const auto& [c, turn] : sharpest) {
+        gmsh::vectorpair ends;
+        gmsh::model::getBoundary({{1, c}}, ends, false, false, false);
+        for (const auto& [d, t] : ends) points_of[c].push_back(std::abs(t));
+        if (turn >= params.fan_angle_deg) fan.insert(c);
+    }
+    {
+        std::set<int> fan_points;
+        for (int c : fan)
+            for (int q : points_of[c]) fan_points.insert(q);
+        for (const auto& [c, pts] : points_of)
+            if (std::any_of(pts.begin(), pts.end(), [&](int q) { return fan_points.count(q) > 0; })) fan.insert(c);
+    }
+    for (int c : fan) {
+        double curve_worst = 0.0, need = std::numeric_limits<double>::infinity();
+        for (const Edge& e : edges_of[c]) {
             // The fan's first wedge: columns at most 90 degrees apart (fans.cpp), from n1 towards n2.
-            const double wedge = turn / std::ceil(turn / 90.0) * std::numbers::pi / 180.0;
-            const Vec3 t = (n2 - n1.dot(n2) * n1).normalized();
-            const Vec3 d2 = std::cos(wedge) * n1 + std::sin(wedge) * t;
-            const double ar = fan_wedge_aspect_ratio(pa, pb, n1, d2, h);
+            const double wedge = e.turn / std::ceil(e.turn / 90.0) * std::numbers::pi / 180.0;
+            const Vec3 t = (e.n2 - e.n1.dot(e.n2) * e.n1).normalized();
+            const Vec3 d2 = std::cos(wedge) * e.n1 + std::sin(wedge) * t;
+            const double ar = fan_wedge_aspect_ratio(e.a, e.b, e.n1, d2, h);
             if (!std::isfinite(ar)) continue;
             curve_worst = std::max(curve_worst, ar);
             // The aspect ratio grows with the edge's length: the length that gives 0.7 of the limit.
-            need = std::min(need, (pb - pa).norm() * 0.7 * limit / ar);
+            need = std::min(need, (e.b - e.a).norm() * 0.7 * limit / ar);
         }
         out.worst = std::max(out.worst, curve_worst);
         if (curve_worst > limit) out.curve_need[c] = need;
