@@ -1,5 +1,6 @@
 #include "wall_size.h"
 
+#include <strata/core/face_geometry.h>
 #include <strata/core/format.h>
 #include <strata/core/solver_checks.h>
 #include <strata/io/gmsh_session.h>
@@ -60,6 +61,9 @@ SizeCallback::~SizeCallback() {
 
 namespace {
 
+/// What a cap aims at, as a share of the limit: Gmsh's edges run up to 1.4 times the size asked.
+constexpr double kCapShare = 0.7;
+
 /// The point of each mesh node, to find Gmsh's curve nodes in \p mesh (the same coordinates).
 std::map<std::array<double, 3>, Index> node_at(const SurfaceMesh& mesh) {
     std::map<std::array<double, 3>, Index> at;
@@ -82,11 +86,6 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
     auto corner = [&](Index f, Index i) -> const Vec3& {
         return mesh.points[static_cast<std::size_t>(mesh.face_node(f, i))];
     };
-    auto face_area = [&](Index f) -> Vec3 {
-        Vec3 a = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
-        if (mesh.face_size(f) == 4) a += (corner(f, 2) - corner(f, 0)).cross(corner(f, 3) - corner(f, 0));
-        return 0.5 * a;
-    };
     // Wall edges → their faces, for the fans below.
     std::map<std::array<Index, 2>, std::vector<Index>> faces_of_edge;
     for (Index f = 0; f < mesh.num_faces(); ++f) {
@@ -97,7 +96,7 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
         for (Index i = 0; i < n; ++i) c[static_cast<std::size_t>(i)] = corner(f, i);
         double& w = worst[s];
         w = std::max(w, right_prism_aspect_ratio(c.data(), static_cast<int>(n), h));
-        area[s] += face_area(f).norm();
+        area[s] += face_area_vector(mesh, f).norm();
         ++faces[s];
         if (params.fan_angle_deg > 0.0)
             for (Index i = 0; i < n; ++i) {
@@ -116,7 +115,8 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
     // root; here the curves of 30 degrees or more that share an end point with such a curve,
     // convex or not: the surface's orientation is not known yet). Only the curves are
     // meshed finer (Gmsh grades the surfaces beside them from their boundary sizes).
-    constexpr double kChainDeg = 30.0;
+    // fans.cpp's kFeatureDeg and kWedgeDeg (module/ is above geometry/: they cannot be shared).
+    constexpr double kChainDeg = 30.0, kWedgeDeg = 90.0;
     struct Edge {
         Vec3 a, b, n1, n2;
         double turn;
@@ -155,8 +155,8 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
                     if (mesh.face_node(f, i) == a) return mesh.face_node(f, (i + 1) % n) == b;
                 return false;
             };
-            const Vec3 n1 = face_area(f1).normalized();
-            Vec3 n2 = face_area(f2).normalized();
+            const Vec3 n1 = face_area_vector(mesh, f1).normalized();
+            Vec3 n2 = face_area_vector(mesh, f2).normalized();
             if (runs_forward(f1) == runs_forward(f2)) n2 = -n2;
             const double turn = std::acos(std::clamp(n1.dot(n2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
             if (!(turn >= kChainDeg)) continue;
@@ -186,14 +186,14 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
         double curve_worst = 0.0, need = std::numeric_limits<double>::infinity();
         for (const Edge& e : edges_of[c]) {
             // The fan's first wedge: columns at most 90 degrees apart (fans.cpp), from n1 towards n2.
-            const double wedge = e.turn / std::ceil(e.turn / 90.0) * std::numbers::pi / 180.0;
+            const double wedge = e.turn / std::ceil(e.turn / kWedgeDeg) * std::numbers::pi / 180.0;
             const Vec3 t = (e.n2 - e.n1.dot(e.n2) * e.n1).normalized();
             const Vec3 d2 = std::cos(wedge) * e.n1 + std::sin(wedge) * t;
             const double ar = fan_wedge_aspect_ratio(e.a, e.b, e.n1, d2, h);
             if (!std::isfinite(ar)) continue;
             curve_worst = std::max(curve_worst, ar);
             // The aspect ratio grows with the edge's length: the length that gives 0.7 of the limit.
-            need = std::min(need, (e.b - e.a).norm() * 0.7 * limit / ar);
+            need = std::min(need, (e.b - e.a).norm() * kCapShare * limit / ar);
         }
         out.worst = std::max(out.worst, curve_worst);
         if (curve_worst > limit) out.curve_need[c] = need;
@@ -216,8 +216,8 @@ void refine_walls(const WallLimits& params, WallAspect now, WallSizeReport& r,
     constexpr int kRounds = 3;
     for (int round = 0; round < kRounds && (!now.surfaces.empty() || !now.curve_need.empty()); ++round) {
         for (int s : now.surfaces) {
-            const auto [it, fresh] = caps.surface.emplace(s, 0.7 * params.max_aspect_ratio * params.first_height);
-            if (!fresh) it->second *= 0.7;
+            const auto [it, fresh] = caps.surface.emplace(s, kCapShare * params.max_aspect_ratio * params.first_height);
+            if (!fresh) it->second *= kCapShare;
         }
         for (const auto& [c, need] : now.curve_need) {
             const auto [it, fresh] = caps.curve.emplace(c, need);
