@@ -9,6 +9,7 @@
 #include <strata/core/error.h>
 #include <strata/core/format.h>
 #include <strata/core/progress.h>
+#include <strata/core/solver_checks.h>
 #include <strata/core/validate.h>
 #include <strata/frontend/options.h>
 #include <strata/geometry/check.h>
@@ -20,11 +21,13 @@
 #include <strata/io/write_report.h>
 #include <strata/io/write_surface.h>
 #include <strata/io/write_volume.h>
+#include <strata/module/distribution.h>
 #include <strata/module/layers.h>
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -273,6 +276,38 @@ void print_wall_sizing(const strata::WallSizeReport& w) {
             strata::format_number(w.cap, 3).c_str());
 }
 
+/// A surface mesh kept as it is (neither CAD nor --remesh, whose walls --max-aspect-ratio sizes):
+/// where its wall faces are too wide for a first layer of height \p h, say so (OpenFOAM's checkMesh
+/// fails cells over 1000) with the worst face and the remedy, before the solver does.
+void print_wall_aspect_forecast(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep, bool any_cad,
+                                double h, double max_aspect_ratio) {
+    if (any_cad || rep.remeshed || !(max_aspect_ratio > 0.0) || !(h > 0.0)) return;
+    double worst = 0.0;
+    strata::Index worst_face = strata::kNone, over = 0, walls = 0;
+    for (strata::Index f = 0; f < mesh.num_faces(); ++f) {
+        if (mesh.patches[static_cast<std::size_t>(mesh.face_patch[static_cast<std::size_t>(f)])].kind !=
+            strata::PatchKind::Wall)
+            continue;
+        std::array<strata::Vec3, 4> corners;
+        const int n = mesh.face_size(f);
+        for (int k = 0; k < n; ++k)
+            corners[static_cast<std::size_t>(k)] = mesh.points[static_cast<std::size_t>(mesh.face_node(f, k))];
+        const double ar = strata::right_prism_aspect_ratio(corners.data(), n, h);
+        ++walls;
+        if (!(ar > max_aspect_ratio)) continue;
+        ++over;
+        if (ar > worst) worst = ar, worst_face = f;
+    }
+    if (over == 0) return;
+    std::printf(
+        "warning: %d of %d wall faces are too wide for the first layer (%s high): its cells on them reach an aspect "
+        "ratio of %.4g (on %s), above --max-aspect-ratio %s (OpenFOAM's checkMesh fails cells over 1000); a "
+        "surface mesh is kept as it is: add --remesh to mesh it again with the walls fine enough, or give a thicker "
+        "first layer (--max-aspect-ratio 0 silences this)\n",
+        static_cast<int>(over), static_cast<int>(walls), strata::format_number(h, 3).c_str(), worst,
+        strata::describe_face(mesh, worst_face).c_str(), strata::format_number(max_aspect_ratio).c_str());
+}
+
 void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep, bool any_cad) {
     const strata::Csr loops = strata::boundary_loops(mesh);
     std::printf("surface: %d nodes, %d triangles, %d quadrilaterals, %d patches\n", static_cast<int>(mesh.num_points()),
@@ -431,7 +466,9 @@ void print_coverage(const strata::LayerReport& r) {
 constexpr double kSolverQuality = 0.01;
 
 /// OpenFOAM checkMesh's figures, and what it would fail on.
-void print_solver_checks(const strata::SolverChecks& s) {
+/// \p kept_surface: the surface mesh was kept as it is (neither CAD nor --remesh), so a failure on
+/// the layers' aspect ratio has one more remedy.
+void print_solver_checks(const strata::SolverChecks& s, bool kept_surface) {
     std::printf(
         "openfoam: non-orthogonality max %.3g deg (mean %.3g, %d faces above %g), skewness max %.3g (%d faces above "
         "%g), aspect ratio max %.4g (%d cells above %g): checkMesh would %s\n",
@@ -440,11 +477,15 @@ void print_solver_checks(const strata::SolverChecks& s) {
         s.max_aspect_ratio, static_cast<int>(s.high_aspect_cells), strata::kFoamAspectRatio,
         s.ok() ? "say \"Mesh OK\"" : "fail it");
     for (const std::string& line : s.failures()) std::printf("warning: checkMesh would fail: %s\n", line.c_str());
+    if (kept_surface && s.high_aspect_cells > 0 && s.worst_aspect_type != strata::CellType::Tet)
+        std::printf(
+            "  the surface mesh was kept as it is: --remesh meshes it again, its walls fine enough for the first "
+            "layer (--max-aspect-ratio)\n");
 }
 
 /// The cells by type, the validation's figures, the worst cell of each type, and a warning
 /// below what a solver can use.
-void print_cells(const strata::VolumeMesh& mesh, const strata::ValidationReport& v) {
+void print_cells(const strata::VolumeMesh& mesh, const strata::ValidationReport& v, bool kept_surface) {
     std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n",
                 mesh.hexes.size(), mesh.prisms.size(), mesh.pyramids.size(), mesh.tets.size(),
                 static_cast<int>(mesh.num_cells()), mesh.points.size());
@@ -463,10 +504,10 @@ void print_cells(const strata::VolumeMesh& mesh, const strata::ValidationReport&
             "warning: cells below a scaled Jacobian of %g, which a solver may reject or converge poorly on; "
             "the worst is %s\n",
             kSolverQuality, v.worst_cell.c_str());
-    print_solver_checks(v.solver);
+    print_solver_checks(v.solver, kept_surface);
 }
 
-void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridReport& hr) {
+void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridReport& hr, bool kept_surface) {
     double jmin = 1.0;
     for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
     std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
@@ -493,7 +534,7 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
             names += (names.empty() ? "" : ", ") + mesh.boundary.patches[static_cast<std::size_t>(p)].name;
         std::printf("planes re-meshed around the layers' sides: %s\n", names.c_str());
     }
-    print_cells(mesh, hr.validation);
+    print_cells(mesh, hr.validation, kept_surface);
 }
 
 std::vector<std::string> with_report(std::vector<std::string> files, const std::string& output) {
@@ -619,9 +660,11 @@ int run_layers(const Common& c) {
     strata::write_mesh_report(coverage, lm.mesh, v, strata::report_path(c.output));
     if (c.quiet) return 0;
     print_surface_summary(s.surface, s.report, s.any_cad);
+    print_wall_aspect_forecast(s.surface, s.report, s.any_cad, strata::resolve(lp.distribution).first_height,
+                               c.o.surface.prepare.cad.max_aspect_ratio);
     print_layer_table(lm, coverage);
     print_coverage(coverage);
-    print_cells(lm.mesh, v);
+    print_cells(lm.mesh, v, !s.any_cad && !s.report.remeshed);
     std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", s.seconds, t_layers,
                 seconds_since(t2));
     print_written(with_report(strata::volume_output_files(c.output), c.output));
@@ -644,7 +687,9 @@ int run_mesh(const Common& c, const PlotOptions& po) {
     const double t_write = seconds_since(t1);
     if (!c.quiet) {
         print_surface_summary(s.surface, s.report, s.any_cad);
-        print_hybrid_summary(mesh, hr);
+        print_wall_aspect_forecast(s.surface, s.report, s.any_cad, strata::resolve(hp.layers.distribution).first_height,
+                                   c.o.surface.prepare.cad.max_aspect_ratio);
+        print_hybrid_summary(mesh, hr, !s.any_cad && !s.report.remeshed);
         std::printf(
             "time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f "
             "s\n",

@@ -69,10 +69,6 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
                          "' is already a surface mesh: --size, --size-min, --curvature, --quads and --mixed "
                          "apply to CAD input or with --remesh only, --units to STEP and IGES; remove them "
                          "(--scale scales any input) or add --remesh");
-    if (!any_cad && !p.remesh && p.cad.max_aspect_ratio != none.max_aspect_ratio)
-        throw InputError("'" + c.input +
-                         "' is a surface mesh, which Strata keeps as it is: --max-aspect-ratio sizes the walls it "
-                         "meshes (CAD input, or with --remesh); add --remesh or remove the option");
     if (!any_cad && !p.cad.units.empty())
         throw InputError("'" + c.input +
                          "' is a surface mesh, which carries no unit: --units applies to STEP and IGES "

@@ -686,8 +686,7 @@ TEST(Cli, WallsAreMeshedFinerForTheFirstLayersAspectRatio) {
     const std::string box = "mesh '" + test_data("cad_box_groups.geo") + "' --layers 3 --first-height 5e-5 ";
     CliResult r = strata_cli(dir, box + "-o fine.msh");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("walls: meshed again finer (6 surfaces, 0 curves under fans; size 0.035)"),
-              std::string::npos)
+    EXPECT_NE(r.out.find("walls: meshed again finer (6 surfaces, 0 curves under fans; size 0.035)"), std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
     r = strata_cli(dir, box + "--max-aspect-ratio 0 -o coarse.msh");
@@ -698,11 +697,30 @@ TEST(Cli, WallsAreMeshedFinerForTheFirstLayersAspectRatio) {
     r = strata_cli(dir, "mesh '" + test_data("cad_box_groups.geo") + "' --layers 3 --first-height 5e-8 -o thin.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("more than Strata makes unasked (200000): give --size 3.5e-05"), std::string::npos) << r.out;
-    // Bad values, and the option on a surface mesh (it sizes CAD walls only).
     expect_clean_failure(box + "-o out.msh --max-aspect-ratio 5", "--max-aspect-ratio", "aspect_small");
-    expect_clean_failure(
-        "mesh '" + example_data("sphere.stl") + "' -o out.msh --layers 3 --first-height 1e-3 --max-aspect-ratio 500",
-        "--max-aspect-ratio", "aspect_stl");
+}
+
+// A surface mesh is kept as it is: where its walls are too wide for the first layer the
+// summary says so before the layers' checkMesh figures, naming the worst face, and points to
+// --remesh; --max-aspect-ratio is the limit of that warning (0: none).
+TEST(Cli, SurfaceMeshTooCoarseForTheFirstLayerIsForecast) {
+    test::ScratchDir dir("cli_aspect_forecast");
+    const std::string sphere = "layers '" + example_data("sphere.stl") + "' --layers 2 --first-height 1e-7 ";
+    CliResult r = strata_cli(dir, sphere + "-o thin.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("wall faces are too wide for the first layer (1e-07 high)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("(on face "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("add --remesh to mesh it again"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("cells with an aspect ratio above 1000"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("the surface mesh was kept as it is: --remesh meshes it again"), std::string::npos) << r.out;
+    r = strata_cli(dir, sphere + "--max-aspect-ratio 0 -o silent.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out.find("too wide for the first layer"), std::string::npos) << r.out;
+    // Thick enough: no forecast, and checkMesh's aspect ratio passes.
+    r = strata_cli(dir, "layers '" + example_data("sphere.stl") + "' --layers 2 --first-height 1e-3 -o thick.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out.find("too wide for the first layer"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("cells with an aspect ratio above 1000"), std::string::npos) << r.out;
 }
 
 TEST(Cli, MeshBadInputsFailCleanly) {

@@ -351,6 +351,25 @@ TEST(Layers, AQualityThatCannotBeComputedStopsTheLayers) {
                                       {"layer 1 of 1: the prism over wall face ", "cannot be computed"});
 }
 
+TEST(Layers, LayersAMillionthOfTheBodyThickAreValid) {
+    // Two layers of 1e-7 on a unit sphere: a shell enclosing 2.7e-6 whose boundary-volume terms
+    // (the divergence theorem's, about 25 before they cancel) carry rounding errors of 1e-15. The
+    // validator's volume check used to take them for a missing cell (relative difference 1.1e-9
+    // over its 1e-9); it now allows the sum's rounding error, and still finds a missing cell.
+    const SurfaceMesh wall = prepare_surface(example_data("sphere.stl"), {});
+    const LayerMesh lm = extrude_layers(wall, geometric(2, 1e-7, 1.2));
+    const ValidationReport r = validate_mesh(lm.mesh);
+    EXPECT_TRUE(r.ok()) << (r.problems.empty() ? std::string() : r.problems[0]);
+    EXPECT_NEAR(r.cell_volume, r.boundary_volume, 1e-6 * r.boundary_volume);
+    VolumeMesh holed = lm.mesh;
+    holed.prisms.erase(holed.prisms.begin());
+    const ValidationReport h = validate_mesh(holed);
+    EXPECT_FALSE(h.ok());
+    bool volume = false;
+    for (const std::string& line : h.problems) volume |= line.find("volumes sum to") != std::string::npos;
+    EXPECT_TRUE(volume);
+}
+
 /// A closed 0.9 m cube whose top and front faces are fans of \p count needle triangles, \p h
 /// wide along the top front edge from one corner and 0.9 m long, as CAD tessellators make,
 /// then one triangle over the rest of the edge.

@@ -44,15 +44,16 @@ struct ValidationReport {
 };
 
 struct ValidateParams {
-    double volume_tolerance = 1e-9;  ///< allowed |Σ cell volumes − boundary volume|, relative to the latter
+    double volume_tolerance = 1e-9;  ///< allowed |Σ cell volumes − boundary volume|, relative to the latter, plus
+                                     ///< the boundary sum's rounding error (its terms cancel in a thin shell)
     int threads = 0;                 ///< 0: OpenMP's default; the report is the same for any count
     Progress* progress = nullptr;    ///< stage "validation", checked between the checks
 };
 
 /// Check \p mesh: its arrays (check_volume_arrays; with an id out of range nothing else is
 /// checked), every corner's scaled Jacobian and every cell's volume, the faces (match_faces:
-/// every problem it finds is one), the volume closure; and checkMesh's figures (solver). Works in fixed chunks merged in order,
-/// so the report does not depend on the thread count.
+/// every problem it finds is one), the volume closure; and checkMesh's figures (solver). Works in fixed chunks merged
+/// in order, so the report does not depend on the thread count.
 ValidationReport validate_mesh(const VolumeMesh& mesh, const ValidateParams& params = {});
 
 /// validate_mesh, and throw TopologyError "<what>: <n> problems: <first problems>" unless ok.
