@@ -136,6 +136,11 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         if (fuse.fused > 0) {
             // The union's faces with the untouched components: checked and oriented again.
             fused = merge_coincident_nodes(fused, params.merge_tolerance);
+            // The union's cuts can pass within the merge tolerance of a node (a cone's faceted
+            // side across a sphere's vertex): merged, the sliver faces between repeat a node.
+            Index reduced = 0;
+            fused = remove_collapsed_faces(fused, &reduced);
+            collapsed += reduced;
             check_surface(fused, source + " (fused)");
             oriented = orient_surface(fused, &orient, params.internal_flow);
         }

@@ -4,6 +4,7 @@
 
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/intersections.h>
+#include <strata/geometry/topology.h>
 #include <strata/geometry/touching.h>
 
 #include <CGAL/box_intersection_d.h>
@@ -32,6 +33,49 @@ bool inside(const Vec3& p, const std::array<Vec3, 3>& t, const Vec3& n, double t
         if (!(len > 0.0) || n.cross(e).dot(p - a) / len < -tol) return false;
     }
     return true;
+}
+
+/// Where a body touches only part of another's face (a cabin box on a longer body's top), the
+/// covered side would go and the other stay, leaving an edge with one face: such faces are not
+/// back to back over their whole extent, and only a Boolean union (fuse.h) can join the bodies
+/// there. Every connected group of \p drop (across edges) with an edge that removing it would
+/// leave with an odd number of faces is kept.
+void keep_where_partial(const SurfaceMesh& mesh, std::vector<char>& drop) {
+    const EdgeTable et = edge_table(mesh);
+    const auto ne = et.nodes.size();
+    // Groups: union-find over the edges two dropped faces share.
+    std::vector<Index> parent(drop.size());
+    for (std::size_t f = 0; f < drop.size(); ++f) parent[f] = static_cast<Index>(f);
+    auto find = [&](Index f) {
+        while (parent[static_cast<std::size_t>(f)] != f)
+            f = parent[static_cast<std::size_t>(f)] =
+                parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(f)])];
+        return f;
+    };
+    std::vector<char> odd(ne, 0);
+    for (std::size_t e = 0; e < ne; ++e) {
+        const Index* fs = et.faces.row_begin(static_cast<Index>(e));
+        const Index n = et.faces.row_size(static_cast<Index>(e));
+        Index dropped = 0, first = kNone;
+        for (Index k = 0; k < n; ++k) {
+            if (!drop[static_cast<std::size_t>(fs[k])]) continue;
+            ++dropped;
+            if (first == kNone)
+                first = fs[k];
+            else
+                parent[static_cast<std::size_t>(find(fs[k]))] = find(first);
+        }
+        odd[e] = dropped > 0 && (n - dropped) % 2 == 1;
+    }
+    std::vector<char> partial(drop.size(), 0);
+    for (std::size_t e = 0; e < ne; ++e) {
+        if (!odd[e]) continue;
+        const Index* fs = et.faces.row_begin(static_cast<Index>(e));
+        for (Index k = 0; k < et.faces.row_size(static_cast<Index>(e)); ++k)
+            if (drop[static_cast<std::size_t>(fs[k])]) partial[static_cast<std::size_t>(find(fs[k]))] = 1;
+    }
+    for (std::size_t f = 0; f < drop.size(); ++f)
+        if (drop[f] && partial[static_cast<std::size_t>(find(static_cast<Index>(f)))]) drop[f] = 0;
 }
 
 }  // namespace
@@ -79,9 +123,13 @@ std::vector<Index> touching_faces(const SurfaceMesh& mesh, double rel_tol) {
         face_all[f] = 1;
         if (!covered[i]) face_any_open[f] = 1;
     }
+    const auto nf = static_cast<std::size_t>(mesh.num_faces());
+    std::vector<char> drop(nf, 0);
+    for (std::size_t f = 0; f < nf; ++f) drop[f] = face_all[f] && !face_any_open[f];
+    keep_where_partial(mesh, drop);
     std::vector<Index> out;
-    for (Index f = 0; f < mesh.num_faces(); ++f)
-        if (face_all[static_cast<std::size_t>(f)] && !face_any_open[static_cast<std::size_t>(f)]) out.push_back(f);
+    for (std::size_t f = 0; f < nf; ++f)
+        if (drop[f]) out.push_back(static_cast<Index>(f));
     return out;
 }
 

@@ -4,6 +4,7 @@
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/primitives.h>
+#include <strata/geometry/topology.h>
 #include <strata/io/read_surface.h>
 
 #include <gtest/gtest.h>
@@ -169,6 +170,26 @@ TEST(Prepare, SeveralInputsAreOneSurfaceEachKeepingItsPatches) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("missing.stl"), std::string::npos) << e.what();
     }
+}
+
+TEST(Prepare, FusedBodiesWhoseCutsPassANodeAreRepaired) {
+    // A CAD tool's STL of a sphere and a cone that overlap: the union's cut passes within the
+    // merge tolerance of a node of the sphere's tessellation, so merging the union's nodes
+    // leaves two faces that repeat a node. They go as the input's do (counted with them), where
+    // they used to stop --fuse with "uses node ... twice".
+    PrepareParams p;
+    p.fuse = true;
+    PrepareReport rep;
+    const SurfaceMesh m = prepare_surface(test::test_data("prepare_sphere_cone_brepmesh.stl"), p, &rep);
+    EXPECT_EQ(rep.fused_components, 2);
+    EXPECT_EQ(rep.collapsed_faces, 4);  // 2 in the file, 2 from the union
+    EXPECT_TRUE(test::closed_manifold(m));
+    Index nc = 0;
+    face_components(m, &nc);
+    EXPECT_EQ(nc, 1);
+    PrepareReport alone;
+    (void)prepare_surface(test::test_data("prepare_sphere_cone_brepmesh.stl"), {}, &alone);
+    EXPECT_EQ(alone.collapsed_faces, 2);
 }
 
 TEST(Prepare, ParsePatchKind) {

@@ -4,6 +4,7 @@
 
 #include <strata/core/error.h>
 #include <strata/geometry/check.h>
+#include <strata/geometry/fuse.h>
 #include <strata/geometry/topology.h>
 #include <strata/geometry/touching.h>
 
@@ -65,8 +66,31 @@ TEST(Touching, BoxesApartOverlappingOrDuplicatedKeepEveryFace) {
     EXPECT_TRUE(touching_faces(test::merged(box(-0.5, 0, "l"), box(0.0, 1, "r"))).empty());
     // The same box twice: every face lies on its copy, facing the same way: not back to back.
     EXPECT_TRUE(touching_faces(test::merged(box(0.0, 0, "a"), box(0.0, 0, "b"))).empty());
-    // Just within the tolerance: still touching.
-    EXPECT_EQ(touching_faces(test::merged(box(-1.0 - 1e-7, 0, "l"), box(0.0, 1, "r"))).size(), 4u);
+    // Just within the tolerance, the rims welded at it: still touching. Not welded, taking the
+    // sides away would leave both rims open: they stay.
+    const SurfaceMesh near = test::merged(box(-1.0 - 1e-7, 0, "l"), box(0.0, 1, "r"));
+    EXPECT_EQ(touching_faces(merge_coincident_nodes(near, 1e-6)).size(), 4u);
+    EXPECT_TRUE(touching_faces(near).empty());
+}
+
+TEST(Touching, ABodyOnPartOfAnothersFaceIsLeftForTheUnion) {
+    // A half-size box standing on the middle of the unit box's side x = 1 (a car's cabin on its
+    // body): its side x = 1 lies on the big one's, facing it, but covers only part of it. Taking
+    // the small side away would leave its rim open, and the big side cannot go: neither goes
+    // (fuse.h's union joins them there), where they used to both go and open the surface.
+    SurfaceMesh small = box(0.0, 0, "cabin");
+    for (Vec3& p : small.points) p = Vec3(1.0 + 0.5 * p.x(), 0.25 + 0.5 * p.y(), 0.25 + 0.5 * p.z());
+    const SurfaceMesh two = test::merged(box(0.0, 1, "body"), small);
+    EXPECT_TRUE(touching_faces(two).empty());
+    FuseReport rep;
+    const SurfaceMesh u = fuse_components(orient_surface(two), &rep);
+    EXPECT_EQ(rep.fused, 2);
+    EXPECT_TRUE(test::closed_manifold(u));
+    EXPECT_NEAR(test::enclosed_volume(u), 1.125, 1e-12);
+    EXPECT_NO_THROW(check_surface(u, "box and cabin"));
+    // The same pair, the small box as large as the big one's side: back to back over all of
+    // it, both sides go as before.
+    EXPECT_EQ(touching_faces(merge_coincident_nodes(test::merged(box(0.0, 1, "body"), box(1.0, 0, "r")))).size(), 4u);
 }
 
 TEST(Touching, RemoveFacesKeepsTheRestInOrderAndChecksItsFlags) {

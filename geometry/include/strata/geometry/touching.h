@@ -18,6 +18,9 @@ namespace strata {
 /// \p rel_tol × the model's bounding-box diagonal of the other's plane, their normals opposed,
 /// and the centre of each triangle of the face inside such a face (quads as two triangles).
 /// Sorted; empty if none. Exact duplicates of the same orientation are not touching faces.
+/// Where the faces lie back to back over only part of one of them (a small body on a large
+/// one's side), removing them would leave an edge with one face: such a connected group is not
+/// returned, and only a Boolean union (fuse.h) joins the bodies there.
 /// Deterministic.
 std::vector<Index> touching_faces(const SurfaceMesh& mesh, double rel_tol = 1e-6);
 
