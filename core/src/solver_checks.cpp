@@ -120,6 +120,40 @@ double right_prism_aspect_ratio(const Vec3* corners, int n, double h) {
     return aspect_ratio_of(mag, a * h);
 }
 
+double leaning_prism_aspect_ratio(const Vec3* corners, const Vec3* directions, int n, double h) {
+    if (n < 3 || n > 4 || !(h > 0.0)) return std::numeric_limits<double>::infinity();
+    std::array<Vec3, 4> top;
+    for (int i = 0; i < n; ++i) top[static_cast<std::size_t>(i)] = corners[i] + h * directions[i];
+    // Each face's area vector (a polygon's from its centroid; a quad's is half its diagonals'
+    // cross product either way) and centroid, oriented out of the cell: the volume by the
+    // divergence theorem, checkMesh's sums of their components.
+    auto polygon = [n](const Vec3* x, Vec3& centre) {
+        centre = Vec3::Zero();
+        for (int i = 0; i < n; ++i) centre += x[i];
+        centre /= static_cast<double>(n);
+        Vec3 a = Vec3::Zero();
+        for (int i = 0; i < n; ++i) a += 0.5 * (x[i] - centre).cross(x[(i + 1) % n] - centre);
+        return a;
+    };
+    Vec3 cb, ct;
+    const Vec3 bottom = polygon(corners, cb), up = polygon(top.data(), ct);
+    Vec3 mag = bottom.cwiseAbs() + up.cwiseAbs();
+    // s = 1 when the corners run counter-clockwise seen from the top (the bottom's area vector
+    // points into the cell); the outward area vectors are then -bottom, up and the sides'.
+    const double s = bottom.dot(ct - cb) > 0.0 ? 1.0 : -1.0;
+    double three_volume = s * (up.dot(ct) - bottom.dot(cb));
+    for (int i = 0; i < n; ++i) {
+        const Vec3 &a = corners[i], &b = corners[(i + 1) % n];
+        const Vec3 &c = top[static_cast<std::size_t>((i + 1) % n)], &d = top[static_cast<std::size_t>(i)];
+        const Vec3 side = 0.5 * (c - a).cross(d - b);  // of a-b-c-d, outward when s = 1
+        mag += side.cwiseAbs();
+        three_volume += s * side.dot(0.25 * (a + b + c + d));
+    }
+    const double volume = three_volume / 3.0;
+    if (!(volume > 0.0)) return std::numeric_limits<double>::infinity();
+    return aspect_ratio_of(mag, volume);
+}
+
 SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads) {
     SolverChecks r;
     const FaceSlots& slots = match.slots;

@@ -74,42 +74,80 @@ std::map<std::array<double, 3>, Index> node_at(const SurfaceMesh& mesh) {
     return at;
 }
 
-}  // namespace
+/// A column leaning more than this off a face's normal stands on an edge of 110 degrees or more
+/// (twice it): without a fan, the layers stop at the wall there (module's --sharp-edge-stop
+/// default; module/ is above geometry/, so it is not shared) and the face gets no cell.
+constexpr double kStopLeanDeg = 55.0;
 
-WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_surface, const std::set<int>& walls,
-                       const WallLimits& params) {
-    const double h = params.first_height, limit = params.max_aspect_ratio;
-    WallAspect out;
-    std::map<int, double> worst;
-    std::map<int, double>& area = out.area;
-    std::map<int, Index>& faces = out.faces;
-    auto corner = [&](Index f, Index i) -> const Vec3& {
-        return mesh.points[static_cast<std::size_t>(mesh.face_node(f, i))];
-    };
-    // Wall edges → their faces, for the fans below.
-    std::map<std::array<Index, 2>, std::vector<Index>> faces_of_edge;
-    for (Index f = 0; f < mesh.num_faces(); ++f) {
-        const int s = face_surface[static_cast<std::size_t>(f)];
-        if (!walls.count(s)) continue;
-        std::array<Vec3, 4> c;
-        const Index n = mesh.face_size(f);
-        for (Index i = 0; i < n; ++i) c[static_cast<std::size_t>(i)] = corner(f, i);
-        double& w = worst[s];
-        w = std::max(w, right_prism_aspect_ratio(c.data(), static_cast<int>(n), h));
-        area[s] += face_area_vector(mesh, f).norm();
-        ++faces[s];
-        if (params.fan_angle_deg > 0.0)
-            for (Index i = 0; i < n; ++i) {
-                const Index a = mesh.face_node(f, i), b = mesh.face_node(f, (i + 1) % n);
-                faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(f);
+/// The direction a column starts along at each node of \p faces_at (node → its wall faces): the
+/// corner-angle weighted mean of those faces' normals, oriented consistently round the node
+/// across the edges they share (Gmsh orients each surface by its own parametrization, so the
+/// mesh's faces need not agree). Zero where the faces round a node cannot be oriented so (a
+/// non-manifold node) or cancel.
+std::map<Index, Vec3> start_directions(const SurfaceMesh& mesh, const std::map<Index, std::vector<Index>>& faces_at) {
+    std::map<Index, Vec3> out;
+    for (const auto& [v, fs] : faces_at) {
+        const std::size_t k = fs.size();
+        // Each face's nodes before and after v, its normal and its corner angle at v.
+        std::vector<Index> before(k), after(k);
+        std::vector<Vec3> normal(k);
+        std::vector<double> angle(k);
+        for (std::size_t i = 0; i < k; ++i) {
+            const Index f = fs[i], n = mesh.face_size(f);
+            for (Index c = 0; c < n; ++c)
+                if (mesh.face_node(f, c) == v) {
+                    before[i] = mesh.face_node(f, (c + n - 1) % n);
+                    after[i] = mesh.face_node(f, (c + 1) % n);
+                }
+            const Vec3& x = mesh.points[static_cast<std::size_t>(v)];
+            const Vec3 a = mesh.points[static_cast<std::size_t>(after[i])] - x,
+                       b = mesh.points[static_cast<std::size_t>(before[i])] - x;
+            normal[i] = face_area_vector(mesh, f).normalized();
+            angle[i] = std::atan2(a.cross(b).norm(), a.dot(b));
+        }
+        // Breadth-first from the first face: a neighbour across edge v-w runs it the other way
+        // when the two agree.
+        std::vector<int> sign(k, 0);
+        sign[0] = 1;
+        bool consistent = true;
+        for (std::vector<std::size_t> queue{0}; !queue.empty();) {
+            const std::size_t i = queue.back();
+            queue.pop_back();
+            for (std::size_t j = 0; j < k; ++j) {
+                if (j == i) continue;
+                int relation = 0;  // +1: the same orientation, -1: opposite
+                if (after[i] == before[j] || before[i] == after[j]) relation = 1;
+                if (after[i] == after[j] || before[i] == before[j]) relation = relation == 0 ? -1 : 2;
+                if (relation == 0) continue;
+                if (relation == 2) {
+                    consistent = false;
+                    continue;
+                }
+                if (sign[j] == 0) {
+                    sign[j] = sign[i] * relation;
+                    queue.push_back(j);
+                } else if (sign[j] != sign[i] * relation) {
+                    consistent = false;
+                }
             }
+        }
+        Vec3 d = Vec3::Zero();
+        for (std::size_t i = 0; i < k; ++i) {
+            if (sign[i] == 0) consistent = false;
+            d += static_cast<double>(sign[i]) * angle[i] * normal[i];
+        }
+        out[v] = consistent && d.norm() > 0.0 ? Vec3(d.normalized()) : Vec3(Vec3::Zero());
     }
-    for (const auto& [s, w] : worst) {
-        out.worst = std::max(out.worst, w);
-        if (w > limit) out.surfaces.push_back(s);
-    }
-    if (params.fan_angle_deg <= 0.0) return out;
+    return out;
+}
 
+/// The fan curves of WallLimits::fan_angle_deg (wall_aspect): each one's first wedge measured
+/// into \p out (worst, curve_need), the nodes on every fan curve into \p fan_nodes (their
+/// columns start along each side's normal).
+void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallLimits& params,
+                const std::map<std::array<Index, 2>, std::vector<Index>>& faces_of_edge, WallAspect& out,
+                std::set<Index>& fan_nodes) {
+    const double h = params.first_height, limit = params.max_aspect_ratio;
     // Fans: the first cell of a fan on a wall edge whose faces turn by the fan angle or more, and
     // on the convex edges of 30 degrees or more that close its chain (fans.cpp: a wing's tip and
     // root; here the curves of 30 degrees or more that share an end point with such a curve,
@@ -175,12 +213,36 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
         for (const auto& [d, t] : ends) points_of[c].push_back(std::abs(t));
         if (turn >= params.fan_angle_deg) fan.insert(c);
     }
+    // The chains: every sharp curve joined to a fan curve through sharp curves' end points, as
+    // fans.cpp's chains run. Their nodes start along each side's normal (fan_nodes); but only
+    // the fan curves and their neighbours are sized for the wedges: sizing the whole chain
+    // refined the M6's tip and root, whose fans then could not be capped and went.
+    std::set<int> chain = fan;
+    for (bool grew = true; grew;) {
+        grew = false;
+        std::set<int> chain_points;
+        for (int c : chain)
+            for (int q : points_of[c]) chain_points.insert(q);
+        for (const auto& [c, pts] : points_of)
+            if (!chain.count(c) &&
+                std::any_of(pts.begin(), pts.end(), [&](int q) { return chain_points.count(q) > 0; }))
+                grew = chain.insert(c).second || grew;
+    }
     {
         std::set<int> fan_points;
         for (int c : fan)
             for (int q : points_of[c]) fan_points.insert(q);
         for (const auto& [c, pts] : points_of)
             if (std::any_of(pts.begin(), pts.end(), [&](int q) { return fan_points.count(q) > 0; })) fan.insert(c);
+    }
+    for (int c : chain) {
+        std::vector<std::size_t> tags;
+        std::vector<double> xyz, uvw;
+        gmsh::model::mesh::getNodes(tags, xyz, uvw, 1, c, true, false);
+        for (std::size_t i = 0; i < tags.size(); ++i) {
+            const auto it = at.find({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+            if (it != at.end()) fan_nodes.insert(it->second);
+        }
     }
     for (int c : fan) {
         double curve_worst = 0.0, need = std::numeric_limits<double>::infinity();
@@ -197,6 +259,75 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
         }
         out.worst = std::max(out.worst, curve_worst);
         if (curve_worst > limit) out.curve_need[c] = need;
+    }
+}
+
+}  // namespace
+
+WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_surface, const std::set<int>& walls,
+                       const WallLimits& params) {
+    const double h = params.first_height, limit = params.max_aspect_ratio;
+    WallAspect out;
+    std::map<int, double> worst;
+    std::map<int, double>& area = out.area;
+    std::map<int, Index>& faces = out.faces;
+    auto corner = [&](Index f, Index i) -> const Vec3& {
+        return mesh.points[static_cast<std::size_t>(mesh.face_node(f, i))];
+    };
+    // Wall edges → their faces, for the fans below; wall nodes → their faces, for the columns'
+    // directions; nodes on a face that is not a wall's (their columns follow that patch).
+    std::map<std::array<Index, 2>, std::vector<Index>> faces_of_edge;
+    std::map<Index, std::vector<Index>> faces_at;
+    std::set<Index> by_other;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const Index n = mesh.face_size(f);
+        if (!walls.count(face_surface[static_cast<std::size_t>(f)])) {
+            for (Index i = 0; i < n; ++i) by_other.insert(mesh.face_node(f, i));
+            continue;
+        }
+        area[face_surface[static_cast<std::size_t>(f)]] += face_area_vector(mesh, f).norm();
+        ++faces[face_surface[static_cast<std::size_t>(f)]];
+        for (Index i = 0; i < n; ++i) {
+            const Index a = mesh.face_node(f, i), b = mesh.face_node(f, (i + 1) % n);
+            faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(f);
+            faces_at[a].push_back(f);
+        }
+    }
+    std::set<Index> fan_nodes;
+    if (params.fan_angle_deg > 0.0) fan_curves(mesh, walls, params, faces_of_edge, out, fan_nodes);
+
+    // Each wall face's first cell: its columns along their start directions (a fan's, and one
+    // beside another patch, along the face's normal), leaning off the face on its edges.
+    const std::map<Index, Vec3> start = start_directions(mesh, faces_at);
+    const double stop_cos = std::cos(kStopLeanDeg * std::numbers::pi / 180.0);
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const int s = face_surface[static_cast<std::size_t>(f)];
+        if (!walls.count(s)) continue;
+        const Index n = mesh.face_size(f);
+        const Vec3 normal = face_area_vector(mesh, f).normalized();
+        std::array<Vec3, 4> c, d;
+        bool stopped = false;
+        for (Index i = 0; i < n; ++i) {
+            const Index v = mesh.face_node(f, i);
+            c[static_cast<std::size_t>(i)] = corner(f, i);
+            Vec3 dir = normal;
+            const auto it = start.find(v);
+            if (!fan_nodes.count(v) && !by_other.count(v) && it != start.end() && it->second != Vec3::Zero()) {
+                dir = it->second.dot(normal) < 0.0 ? Vec3(-it->second) : it->second;
+                stopped |= dir.dot(normal) < stop_cos;
+            }
+            d[static_cast<std::size_t>(i)] = dir;
+        }
+        if (stopped) continue;  // no layer over it
+        // A lean the cell cannot take (no volume) is left to the marching: the right prism's.
+        double ar = leaning_prism_aspect_ratio(c.data(), d.data(), static_cast<int>(n), h);
+        if (!std::isfinite(ar)) ar = right_prism_aspect_ratio(c.data(), static_cast<int>(n), h);
+        double& w = worst[s];
+        w = std::max(w, ar);
+    }
+    for (const auto& [s, w] : worst) {
+        out.worst = std::max(out.worst, w);
+        if (w > limit) out.surfaces.push_back(s);
     }
     return out;
 }

@@ -700,6 +700,20 @@ TEST(Cli, WallsAreMeshedFinerForTheFirstLayersAspectRatio) {
     expect_clean_failure(box + "-o out.msh --max-aspect-ratio 5", "--max-aspect-ratio", "aspect_small");
 }
 
+// A column on a 90-degree edge without a fan leans 45 degrees, its first cell only 0.71 of the
+// first height off the face: the wall sizing predicts that cell, not a right prism. The winglet
+// STL of the sweep, remeshed, under 3e-4: 955 predicted for a right prism, 1192 made (checkMesh
+// failed it); now 1190 predicted, its walls meshed finer, and checkMesh passes.
+TEST(Cli, WallSizingPredictsTheColumnsLeaningOverEdges) {
+    test::ScratchDir dir("cli_lean");
+    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/winglet_brepmesh.stl") +
+                                            "' --fuse --remesh --layers 30 --growth 1.2 --first-height 3e-4 -o w.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("walls: meshed again finer"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("worst 1190 before"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
 // A surface mesh is kept as it is: where its walls are too wide for the first layer the
 // summary says so before the layers' checkMesh figures, naming the worst face, and points to
 // --remesh; --max-aspect-ratio is the limit of that warning (0: none).

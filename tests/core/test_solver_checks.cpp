@@ -197,6 +197,40 @@ TEST(SolverChecks, RightPrismAspectRatioIsThatOfTheCellItPredicts) {
     EXPECT_TRUE(std::isinf(right_prism_aspect_ratio(flat.data(), 3, 1e-4)));
 }
 
+TEST(SolverChecks, LeaningPrismAspectRatioIsThatOfTheCellItPredicts) {
+    // The root face of a thin wing (0.5 by 0.03 in the plane y = 0), its columns leaning 45
+    // degrees out over the 90-degree edges at its corners as a bisector does: the cell stands
+    // 0.71 h off the face, and checkMesh's figure rises by about 1 / 0.71 over the right
+    // prism's (a winglet STL remeshed: 955 predicted, 1192 made).
+    const double h = 3e-4, r = std::sqrt(0.5);
+    const std::array<Vec3, 3> tri{Vec3(1, 0, 0), Vec3(0.5, 0, -0.03), Vec3(1, 0, -0.03)};
+    const std::array<Vec3, 3> lean{Vec3(r, -r, 0), Vec3(0, -r, -r),
+                                   Vec3(r * r * std::sqrt(2.0), -r, -0.5 * std::sqrt(2.0) * r)};
+    std::array<Vec3, 3> d;
+    for (int i = 0; i < 3; ++i) d[static_cast<std::size_t>(i)] = lean[static_cast<std::size_t>(i)].normalized();
+    // Strata's prism: bottom 0-1-2 with its normal towards the top.
+    const bool up = (tri[1] - tri[0]).cross(tri[2] - tri[0]).dot(d[0]) > 0.0;
+    const std::array<int, 3> order = up ? std::array<int, 3>{0, 1, 2} : std::array<int, 3>{0, 2, 1};
+    std::vector<Vec3> p;
+    for (int i : order) p.push_back(tri[static_cast<std::size_t>(i)]);
+    for (int i : order) p.push_back(tri[static_cast<std::size_t>(i)] + h * d[static_cast<std::size_t>(i)]);
+    const SolverChecks cell = checks(one_cell<6>(p, CellType::Prism));
+    const double predicted = leaning_prism_aspect_ratio(tri.data(), d.data(), 3, h);
+    EXPECT_EQ(cell.negative_pyramids, 0);
+    EXPECT_NEAR(cell.max_aspect_ratio, predicted, 1e-6 * predicted);
+    EXPECT_GT(predicted, 1.2 * right_prism_aspect_ratio(tri.data(), 3, h));
+    // Every direction the face's normal: the right prism, either orientation of the face.
+    const Vec3 n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalized();
+    const std::array<Vec3, 3> normal{n, n, n};
+    const double right = right_prism_aspect_ratio(tri.data(), 3, h);
+    EXPECT_NEAR(leaning_prism_aspect_ratio(tri.data(), normal.data(), 3, h), right, 1e-9 * right);
+    const std::array<Vec3, 3> back{tri[0], tri[2], tri[1]};
+    EXPECT_NEAR(leaning_prism_aspect_ratio(back.data(), normal.data(), 3, h), right, 1e-9 * right);
+    const std::array<Vec3, 4> square{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
+    const std::array<Vec3, 4> z{Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(0, 0, 1)};
+    EXPECT_NEAR(leaning_prism_aspect_ratio(square.data(), z.data(), 4, 1e-4), 1e4, 1e-6);
+}
+
 TEST(SolverChecks, FanWedgeAspectRatioIsThatOfTheCellItPredicts) {
     // A fan's first wedge on an edge along y (the worst case: its ends face y alone) and on a
     // skewed edge, 75 degrees between its directions (a 150-degree edge's two wedges).

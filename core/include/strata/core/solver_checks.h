@@ -62,6 +62,13 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
 /// area gives infinity.
 double right_prism_aspect_ratio(const Vec3* corners, int n, double h);
 
+/// checkMesh's aspect ratio of the first-layer cell on the wall face with corners \p corners (3
+/// or 4, either orientation) whose top corner i is corners[i] + h directions[i] (unit, all on
+/// the face's one side): a column on a convex or concave edge leans along the bisector of its
+/// faces, and its cell stands only h cos(lean) off the face. right_prism_aspect_ratio when every
+/// direction is the face's normal. Non-finite for a face without area or a cell without volume.
+double leaning_prism_aspect_ratio(const Vec3* corners, const Vec3* directions, int n, double h);
+
 /// checkMesh's aspect ratio of the first cell of a fan (ALGORITHM.md, "Fans") on the wall edge
 /// \p a - \p b: the wedge between the directions \p d1 and \p d2 (unit, square to the edge),
 /// \p h long. Its end triangles are about h² small against sides of the edge's length, so it is
