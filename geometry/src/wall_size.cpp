@@ -216,7 +216,9 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
     // The chains: every sharp curve joined to a fan curve through sharp curves' end points, as
     // fans.cpp's chains run. Their nodes start along each side's normal (fan_nodes); but only
     // the fan curves and their neighbours are sized for the wedges: sizing the whole chain
-    // refined the M6's tip and root, whose fans then could not be capped and went.
+    // passes the blades and the fin on a body, but refines the M6's root, where the columns at
+    // its leading edge then stop at the wall and the cells beside them, tetrahedra on the root
+    // face 0.02 high, reach 1904 (the sizing does not predict such cells).
     std::set<int> chain = fan;
     for (bool grew = true; grew;) {
         grew = false;
@@ -244,11 +246,40 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
             if (it != at.end()) fan_nodes.insert(it->second);
         }
     }
+    // Wedges per edge: as many as the sharpest curve of its chain needs (fans.cpp gives a whole
+    // run of fan edges the count of its sharpest: a blade's 90-degree closing edges, in the run
+    // of its 160-degree edge, get two wedges of 45 degrees).
+    std::map<int, int> wedges_of;
+    {
+        std::map<int, int> part;  // chain curve → the lowest curve of its connected chain
+        for (int c : chain) part[c] = c;
+        for (bool merged = true; merged;) {
+            merged = false;
+            for (int a : chain)
+                for (int b : chain) {
+                    if (part[a] == part[b]) continue;
+                    const auto& pa = points_of[a];
+                    if (std::none_of(pa.begin(), pa.end(), [&](int q) {
+                            const auto& pb = points_of[b];
+                            return std::find(pb.begin(), pb.end(), q) != pb.end();
+                        }))
+                        continue;
+                    const int low = std::min(part[a], part[b]);
+                    part[a] = part[b] = low;
+                    merged = true;
+                }
+        }
+        std::map<int, double> sharpest_of_part;
+        for (int c : chain) sharpest_of_part[part[c]] = std::max(sharpest_of_part[part[c]], sharpest[c]);
+        for (int c : chain)
+            wedges_of[c] = std::max(1, static_cast<int>(std::ceil(sharpest_of_part[part[c]] / kWedgeDeg - 1e-9)));
+    }
     for (int c : fan) {
         double curve_worst = 0.0, need = std::numeric_limits<double>::infinity();
         for (const Edge& e : edges_of[c]) {
-            // The fan's first wedge: columns at most 90 degrees apart (fans.cpp), from n1 towards n2.
-            const double wedge = e.turn / std::ceil(e.turn / kWedgeDeg) * std::numbers::pi / 180.0;
+            // The fan's first wedge: its run's wedges (above) at most 90 degrees apart, from n1
+            // towards n2.
+            const double wedge = e.turn / wedges_of[c] * std::numbers::pi / 180.0;
             const Vec3 t = (e.n2 - e.n1.dot(e.n2) * e.n1).normalized();
             const Vec3 d2 = std::cos(wedge) * e.n1 + std::sin(wedge) * t;
             const double ar = fan_wedge_aspect_ratio(e.a, e.b, e.n1, d2, h);
