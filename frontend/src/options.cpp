@@ -196,9 +196,10 @@ std::vector<OptionSpec> make_table() {
         "collapse edges shorter than this share of the edges around them (a CAD model's small edges and sliver "
         "faces, whose needle faces cap the layer cells on them; in [0, 0.5], 0: off)"));
     t.push_back(spec(
-        "", "merge_tolerance", "PrepareParams::merge_tolerance", Stage::Patches,
+        "--merge-tolerance", "merge_tolerance", "PrepareParams::merge_tolerance", Stage::Patches,
         [](Options& o) -> double& { return o.surface.prepare.merge_tolerance; },
-        "coincident-node merge distance, relative to the bounding-box diagonal"));
+        "nodes closer than this share of the bounding-box diagonal are one (in [0, 0.001]): a larger one welds "
+        "the cracks a CAD export leaves between faces"));
     t.push_back(no_default(spec(
         "--internal", "internal_flow", "PrepareParams::internal_flow", Stage::Patches,
         [](Options& o) -> bool& { return o.surface.prepare.internal_flow; },

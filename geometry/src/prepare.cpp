@@ -87,6 +87,10 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     if (!(params.collapse_ratio >= 0.0 && params.collapse_ratio <= 0.5))
         throw InputError(source + ": PrepareParams::collapse_ratio = " + format_number(params.collapse_ratio) +
                          ": need a share of the local edge length in [0, 0.5] (0: no edge collapsed)");
+    if (!(params.merge_tolerance >= 0.0 && params.merge_tolerance <= 1e-3))
+        throw InputError(source + ": PrepareParams::merge_tolerance = " + format_number(params.merge_tolerance) +
+                         ": need a share of the model's size in [0, 0.001] (nodes closer than it are one; a larger "
+                         "one would merge the nodes of real features)");
     if (params.scale != 1.0)
         for (Vec3& x : raw.points) x *= params.scale;
     assign_patch_kinds(raw, params.patch_kinds, source);
@@ -101,8 +105,9 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         throw TopologyError(source + ": " + e.what());
     }
     const Index merged_nodes = raw.num_points() - merged.num_points();
-    Index collapsed = 0;
+    Index collapsed = 0, duplicates = 0;
     merged = remove_collapsed_faces(merged, &collapsed);
+    merged = remove_duplicate_faces(merged, &duplicates);
     raw = SurfaceMesh{};  // the input copy is no longer needed
     strata::report(progress, "surface", 0.7);
     Index touching = 0;
@@ -175,6 +180,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         report->internal_flow = params.internal_flow;
         report->merged_nodes = merged_nodes;
         report->collapsed_faces = collapsed;
+        report->duplicate_faces = duplicates;
         report->orient = orient;
     }
     strata::report(progress, "surface", 1.0);

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <numeric>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -180,6 +181,30 @@ void drop_unused_nodes(const std::vector<Vec3>& points, SurfaceMesh& out) {
 }
 
 }  // namespace
+
+SurfaceMesh remove_duplicate_faces(const SurfaceMesh& mesh, Index* removed) {
+    require_valid_ids(mesh, "remove_duplicate_faces", true);
+    SurfaceMesh out;
+    out.patches = mesh.patches;
+    out.points = mesh.points;
+    std::set<std::array<Index, 4>> seen;
+    Index count = 0;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const Index* v = mesh.face_begin(f);
+        const Index k = mesh.face_size(f);
+        // The face's nodes from its lowest, in its own order: one key for every rotation.
+        const Index low = static_cast<Index>(std::min_element(v, v + k) - v);
+        std::array<Index, 4> key{kNone, kNone, kNone, kNone};
+        for (Index i = 0; i < k && i < 4; ++i) key[static_cast<std::size_t>(i)] = v[(low + i) % k];
+        if (k <= 4 && !seen.insert(key).second) {
+            ++count;
+            continue;
+        }
+        out.add_face(v, k, mesh.face_patch[f]);
+    }
+    if (removed) *removed = count;
+    return out;
+}
 
 SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed) {
     require_valid_ids(mesh, "remove_collapsed_faces", true);

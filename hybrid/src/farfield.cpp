@@ -131,6 +131,48 @@ SurfaceMesh make_half_farfield(const std::vector<Vec3>& body_points, const Vec3&
     return m;
 }
 
+namespace {
+
+/// The open boundary loops of \p walls for a message: how many, and the largest three by their
+/// edges, each with the centre of its nodes ("2 open boundary loops: 3 edges around (x, y, z),
+/// ...").
+std::string describe_loops(const SurfaceMesh& walls, const Csr& open) {
+    std::vector<Index> order(static_cast<std::size_t>(open.rows()));
+    for (Index l = 0; l < open.rows(); ++l) order[static_cast<std::size_t>(l)] = l;
+    std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return open.row_size(a) > open.row_size(b); });
+    std::string s = std::to_string(open.rows()) + " open boundary loop" + (open.rows() == 1 ? "" : "s") + ": ";
+    for (std::size_t k = 0; k < order.size() && k < 3; ++k) {
+        const Index l = order[k];
+        Vec3 c = Vec3::Zero();
+        for (const Index* v = open.row_begin(l); v != open.row_end(l); ++v)
+            c += walls.points[static_cast<std::size_t>(*v)];
+        c /= static_cast<double>(open.row_size(l));
+        s += (k ? ", " : "") + std::to_string(open.row_size(l)) + " edges around " + format_point(c);
+    }
+    if (order.size() > 3) s += ", ...";
+    // A crack: two open edges' nodes nearly meet (an export whose faces miss each other by a
+    // tolerance). Not for long loops (a half model's cut): the search is quadratic.
+    std::vector<Index> nodes(open.values.begin(), open.values.end());
+    const double diag = bounding_box(walls.points).diagonal();
+    double gap = std::numeric_limits<double>::infinity();
+    Vec3 where = Vec3::Zero();
+    if (nodes.size() <= 5000)
+        for (std::size_t i = 0; i < nodes.size(); ++i)
+            for (std::size_t j = i + 1; j < nodes.size(); ++j) {
+                const Vec3 &a = walls.points[static_cast<std::size_t>(nodes[i])],
+                           &b = walls.points[static_cast<std::size_t>(nodes[j])];
+                const double d = (a - b).norm();
+                if (nodes[i] != nodes[j] && d < gap) gap = d, where = 0.5 * (a + b);
+            }
+    if (gap < 1e-4 * diag)
+        s += "; two of their nodes are " + format_number(gap, 3) + " apart at " + format_point(where) +
+             ", a crack: --merge-tolerance " + format_number(std::min(1e-3, 2.0 * gap / diag), 2) +
+             " (a share of the model's size) welds nodes that close";
+    return s;
+}
+
+}  // namespace
+
 SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& params) {
     const Csr open = boundary_loops(walls);
     std::vector<Vec3> on_plane;
@@ -139,10 +181,11 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
     const double diag = bounding_box(walls.points).diagonal();
     if (open.rows() == 0 || !(pl.deviation <= 1e-6 * diag))
         throw InputError(
-            "the surface is open, but its open edges do not lie in one plane (they are " + format_number(pl.deviation) +
-            " off their best plane, the body's size is " + format_number(diag) +
-            "): only a half model cut by one symmetry plane is closed automatically; close the fluid domain "
-            "yourself (walls plus symmetry and farfield patches) or mesh the full body");
+            "the surface is open (" + describe_loops(walls, open) + "), but its open edges do not lie in one plane " +
+            "(they are " + format_number(pl.deviation) + " off their best plane, the body's size is " +
+            format_number(diag) +
+            "): only a half model cut by one symmetry plane is closed automatically; close the holes in the CAD tool "
+            "(or the fluid domain yourself: walls plus symmetry and farfield patches) or mesh the full body");
     // The plane's normal towards the body.
     double below = 0.0, above = 0.0;
     for (const Vec3& p : walls.points) {
@@ -151,10 +194,37 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
         above = std::max(above, w);
     }
     const Vec3 n = above >= -below ? pl.normal : Vec3(-pl.normal);
-    if (std::min(above, -below) > 1e-6 * diag)
-        throw InputError("the surface is open along a plane (a half model) but lies on both sides of it (" +
-                         format_number(std::max(above, -below)) + " and " + format_number(std::min(above, -below)) +
-                         " away): a half model must lie on one side of its symmetry plane");
+    // A symmetric body meets its symmetry plane square (its faces along the cut stand across the
+    // plane); the faces round a missing face of a convex body lie along the hole's plane, and
+    // every node of the body lies on one side of it, as for a half model. So: the faces on the
+    // open edges, weighted by the edges' lengths, must stand at more than 60 degrees to the plane
+    // on average (|cos| under 0.5).
+    double along = 0.0, length = 0.0;
+    {
+        const EdgeTable et = edge_table(walls);
+        for (std::size_t e = 0; e < et.nodes.size(); ++e) {
+            if (et.faces.row_size(static_cast<Index>(e)) != 1) continue;
+            const double l = (walls.points[static_cast<std::size_t>(et.nodes[e][0])] -
+                              walls.points[static_cast<std::size_t>(et.nodes[e][1])])
+                                 .norm();
+            const Vec3 a = face_area_vector(walls, et.faces.row_begin(static_cast<Index>(e))[0]);
+            if (!(a.norm() > 0.0)) continue;
+            along += l * std::abs(a.normalized().dot(pl.normal));
+            length += l;
+        }
+    }
+    if (std::min(above, -below) > 1e-6 * diag || (length > 0.0 && along / length > 0.5))
+        throw InputError(
+            "the surface is open (" + describe_loops(walls, open) + ") and its open edges lie in one plane, but " +
+            (std::min(above, -below) > 1e-6 * diag
+                 ? "the body lies on both sides of it (" + format_number(std::max(above, -below)) + " and " +
+                       format_number(std::min(above, -below)) + " away)"
+                 : "the faces along them lie along it (at " +
+                       format_number(std::acos(std::min(1.0, along / length)) * 180.0 / 3.141592653589793, 2) +
+                       " degrees on average; a body cut by its symmetry plane meets it square)") +
+            ", so it is not a half model cut by a symmetry plane: a hole or a crack in the surface "
+            "(a missing face, or faces whose nodes do not meet); close it in the CAD tool or export it "
+            "again");
 
     SurfaceMesh dom;
     dom.patches = walls.patches;

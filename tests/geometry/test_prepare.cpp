@@ -192,6 +192,27 @@ TEST(Prepare, FusedBodiesWhoseCutsPassANodeAreRepaired) {
     EXPECT_EQ(alone.collapsed_faces, 2);
 }
 
+TEST(Prepare, AFaceWrittenTwiceIsRemovedAndTheMergeToleranceChecked) {
+    // A tetrahedron's STL with its first facet written again (a CAD export's slip): its three
+    // edges bounded three faces each, which check_surface refuses. The copy goes and is counted.
+    test::ScratchDir dir("prepare_duplicate");
+    std::string text = tet_stl(Vec3(0, 0, 0));
+    const std::size_t first = text.find("facet normal"), second = text.find("facet normal", first + 1);
+    text.insert(text.rfind("endsolid"), text.substr(first, second - first));
+    const std::string path = dir.file("twice.stl");
+    std::ofstream(path) << text;
+    PrepareReport rep;
+    const SurfaceMesh m = prepare_surface(path, {}, &rep);
+    EXPECT_EQ(rep.duplicate_faces, 1);
+    EXPECT_EQ(m.num_faces(), 4);
+    EXPECT_TRUE(test::closed_manifold(m));
+    // The weld distance is a share of the model's size, at most 0.001.
+    PrepareParams p;
+    p.merge_tolerance = 0.01;
+    test::expect_error<InputError>([&] { (void)prepare_surface(path, p); },
+                                   {"twice.stl", "merge_tolerance = 0.01", "[0, 0.001]"});
+}
+
 TEST(Prepare, ParsePatchKind) {
     EXPECT_EQ(parse_patch_kind("Symmetry"), PatchKind::Symmetry);
     EXPECT_EQ(parse_patch_kind("farfield"), PatchKind::Farfield);

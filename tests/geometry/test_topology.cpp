@@ -462,6 +462,31 @@ TEST(CollapsedFaces, RemovedOrMadeTrianglesAndTheCubeStaysClosed) {
     EXPECT_EQ(r.face_nodes, unit_cube().face_nodes);
 }
 
+TEST(DuplicateFaces, ACopyGoesTheOtherWayRoundStays) {
+    // The unit cube's six quads, then its first quad again from another corner and its second
+    // twice more: those three copies go, the cube is closed again. The first quad the other way
+    // round (a body back to back with it) stays: touching.h's case, not a copy.
+    SurfaceMesh m = unit_cube();
+    const Index quads = m.num_faces();
+    const std::vector<Index> q0(m.face_begin(0), m.face_end(0)), q1(m.face_begin(1), m.face_end(1));
+    m.add_face({q0[2], q0[3], q0[0], q0[1]}, 0);
+    m.add_face(q1.data(), 4, 0);
+    m.add_face(q1.data(), 4, 0);
+    EXPECT_FALSE(test::closed_manifold(m));
+    Index removed = -1;
+    SurfaceMesh r = remove_duplicate_faces(m, &removed);
+    EXPECT_EQ(removed, 3);
+    EXPECT_EQ(r.num_faces(), quads);
+    EXPECT_EQ(r.face_nodes, unit_cube().face_nodes);
+    EXPECT_EQ(r.points, m.points);
+    EXPECT_TRUE(test::closed_manifold(r));
+    m = unit_cube();
+    m.add_face({q0[3], q0[2], q0[1], q0[0]}, 0);
+    r = remove_duplicate_faces(m, &removed);
+    EXPECT_EQ(removed, 0);
+    EXPECT_EQ(r.num_faces(), quads + 1);
+}
+
 TEST(CollapsedFaces, FacePatchWithoutAnEntryPerFaceIsAnInputError) {
     // Faces are copied with their patch entry, which must exist (a fuzzer's find: it was read
     // past the end of face_patch).

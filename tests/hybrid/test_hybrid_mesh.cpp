@@ -180,6 +180,28 @@ TEST(HybridMesh, OpenSurfaceThatIsNotAHalfModelIsRefusedClearly) {
     }
 }
 
+TEST(HybridMesh, AHoleOrACrackIsNotTakenForAHalfModel) {
+    // A sphere missing one face: its open loop (a triangle) lies in a plane, as a half model's
+    // cut does, but the body lies on both sides of it. Refused as a hole, with where. A node of
+    // a face moved off by 1e-5 (its faces no longer meet) is a crack: the message names the gap
+    // and the --merge-tolerance that welds it.
+    const SurfaceMesh sphere = prepare_surface(example_data("sphere.stl"), {});
+    SurfaceMesh holed = sphere;
+    std::vector<char> drop(static_cast<std::size_t>(sphere.num_faces()), 0);
+    drop[7] = 1;
+    holed = remove_faces(sphere, drop);
+    test::expect_error<InputError>(
+        [&] { (void)build_hybrid_mesh(holed, sphere_params()); },
+        {"1 open boundary loop: 3 edges around (", "not a half model", "a hole or a crack in the surface"});
+    // The crack: face 7's first node replaced by a copy 1e-5 away.
+    SurfaceMesh cracked = sphere;
+    const Index v = cracked.face_node(7, 0);
+    cracked.points.push_back(cracked.points[static_cast<std::size_t>(v)] + Vec3(1e-5, 0, 0));
+    cracked.face_nodes[static_cast<std::size_t>(cracked.face_offsets[7])] = cracked.num_points() - 1;
+    test::expect_error<InputError>([&] { (void)build_hybrid_mesh(cracked, sphere_params()); },
+                                   {"two of their nodes are 1e-05 apart", "a crack: --merge-tolerance"});
+}
+
 TEST(HybridMesh, LayersThickerThanTheGeneratedFarfieldAllowsAreRefusedWithTheNumbers) {
     // 10 layers from 0.5 at 1.2 make 12.98 around a unit sphere; a farfield 1.1 times its
     // diagonal (3.46) across leaves 0.8-0.9 (the divisions cut the sphere): refused before any layer (TetGen used to

@@ -25,6 +25,13 @@ SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol = 1e-
 /// entry per face.
 SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed = nullptr);
 
+/// \p mesh without the faces that repeat an earlier face: the same nodes in the same cyclic
+/// order (any starting corner), as CAD exporters write a face twice. Such a pair makes every edge
+/// of the face bound three or four faces; the first stays. Faces over the same nodes the other way
+/// round are kept: two bodies back to back (touching.h). \p removed: how many went. Nodes are
+/// kept as they are (each is still used).
+SurfaceMesh remove_duplicate_faces(const SurfaceMesh& mesh, Index* removed = nullptr);
+
 /// \p mesh without the faces where \p drop (one per face) is nonzero; nodes no face uses any
 /// more are dropped, order kept.
 SurfaceMesh remove_faces(const SurfaceMesh& mesh, const std::vector<char>& drop);
