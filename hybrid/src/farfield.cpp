@@ -152,17 +152,29 @@ std::string describe_loops(const SurfaceMesh& walls, const Csr& open) {
     if (order.size() > 3) s += ", ...";
     // A crack: two open edges' nodes nearly meet (an export whose faces miss each other by a
     // tolerance). Not for long loops (a half model's cut): the search is quadratic.
-    std::vector<Index> nodes(open.values.begin(), open.values.end());
+    // Nodes next to each other along a loop are an open edge apart, not a crack: skipped.
+    struct At {
+        Index node, loop, pos;
+    };
+    std::vector<At> nodes;
+    for (Index l = 0; l < open.rows(); ++l)
+        for (Index p = 0; p < open.row_size(l); ++p) nodes.push_back({open.row_begin(l)[p], l, p});
     const double diag = bounding_box(walls.points).diagonal();
     double gap = std::numeric_limits<double>::infinity();
     Vec3 where = Vec3::Zero();
     if (nodes.size() <= 5000)
         for (std::size_t i = 0; i < nodes.size(); ++i)
             for (std::size_t j = i + 1; j < nodes.size(); ++j) {
-                const Vec3 &a = walls.points[static_cast<std::size_t>(nodes[i])],
-                           &b = walls.points[static_cast<std::size_t>(nodes[j])];
+                const At &x = nodes[i], &y = nodes[j];
+                if (x.node == y.node) continue;
+                if (x.loop == y.loop) {
+                    const Index apart = std::abs(x.pos - y.pos), size = open.row_size(x.loop);
+                    if (apart <= 1 || apart == size - 1) continue;
+                }
+                const Vec3 &a = walls.points[static_cast<std::size_t>(x.node)],
+                           &b = walls.points[static_cast<std::size_t>(y.node)];
                 const double d = (a - b).norm();
-                if (nodes[i] != nodes[j] && d < gap) gap = d, where = 0.5 * (a + b);
+                if (d < gap) gap = d, where = 0.5 * (a + b);
             }
     if (gap < 1e-4 * diag)
         s += "; two of their nodes are " + format_number(gap, 3) + " apart at " + format_point(where) +
