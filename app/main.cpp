@@ -326,6 +326,10 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
     if (rep.collapsed_faces > 0)
         std::printf("repaired: %d faces with a repeated node (no area) removed or made triangles\n",
                     static_cast<int>(rep.collapsed_faces));
+    if (rep.t_junctions > 0)
+        std::printf(
+            "repaired: %d faces split where nodes of the faces beside them lay inside their edge (T-junctions)\n",
+            static_cast<int>(rep.t_junctions));
     if (rep.duplicate_faces > 0)
         std::printf(
             "repaired: %d faces written twice (the same nodes in the same order) removed, the first of each kept\n",

@@ -105,9 +105,10 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         throw TopologyError(source + ": " + e.what());
     }
     const Index merged_nodes = raw.num_points() - merged.num_points();
-    Index collapsed = 0, duplicates = 0;
+    Index collapsed = 0, duplicates = 0, t_junctions = 0;
     merged = remove_collapsed_faces(merged, &collapsed);
     merged = remove_duplicate_faces(merged, &duplicates);
+    merged = split_t_junctions(merged, &t_junctions);
     raw = SurfaceMesh{};  // the input copy is no longer needed
     strata::report(progress, "surface", 0.7);
     Index touching = 0;
@@ -181,6 +182,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         report->merged_nodes = merged_nodes;
         report->collapsed_faces = collapsed;
         report->duplicate_faces = duplicates;
+        report->t_junctions = t_junctions;
         report->orient = orient;
     }
     strata::report(progress, "surface", 1.0);

@@ -8,9 +8,11 @@
 #include "model_span.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <map>
 #include <numeric>
 #include <set>
 #include <string>
@@ -203,6 +205,102 @@ SurfaceMesh remove_duplicate_faces(const SurfaceMesh& mesh, Index* removed) {
         out.add_face(v, k, mesh.face_patch[f]);
     }
     if (removed) *removed = count;
+    return out;
+}
+
+SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, Index* split) {
+    require_valid_ids(mesh, "split_t_junctions", true);
+    if (split) *split = 0;
+    const EdgeTable et = edge_table(mesh);
+    // The open edges and the nodes on them.
+    std::vector<Index> open_edges;
+    std::vector<char> on_open(static_cast<std::size_t>(mesh.num_points()), 0);
+    for (std::size_t e = 0; e < et.nodes.size(); ++e)
+        if (et.faces.row_size(static_cast<Index>(e)) == 1) {
+            open_edges.push_back(static_cast<Index>(e));
+            for (const Index v : et.nodes[e]) on_open[static_cast<std::size_t>(v)] = 1;
+        }
+    if (open_edges.empty()) return mesh;
+    // The nodes on open edges by x, so that each edge looks only at those within its x-range.
+    std::vector<Index> open_nodes;
+    for (Index v = 0; v < mesh.num_points(); ++v)
+        if (on_open[static_cast<std::size_t>(v)]) open_nodes.push_back(v);
+    auto x_of = [&](Index v) { return mesh.points[static_cast<std::size_t>(v)].x(); };
+    std::sort(open_nodes.begin(), open_nodes.end(),
+              [&](Index u, Index v) { return x_of(u) < x_of(v) || (x_of(u) == x_of(v) && u < v); });
+    // Per face: the nodes to insert on each of its edges, by their parameter along it.
+    std::map<Index, std::vector<std::pair<int, std::vector<std::pair<double, Index>>>>> inserts;
+    for (const Index e : open_edges) {
+        const Index a = et.nodes[static_cast<std::size_t>(e)][0], b = et.nodes[static_cast<std::size_t>(e)][1];
+        const Vec3 &pa = mesh.points[static_cast<std::size_t>(a)], &pb = mesh.points[static_cast<std::size_t>(b)];
+        const Vec3 ab = pb - pa;
+        const double len2 = ab.squaredNorm();
+        if (!(len2 > 0.0)) continue;
+        const double tol = 1e-6 * std::sqrt(len2);
+        std::vector<std::pair<double, Index>> inside;
+        const auto from = std::lower_bound(open_nodes.begin(), open_nodes.end(), std::min(pa.x(), pb.x()) - tol,
+                                           [&](Index v, double x) { return x_of(v) < x; });
+        for (auto it = from; it != open_nodes.end() && x_of(*it) <= std::max(pa.x(), pb.x()) + tol; ++it) {
+            const Index m = *it;
+            if (m == a || m == b) continue;
+            const Vec3 am = mesh.points[static_cast<std::size_t>(m)] - pa;
+            const double t = am.dot(ab) / len2;
+            if (!(t > 1e-6 && t < 1.0 - 1e-6)) continue;
+            if ((am - t * ab).norm() <= tol) inside.emplace_back(t, m);
+        }
+        if (inside.empty()) continue;
+        const Index f = et.faces.row_begin(e)[0];
+        if (mesh.face_size(f) != 3) continue;
+        int c = 0;  // the face's edge c runs from corner c to corner c + 1
+        while (!((mesh.face_node(f, c) == a && mesh.face_node(f, (c + 1) % 3) == b) ||
+                 (mesh.face_node(f, c) == b && mesh.face_node(f, (c + 1) % 3) == a)))
+            ++c;
+        std::sort(inside.begin(), inside.end());
+        if (mesh.face_node(f, c) == b) {  // along the face's own direction
+            for (auto& [t, m] : inside) t = 1.0 - t;
+            std::sort(inside.begin(), inside.end());
+        }
+        inserts[f].emplace_back(c, std::move(inside));
+    }
+    if (inserts.empty()) return mesh;
+    SurfaceMesh out;
+    out.patches = mesh.patches;
+    out.points = mesh.points;
+    Index count = 0;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const auto it = inserts.find(f);
+        if (it == inserts.end()) {
+            out.add_face(mesh.face_begin(f), mesh.face_size(f), mesh.face_patch[f]);
+            continue;
+        }
+        // The triangle's boundary with the inserted nodes, then a fan from the corner whose two
+        // edges got none (the nodes all lie on the edge opposite it).
+        std::array<std::vector<Index>, 3> along;
+        for (const auto& [c, nodes] : it->second)
+            for (const auto& [t, m] : nodes) along[static_cast<std::size_t>(c)].push_back(m);
+        std::vector<Index> poly;
+        for (int c = 0; c < 3; ++c) {
+            poly.push_back(mesh.face_node(f, c));
+            for (const Index m : along[static_cast<std::size_t>(c)]) poly.push_back(m);
+        }
+        int apex = -1;
+        for (int k = 0; k < 3 && apex < 0; ++k)
+            if (along[static_cast<std::size_t>(k)].empty() && along[static_cast<std::size_t>((k + 2) % 3)].empty())
+                apex = k;
+        if (apex < 0) {  // several edges split: keep the face as it is (the check names it)
+            out.add_face(mesh.face_begin(f), 3, mesh.face_patch[f]);
+            continue;
+        }
+        // The polygon from the apex: apex, then round to the node before it.
+        const Index top = mesh.face_node(f, apex);
+        const auto start = std::find(poly.begin(), poly.end(), top) - poly.begin();
+        std::vector<Index> ring;
+        for (std::size_t i = 1; i < poly.size(); ++i)
+            ring.push_back(poly[(static_cast<std::size_t>(start) + i) % poly.size()]);
+        for (std::size_t i = 0; i + 1 < ring.size(); ++i) out.add_face({top, ring[i], ring[i + 1]}, mesh.face_patch[f]);
+        ++count;
+    }
+    if (split) *split = count;
     return out;
 }
 

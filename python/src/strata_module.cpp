@@ -371,17 +371,18 @@ py::list patch_kinds(const SurfaceMesh& s) {
 
 py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double seconds) {
     const WallSizeReport& w = r.remeshed ? r.remesh.walls : r.walls;
-    return py::dict(
-        "nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
-        "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes, "collapsed_faces"_a = r.collapsed_faces,
-        "duplicate_faces"_a = r.duplicate_faces, "flipped_faces"_a = r.orient.flipped_faces,
-        "components"_a = r.orient.components, "closed_components"_a = r.orient.closed_components,
-        "fused_components"_a = r.fused_components, "touching_faces"_a = r.touching_faces, "remeshed"_a = r.remeshed,
-        "internal_flow"_a = r.internal_flow, "units"_a = r.units.unit, "scale"_a = r.scale, "seconds"_a = seconds,
-        "walls"_a =
-            py::dict("max_aspect_ratio"_a = w.max_aspect_ratio, "worst_before"_a = w.worst_before,
-                     "worst_after"_a = w.worst_after, "size"_a = w.cap, "surfaces"_a = w.surfaces,
-                     "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate, "over_budget"_a = w.over_budget));
+    return py::dict("nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
+                    "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes,
+                    "collapsed_faces"_a = r.collapsed_faces, "duplicate_faces"_a = r.duplicate_faces,
+                    "t_junctions"_a = r.t_junctions, "flipped_faces"_a = r.orient.flipped_faces,
+                    "components"_a = r.orient.components, "closed_components"_a = r.orient.closed_components,
+                    "fused_components"_a = r.fused_components, "touching_faces"_a = r.touching_faces,
+                    "remeshed"_a = r.remeshed, "internal_flow"_a = r.internal_flow, "units"_a = r.units.unit,
+                    "scale"_a = r.scale, "seconds"_a = seconds,
+                    "walls"_a = py::dict("max_aspect_ratio"_a = w.max_aspect_ratio, "worst_before"_a = w.worst_before,
+                                         "worst_after"_a = w.worst_after, "size"_a = w.cap, "surfaces"_a = w.surfaces,
+                                         "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate,
+                                         "over_budget"_a = w.over_budget));
 }
 
 py::dict coverage_report(const LayerReport& r) {

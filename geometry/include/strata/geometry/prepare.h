@@ -50,6 +50,7 @@ struct PrepareReport {
     Index merged_nodes = 0;       ///< nodes removed by merging
     Index collapsed_faces = 0;    ///< faces with a repeated node removed (remove_collapsed_faces)
     Index duplicate_faces = 0;    ///< faces written twice, the copies removed (remove_duplicate_faces)
+    Index t_junctions = 0;        ///< faces split where a node lay inside their open edge (split_t_junctions)
     CadUnits units;               ///< CAD input: the unit read in and the one the file declares
     WallSizeReport walls;         ///< CAD input: what CadParams::max_aspect_ratio did (sizes as CadParams's)
     double scale = 1.0;           ///< PrepareParams::scale applied
@@ -83,7 +84,8 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
 /// The part of prepare_surface after reading, for a mesh that comes from elsewhere (the
 /// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,
 /// then merge_coincident_nodes (\p params.merge_tolerance), remove_collapsed_faces (counted in
-/// \p report->collapsed_faces), remove_duplicate_faces (\p report->duplicate_faces), with \p params.fuse the
+/// \p report->collapsed_faces), remove_duplicate_faces (\p report->duplicate_faces), split_t_junctions
+/// (\p report->t_junctions), with \p params.fuse the
 /// touching_faces removed (counted in \p report->touching_faces), check_surface (whose TopologyError, without \p
 /// params.fuse, says where bodies touch and suggests fusing them), orient_surface, and if asked fuse_components, then
 /// collapse_short_edges (\p params.collapse_ratio, unless remeshing) and remesh_surface (each followed by the checks).

@@ -32,6 +32,14 @@ SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed = nul
 /// kept as they are (each is still used).
 SurfaceMesh remove_duplicate_faces(const SurfaceMesh& mesh, Index* removed = nullptr);
 
+/// \p mesh with its T-junctions closed: where nodes lie inside an open edge (within 1e-6 of its
+/// length of the segment, strictly between its ends), the edge's other side having been meshed
+/// with them (an exporter that meshed two faces' common edge differently, or parts merged
+/// side by side), and those nodes are on open edges themselves, the triangle on that edge is
+/// split at them (a fan from its third corner), so that the edges on both sides match. A quad
+/// there is left as it is. \p split: how many faces were split. Nodes are kept as they are.
+SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, Index* split = nullptr);
+
 /// \p mesh without the faces where \p drop (one per face) is nonzero; nodes no face uses any
 /// more are dropped, order kept.
 SurfaceMesh remove_faces(const SurfaceMesh& mesh, const std::vector<char>& drop);
