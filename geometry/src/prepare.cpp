@@ -107,8 +107,13 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     const Index merged_nodes = raw.num_points() - merged.num_points();
     Index collapsed = 0, duplicates = 0, t_junctions = 0;
     merged = remove_collapsed_faces(merged, &collapsed);
-    merged = remove_duplicate_faces(merged, &duplicates);
-    merged = split_t_junctions(merged, &t_junctions);
+    {
+        // One edge table for both (the surface is the same unless a copy went).
+        const EdgeTable edges = edge_table(merged);
+        merged = remove_duplicate_faces(merged, edges, &duplicates);
+        merged =
+            duplicates > 0 ? split_t_junctions(merged, &t_junctions) : split_t_junctions(merged, edges, &t_junctions);
+    }
     raw = SurfaceMesh{};  // the input copy is no longer needed
     strata::report(progress, "surface", 0.7);
     Index touching = 0;

@@ -14,7 +14,6 @@
 #include <cstdio>
 #include <map>
 #include <numeric>
-#include <set>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -186,32 +185,54 @@ void drop_unused_nodes(const std::vector<Vec3>& points, SurfaceMesh& out) {
 
 SurfaceMesh remove_duplicate_faces(const SurfaceMesh& mesh, Index* removed) {
     require_valid_ids(mesh, "remove_duplicate_faces", true);
-    SurfaceMesh out;
-    out.patches = mesh.patches;
-    out.points = mesh.points;
-    std::set<std::array<Index, 4>> seen;
-    Index count = 0;
-    for (Index f = 0; f < mesh.num_faces(); ++f) {
+    return remove_duplicate_faces(mesh, edge_table(mesh), removed);
+}
+
+SurfaceMesh remove_duplicate_faces(const SurfaceMesh& mesh, const EdgeTable& et, Index* removed) {
+    if (removed) *removed = 0;
+    // A face and its copy share every edge: only faces on a common edge are compared (the
+    // edges of a clean surface have two faces each, so this costs an edge table, no more).
+    auto key = [&](Index f) {
         const Index* v = mesh.face_begin(f);
         const Index k = mesh.face_size(f);
         // The face's nodes from its lowest, in its own order: one key for every rotation.
         const Index low = static_cast<Index>(std::min_element(v, v + k) - v);
-        std::array<Index, 4> key{kNone, kNone, kNone, kNone};
-        for (Index i = 0; i < k && i < 4; ++i) key[static_cast<std::size_t>(i)] = v[(low + i) % k];
-        if (k <= 4 && !seen.insert(key).second) {
-            ++count;
-            continue;
-        }
-        out.add_face(v, k, mesh.face_patch[f]);
+        std::array<Index, 4> out{kNone, kNone, kNone, kNone};
+        for (Index i = 0; i < k && i < 4; ++i) out[static_cast<std::size_t>(i)] = v[(low + i) % k];
+        return out;
+    };
+    std::vector<char> copy(static_cast<std::size_t>(mesh.num_faces()), 0);
+    Index count = 0;
+    for (Index e = 0; e < et.faces.rows(); ++e) {
+        const Index* fs = et.faces.row_begin(e);
+        const Index n = et.faces.row_size(e);
+        for (Index a = 0; a < n; ++a)
+            for (Index b = a + 1; b < n; ++b) {
+                const Index f = fs[a], g = fs[b];  // f < g: the later is the copy
+                if (copy[static_cast<std::size_t>(g)] || mesh.face_size(f) != mesh.face_size(g) ||
+                    mesh.face_size(f) > 4 || key(f) != key(g))
+                    continue;
+                copy[static_cast<std::size_t>(g)] = 1;
+                ++count;
+            }
     }
+    if (count == 0) return mesh;
+    SurfaceMesh out;
+    out.patches = mesh.patches;
+    out.points = mesh.points;
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+        if (!copy[static_cast<std::size_t>(f)]) out.add_face(mesh.face_begin(f), mesh.face_size(f), mesh.face_patch[f]);
     if (removed) *removed = count;
     return out;
 }
 
 SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, Index* split) {
     require_valid_ids(mesh, "split_t_junctions", true);
+    return split_t_junctions(mesh, edge_table(mesh), split);
+}
+
+SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, const EdgeTable& et, Index* split) {
     if (split) *split = 0;
-    const EdgeTable et = edge_table(mesh);
     // The open edges and the nodes on them.
     std::vector<Index> open_edges;
     std::vector<char> on_open(static_cast<std::size_t>(mesh.num_points()), 0);

@@ -25,21 +25,6 @@ SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol = 1e-
 /// entry per face.
 SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed = nullptr);
 
-/// \p mesh without the faces that repeat an earlier face: the same nodes in the same cyclic
-/// order (any starting corner), as CAD exporters write a face twice. Such a pair makes every edge
-/// of the face bound three or four faces; the first stays. Faces over the same nodes the other way
-/// round are kept: two bodies back to back (touching.h). \p removed: how many went. Nodes are
-/// kept as they are (each is still used).
-SurfaceMesh remove_duplicate_faces(const SurfaceMesh& mesh, Index* removed = nullptr);
-
-/// \p mesh with its T-junctions closed: where nodes lie inside an open edge (within 1e-6 of its
-/// length of the segment, strictly between its ends), the edge's other side having been meshed
-/// with them (an exporter that meshed two faces' common edge differently, or parts merged
-/// side by side), and those nodes are on open edges themselves, the triangle on that edge is
-/// split at them (a fan from its third corner), so that the edges on both sides match. A quad
-/// there is left as it is. \p split: how many faces were split. Nodes are kept as they are.
-SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, Index* split = nullptr);
-
 /// \p mesh without the faces where \p drop (one per face) is nonzero; nodes no face uses any
 /// more are dropped, order kept.
 SurfaceMesh remove_faces(const SurfaceMesh& mesh, const std::vector<char>& drop);
@@ -56,6 +41,25 @@ struct EdgeTable {
 EdgeTable edge_table(const SurfaceMesh& mesh);
 /// The edge of \p edges between nodes \p a and \p b (either order), kNone if there is none.
 Index find_edge(const EdgeTable& edges, Index a, Index b);
+
+/// \p mesh without the faces that repeat an earlier face: the same nodes in the same cyclic
+/// order (any starting corner), as CAD exporters write a face twice. Such a pair makes every edge
+/// of the face bound three or four faces; the first stays. Faces over the same nodes the other way
+/// round are kept: two bodies back to back (touching.h). \p removed: how many went. Nodes are
+/// kept as they are (each is still used).
+SurfaceMesh remove_duplicate_faces(const SurfaceMesh& mesh, Index* removed = nullptr);
+/// The same with \p mesh's edge_table, already made (prepare_mesh shares it with split_t_junctions).
+SurfaceMesh remove_duplicate_faces(const SurfaceMesh& mesh, const EdgeTable& edges, Index* removed);
+
+/// \p mesh with its T-junctions closed: where nodes lie inside an open edge (within 1e-6 of its
+/// length of the segment, strictly between its ends), the edge's other side having been meshed
+/// with them (an exporter that meshed two faces' common edge differently, or parts merged
+/// side by side), and those nodes are on open edges themselves, the triangle on that edge is
+/// split at them (a fan from its third corner), so that the edges on both sides match. A quad
+/// there is left as it is. \p split: how many faces were split. Nodes are kept as they are.
+SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, Index* split = nullptr);
+/// The same with \p mesh's edge_table, already made.
+SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, const EdgeTable& edges, Index* split);
 
 /// Closed loops of boundary edges (edges with one face) of an open surface, each loop a
 /// node cycle in the direction of its face's orientation; empty for a closed surface.
