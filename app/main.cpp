@@ -36,6 +36,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <iostream>
 #include <mutex>
 #include <string>
@@ -66,6 +67,38 @@ extern "C" void on_sigint(int) {
 /// terminal): a line break; nothing otherwise, so a redirected stderr holds one line.
 const char* after_bar() {
     return isatty(2) ? "\n" : "";
+}
+
+/// A library that throws through code that cannot pass the exception on ends the process
+/// through std::terminate: Gmsh 4.8's surface mesher throws its error text (a std::string) out
+/// of an OpenMP region when it cannot mesh a CAD face ("The 1D mesh seems not to be forming a
+/// closed loop", "Impossible to mesh periodic surface"). Instead of "terminate called after
+/// throwing an instance of std::string" and SIGABRT: one line naming what failed and what to
+/// do, exit 1. Nothing is left: outputs are written under a temporary name and renamed, and
+/// this happens before writing.
+[[noreturn]] void on_terminate() {
+    std::string what = "no message";
+    if (const std::exception_ptr e = std::current_exception()) {
+        try {
+            std::rethrow_exception(e);
+        } catch (const std::string& s) {
+            what = s;
+        } catch (const char* s) {
+            what = s;
+        } catch (const std::exception& x) {
+            what = x.what();
+        } catch (...) {
+        }
+    }
+    for (char& ch : what)
+        if (ch == '\n') ch = ' ';
+    std::fprintf(stderr,
+                 "%sstrata: error: a library aborted the run (%s): Gmsh does so on a CAD face it cannot mesh; "
+                 "repair or simplify that face in the CAD tool or export the model again (a STEP of solids rather "
+                 "than loose faces), or try another --size or --algorithm; nothing was written\n",
+                 after_bar(), what.c_str());
+    std::fflush(stderr);
+    std::_Exit(1);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -257,6 +290,35 @@ void print_units(const strata::PrepareReport& rep) {
     std::printf("units: %s; every length below and every length option is in them\n", text.c_str());
 }
 
+/// What --sew-tolerance did to a CAD model's loose faces (nothing to say when all bound solids).
+void print_sewing(const strata::SewReport& s) {
+    if (s.faces == 0) return;
+    if (s.rejected) {
+        std::printf(
+            "warning: %d faces bound no solid, but sewing them (OpenCASCADE, tolerance %s) moved a face by %s, more "
+            "than 1e-4 of the model's size: they are meshed as the file has them, unsewn (if the surface is then "
+            "open, sew the model in the CAD tool)\n",
+            static_cast<int>(s.faces), strata::format_number(s.tolerance, 3).c_str(),
+            strata::format_number(s.moved, 3).c_str());
+        return;
+    }
+    const std::string raised =
+        s.first_tolerance > 0.0 ? " (" + strata::format_number(s.first_tolerance, 3) + " left edges apart)" : "";
+    std::printf(
+        "sewn: %d faces that bounded no solid (OpenCASCADE, tolerance %s%s; their edges' widest gap %s): "
+        "free edges %d -> %d, %d solids made%s\n",
+        static_cast<int>(s.faces), strata::format_number(s.tolerance, 3).c_str(), raised.c_str(),
+        strata::format_number(s.gap_before, 3).c_str(), static_cast<int>(s.free_before), static_cast<int>(s.free_after),
+        static_cast<int>(s.solids),
+        s.renumbered ? "; the faces could not all be matched to the file's, so patches follow the new numbering" : "");
+    if (s.cracks > 0)
+        std::printf(
+            "warning: %d free edges of the CAD model still miss another edge by more than the sewing tolerance (the "
+            "widest gap %s, at %s): --sew-tolerance %s sews them\n",
+            static_cast<int>(s.cracks), strata::format_number(s.widest_gap, 3).c_str(),
+            strata::format_point(s.gap_at).c_str(), strata::format_number(s.suggested_tolerance, 2).c_str());
+}
+
 /// What --max-aspect-ratio did to the CAD walls (nothing to say when their first layer was fine).
 void print_wall_sizing(const strata::WallSizeReport& w) {
     if (w.surfaces > 0 || w.curves > 0)
@@ -335,6 +397,7 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
             "repaired: %d faces written twice (the same nodes in the same order) removed, the first of each kept\n",
             static_cast<int>(rep.duplicate_faces));
     print_units(rep);
+    print_sewing(rep.sew);
     if (rep.internal_flow)
         std::printf("flow: inside the walls (--internal): the outermost closed surface points inward\n");
     if (rep.touching_faces > 0)
@@ -685,7 +748,15 @@ int run_mesh(const Common& c, const PlotOptions& po) {
     Terminal terminal(c.quiet);
     const Start s = start(c, strata::prepare_params(c.o.surface, &hp.layers), Output::Volume, terminal);
     strata::HybridReport hr;
-    const strata::VolumeMesh mesh = strata::build_hybrid_mesh(s.surface, hp, &terminal, &hr);
+    const strata::VolumeMesh mesh = [&] {
+        try {
+            return strata::build_hybrid_mesh(s.surface, hp, &terminal, &hr);
+        } catch (const strata::InputError& e) {
+            const std::string hint = strata::sewing_hint(s.report.sew);
+            if (hint.empty()) throw;
+            throw strata::InputError(e.what() + hint);
+        }
+    }();
     const auto t1 = std::chrono::steady_clock::now();
     begin_writing();
     strata::write_volume(mesh, c.output, s.msh_version, &terminal);
@@ -716,6 +787,7 @@ int run_mesh(const Common& c, const PlotOptions& po) {
 
 int main(int argc, char** argv) {
     std::signal(SIGINT, on_sigint);
+    std::set_terminate(on_terminate);
     CLI::App app{
         "Strata: near-body hybrid meshes for viscous CFD.\n"
         "Boundary-layer prisms and hexahedra marched from the wall, tetrahedra beyond.",

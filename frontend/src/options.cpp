@@ -69,6 +69,10 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
                          "' is already a surface mesh: --size, --size-min, --curvature, --quads and --mixed "
                          "apply to CAD input or with --remesh only, --units to STEP and IGES; remove them "
                          "(--scale scales any input) or add --remesh");
+    if (!any_cad && p.cad.sew_tolerance != none.sew_tolerance)
+        throw InputError("'" + c.input +
+                         "' is a surface mesh: --sew-tolerance sews the faces of a CAD model (STEP, IGES, BREP); "
+                         "for a surface mesh whose faces miss each other, use --merge-tolerance");
     if (!any_cad && !p.cad.units.empty())
         throw InputError("'" + c.input +
                          "' is a surface mesh, which carries no unit: --units applies to STEP and IGES "
@@ -86,6 +90,14 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
         p.remeshing.fan_angle_deg = fan;
     }
     return p;
+}
+
+std::string sewing_hint(const SewReport& sew) {
+    if (sew.cracks == 0) return "";
+    return "; better for this CAD model: its faces were sewn with a tolerance of " + format_number(sew.tolerance, 3) +
+           ", but " + std::to_string(sew.cracks) + " of their edges still miss another by up to " +
+           format_number(sew.widest_gap, 3) + " (at " + format_point(sew.gap_at) + "): --sew-tolerance " +
+           format_number(sew.suggested_tolerance, 2) + " sews them";
 }
 
 LayerParams layer_params(const LayerOptions& o) {
@@ -186,6 +198,11 @@ std::vector<OptionSpec> make_table() {
         "STEP and IGES only: read the model in this length unit (mm, cm, m, km, in, ft, "
         "...); default: the unit the file declares. Every length option is in the unit "
         "the summary states")));
+    t.push_back(spec(
+        "--sew-tolerance", "sew_tolerance", "CadParams::sew_tolerance", Stage::Surface,
+        [](Options& o) -> double& { return o.surface.prepare.cad.sew_tolerance; },
+        "STEP, IGES, BREP: faces that bound no solid (a surface model, whose faces each have their own edges) are "
+        "sewn by OpenCASCADE with this tolerance, a share of the bounding-box diagonal (in [0, 0.001]; 0: not sewn)"));
     t.push_back(spec(
         "--scale", "scale", "PrepareParams::scale", Stage::Surface,
         [](Options& o) -> double& { return o.surface.prepare.scale; },

@@ -15,7 +15,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <set>
 #include <string>
@@ -84,6 +86,9 @@ void validate(const CadParams& p) {
     if (!(p.max_aspect_ratio == 0.0 || p.max_aspect_ratio >= 10.0) || !std::isfinite(p.max_aspect_ratio))
         throw InputError("CadParams::max_aspect_ratio = " + format_number(p.max_aspect_ratio) +
                          ": give 0 (no limit) or a ratio of at least 10 (OpenFOAM's checkMesh fails above 1000)");
+    if (!(p.sew_tolerance >= 0.0 && p.sew_tolerance <= 1e-3))
+        throw InputError("CadParams::sew_tolerance = " + format_number(p.sew_tolerance) +
+                         ": give a share of the model's size in [0, 0.001] (0: faces are not sewn)");
     if (!(p.wall_faces_budget > 0.0))
         throw InputError("CAD meshing: wall_faces_budget must be positive, got " + format_number(p.wall_faces_budget));
     if (p.curvature_points < 0)
@@ -213,6 +218,243 @@ void fuse_volumes(const std::string& path) {
               });
 }
 
+/// The curves bounding exactly one of \p surfaces once (a seam, which bounds its surface twice, is
+/// not one, nor a degenerate edge, of length \p min_length or less: a sphere's poles): the free edges of a model
+/// whose faces are not sewn.
+std::vector<int> free_curves(const std::vector<int>& surfaces, double min_length) {
+    std::map<int, int> uses;
+    for (const int s : surfaces) {
+        gmsh::vectorpair boundary;
+        gmsh::model::getBoundary({{2, s}}, boundary, false, false, false);
+        for (const auto& [dim, c] : boundary) ++uses[std::abs(c)];
+    }
+    std::vector<int> out;
+    for (const auto& [c, n] : uses) {
+        if (n != 1) continue;
+        std::vector<int> up, down;
+        gmsh::model::getAdjacencies(1, c, up, down);
+        if (up.size() != 1) continue;
+        double length = 0.0;
+        try {
+            gmsh::model::occ::getMass(1, c, length);
+        } catch (...) {  // no length OpenCASCADE can measure: degenerate
+            continue;
+        }
+        if (length > min_length) out.push_back(c);
+    }
+    return out;
+}
+
+/// A surface's bounding box, which sewing moves by at most its tolerance (its area and centre
+/// of mass can change more: OpenCASCADE measured an IGES nose face with a degenerate edge 23 %
+/// larger before the healing than after).
+struct SurfaceMark {
+    int tag = 0;
+    std::array<double, 6> box{};
+};
+
+SurfaceMark mark(int s) {
+    SurfaceMark m;
+    m.tag = s;
+    auto& b = m.box;
+    gmsh::model::getBoundingBox(2, s, b[0], b[1], b[2], b[3], b[4], b[5]);
+    return m;
+}
+
+double box_distance(const SurfaceMark& a, const SurfaceMark& b) {
+    double d = 0.0;
+    for (std::size_t k = 0; k < 6; ++k) d += (a.box[k] - b.box[k]) * (a.box[k] - b.box[k]);
+    return std::sqrt(d);
+}
+
+/// Gaps between free curves: how many lie within a reach of another along their whole length
+/// (a crack rather than an open edge), the widest such gap and where.
+struct Gaps {
+    Index cracks = 0;
+    double widest = 0.0;
+    Vec3 at = Vec3::Zero();
+};
+
+/// The gaps between \p curves: each sampled at 5 points, a point's gap its distance to the
+/// nearest other of them (candidates by bounding boxes within \p reach, swept along x), a
+/// curve's the largest of its points'; a curve whose gap is within \p reach is a crack.
+Gaps measure_gaps(const std::vector<int>& curves, double reach) {
+    struct Box {
+        Vec3 lo, hi;
+    };
+    const std::size_t n = curves.size();
+    std::vector<Box> box(n);
+    for (std::size_t i = 0; i < n; ++i)
+        gmsh::model::getBoundingBox(1, curves[i], box[i].lo.x(), box[i].lo.y(), box[i].lo.z(), box[i].hi.x(),
+                                    box[i].hi.y(), box[i].hi.z());
+    std::vector<std::size_t> by_x(n);
+    std::iota(by_x.begin(), by_x.end(), std::size_t{0});
+    std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) {
+        return box[a].lo.x() < box[b].lo.x() || (box[a].lo.x() == box[b].lo.x() && a < b);
+    });
+    std::vector<std::vector<int>> near(n);
+    for (std::size_t p = 0; p < n; ++p) {
+        const std::size_t i = by_x[p];
+        for (std::size_t q = p + 1; q < n && box[by_x[q]].lo.x() <= box[i].hi.x() + reach; ++q) {
+            const std::size_t j = by_x[q];
+            if ((box[i].lo.array() - reach <= box[j].hi.array()).all() &&
+                (box[j].lo.array() - reach <= box[i].hi.array()).all()) {
+                near[i].push_back(curves[j]);
+                near[j].push_back(curves[i]);
+            }
+        }
+    }
+    Gaps g;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (near[i].empty()) continue;
+        std::vector<double> lo, hi;
+        gmsh::model::getParametrizationBounds(1, curves[i], lo, hi);
+        if (lo.empty() || hi.empty()) continue;
+        double gap = 0.0;
+        Vec3 at = Vec3::Zero();
+        for (int k = 0; k <= 4; ++k) {
+            std::vector<double> xyz, closest, t;
+            try {
+                gmsh::model::getValue(1, curves[i], {lo[0] + (hi[0] - lo[0]) * k / 4.0}, xyz);
+            } catch (...) {  // a curve OpenCASCADE cannot evaluate is not measured
+                continue;
+            }
+            if (xyz.size() < 3) continue;
+            double best = std::numeric_limits<double>::infinity();
+            for (const int c : near[i]) {
+                try {
+                    gmsh::model::getClosestPoint(1, c, xyz, closest, t);
+                } catch (...) {  // "curve is null in projection": an edge without a 3D curve
+                    continue;
+                }
+                if (closest.size() >= 3)
+                    best = std::min(best, std::hypot(closest[0] - xyz[0], closest[1] - xyz[1], closest[2] - xyz[2]));
+            }
+            if (best > gap) gap = best, at = Vec3(xyz[0], xyz[1], xyz[2]);
+        }
+        if (!(gap <= reach)) continue;  // an open edge (or no partner): a hole, not a crack
+        ++g.cracks;
+        if (gap > g.widest) g.widest = gap, g.at = at;
+    }
+    return g;
+}
+
+/// The largest sewing tolerance chosen unasked (a share of the diagonal): features narrower than
+/// the tolerance are sewn shut, and small edges and faces under it removed.
+constexpr double kSewShareMax = 1e-5;
+/// The most a face may move in the healing (its bounding box, a share of the diagonal) for the
+/// sewn model to be kept; beyond, the file is meshed unsewn.
+constexpr double kSewMoveMax = 1e-4;
+
+/// CadParams::sew_tolerance: the faces that bound no solid sewn (and closed shells made solids),
+/// the sewn faces given the file's tags back as physical groups "surface_<tag>" where sewing
+/// renumbered them. Returns the new tag of each of the file's surface tags (empty: unchanged).
+std::map<int, int> sew_faces(double share, SewReport& r) {
+    std::map<int, int> renamed;
+    const std::vector<int> all = entity_tags(2);
+    std::vector<int> loose;
+    for (const int s : all) {
+        std::vector<int> up, down;
+        gmsh::model::getAdjacencies(2, s, up, down);
+        if (up.empty()) loose.push_back(s);
+    }
+    if (loose.empty() || !(share > 0.0)) return renamed;
+    double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
+    gmsh::model::getBoundingBox(-1, -1, xmin, ymin, zmin, xmax, ymax, zmax);
+    const double diagonal = std::hypot(xmax - xmin, ymax - ymin, zmax - zmin);
+    // The tolerance: at least the share asked, raised (up to kSewShareMax) to twice the widest
+    // gap measured between the loose faces' edges.
+    const std::vector<int> loose_edges = free_curves(loose, 1e-9 * diagonal);
+    if (loose_edges.empty()) return renamed;  // closed faces (a sphere's): nothing to sew
+    r.faces = static_cast<Index>(loose.size());
+    r.free_before = static_cast<Index>(loose_edges.size());
+    const Gaps gaps = measure_gaps(loose_edges, 1e-3 * diagonal);
+    r.gap_before = gaps.widest;
+    r.tolerance = std::max(share * diagonal, std::min(2.0 * gaps.widest, kSewShareMax * diagonal));
+    std::vector<SurfaceMark> before;
+    for (const int s : all) before.push_back(mark(s));
+    const bool only_faces = entity_tags(3).empty();
+    gmsh::vectorpair healed, input;
+    for (const int s : loose) input.emplace_back(2, s);
+    // With no solid in the model the whole model is healed (Gmsh then replaces it); else the
+    // loose faces, whose originals are removed after. Degenerate edges, edges and faces
+    // smaller than the tolerance are fixed with the sewing: sewn alone, the trimmed faces of an
+    // IGES export of a body with a spherical nose kept a degenerate edge at the pole that
+    // left the shell open and the nose's 1D mesh not closing (Gmsh then aborts the process).
+    gmsh::model::occ::healShapes(healed, only_faces ? gmsh::vectorpair{} : input, r.tolerance, true, true, true, true,
+                                 true);
+    if (!only_faces) {
+        std::set<int> kept;
+        for (const auto& [dim, tag] : healed)
+            if (dim == 2) kept.insert(tag);
+        gmsh::vectorpair gone;
+        for (const int s : loose)
+            if (!kept.count(s)) gone.emplace_back(2, s);
+        gmsh::model::occ::remove(gone, true);
+    }
+    gmsh::model::occ::synchronize();
+    const std::vector<int> now = entity_tags(2);
+    std::vector<int> now_loose;
+    for (const auto& [dim, tag] : healed)
+        if (dim == 3) ++r.solids;
+    for (const int s : now) {
+        std::vector<int> up, down;
+        gmsh::model::getAdjacencies(2, s, up, down);
+        if (up.empty()) now_loose.push_back(s);
+    }
+    const std::vector<int> open = free_curves(now, 1e-9 * diagonal);
+    r.free_after = static_cast<Index>(open.size());
+    if (!open.empty()) {
+        const Gaps left = measure_gaps(open, 1e-3 * diagonal);
+        r.cracks = left.cracks, r.widest_gap = left.widest, r.gap_at = left.at;
+        if (r.cracks > 0) {
+            // Twice the widest gap, two significant digits up, as a share of the diagonal.
+            const double want = std::min(1e-3, 2.0 * r.widest_gap / diagonal);
+            const double e = std::pow(10.0, std::floor(std::log10(want)) - 1.0);
+            r.suggested_tolerance = std::min(1e-3, std::ceil(want / e - 1e-9) * e);
+        }
+    }
+    // Each surface now against the one before with the nearest bounding box: how far the
+    // healing moved a face (a capsule's trimmed spherical caps, their small edges "fixed",
+    // lost 60 % of their area and 0.04 of the diagonal), and the file's tags back, one to one.
+    std::map<int, int> old_of;
+    bool matched = now.size() == before.size();
+    std::set<int> taken;
+    for (std::size_t i = 0; i < now.size(); ++i) {
+        const SurfaceMark m = mark(now[i]);
+        int best = -1;
+        double best_d = std::numeric_limits<double>::infinity();
+        for (const SurfaceMark& b : before)
+            if (const double d = box_distance(b, m); d < best_d) best_d = d, best = b.tag;
+        r.moved = std::max(r.moved, best_d);
+        matched = matched && best >= 0 && !taken.count(best);
+        if (matched) taken.insert(best), old_of[now[i]] = best;
+    }
+    if (r.moved > kSewMoveMax * diagonal + 10.0 * r.tolerance) {
+        r.rejected = true;  // the caller reads the file again, unsewn
+        return renamed;
+    }
+    if (!matched) {
+        r.renumbered = true;
+        return renamed;
+    }
+    bool same = true;
+    for (const auto& [n, o] : old_of) same = same && n == o;
+    if (same) return renamed;
+    gmsh::vectorpair groups;
+    gmsh::model::getPhysicalGroups(groups, 2);
+    if (!groups.empty()) {
+        r.renumbered = true;  // a model with its own groups is named by them
+        return renamed;
+    }
+    for (const auto& [n, o] : old_of) {
+        gmsh::model::addPhysicalGroup(2, {n}, o);
+        gmsh::model::setPhysicalName(2, o, "surface_" + std::to_string(o));
+        renamed[o] = n;
+    }
+    return renamed;
+}
+
 // A script that meshed itself ("Mesh 2;") would keep its curve mesh: generate(2) meshes the
 // surfaces again but not the curves, so the caller's sizes would apply only half. Clear it,
 // except when the model has discrete entities, whose mesh may be their only geometry (an STL
@@ -290,7 +532,8 @@ bool is_cad_file(const std::string& path) {
     return format_of(path).has_value();
 }
 
-SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units, WallSizeReport* walls) {
+SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units, WallSizeReport* walls,
+                     SewReport* sew) {
     const std::optional<CadFormat> format = format_of(path);
     if (!format)
         throw InputError(path +
@@ -335,6 +578,39 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
                          ": no surfaces in the model; the file holds only points or "
                          "curves (or nothing): export the surfaces or solids from the "
                          "CAD tool");
+    SewReport sewn;
+    std::map<int, int> renamed;  // the file's surface tag → its tag after sewing, where they differ
+    if (!script)
+        gmsh_call(path +
+                      ": sewing the faces that bound no solid (OpenCASCADE) failed; sew them in the CAD tool, or "
+                      "give sew_tolerance 0 to mesh them as they are",
+                  [&] {
+                      auto reload = [&] {
+                          gmsh::vectorpair everything;
+                          gmsh::model::getEntities(everything, -1);
+                          gmsh::model::removePhysicalGroups();
+                          gmsh::model::occ::remove(everything, true);
+                          gmsh::model::occ::synchronize();
+                          load(path, *format);
+                      };
+                      renamed = sew_faces(params.sew_tolerance, sewn);
+                      if (!sewn.rejected && sewn.cracks > 0 && sewn.suggested_tolerance <= kSewShareMax) {
+                          // Edges still apart by a gap the measure before sewing missed (a
+                          // face's edge that healing changed): once more from the file, at the
+                          // tolerance that sews them.
+                          reload();
+                          SewReport again;
+                          renamed = sew_faces(std::max(params.sew_tolerance, sewn.suggested_tolerance), again);
+                          again.first_tolerance = sewn.tolerance;
+                          sewn = again;
+                      }
+                      if (sewn.rejected) {
+                          // The healing changed the geometry: the faces as the file has them.
+                          reload();
+                          renamed.clear();
+                      }
+                  });
+    if (sew) *sew = sewn;
     if (params.fuse) fuse_volumes(path);
     const std::vector<int> surfaces = entity_tags(2);
 
@@ -398,9 +674,13 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
             break;
         case SurfaceElements::Mixed: {
             set_number("Mesh.RecombineAll", 0);
-            for (int tag : params.quad_surfaces) {
+            for (int asked : params.quad_surfaces) {
+                // The file's tag (sewing may have renumbered the surfaces; fuse's tags stand).
+                const auto it = params.fuse ? renamed.end() : renamed.find(asked);
+                const int tag = it == renamed.end() ? asked : it->second;
                 if (!std::binary_search(surfaces.begin(), surfaces.end(), tag))
-                    throw InputError(path + ": quad surface " + std::to_string(tag) + " is not a surface of the model" +
+                    throw InputError(path + ": quad surface " + std::to_string(asked) +
+                                     " is not a surface of the model" +
                                      (params.fuse ? " (after fusing the solids)" : "") + "; its surfaces are " +
                                      format_tags(surfaces));
                 gmsh_call(path + ": asking for quads on surface " + std::to_string(tag),

@@ -24,13 +24,30 @@ std::string lower(std::string s) {
 
 /// The reader for \p path's extension: CAD through Gmsh (mesh_cad), STL and MSH through io/.
 SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const CadParams& cad, CadUnits* units,
-                     WallSizeReport* walls) {
+                     WallSizeReport* walls, SewReport* sew) {
     check_input_file(path);
     if (is_cad_file(path)) {
         CadParams with_kinds = cad;
         with_kinds.wall_patch_kinds = params.patch_kinds;
         WallSizeReport one;
-        SurfaceMesh mesh = mesh_cad(path, with_kinds, units, &one);
+        SewReport sewn;
+        SurfaceMesh mesh = mesh_cad(path, with_kinds, units, &one, &sewn);
+        if (sew && sewn.faces > 0) {
+            // Several inputs: summed, the widest gap and the largest tolerance kept.
+            sew->faces += sewn.faces;
+            sew->free_before += sewn.free_before;
+            sew->free_after += sewn.free_after;
+            sew->solids += sewn.solids;
+            sew->cracks += sewn.cracks;
+            sew->tolerance = std::max(sew->tolerance, sewn.tolerance);
+            sew->first_tolerance = std::max(sew->first_tolerance, sewn.first_tolerance);
+            sew->gap_before = std::max(sew->gap_before, sewn.gap_before);
+            sew->suggested_tolerance = std::max(sew->suggested_tolerance, sewn.suggested_tolerance);
+            if (sewn.widest_gap > sew->widest_gap) sew->widest_gap = sewn.widest_gap, sew->gap_at = sewn.gap_at;
+            sew->renumbered = sew->renumbered || sewn.renumbered;
+            sew->rejected = sew->rejected || sewn.rejected;
+            sew->moved = std::max(sew->moved, sewn.moved);
+        }
         if (walls) {
             // Several inputs: the worst of them, the caps' surfaces and faces summed.
             walls->max_aspect_ratio = one.max_aspect_ratio;
@@ -202,6 +219,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
     CadParams cad = params.cad;
     CadUnits units;
     WallSizeReport walls;
+    SewReport sew;
     SurfaceMesh all;
     std::string source;
     for (const std::string& path : paths) {
@@ -211,7 +229,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
         const bool has_unit = ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
         CadParams this_cad = cad;
         if (!has_unit) this_cad.units = params.cad.units;
-        const SurfaceMesh one = read_any(path, params, this_cad, &read_in, &walls);
+        const SurfaceMesh one = read_any(path, params, this_cad, &read_in, &walls, &sew);
         // The first CAD file with a unit sets it for the others (unless one was asked).
         if (!read_in.unit.empty() && units.unit.empty()) {
             units = read_in;
@@ -238,6 +256,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
     if (report) {
         report->units = units;
         report->walls = walls;
+        report->sew = sew;
     }
     return out;
 }
@@ -247,11 +266,13 @@ SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params
     strata::report(progress, "surface", 0.0);
     CadUnits units;
     WallSizeReport walls;
-    SurfaceMesh raw = read_any(path, params, params.cad, &units, &walls);
+    SewReport sew;
+    SurfaceMesh raw = read_any(path, params, params.cad, &units, &walls, &sew);
     SurfaceMesh out = prepare_mesh(std::move(raw), params, path, report, progress);
     if (report) {
         report->units = units;
         report->walls = walls;
+        report->sew = sew;
     }
     return out;
 }

@@ -132,11 +132,15 @@ std::map<Index, Vec3> start_directions(const SurfaceMesh& mesh, const std::map<I
             }
         }
         Vec3 d = Vec3::Zero();
+        double total = 0.0;
         for (std::size_t i = 0; i < k; ++i) {
             if (sign[i] == 0) consistent = false;
             d += static_cast<double>(sign[i]) * angle[i] * normal[i];
+            total += angle[i];
         }
-        out[v] = consistent && d.norm() > 0.0 ? Vec3(d.normalized()) : Vec3(Vec3::Zero());
+        // Normals that cancel (faces back to back, as two bodies' copies of the face they touch
+        // along) leave rounding, not a direction.
+        out[v] = consistent && d.norm() > 1e-6 * total ? Vec3(d.normalized()) : Vec3(Vec3::Zero());
     }
     return out;
 }
@@ -197,7 +201,9 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
             Vec3 n2 = face_area_vector(mesh, f2).normalized();
             if (runs_forward(f1) == runs_forward(f2)) n2 = -n2;
             const double turn = std::acos(std::clamp(n1.dot(n2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-            if (!(turn >= kChainDeg)) continue;
+            // Faces back to back (two bodies' copies of the face they touch along, which --fuse
+            // removes) are not an edge of the wall.
+            if (!(turn >= kChainDeg) || (n2 - n1.dot(n2) * n1).norm() < 1e-6) continue;
             edges_of[c].push_back(
                 {mesh.points[static_cast<std::size_t>(a)], mesh.points[static_cast<std::size_t>(b)], n1, n2, turn});
             double& m = sharpest[c];

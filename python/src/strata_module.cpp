@@ -371,18 +371,24 @@ py::list patch_kinds(const SurfaceMesh& s) {
 
 py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double seconds) {
     const WallSizeReport& w = r.remeshed ? r.remesh.walls : r.walls;
-    return py::dict("nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
-                    "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes,
-                    "collapsed_faces"_a = r.collapsed_faces, "duplicate_faces"_a = r.duplicate_faces,
-                    "t_junctions"_a = r.t_junctions, "flipped_faces"_a = r.orient.flipped_faces,
-                    "components"_a = r.orient.components, "closed_components"_a = r.orient.closed_components,
-                    "fused_components"_a = r.fused_components, "touching_faces"_a = r.touching_faces,
-                    "remeshed"_a = r.remeshed, "internal_flow"_a = r.internal_flow, "units"_a = r.units.unit,
-                    "scale"_a = r.scale, "seconds"_a = seconds,
-                    "walls"_a = py::dict("max_aspect_ratio"_a = w.max_aspect_ratio, "worst_before"_a = w.worst_before,
-                                         "worst_after"_a = w.worst_after, "size"_a = w.cap, "surfaces"_a = w.surfaces,
-                                         "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate,
-                                         "over_budget"_a = w.over_budget));
+    return py::dict(
+        "nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
+        "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes, "collapsed_faces"_a = r.collapsed_faces,
+        "duplicate_faces"_a = r.duplicate_faces, "t_junctions"_a = r.t_junctions,
+        "flipped_faces"_a = r.orient.flipped_faces, "components"_a = r.orient.components,
+        "closed_components"_a = r.orient.closed_components, "fused_components"_a = r.fused_components,
+        "touching_faces"_a = r.touching_faces, "remeshed"_a = r.remeshed, "internal_flow"_a = r.internal_flow,
+        "units"_a = r.units.unit, "scale"_a = r.scale, "seconds"_a = seconds,
+        "walls"_a =
+            py::dict("max_aspect_ratio"_a = w.max_aspect_ratio, "worst_before"_a = w.worst_before,
+                     "worst_after"_a = w.worst_after, "size"_a = w.cap, "surfaces"_a = w.surfaces,
+                     "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate, "over_budget"_a = w.over_budget),
+        "sewn"_a = py::dict("faces"_a = r.sew.faces, "tolerance"_a = r.sew.tolerance,
+                            "free_edges_before"_a = r.sew.free_before, "free_edges_after"_a = r.sew.free_after,
+                            "solids"_a = r.sew.solids, "cracks"_a = r.sew.cracks, "widest_gap"_a = r.sew.widest_gap,
+                            "suggested_tolerance"_a = r.sew.suggested_tolerance, "renumbered"_a = r.sew.renumbered,
+                            "moved"_a = r.sew.moved, "rejected"_a = r.sew.rejected, "gap_before"_a = r.sew.gap_before,
+                            "first_tolerance"_a = r.sew.first_tolerance));
 }
 
 py::dict coverage_report(const LayerReport& r) {
@@ -573,7 +579,13 @@ py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::
         Prepared p = prepare(inputs, o, progress, &hp.layers);
         HybridReport hr;
         auto result = std::make_unique<PyMesh>();
-        result->mesh = build_hybrid_mesh(p.surface, hp, progress, &hr);
+        try {
+            result->mesh = build_hybrid_mesh(p.surface, hp, progress, &hr);
+        } catch (const InputError& e) {
+            const std::string hint = sewing_hint(p.report.sew);
+            if (hint.empty()) throw;
+            throw InputError(e.what() + hint);
+        }
         const auto t = std::chrono::steady_clock::now();
         if (output) {
             write_volume(result->mesh, *output, version, progress);

@@ -737,6 +737,36 @@ TEST(Cli, SurfaceMeshTooCoarseForTheFirstLayerIsForecast) {
     EXPECT_EQ(r.out.find("cells with an aspect ratio above 1000"), std::string::npos) << r.out;
 }
 
+TEST(Cli, LooseCadFacesAreSewnAndWiderGapsNamedWithTheirRemedy) {
+    // A box of six faces that miss each other (tests/data/cad_box_loose_faces.py): by 1e-7 they
+    // are sewn and meshed; by 3e-5, wider than sewing goes unasked, strata mesh refuses the open
+    // surface on one line that gives the --sew-tolerance that sews it, and that one does.
+    test::ScratchDir dir("cli_sewing");
+    CliResult r = strata_cli(dir, "surface '" + test_data("cad_box_loose_faces_1e-7.brep") + "' -o s.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("sewn: 6 faces that bounded no solid"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("free edges 24 -> 0, 1 solids made"), std::string::npos) << r.out;
+    const std::string wide =
+        "mesh '" + test_data("cad_box_loose_faces_3e-5.brep") + "' --layers 2 --first-height 0.01 ";
+    expect_clean_failure(wide + "-o out.msh", "--sew-tolerance 6.7e-05 sews them", "sewing");
+    r = strata_cli(dir, wide + "--sew-tolerance 6.7e-05 -o m.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("free edges 24 -> 0, 1 solids made"), std::string::npos) << r.out;
+    // Only for CAD; out of range refused.
+    expect_clean_failure("surface '" + example_data("sphere.stl") + "' -o s.msh --sew-tolerance 1e-5",
+                         "--merge-tolerance", "sewstl");
+    expect_clean_failure("surface '" + test_data("cad_box_loose_faces_1e-7.brep") + "' -o s.msh --sew-tolerance 0.01",
+                         "--sew-tolerance = 0.01: give a share", "sewrange");
+}
+
+TEST(Cli, AGmshAbortIsOneLineAndExitOne) {
+    // Gmsh 4.8 throws out of an OpenMP region on a face it cannot mesh, which ends the process
+    // through std::terminate (tests/data/cli_gmsh_aborts.geo): one line naming Gmsh's message
+    // and the remedy, exit 1, no file.
+    expect_clean_failure("surface '" + test_data("cli_gmsh_aborts.geo") + "' -o s.msh",
+                         "a library aborted the run (The 1D mesh seems not to be forming a closed loop)", "abort");
+}
+
 TEST(Cli, MeshBadInputsFailCleanly) {
     // Open, but not along one plane: not a half model that could be closed.
     expect_clean_failure("mesh '" + test_data("cli_open_bent.stl") + "' -o out.cgr --layers 2 --first-height 1e-3",

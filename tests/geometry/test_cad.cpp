@@ -5,6 +5,7 @@
 #include <strata/core/face_geometry.h>
 #include <strata/core/solver_checks.h>
 #include <strata/geometry/cad.h>
+#include <strata/geometry/prepare.h>
 #include <strata/io/gmsh_session.h>
 
 #include "test_support.h"
@@ -705,6 +706,146 @@ TEST(MeshCadWalls, BadLimitsAreInputErrors) {
     p = {};
     p.wall_faces_budget = 0.0;
     EXPECT_THROW(mesh_cad(path, p), InputError);
+}
+
+// Sewing (CadParams::sew_tolerance): surface models whose faces each have their own edges.
+
+/// The mean of the face centroids of the patch named \p name.
+Vec3 patch_centre(const SurfaceMesh& m, const std::string& name) {
+    Vec3 sum = Vec3::Zero();
+    int n = 0;
+    for (Index f = 0; f < m.num_faces(); ++f)
+        if (m.patches[static_cast<std::size_t>(m.face_patch[f])].name == name) {
+            sum += face_centroid(m, m.points, f);
+            ++n;
+        }
+    return n > 0 ? Vec3(sum / n) : Vec3::Constant(std::nan(""));
+}
+
+TEST(CadSewing, LooseFacesThatMissEachOtherAreSewnIntoOneClosedSolid) {
+    // Six faces of a box whose corners miss by up to 1e-7 (cad_box_loose_faces.py): meshed one
+    // by one the surface is open along every edge; sewn it is one closed solid, each patch still
+    // named after the face the file numbers so.
+    const std::string path = test_data("cad_box_loose_faces_1e-7.brep");
+    SewReport r;
+    const SurfaceMesh m = mesh_cad(path, {}, nullptr, nullptr, &r);
+    EXPECT_EQ(r.faces, 6);
+    EXPECT_EQ(r.free_before, 24);
+    EXPECT_EQ(r.free_after, 0);
+    EXPECT_EQ(r.solids, 1);
+    EXPECT_EQ(r.cracks, 0);
+    EXPECT_FALSE(r.rejected);
+    EXPECT_GT(r.gap_before, 1e-8);
+    EXPECT_LT(r.gap_before, 1e-6);
+    EXPECT_TRUE(closed(m));
+    EXPECT_EQ(components(m), 1);
+    const std::array<Vec3, 6> centre{Vec3(0.5, 0.25, 0),   Vec3(0.5, 0.25, 0.3), Vec3(0.5, 0, 0.15),
+                                     Vec3(0.5, 0.5, 0.15), Vec3(0, 0.25, 0.15),  Vec3(1, 0.25, 0.15)};
+    for (std::size_t k = 0; k < centre.size(); ++k)
+        EXPECT_LT((patch_centre(m, "surface_" + std::to_string(k + 1)) - centre[k]).norm(), 0.03) << "face " << k + 1;
+
+    CadParams unsewn;
+    unsewn.sew_tolerance = 0.0;
+    SewReport none;
+    const SurfaceMesh open = mesh_cad(path, unsewn, nullptr, nullptr, &none);
+    EXPECT_EQ(none.faces, 0);
+    PrepareParams pp;
+    pp.cad = unsewn;
+    PrepareReport rep;
+    const SurfaceMesh merged = prepare_surface(path, pp, &rep);
+    EXPECT_FALSE(closed(merged));  // the faces' nodes miss each other: merging cannot close it
+    EXPECT_EQ(rep.orient.closed_components, 0);
+}
+
+TEST(CadSewing, GapsWiderThanTheToleranceAreMeasuredAndTheSuggestionSewsThem) {
+    // Corners missing by up to 3e-5 (gaps up to 4e-5 of a diagonal of 1.16): over the 1e-5 of
+    // the diagonal sewing goes to unasked, so the edges stay apart, and the report says by how
+    // much and what tolerance sews them; that tolerance does.
+    const std::string path = test_data("cad_box_loose_faces_3e-5.brep");
+    SewReport r;
+    (void)mesh_cad(path, {}, nullptr, nullptr, &r);
+    EXPECT_EQ(r.faces, 6);
+    // 1e-5 of the diagonal of OpenCASCADE's bounding box (which its filling surfaces enlarge).
+    EXPECT_GE(r.tolerance, 1e-5 * std::hypot(1.0, 0.5, 0.3));
+    EXPECT_LE(r.tolerance, 1.2e-5 * std::hypot(1.0, 0.5, 0.3));
+    EXPECT_GT(r.free_after, 0);
+    EXPECT_EQ(r.cracks, r.free_after);
+    EXPECT_GT(r.widest_gap, 1e-5);
+    EXPECT_LT(r.widest_gap, 1e-4);
+    EXPECT_GT(r.suggested_tolerance, 1e-5);
+    EXPECT_LE(r.suggested_tolerance, 1e-4);
+    CadParams p;
+    p.sew_tolerance = r.suggested_tolerance;
+    SewReport again;
+    const SurfaceMesh m = mesh_cad(path, p, nullptr, nullptr, &again);
+    EXPECT_EQ(again.free_after, 0);
+    EXPECT_EQ(again.solids, 1);
+    EXPECT_TRUE(closed(m));
+}
+
+TEST(CadSewing, AnIgesOfTrimmedFacesWithAPoleIsSewnWithItsSmallEdgesFixed) {
+    // A half body with a quarter-sphere nose as IGES trimmed faces (cad_nose_trimmed_faces.geo):
+    // sewn alone its nose keeps a degenerate edge and Gmsh aborts on it; with the small edges
+    // fixed it is one closed solid whose faces did not move.
+    SewReport r;
+    const SurfaceMesh m = mesh_cad(test_data("cad_nose_trimmed_faces.igs"), {}, nullptr, nullptr, &r);
+    EXPECT_EQ(r.faces, 5);
+    EXPECT_EQ(r.free_after, 0);
+    EXPECT_EQ(r.solids, 1);
+    EXPECT_FALSE(r.rejected);
+    EXPECT_LT(r.moved, 1e-9);
+    EXPECT_TRUE(closed(m));
+}
+
+TEST(CadSewing, HealingThatMovesAFaceIsRefusedAndTheFacesMeshedAsTheyAre) {
+    // A capsule as IGES trimmed faces (cad_capsule_trimmed_faces.geo): healing its faces cuts its
+    // spherical ends to 40 % of their area. The sewn model is refused and the file meshed
+    // unsewn, its coincident edges merged into a closed surface of the capsule's whole area.
+    const std::string path = test_data("cad_capsule_trimmed_faces.igs");
+    SewReport r;
+    (void)mesh_cad(path, {}, nullptr, nullptr, &r);
+    EXPECT_EQ(r.faces, 4);
+    EXPECT_TRUE(r.rejected);
+    EXPECT_GT(r.moved, 1e-2);
+    PrepareReport rep;
+    const SurfaceMesh m = prepare_surface(path, {}, &rep);
+    EXPECT_TRUE(rep.sew.rejected);
+    EXPECT_TRUE(closed(m));
+    double area = 0.0;
+    for (Index f = 0; f < m.num_faces(); ++f) area += face_area_vector(m, f).norm();
+    const double pi = std::acos(-1.0);
+    EXPECT_NEAR(area, 2.0 * pi * 0.2 * 1.0 + 4.0 * pi * 0.04, 0.02);
+}
+
+TEST(CadSewing, SolidsAndClosedFacesAreLeftAlone) {
+    // Faces that bound solids are never sewn, nor a face that closes on itself (a sphere's, whose
+    // seam bounds it twice and whose poles are degenerate edges): sewing it, Gmsh could not mesh
+    // the periodic face again and aborted.
+    SewReport solid, sphere;
+    EXPECT_TRUE(closed(mesh_cad(test_data("cad_box_with_hole.igs"), {}, nullptr, nullptr, &solid)));
+    EXPECT_EQ(solid.faces, 0);
+    EXPECT_TRUE(closed(mesh_cad(test_data("cad_sphere_face_only.brep"), {}, nullptr, nullptr, &sphere)));
+    EXPECT_EQ(sphere.faces, 0);
+    CadParams p;
+    p.sew_tolerance = 0.01;
+    EXPECT_THROW(mesh_cad(test_data("cad_box_with_hole.igs"), p), InputError);
+}
+
+TEST(CadSewing, TwoBodiesTouchingAlongAFaceGetNoFanWhereTheirCopiesOfItMeet) {
+    // Two boxes touching along y = 0.5 as IGES trimmed faces (cad_two_boxes_trimmed_faces.geo):
+    // sewn, the two copies of the face between them lie back to back, whose common edges turn
+    // 180 degrees; they are not a sharp edge of the wall, so the wall sizing for the first layer
+    // puts no fan on them (it did: 12 curves meshed finer, and on a wing and fuselage written
+    // so, a first-layer aspect ratio of 4e32 from the fan's undefined plane).
+    CadParams p;
+    p.first_height = 1e-4;
+    p.fan_angle_deg = 150.0;
+    WallSizeReport w;
+    SewReport r;
+    (void)mesh_cad(test_data("cad_two_boxes_trimmed_faces.igs"), p, nullptr, &w, &r);
+    EXPECT_EQ(r.free_after, 0);
+    EXPECT_EQ(w.curves, 0);
+    EXPECT_LT(w.worst_before, 1e4);
 }
 
 }  // namespace

@@ -148,6 +148,23 @@ def test_cad_walls_are_meshed_finer_for_the_first_layers_aspect_ratio():
         strata.layers(box, layers=2, first_height=5e-5, max_aspect_ratio=5)
 
 
+def test_loose_cad_faces_are_sewn_and_the_report_says_so():
+    # Six faces of a box that miss each other by up to 1e-7 (tests/data/cad_box_loose_faces.py):
+    # sewn into one closed solid; by 3e-5, wider than sewing goes unasked: mesh() refuses the open
+    # surface naming the sew_tolerance keyword and its value, which then sews it.
+    r = strata.surface(os.path.join(TEST_DATA, "cad_box_loose_faces_1e-7.brep")).report
+    assert r["sewn"]["faces"] == 6 and r["sewn"]["free_edges_before"] == 24
+    assert r["sewn"]["free_edges_after"] == 0 and r["sewn"]["solids"] == 1 and not r["sewn"]["rejected"]
+    assert r["closed_components"] == 1
+    wide = os.path.join(TEST_DATA, "cad_box_loose_faces_3e-5.brep")
+    with pytest.raises(strata.InputError, match=r"sew_tolerance 6.7e-05 sews them") as e:
+        strata.mesh(wide, layers=2, first_height=0.01)
+    assert "--" not in str(e.value).split("better for this CAD model")[1]
+    sewn = strata.surface(wide, sew_tolerance=6.7e-05).report["sewn"]
+    assert sewn["free_edges_after"] == 0 and sewn["solids"] == 1
+    assert strata.surface(SPHERE_STL).report["sewn"]["faces"] == 0
+
+
 def test_errors_carry_strata_messages_in_keyword_names(tmp_path):
     with pytest.raises(strata.InputError, match="missing.stl") as e:
         strata.mesh(str(tmp_path / "missing.stl"), **SMALL)

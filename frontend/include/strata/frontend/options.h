@@ -45,6 +45,10 @@ std::vector<std::pair<std::string, PatchKind>> parse_patch_options(const std::ve
 /// (CadParams::first_height, in the CAD's unit: the height over PrepareParams::scale).
 PrepareParams prepare_params(const SurfaceOptions& options, const LayerParams* layers = nullptr);
 
+/// What to add to an error about an open surface when sewing a CAD model's faces left cracks
+/// (SewReport::cracks): "; ... --sew-tolerance T sews them", or empty.
+std::string sewing_hint(const SewReport& sew);
+
 /// Layer options: the LayerParams fields, plus the enums as text.
 struct LayerOptions {
     LayerParams params;

@@ -87,6 +87,42 @@ struct CadParams {
     /// about this many faces from it, estimated from the surfaces' areas: a 20 x 10 x 20 tunnel
     /// lined with layers from 1e-4 would need 370,000 (and tens of millions of tetrahedra).
     double wall_faces_budget = 200000;
+    /// STEP, IGES and BREP: faces that bound no solid (a surface model, as IGES files and many
+    /// STEP exports are: each face with its own edges, which miss their neighbours' by the CAD
+    /// tool's tolerance) are sewn by OpenCASCADE (BRepBuilderAPI_Sewing through Gmsh's
+    /// healShapes, closed shells made solids; degenerate edges, and edges and faces smaller than
+    /// the tolerance, fixed) before meshing; unsewn, each face would be meshed on its own and
+    /// the surface left open along every edge. The tolerance is this share of the model's
+    /// bounding-box diagonal, raised to twice the widest gap measured between the faces' edges
+    /// up to 1e-5 of it. In [0, 0.001]; 0: not sewn. Models whose faces all bound solids are
+    /// never touched.
+    double sew_tolerance = 1e-6;
+};
+
+/// What CadParams::sew_tolerance did.
+struct SewReport {
+    Index faces = 0;         ///< faces that bounded no solid, sewn (0: nothing to sew)
+    double tolerance = 0.0;  ///< the sewing tolerance used, model units
+    /// The first tolerance tried, if edges it left apart (by a gap up to 1e-5 of the diagonal)
+    /// made the faces sewn again from the file at \p tolerance; else 0.
+    double first_tolerance = 0.0;
+    double gap_before = 0.0;  ///< the widest gap measured between those faces' edges before sewing
+    Index free_before = 0;    ///< edges of those faces that bounded one face only, before sewing
+    Index free_after = 0;     ///< and after (a seam, which bounds one face twice, is not one)
+    Index solids = 0;         ///< closed shells made solids
+    /// Free edges left that lie within 0.001 of the model's size of another (a gap wider than
+    /// the tolerance): how many, the widest gap, where, and the tolerance (a share of the
+    /// diagonal, as CadParams::sew_tolerance) that would sew them (0: none such).
+    Index cracks = 0;
+    double widest_gap = 0.0;
+    Vec3 gap_at = Vec3::Zero();
+    double suggested_tolerance = 0.0;
+    bool renumbered = false;  ///< the sewn faces could not all be matched to the file's (patches by the new tags)
+    /// How far the healing moved a face (the largest distance of a face's bounding box from the
+    /// nearest of the file's), model units; beyond 1e-4 of the diagonal the sewn model is
+    /// \p rejected and the file meshed unsewn, as it is.
+    double moved = 0.0;
+    bool rejected = false;
 };
 
 /// What CadParams::max_aspect_ratio did.
@@ -108,22 +144,24 @@ struct CadUnits {
 };
 
 /// Read \p path (.step/.stp, .iges/.igs, .brep/.brp, .geo; extension case-insensitive),
-/// optionally fuse its solids, and mesh its surfaces with Gmsh (surfaces only: generate(2)).
+/// sew the faces that bound no solid (CadParams::sew_tolerance; not for a .geo, whose script
+/// decides), optionally fuse its solids, and mesh its surfaces with Gmsh (surfaces only: generate(2)).
 /// Surfaces sharing a curve share its nodes, so a closed solid gives a closed, conforming mesh.
 ///
 /// Patches: one per 2D physical group if the model has any (named by the group, or
 /// "physical_<tag>"; a surface in several groups goes to the lowest group tag), and one per
 /// surface in no group ("surface_<tag>"); without physical groups, one per CAD surface
-/// ("surface_<tag>"). All patches are PatchKind::Wall (the caller assigns kinds). Face node
-/// order is Gmsh's (the caller orients). Nodes are numbered in order of first use, faces
-/// surface by surface in tag order: the same file and parameters give the same mesh.
+/// ("surface_<tag>"); sewn faces keep the tags the file gave them (matched by centre and area),
+/// unless the matching fails (SewReport::renumbered). All patches are PatchKind::Wall (the caller assigns kinds). Face
+/// node order is Gmsh's (the caller orients). Nodes are numbered in order of first use, faces surface by surface in tag
+/// order: the same file and parameters give the same mesh.
 ///
 /// Throws InputError for bad parameters, a missing, unreadable or corrupt file, or a model
 /// without surfaces (each naming the file); BackendError when Gmsh fails to mesh or leaves a
 /// surface without elements (naming the surface).
-/// \p walls, if given, receives what the wall-size cap did.
+/// \p walls, if given, receives what the wall-size cap did; \p sew what the sewing did.
 SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units = nullptr,
-                     WallSizeReport* walls = nullptr);
+                     WallSizeReport* walls = nullptr, SewReport* sew = nullptr);
 
 /// True for the extensions mesh_cad understands (case-insensitive); looks at the name only.
 bool is_cad_file(const std::string& path);

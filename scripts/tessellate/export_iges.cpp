@@ -1,0 +1,50 @@
+// export_iges: a CAD file (STEP or BREP) written as IGES the way most CAD tools write it, with
+// OpenCASCADE's IGESControl_Writer in its default "faces" mode: trimmed surfaces without
+// topology, so each face has its own edges, which reading sews (CadParams::sew_tolerance).
+// Not part of Strata; built with tessellate_cad (build.sh) when OpenCASCADE's headers are
+// installed. For test data such as tests/data/cad_nose_trimmed_faces.igs.
+//   export_iges IN.step|IN.brep OUT.igs [UNIT]      (UNIT: MM (default), M, IN, ...)
+
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Writer.hxx>
+#include <STEPControl_Reader.hxx>
+#include <TopoDS_Shape.hxx>
+
+#include <cstdio>
+#include <string>
+
+int main(int argc, char** argv) {
+    if (argc < 3 || argc > 4) {
+        std::fprintf(stderr, "usage: %s IN.step|IN.brep OUT.igs [UNIT]\n", argv[0]);
+        return 2;
+    }
+    const std::string in = argv[1];
+    TopoDS_Shape shape;
+    const std::string ext = in.substr(in.find_last_of('.') + 1);
+    if (ext == "brep" || ext == "brp") {
+        BRep_Builder builder;
+        if (!BRepTools::Read(shape, in.c_str(), builder)) {
+            std::fprintf(stderr, "%s: cannot read the BREP file\n", in.c_str());
+            return 1;
+        }
+    } else {
+        STEPControl_Reader reader;
+        if (reader.ReadFile(in.c_str()) != IFSelect_RetDone || reader.TransferRoots() == 0) {
+            std::fprintf(stderr, "%s: cannot read the STEP file\n", in.c_str());
+            return 1;
+        }
+        shape = reader.OneShape();
+    }
+    IGESControl_Controller::Init();
+    IGESControl_Writer writer(argc == 4 ? argv[3] : "MM", 0);  // 0: faces (trimmed surfaces), 1: BRep
+    writer.AddShape(shape);
+    writer.ComputeModel();
+    if (!writer.Write(argv[2])) {
+        std::fprintf(stderr, "%s: cannot write the IGES file\n", argv[2]);
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,41 @@
+"""Source of cad_box_loose_faces_1e-7.brep and cad_box_loose_faces_3e-5.brep (tests/geometry/test_cad.cpp).
+
+A 1 x 0.5 x 0.3 box written as six separate faces, each with its own edges, whose corners are
+moved by up to GAP in each coordinate (a surface model as CAD tools export it: faces that miss
+their neighbours by the tool's tolerance). Gmsh's OpenCASCADE kernel, filling surfaces.
+    /usr/bin/python3 cad_box_loose_faces.py 1e-7 cad_box_loose_faces_1e-7.brep
+    /usr/bin/python3 cad_box_loose_faces.py 3e-5 cad_box_loose_faces_3e-5.brep
+Also the source of cad_sphere_face_only.brep: the face of a sphere of radius 0.5 without its
+solid, a loose face that closes on itself (its seam bounds it twice, its poles are degenerate
+edges), which sewing must leave alone:
+    /usr/bin/python3 cad_box_loose_faces.py sphere cad_sphere_face_only.brep
+"""
+import random
+import sys
+
+import gmsh
+
+out = sys.argv[2]
+gmsh.initialize()
+gmsh.option.setNumber("General.Verbosity", 1)
+o = gmsh.model.occ
+if sys.argv[1] == "sphere":
+    o.addSphere(0, 0, 0, 0.5)
+    o.copy(o.getEntities(2))
+    o.remove(o.getEntities(3), recursive=True)
+    o.synchronize()
+    gmsh.write(out)
+    gmsh.finalize()
+    sys.exit(0)
+gap = float(sys.argv[1])
+random.seed(1)
+faces = [[(0, 0, 0), (1, 0, 0), (1, 0.5, 0), (0, 0.5, 0)], [(0, 0, 0.3), (1, 0, 0.3), (1, 0.5, 0.3), (0, 0.5, 0.3)],
+         [(0, 0, 0), (1, 0, 0), (1, 0, 0.3), (0, 0, 0.3)], [(0, 0.5, 0), (1, 0.5, 0), (1, 0.5, 0.3), (0, 0.5, 0.3)],
+         [(0, 0, 0), (0, 0.5, 0), (0, 0.5, 0.3), (0, 0, 0.3)], [(1, 0, 0), (1, 0.5, 0), (1, 0.5, 0.3), (1, 0, 0.3)]]
+for f in faces:
+    p = [o.addPoint(*(c + random.uniform(-gap, gap) for c in corner)) for corner in f]
+    lines = [o.addLine(p[i], p[(i + 1) % 4]) for i in range(4)]
+    o.addSurfaceFilling(o.addCurveLoop(lines))
+o.synchronize()
+gmsh.write(out)
+gmsh.finalize()
