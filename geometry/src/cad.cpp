@@ -170,9 +170,25 @@ void load(const std::string& path, CadFormat format) {
                 // The format is given explicitly: Gmsh guesses from the extension and knows
                 // neither ".brp" nor upper-case extensions.
                 const char* kind = format == CadFormat::Step ? "step" : format == CadFormat::Iges ? "iges" : "brep";
+                // Every shape, not only the highest dimension's: with highestDimOnly a file
+                // holding a solid and loose faces (a fuselage solid and a wing written as
+                // surfaces) lost the faces without a word. Free curves and points (a STEP's
+                // construction geometry) bound nothing Strata meshes and go.
                 gmsh::vectorpair imported;
-                gmsh::model::occ::importShapes(path, imported, true, kind);
+                gmsh::model::occ::importShapes(path, imported, false, kind);
                 gmsh::model::occ::synchronize();
+                for (const int dim : {1, 0}) {
+                    gmsh::vectorpair entities, loose;
+                    gmsh::model::getEntities(entities, dim);
+                    for (const auto& e : entities) {
+                        std::vector<int> up, down;
+                        gmsh::model::getAdjacencies(e.first, e.second, up, down);
+                        if (up.empty()) loose.push_back(e);
+                    }
+                    if (loose.empty()) continue;
+                    gmsh::model::occ::remove(loose, true);
+                    gmsh::model::occ::synchronize();
+                }
             }
         });
     } catch (const BackendError& e) {
@@ -369,6 +385,10 @@ std::map<int, int> sew_faces(double share, SewReport& r) {
     r.faces = static_cast<Index>(loose.size());
     r.free_before = static_cast<Index>(loose_edges.size());
     const Gaps gaps = measure_gaps(loose_edges, 1e-3 * diagonal);
+    if (gaps.cracks == 0) {  // no edge runs along another (a lone sheet): nothing to sew
+        r = SewReport{};
+        return renamed;
+    }
     r.gap_before = gaps.widest;
     r.tolerance = std::max(share * diagonal, std::min(2.0 * gaps.widest, kSewShareMax * diagonal));
     std::vector<SurfaceMark> before;
@@ -583,7 +603,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     if (!script)
         gmsh_call(path +
                       ": sewing the faces that bound no solid (OpenCASCADE) failed; sew them in the CAD tool, or "
-                      "give sew_tolerance 0 to mesh them as they are",
+                      "give CadParams::sew_tolerance 0 to mesh them as they are",
                   [&] {
                       auto reload = [&] {
                           gmsh::vectorpair everything;

@@ -9,6 +9,9 @@ Also the source of cad_sphere_face_only.brep: the face of a sphere of radius 0.5
 solid, a loose face that closes on itself (its seam bounds it twice, its poles are degenerate
 edges), which sewing must leave alone:
     /usr/bin/python3 cad_box_loose_faces.py sphere cad_sphere_face_only.brep
+And of cad_solid_and_loose_face.brep: a unit cube, a loose unit square beside it (x = 2..3) and
+a free line (construction geometry), in one file: the square must be read, the line ignored.
+    /usr/bin/python3 cad_box_loose_faces.py mixed cad_solid_and_loose_face.brep
 """
 import random
 import sys
@@ -19,6 +22,14 @@ out = sys.argv[2]
 gmsh.initialize()
 gmsh.option.setNumber("General.Verbosity", 1)
 o = gmsh.model.occ
+if sys.argv[1] == "mixed":
+    o.addBox(0, 0, 0, 1, 1, 1)
+    o.addRectangle(2, 0, 0, 1, 1)
+    o.addLine(o.addPoint(0, 3, 0), o.addPoint(1, 3, 0))
+    o.synchronize()
+    gmsh.write(out)
+    gmsh.finalize()
+    sys.exit(0)
 if sys.argv[1] == "sphere":
     o.addSphere(0, 0, 0, 0.5)
     o.copy(o.getEntities(2))

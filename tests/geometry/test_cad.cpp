@@ -831,6 +831,20 @@ TEST(CadSewing, SolidsAndClosedFacesAreLeftAlone) {
     EXPECT_THROW(mesh_cad(test_data("cad_box_with_hole.igs"), p), InputError);
 }
 
+TEST(CadSewing, ALooseFaceBesideASolidIsReadAndFreeCurvesIgnored) {
+    // A cube, a square beside it and a free line in one file (cad_solid_and_loose_face.brep):
+    // reading the solids only, the square was lost without a word; it is read (nothing to sew:
+    // no edge of it runs along another), and the line, bounding nothing, is left out.
+    SewReport r;
+    const SurfaceMesh m = mesh_cad(test_data("cad_solid_and_loose_face.brep"), {}, nullptr, nullptr, &r);
+    EXPECT_EQ(m.patches.size(), 7u);
+    EXPECT_EQ(r.faces, 0);
+    double far = 0.0;
+    for (const Vec3& x : m.points) far = std::max(far, x.x());
+    EXPECT_NEAR(far, 3.0, 1e-9);
+    for (Index f = 0; f < m.num_faces(); ++f) EXPECT_GT(face_area_vector(m, f).norm(), 0.0);
+}
+
 TEST(CadSewing, TwoBodiesTouchingAlongAFaceGetNoFanWhereTheirCopiesOfItMeet) {
     // Two boxes touching along y = 0.5 as IGES trimmed faces (cad_two_boxes_trimmed_faces.geo):
     // sewn, the two copies of the face between them lie back to back, whose common edges turn
