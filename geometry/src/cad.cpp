@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -23,6 +25,9 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace strata {
 namespace {
@@ -155,6 +160,36 @@ void set_number(const std::string& name, double v) {
     gmsh_call("setting Gmsh option " + name, [&] { gmsh::option::setNumber(name, v); });
 }
 
+/// Standard output sent to /dev/null while it lives: OpenCASCADE's IGES reader prints its
+/// statistics ("Total number of loaded entities 125.", in colour) on std::cout whatever Gmsh's
+/// verbosity, into the summary a user or a design loop reads.
+class QuietStdout {
+public:
+    QuietStdout() {
+        std::cout.flush();
+        std::fflush(stdout);
+        const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+        saved_ = null < 0 ? -1 : ::fcntl(1, F_DUPFD_CLOEXEC, 0);
+        if (saved_ >= 0 && ::dup2(null, 1) < 0) {
+            ::close(saved_);
+            saved_ = -1;
+        }
+        if (null >= 0) ::close(null);
+    }
+    ~QuietStdout() {
+        if (saved_ < 0) return;
+        std::cout.flush();
+        std::fflush(stdout);
+        ::dup2(saved_, 1);
+        ::close(saved_);
+    }
+    QuietStdout(const QuietStdout&) = delete;
+    QuietStdout& operator=(const QuietStdout&) = delete;
+
+private:
+    int saved_ = -1;
+};
+
 void load(const std::string& path, CadFormat format) {
     const std::string context = path + ": Gmsh could not read this " + std::string(format_name(format)) + " file";
     try {
@@ -175,7 +210,11 @@ void load(const std::string& path, CadFormat format) {
                 // surfaces) lost the faces without a word. Free curves and points (a STEP's
                 // construction geometry) bound nothing Strata meshes and go.
                 gmsh::vectorpair imported;
-                gmsh::model::occ::importShapes(path, imported, false, kind);
+                {
+                    const std::optional<QuietStdout> quiet =
+                        format == CadFormat::Iges ? std::make_optional<QuietStdout>() : std::nullopt;
+                    gmsh::model::occ::importShapes(path, imported, false, kind);
+                }
                 gmsh::model::occ::synchronize();
                 for (const int dim : {1, 0}) {
                     gmsh::vectorpair entities, loose;

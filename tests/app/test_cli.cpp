@@ -752,6 +752,13 @@ TEST(Cli, LooseCadFacesAreSewnAndWiderGapsNamedWithTheirRemedy) {
     r = strata_cli(dir, wide + "--sew-tolerance 6.7e-05 -o m.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("free edges 24 -> 0, 1 solids made"), std::string::npos) << r.out;
+    // An IGES of trimmed faces is sewn too, and OpenCASCADE's IGES reader does not print its
+    // statistics ("Total number of loaded entities") into the summary.
+    r = strata_cli(dir, "surface '" + test_data("cad_nose_trimmed_faces.igs") + "' -o n.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("surface: ", 0), 0u) << r.out;
+    EXPECT_EQ(r.out.find("loaded entities"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("sewn: 5 faces that bounded no solid"), std::string::npos) << r.out;
     // Only for CAD; out of range refused.
     expect_clean_failure("surface '" + example_data("sphere.stl") + "' -o s.msh --sew-tolerance 1e-5",
                          "--merge-tolerance", "sewstl");
