@@ -292,6 +292,11 @@ void print_units(const strata::PrepareReport& rep) {
 
 /// What --sew-tolerance did to a CAD model's loose faces (nothing to say when all bound solids).
 void print_sewing(const strata::SewReport& s) {
+    if (s.written_twice > 0)
+        std::printf(
+            "repaired: %d faces of the CAD model written twice (the same place, area and side as another) "
+            "removed, the first of each kept\n",
+            static_cast<int>(s.written_twice));
     if (s.faces == 0) return;
     if (s.rejected) {
         std::printf(

@@ -404,9 +404,56 @@ constexpr double kSewMoveMax = 1e-4;
 /// CadParams::sew_tolerance: the faces that bound no solid sewn (and closed shells made solids),
 /// the sewn faces given the file's tags back as physical groups "surface_<tag>" where sewing
 /// renumbered them. Returns the new tag of each of the file's surface tags (empty: unchanged).
+/// Loose faces written twice (a CAD exporter's slip): the same bounding box, area and normal as
+/// a lower-tagged one. Two bodies' copies of the face they touch along face opposite ways and
+/// stay (--fuse removes both). Removed from the model; their tags returned.
+std::vector<int> remove_written_twice(const std::vector<int>& loose, double diagonal) {
+    struct Face {
+        int tag;
+        SurfaceMark box;
+        double area = 0.0;
+        Vec3 normal = Vec3::Zero();
+    };
+    std::vector<Face> faces;
+    for (const int s : loose) {
+        Face f{s, mark(s)};
+        try {
+            gmsh::model::occ::getMass(2, s, f.area);
+            std::vector<double> c(3), closest, uv, n;
+            gmsh::model::occ::getCenterOfMass(2, s, c[0], c[1], c[2]);
+            gmsh::model::getClosestPoint(2, s, c, closest, uv);
+            gmsh::model::getNormal(s, uv, n);
+            if (n.size() >= 3) f.normal = Vec3(n[0], n[1], n[2]);
+        } catch (...) {  // a face OpenCASCADE cannot measure is compared with none
+            continue;
+        }
+        faces.push_back(f);
+    }
+    std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) {
+        return a.box.box[0] < b.box.box[0] || (a.box.box[0] == b.box.box[0] && a.tag < b.tag);
+    });
+    const double eps = 1e-7 * diagonal;
+    std::set<int> twice;
+    for (std::size_t i = 0; i < faces.size(); ++i)
+        for (std::size_t j = i + 1; j < faces.size() && faces[j].box.box[0] <= faces[i].box.box[0] + eps; ++j) {
+            const Face &a = faces[i], &b = faces[j];
+            if (twice.count(a.tag) || twice.count(b.tag)) continue;
+            if (box_distance(a.box, b.box) > eps || std::abs(a.area - b.area) > 1e-7 * std::max(a.area, b.area) ||
+                !(a.normal.dot(b.normal) > 0.99))
+                continue;
+            twice.insert(std::max(a.tag, b.tag));
+        }
+    if (twice.empty()) return {};
+    gmsh::vectorpair gone;
+    for (const int s : twice) gone.emplace_back(2, s);
+    gmsh::model::occ::remove(gone, true);
+    gmsh::model::occ::synchronize();
+    return {twice.begin(), twice.end()};
+}
+
 std::map<int, int> sew_faces(double share, SewReport& r) {
     std::map<int, int> renamed;
-    const std::vector<int> all = entity_tags(2);
+    std::vector<int> all = entity_tags(2);
     std::vector<int> loose;
     for (const int s : all) {
         std::vector<int> up, down;
@@ -417,15 +464,30 @@ std::map<int, int> sew_faces(double share, SewReport& r) {
     double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
     gmsh::model::getBoundingBox(-1, -1, xmin, ymin, zmin, xmax, ymax, zmax);
     const double diagonal = std::hypot(xmax - xmin, ymax - ymin, zmax - zmin);
+    // Faces written twice go first: sewn, both copies would be meshed on the same edges but
+    // with their own interiors (three faces on each edge round them).
+    const std::vector<int> twice = remove_written_twice(loose, diagonal);
+    if (!twice.empty()) {
+        auto drop = [&](std::vector<int>& v) {
+            v.erase(std::remove_if(v.begin(), v.end(),
+                                   [&](int s) { return std::binary_search(twice.begin(), twice.end(), s); }),
+                    v.end());
+        };
+        drop(all);
+        drop(loose);
+    }
+    const auto written_twice = static_cast<Index>(twice.size());
     // The tolerance: at least the share asked, raised (up to kSewShareMax) to twice the widest
     // gap measured between the loose faces' edges.
     const std::vector<int> loose_edges = free_curves(loose, 1e-9 * diagonal);
+    r.written_twice = written_twice;
     if (loose_edges.empty()) return renamed;  // closed faces (a sphere's): nothing to sew
     r.faces = static_cast<Index>(loose.size());
     r.free_before = static_cast<Index>(loose_edges.size());
     const Gaps gaps = measure_gaps(loose_edges, 1e-3 * diagonal);
     if (gaps.cracks == 0) {  // no edge runs along another (a lone sheet): nothing to sew
         r = SewReport{};
+        r.written_twice = written_twice;
         return renamed;
     }
     r.gap_before = gaps.widest;
@@ -481,12 +543,17 @@ std::map<int, int> sew_faces(double share, SewReport& r) {
     std::set<int> taken;
     for (std::size_t i = 0; i < now.size(); ++i) {
         const SurfaceMark m = mark(now[i]);
+        // The nearest, and the nearest not matched yet (two bodies' copies of the face they touch
+        // along have the same box).
         int best = -1;
-        double best_d = std::numeric_limits<double>::infinity();
-        for (const SurfaceMark& b : before)
-            if (const double d = box_distance(b, m); d < best_d) best_d = d, best = b.tag;
-        r.moved = std::max(r.moved, best_d);
-        matched = matched && best >= 0 && !taken.count(best);
+        double nearest = std::numeric_limits<double>::infinity(), best_d = nearest;
+        for (const SurfaceMark& b : before) {
+            const double d = box_distance(b, m);
+            nearest = std::min(nearest, d);
+            if (d < best_d && !taken.count(b.tag)) best_d = d, best = b.tag;
+        }
+        r.moved = std::max(r.moved, nearest);
+        matched = matched && best >= 0 && best_d <= nearest + 1e-9 * diagonal;
         if (matched) taken.insert(best), old_of[now[i]] = best;
     }
     if (r.moved > kSewMoveMax * diagonal + 10.0 * r.tolerance) {

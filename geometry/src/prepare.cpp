@@ -32,6 +32,7 @@ SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const
         WallSizeReport one;
         SewReport sewn;
         SurfaceMesh mesh = mesh_cad(path, with_kinds, units, &one, &sewn);
+        if (sew) sew->written_twice += sewn.written_twice;
         if (sew && sewn.faces > 0) {
             // Several inputs: summed, the widest gap and the largest tolerance kept.
             sew->faces += sewn.faces;

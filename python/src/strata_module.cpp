@@ -383,12 +383,13 @@ py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double sec
             py::dict("max_aspect_ratio"_a = w.max_aspect_ratio, "worst_before"_a = w.worst_before,
                      "worst_after"_a = w.worst_after, "size"_a = w.cap, "surfaces"_a = w.surfaces,
                      "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate, "over_budget"_a = w.over_budget),
-        "sewn"_a = py::dict("faces"_a = r.sew.faces, "tolerance"_a = r.sew.tolerance,
-                            "free_edges_before"_a = r.sew.free_before, "free_edges_after"_a = r.sew.free_after,
-                            "solids"_a = r.sew.solids, "cracks"_a = r.sew.cracks, "widest_gap"_a = r.sew.widest_gap,
-                            "suggested_tolerance"_a = r.sew.suggested_tolerance, "renumbered"_a = r.sew.renumbered,
-                            "moved"_a = r.sew.moved, "rejected"_a = r.sew.rejected, "gap_before"_a = r.sew.gap_before,
-                            "first_tolerance"_a = r.sew.first_tolerance));
+        "sewn"_a =
+            py::dict("faces"_a = r.sew.faces, "written_twice"_a = r.sew.written_twice, "tolerance"_a = r.sew.tolerance,
+                     "free_edges_before"_a = r.sew.free_before, "free_edges_after"_a = r.sew.free_after,
+                     "solids"_a = r.sew.solids, "cracks"_a = r.sew.cracks, "widest_gap"_a = r.sew.widest_gap,
+                     "suggested_tolerance"_a = r.sew.suggested_tolerance, "renumbered"_a = r.sew.renumbered,
+                     "moved"_a = r.sew.moved, "rejected"_a = r.sew.rejected, "gap_before"_a = r.sew.gap_before,
+                     "first_tolerance"_a = r.sew.first_tolerance));
 }
 
 py::dict coverage_report(const LayerReport& r) {

@@ -12,6 +12,8 @@ edges), which sewing must leave alone:
 And of cad_solid_and_loose_face.brep: a unit cube, a loose unit square beside it (x = 2..3) and
 a free line (construction geometry), in one file: the square must be read, the line ignored.
     /usr/bin/python3 cad_box_loose_faces.py mixed cad_solid_and_loose_face.brep
+And of cad_box_face_written_twice.brep: the six faces of the box, exact, the first written twice.
+    /usr/bin/python3 cad_box_loose_faces.py twice cad_box_face_written_twice.brep
 """
 import random
 import sys
@@ -26,6 +28,16 @@ if sys.argv[1] == "mixed":
     o.addBox(0, 0, 0, 1, 1, 1)
     o.addRectangle(2, 0, 0, 1, 1)
     o.addLine(o.addPoint(0, 3, 0), o.addPoint(1, 3, 0))
+    o.synchronize()
+    gmsh.write(out)
+    gmsh.finalize()
+    sys.exit(0)
+if sys.argv[1] == "twice":
+    o.addBox(0, 0, 0, 1, 0.5, 0.3)
+    box_faces = o.getEntities(2)
+    o.copy(box_faces)
+    o.copy(box_faces[:1])
+    o.remove(o.getEntities(3), recursive=True)
     o.synchronize()
     gmsh.write(out)
     gmsh.finalize()

@@ -845,6 +845,19 @@ TEST(CadSewing, ALooseFaceBesideASolidIsReadAndFreeCurvesIgnored) {
     for (Index f = 0; f < m.num_faces(); ++f) EXPECT_GT(face_area_vector(m, f).norm(), 0.0);
 }
 
+TEST(CadSewing, AFaceWrittenTwiceIsRemovedBeforeSewing) {
+    // The six faces of a box, the first written twice (cad_box_face_written_twice.brep): sewn
+    // with both copies, Gmsh meshed each on the same edges with its own interior, three faces
+    // on each edge round it; the copy goes first, and the box is closed.
+    SewReport r;
+    const SurfaceMesh m = mesh_cad(test_data("cad_box_face_written_twice.brep"), {}, nullptr, nullptr, &r);
+    EXPECT_EQ(r.written_twice, 1);
+    EXPECT_EQ(r.faces, 6);
+    EXPECT_EQ(r.solids, 1);
+    EXPECT_EQ(m.patches.size(), 6u);
+    EXPECT_TRUE(closed(m));
+}
+
 TEST(CadSewing, TwoBodiesTouchingAlongAFaceGetNoFanWhereTheirCopiesOfItMeet) {
     // Two boxes touching along y = 0.5 as IGES trimmed faces (cad_two_boxes_trimmed_faces.geo):
     // sewn, the two copies of the face between them lie back to back, whose common edges turn
@@ -858,6 +871,8 @@ TEST(CadSewing, TwoBodiesTouchingAlongAFaceGetNoFanWhereTheirCopiesOfItMeet) {
     SewReport r;
     (void)mesh_cad(test_data("cad_two_boxes_trimmed_faces.igs"), p, nullptr, &w, &r);
     EXPECT_EQ(r.free_after, 0);
+    EXPECT_EQ(r.written_twice, 0);  // the two copies face opposite ways: not written twice
+    EXPECT_FALSE(r.renumbered);     // each copy matched to one of the file's two
     EXPECT_EQ(w.curves, 0);
     EXPECT_LT(w.worst_before, 1e4);
 }

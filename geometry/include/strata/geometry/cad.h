@@ -101,7 +101,10 @@ struct CadParams {
 
 /// What CadParams::sew_tolerance did.
 struct SewReport {
-    Index faces = 0;         ///< faces that bounded no solid, sewn (0: nothing to sew)
+    Index faces = 0;  ///< faces that bounded no solid, sewn (0: nothing to sew)
+    /// Faces that bounded no solid written twice (the same bounding box, area and normal as
+    /// another), the copies removed before sewing (also when there was nothing to sew).
+    Index written_twice = 0;
     double tolerance = 0.0;  ///< the sewing tolerance used, model units
     /// The first tolerance tried, if edges it left apart (by a gap up to 1e-5 of the diagonal)
     /// made the faces sewn again from the file at \p tolerance; else 0.
