@@ -397,6 +397,14 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
         std::printf(
             "repaired: %d faces split where nodes of the faces beside them lay inside their edge (T-junctions)\n",
             static_cast<int>(rep.t_junctions));
+    if (rep.holes.holes > 0)
+        std::printf("repaired: %d holes closed with %d triangles (--fill-holes; the largest, %d edges, around %s)\n",
+                    static_cast<int>(rep.holes.holes), static_cast<int>(rep.holes.triangles),
+                    static_cast<int>(rep.holes.largest), strata::format_point(rep.holes.where).c_str());
+    if (rep.holes.max_edges > 0 && rep.holes.left > 0)
+        std::printf("note: %d open loops left open by --fill-holes %d (the largest has %d edges)\n",
+                    static_cast<int>(rep.holes.left), static_cast<int>(rep.holes.max_edges),
+                    static_cast<int>(rep.holes.largest_left));
     if (rep.duplicate_faces > 0)
         std::printf(
             "repaired: %d faces written twice (the same nodes in the same order) removed, the first of each kept\n",

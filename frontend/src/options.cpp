@@ -217,6 +217,11 @@ std::vector<OptionSpec> make_table() {
         [](Options& o) -> double& { return o.surface.prepare.merge_tolerance; },
         "nodes closer than this share of the bounding-box diagonal are one (in [0, 0.001]): a larger one welds "
         "the cracks a CAD export leaves between faces"));
+    t.push_back(spec(
+        "--fill-holes", "fill_holes", "PrepareParams::fill_holes", Stage::Patches,
+        [](Options& o) -> int& { return o.surface.prepare.fill_holes; },
+        "close the surface's open loops of at most this many edges with triangles (the few triangles an STL lost; 0: "
+        "none, as a half model's cut is open on purpose)"));
     t.push_back(no_default(spec(
         "--internal", "internal_flow", "PrepareParams::internal_flow", Stage::Patches,
         [](Options& o) -> bool& { return o.surface.prepare.internal_flow; },

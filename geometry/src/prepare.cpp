@@ -105,6 +105,9 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     if (!(params.collapse_ratio >= 0.0 && params.collapse_ratio <= 0.5))
         throw InputError(source + ": PrepareParams::collapse_ratio = " + format_number(params.collapse_ratio) +
                          ": need a share of the local edge length in [0, 0.5] (0: no edge collapsed)");
+    if (!(params.fill_holes >= 0 && params.fill_holes <= 10000))
+        throw InputError(source + ": PrepareParams::fill_holes = " + std::to_string(params.fill_holes) +
+                         ": need a number of edges in [0, 10000] (0: no hole filled)");
     if (!(params.merge_tolerance >= 0.0 && params.merge_tolerance <= 1e-3))
         throw InputError(source + ": PrepareParams::merge_tolerance = " + format_number(params.merge_tolerance) +
                          ": need a share of the model's size in [0, 0.001] (nodes closer than it are one; a larger "
@@ -156,6 +159,8 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
                             describe_face(merged, back_to_back.front()) +
                             "); fusing the bodies into one (--fuse) removes them");
     }
+    HoleReport holes;
+    if (params.fill_holes > 0) merged = fill_holes(merged, params.fill_holes, &holes);
     strata::report(progress, "surface", 0.8);
     OrientReport orient;
     SurfaceMesh oriented = orient_surface(merged, &orient, params.internal_flow);
@@ -206,6 +211,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         report->collapsed_faces = collapsed;
         report->duplicate_faces = duplicates;
         report->t_junctions = t_junctions;
+        report->holes = holes;
         report->orient = orient;
     }
     strata::report(progress, "surface", 1.0);

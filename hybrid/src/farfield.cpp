@@ -183,6 +183,28 @@ std::string describe_loops(const SurfaceMesh& walls, const Csr& open) {
     return s;
 }
 
+/// The --fill-holes that would close the loops that are holes: the largest loop's edges, or the
+/// second largest's where the largest lies in one plane (a half model's cut, with holes too).
+std::string fill_hint(const SurfaceMesh& walls, const Csr& open) {
+    std::vector<Index> sizes;
+    Index largest = 0;
+    for (Index l = 0; l < open.rows(); ++l) {
+        sizes.push_back(open.row_size(l));
+        if (open.row_size(l) > open.row_size(largest)) largest = l;
+    }
+    if (sizes.empty()) return "";
+    std::sort(sizes.rbegin(), sizes.rend());
+    Index k = sizes[0];
+    if (sizes.size() > 1) {
+        std::vector<Vec3> cut;
+        for (const Index* v = open.row_begin(largest); v != open.row_end(largest); ++v)
+            cut.push_back(walls.points[static_cast<std::size_t>(*v)]);
+        if (fit_plane(cut).deviation <= 1e-6 * bounding_box(walls.points).diagonal()) k = sizes[1];
+    }
+    return "; if they are holes (faces missing from the file), --fill-holes " + std::to_string(k) +
+           " closes every open loop of up to " + std::to_string(k) + " edges";
+}
+
 }  // namespace
 
 SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& params) {
@@ -197,7 +219,8 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
             "(they are " + format_number(pl.deviation) + " off their best plane, the body's size is " +
             format_number(diag) +
             "): only a half model cut by one symmetry plane is closed automatically; close the holes in the CAD tool "
-            "(or the fluid domain yourself: walls plus symmetry and farfield patches) or mesh the full body");
+            "(or the fluid domain yourself: walls plus symmetry and farfield patches) or mesh the full body" +
+            fill_hint(walls, open));
     // The plane's normal towards the body.
     double below = 0.0, above = 0.0;
     for (const Vec3& p : walls.points) {
@@ -211,7 +234,11 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
     // every node of the body lies on one side of it, as for a half model. So: the faces on the
     // open edges, weighted by the edges' lengths, must stand at more than 60 degrees to the plane
     // on average (|cos| under 0.5).
+    // Nor does any of those faces lie in the plane: the symmetry plane would cover it (a
+    // cube's corner triangle missing from its top: two of the hole's edges are the cube's,
+    // square to the top, but the third borders the top's other triangle).
     double along = 0.0, length = 0.0;
+    bool in_plane = false;
     {
         const EdgeTable et = edge_table(walls);
         for (std::size_t e = 0; e < et.nodes.size(); ++e) {
@@ -219,24 +246,35 @@ SurfaceMesh close_half_model(const SurfaceMesh& walls, const FarfieldParams& par
             const double l = (walls.points[static_cast<std::size_t>(et.nodes[e][0])] -
                               walls.points[static_cast<std::size_t>(et.nodes[e][1])])
                                  .norm();
-            const Vec3 a = face_area_vector(walls, et.faces.row_begin(static_cast<Index>(e))[0]);
+            const Index f = et.faces.row_begin(static_cast<Index>(e))[0];
+            const Vec3 a = face_area_vector(walls, f);
             if (!(a.norm() > 0.0)) continue;
             along += l * std::abs(a.normalized().dot(pl.normal));
             length += l;
+            bool on = true;
+            for (Index c = 0; c < walls.face_size(f); ++c)
+                on = on &&
+                     std::abs(
+                         (walls.points[static_cast<std::size_t>(walls.face_node(f, c))] - pl.point).dot(pl.normal)) <=
+                         1e-6 * diag;
+            in_plane = in_plane || on;
         }
     }
-    if (std::min(above, -below) > 1e-6 * diag || (length > 0.0 && along / length > 0.5))
+    if (std::min(above, -below) > 1e-6 * diag || (length > 0.0 && along / length > 0.5) || in_plane)
         throw InputError(
             "the surface is open (" + describe_loops(walls, open) + ") and its open edges lie in one plane, but " +
             (std::min(above, -below) > 1e-6 * diag
                  ? "the body lies on both sides of it (" + format_number(std::max(above, -below)) + " and " +
                        format_number(std::min(above, -below)) + " away)"
-                 : "the faces along them lie along it (at " +
-                       format_number(std::acos(std::min(1.0, along / length)) * 180.0 / 3.141592653589793, 2) +
-                       " degrees on average; a body cut by its symmetry plane meets it square)") +
+             : in_plane ? std::string("a face along them lies in it (a body cut by its symmetry plane has no "
+                                      "face in the plane)")
+                        : "the faces along them lie along it (at " +
+                              format_number(std::acos(std::min(1.0, along / length)) * 180.0 / 3.141592653589793, 2) +
+                              " degrees on average; a body cut by its symmetry plane meets it square)") +
             ", so it is not a half model cut by a symmetry plane: a hole or a crack in the surface "
             "(a missing face, or faces whose nodes do not meet); close it in the CAD tool or export it "
-            "again");
+            "again" +
+            fill_hint(walls, open));
 
     SurfaceMesh dom;
     dom.patches = walls.patches;

@@ -383,6 +383,8 @@ py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double sec
             py::dict("max_aspect_ratio"_a = w.max_aspect_ratio, "worst_before"_a = w.worst_before,
                      "worst_after"_a = w.worst_after, "size"_a = w.cap, "surfaces"_a = w.surfaces,
                      "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate, "over_budget"_a = w.over_budget),
+        "holes"_a = py::dict("filled"_a = r.holes.holes, "triangles"_a = r.holes.triangles,
+                             "largest"_a = r.holes.largest, "left"_a = r.holes.left),
         "sewn"_a =
             py::dict("faces"_a = r.sew.faces, "written_twice"_a = r.sew.written_twice, "tolerance"_a = r.sew.tolerance,
                      "free_edges_before"_a = r.sew.free_before, "free_edges_after"_a = r.sew.free_after,

@@ -766,6 +766,24 @@ TEST(Cli, LooseCadFacesAreSewnAndWiderGapsNamedWithTheirRemedy) {
                          "--sew-tolerance = 0.01: give a share", "sewrange");
 }
 
+TEST(Cli, HolesAreNamedWithTheFillHolesThatClosesThem) {
+    // A cube whose top lost one triangle (tests/data/cli_cube_missing_face.stl): the hole lies
+    // in the top's plane with the body on one side, but a face beside it lies in that plane, so
+    // it is no half model (it was taken for one, and the "symmetry plane" then overlapped the
+    // top); the error gives the --fill-holes that closes it, and that one does.
+    const std::string cube = "mesh '" + test_data("cli_cube_missing_face.stl") + "' --layers 2 --first-height 0.01 ";
+    expect_clean_failure(cube + "-o out.msh", "a face along them lies in it", "holeinplane");
+    expect_clean_failure(cube + "-o out.msh", "--fill-holes 3 closes every open loop of up to 3 edges", "fillhint");
+    test::ScratchDir dir("cli_fill_holes");
+    CliResult r = strata_cli(dir, cube + "--fill-holes 3 -o m.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("repaired: 1 holes closed with 1 triangles (--fill-holes; the largest, 3 edges"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 closed"), std::string::npos) << r.out;
+    expect_clean_failure(cube + "--fill-holes -1 -o out.msh", "--fill-holes = -1", "fillrange");
+}
+
 TEST(Cli, AGmshAbortIsOneLineAndExitOne) {
     // Gmsh 4.8 throws out of an OpenMP region on a face it cannot mesh, which ends the process
     // through std::terminate (tests/data/cli_gmsh_aborts.geo): one line naming Gmsh's message

@@ -165,6 +165,15 @@ def test_loose_cad_faces_are_sewn_and_the_report_says_so():
     assert strata.surface(SPHERE_STL).report["sewn"]["faces"] == 0
 
 
+def test_holes_are_closed_on_request():
+    cube = os.path.join(TEST_DATA, "cli_cube_missing_face.stl")
+    with pytest.raises(strata.InputError, match=r"fill_holes 3 closes every open loop"):
+        strata.mesh(cube, layers=2, first_height=0.01)
+    r = strata.surface(cube, fill_holes=3).report
+    assert r["holes"]["filled"] == 1 and r["holes"]["triangles"] == 1 and r["holes"]["left"] == 0
+    assert r["closed_components"] == 1
+
+
 def test_errors_carry_strata_messages_in_keyword_names(tmp_path):
     with pytest.raises(strata.InputError, match="missing.stl") as e:
         strata.mesh(str(tmp_path / "missing.stl"), **SMALL)

@@ -7,6 +7,7 @@
 #include <strata/core/surface_mesh.h>
 #include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
+#include <strata/geometry/fill_holes.h>
 #include <strata/geometry/fuse.h>
 #include <strata/geometry/remesh.h>
 #include <strata/geometry/short_edges.h>
@@ -43,6 +44,10 @@ struct PrepareParams {
     /// needle faces cap the layer cells on them. Not with \p remesh, which rebuilds the surface
     /// from the input's own edges (and made worse surfaces of collapsed ones). In [0, 0.5]; 0: off.
     double collapse_ratio = 0.01;
+    /// Boundary loops of at most this many edges are closed by triangles (fill_holes, after the
+    /// checks and before orienting): the few triangles an STL lost. 0 (default): none, as a
+    /// surface's openings may be meant (a half model's cut). At most 10000.
+    int fill_holes = 0;
 };
 
 /// What prepare_surface did, for the CLI's summary.
@@ -59,6 +64,7 @@ struct PrepareReport {
     Index touching_faces = 0;     ///< faces removed where bodies touch back to back (PrepareParams::fuse)
     bool internal_flow = false;   ///< PrepareParams::internal_flow: oriented for the fluid inside the walls
     ShortEdgeReport short_edges;  ///< PrepareParams::collapse_ratio: the edges collapsed
+    HoleReport holes;             ///< PrepareParams::fill_holes: the loops closed and left
     bool remeshed = false;        ///< PrepareParams::remesh done; \p remesh says how
     RemeshReport remesh;
     OrientReport orient;
