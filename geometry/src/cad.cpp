@@ -401,9 +401,6 @@ constexpr double kSewShareMax = 1e-5;
 /// sewn model to be kept; beyond, the file is meshed unsewn.
 constexpr double kSewMoveMax = 1e-4;
 
-/// CadParams::sew_tolerance: the faces that bound no solid sewn (and closed shells made solids),
-/// the sewn faces given the file's tags back as physical groups "surface_<tag>" where sewing
-/// renumbered them. Returns the new tag of each of the file's surface tags (empty: unchanged).
 /// Loose faces written twice (a CAD exporter's slip): the same bounding box, area and normal as
 /// a lower-tagged one. Two bodies' copies of the face they touch along face opposite ways and
 /// stay (--fuse removes both). Removed from the model; their tags returned.
@@ -451,6 +448,9 @@ std::vector<int> remove_written_twice(const std::vector<int>& loose, double diag
     return {twice.begin(), twice.end()};
 }
 
+/// CadParams::sew_tolerance: the faces that bound no solid sewn (and closed shells made solids),
+/// the sewn faces given the file's tags back as physical groups "surface_<tag>" where sewing
+/// renumbered them. Returns the new tag of each of the file's surface tags (empty: unchanged).
 std::map<int, int> sew_faces(double share, SewReport& r) {
     std::map<int, int> renamed;
     std::vector<int> all = entity_tags(2);
@@ -515,19 +515,14 @@ std::map<int, int> sew_faces(double share, SewReport& r) {
     }
     gmsh::model::occ::synchronize();
     const std::vector<int> now = entity_tags(2);
-    std::vector<int> now_loose;
     for (const auto& [dim, tag] : healed)
         if (dim == 3) ++r.solids;
-    for (const int s : now) {
-        std::vector<int> up, down;
-        gmsh::model::getAdjacencies(2, s, up, down);
-        if (up.empty()) now_loose.push_back(s);
-    }
     const std::vector<int> open = free_curves(now, 1e-9 * diagonal);
     r.free_after = static_cast<Index>(open.size());
     if (!open.empty()) {
         const Gaps left = measure_gaps(open, 1e-3 * diagonal);
-        r.cracks = left.cracks, r.widest_gap = left.widest, r.gap_at = left.at;
+        // Edges that lie on another (no gap) and stayed apart are not a matter of tolerance.
+        if (left.widest > 0.0) r.cracks = left.cracks, r.widest_gap = left.widest, r.gap_at = left.at;
         if (r.cracks > 0) {
             // Twice the widest gap, two significant digits up, as a share of the diagonal.
             const double want = std::min(1e-3, 2.0 * r.widest_gap / diagonal);
