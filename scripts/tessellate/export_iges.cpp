@@ -5,13 +5,11 @@
 // installed. For test data such as tests/data/cad_nose_trimmed_faces.igs.
 //   export_iges IN.step|IN.brep OUT.igs [UNIT]      (UNIT: MM (default), M, IN, ...)
 
-#include <BRepTools.hxx>
-#include <BRep_Builder.hxx>
-#include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Writer.hxx>
-#include <STEPControl_Reader.hxx>
 #include <TopoDS_Shape.hxx>
+
+#include "read_shape.h"
 
 #include <cstdio>
 #include <string>
@@ -23,21 +21,7 @@ int main(int argc, char** argv) {
     }
     const std::string in = argv[1];
     TopoDS_Shape shape;
-    const std::string ext = in.substr(in.find_last_of('.') + 1);
-    if (ext == "brep" || ext == "brp") {
-        BRep_Builder builder;
-        if (!BRepTools::Read(shape, in.c_str(), builder)) {
-            std::fprintf(stderr, "%s: cannot read the BREP file\n", in.c_str());
-            return 1;
-        }
-    } else {
-        STEPControl_Reader reader;
-        if (reader.ReadFile(in.c_str()) != IFSelect_RetDone || reader.TransferRoots() == 0) {
-            std::fprintf(stderr, "%s: cannot read the STEP file\n", in.c_str());
-            return 1;
-        }
-        shape = reader.OneShape();
-    }
+    if (!read_shape(in, shape)) return 1;
     IGESControl_Controller::Init();
     IGESControl_Writer writer(argc == 4 ? argv[3] : "MM", 0);  // 0: faces (trimmed surfaces), 1: BRep
     writer.AddShape(shape);

@@ -7,14 +7,12 @@
 // between neighbouring triangles' normals (default 30). Writes binary STL.
 
 #include <BRepMesh_IncrementalMesh.hxx>
-#include <BRepTools.hxx>
-#include <BRep_Builder.hxx>
-#include <IFSelect_ReturnStatus.hxx>
-#include <STEPControl_Reader.hxx>
 #include <StlAPI_Writer.hxx>
 #include <TopoDS_Shape.hxx>
 
 #include <cmath>
+#include "read_shape.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -32,21 +30,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     TopoDS_Shape shape;
-    const std::string ext = in.substr(in.find_last_of('.') + 1);
-    if (ext == "brep" || ext == "brp") {
-        BRep_Builder builder;
-        if (!BRepTools::Read(shape, in.c_str(), builder)) {
-            std::fprintf(stderr, "%s: cannot read the BREP file\n", in.c_str());
-            return 1;
-        }
-    } else {
-        STEPControl_Reader reader;
-        if (reader.ReadFile(in.c_str()) != IFSelect_RetDone || reader.TransferRoots() == 0) {
-            std::fprintf(stderr, "%s: cannot read the STEP file\n", in.c_str());
-            return 1;
-        }
-        shape = reader.OneShape();
-    }
+    if (!read_shape(in, shape)) return 1;
     BRepMesh_IncrementalMesh mesh(shape, deflection, Standard_False, angle, Standard_False);
     if (!mesh.IsDone()) {
         std::fprintf(stderr, "%s: BRepMesh_IncrementalMesh failed\n", in.c_str());
