@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
 #include <limits>
+
+#include <unistd.h>
 
 namespace strata {
 namespace {
@@ -141,6 +146,46 @@ bool GmshOptionScope::changed(const std::string& name) const {
         return now != v;
     }
     return false;
+}
+
+namespace {
+
+std::string g_abort_context;  // Gmsh is locked by whoever calls it: one context at a time
+
+[[noreturn]] void on_gmsh_abort() {
+    std::string what = "no message";
+    if (const std::exception_ptr e = std::current_exception()) {
+        try {
+            std::rethrow_exception(e);
+        } catch (const std::string& text) {
+            what = text;
+        } catch (const char* text) {
+            what = text;
+        } catch (const std::exception& x) {
+            what = x.what();
+        } catch (...) {
+        }
+    }
+    std::string line = g_abort_context + ": Gmsh aborted the process (" + what +
+                       "), as it does on a face it cannot mesh; nothing was written";
+    for (char& ch : line)
+        if (ch == '\n') ch = ' ';
+    // After a line break where a progress bar may be drawn on the line (a terminal).
+    std::fprintf(stderr, "%sstrata: error: %s\n", ::isatty(2) ? "\n" : "", line.c_str());
+    std::fflush(stderr);
+    std::_Exit(1);
+}
+
+}  // namespace
+
+GmshAbortScope::GmshAbortScope(std::string context) : previous_context_(std::move(g_abort_context)) {
+    g_abort_context = std::move(context);
+    previous_handler_ = std::set_terminate(on_gmsh_abort);
+}
+
+GmshAbortScope::~GmshAbortScope() {
+    g_abort_context = std::move(previous_context_);
+    std::set_terminate(previous_handler_);
 }
 
 std::string GmshSession::last_error() {

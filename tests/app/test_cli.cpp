@@ -786,10 +786,10 @@ TEST(Cli, HolesAreNamedWithTheFillHolesThatClosesThem) {
 
 TEST(Cli, AGmshAbortIsOneLineAndExitOne) {
     // Gmsh 4.8 throws out of an OpenMP region on a face it cannot mesh, which ends the process
-    // through std::terminate (tests/data/cli_gmsh_aborts.geo): one line naming Gmsh's message
-    // and the remedy, exit 1, no file.
+    // through std::terminate (tests/data/cli_gmsh_aborts.geo): one line naming the file, what
+    // was being done and Gmsh's message, exit 1, no file.
     expect_clean_failure("surface '" + test_data("cli_gmsh_aborts.geo") + "' -o s.msh",
-                         "a library aborted the run (The 1D mesh seems not to be forming a closed loop)", "abort");
+                         "Gmsh aborted the process (The 1D mesh seems not to be forming a closed loop)", "abort");
 }
 
 TEST(Cli, MeshBadInputsFailCleanly) {

@@ -174,6 +174,20 @@ def test_holes_are_closed_on_request():
     assert r["closed_components"] == 1
 
 
+def test_a_gmsh_abort_says_why_before_the_process_ends():
+    # Gmsh 4.8 throws out of its OpenMP meshing loop on a face it cannot mesh, which ends the
+    # process (the interpreter too); it says so on one line naming the file, and exits 1.
+    import subprocess
+    import sys
+    geo = os.path.join(TEST_DATA, "cli_gmsh_aborts.geo")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([BUILD_PYTHON, os.environ.get("PYTHONPATH", "")]))
+    run = subprocess.run([sys.executable, "-c", "import strata; strata.surface(%r)" % geo],
+                         capture_output=True, text=True, timeout=120, env=env)
+    assert run.returncode == 1, run.stderr
+    assert "strata: error: " + geo in run.stderr
+    assert "Gmsh aborted the process (The 1D mesh seems not to be forming a closed loop)" in run.stderr
+
+
 def test_errors_carry_strata_messages_in_keyword_names(tmp_path):
     with pytest.raises(strata.InputError, match="missing.stl") as e:
         strata.mesh(str(tmp_path / "missing.stl"), **SMALL)

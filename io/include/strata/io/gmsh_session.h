@@ -83,10 +83,30 @@ private:
     std::vector<std::pair<std::string, std::string>> strings_;
 };
 
+/// While it lives, a std::terminate ends the process with one line on stderr, "strata: error:
+/// <context>: Gmsh aborted the process (<its message>) ...", and status 1, instead of
+/// "terminate called after throwing an instance of std::string" and SIGABRT: Gmsh 4.8 throws
+/// its error text out of its OpenMP meshing loops when it cannot mesh a face, and no caller can
+/// catch that. The process cannot go on (not in Python or FreeCAD either); this says why.
+/// Nested scopes stack; the handler before the outermost is put back at its end.
+class GmshAbortScope {
+public:
+    explicit GmshAbortScope(std::string context);
+    ~GmshAbortScope();
+    GmshAbortScope(const GmshAbortScope&) = delete;
+    GmshAbortScope& operator=(const GmshAbortScope&) = delete;
+
+private:
+    std::string previous_context_;
+    std::terminate_handler previous_handler_ = nullptr;
+};
+
 /// Run \p f (calls into gmsh::), turning any exception Gmsh throws into a BackendError
-/// "<context>: <Gmsh's message>". strata::Error passes through unchanged.
+/// "<context>: <Gmsh's message>". strata::Error passes through unchanged. An abort inside it
+/// (GmshAbortScope) names \p context.
 template <class F>
 auto gmsh_call(const std::string& context, F&& f) -> decltype(f()) {
+    const GmshAbortScope abort_scope(context);
     try {
         return std::forward<F>(f)();
     } catch (const Error&) {
