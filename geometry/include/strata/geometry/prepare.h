@@ -94,7 +94,8 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
 /// \p report->collapsed_faces), remove_duplicate_faces (\p report->duplicate_faces), split_t_junctions
 /// (\p report->t_junctions), with \p params.fuse the
 /// touching_faces removed (counted in \p report->touching_faces), check_surface (whose TopologyError, without \p
-/// params.fuse, says where bodies touch and suggests fusing them), orient_surface, and if asked fuse_components, then
+/// params.fuse, says where bodies touch and suggests fusing them), fill_holes (\p params.fill_holes, \p
+/// report->holes), orient_surface, and if asked fuse_components, then
 /// collapse_short_edges (\p params.collapse_ratio, unless remeshing) and remesh_surface (each followed by the checks).
 /// \p source names the mesh in errors ("wing.stl", "Gmsh model 'sphere'"). InputError if
 /// \p raw has no faces.
