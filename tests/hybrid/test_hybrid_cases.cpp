@@ -237,7 +237,9 @@ TEST(HybridCases, SphereWithAFinPassingThroughIt) {
         Index nodes = 0, whole = 0;
         for (const PatchCoverage& c : rep.coverage.patches) {
             nodes += c.nodes, whole += c.all_layers;
-            if (c.nodes > 100) EXPECT_GE(static_cast<double>(c.all_layers) / static_cast<double>(c.nodes), 0.99);
+            if (c.nodes > 100) {
+                EXPECT_GE(static_cast<double>(c.all_layers) / static_cast<double>(c.nodes), 0.99);
+            }
         }
         // Measured: 94.4 % of the wall nodes at 30 layers, all at 10.
         EXPECT_GE(static_cast<double>(whole) / static_cast<double>(nodes), layers == 10 ? 1.0 : 0.9) << layers;
@@ -272,7 +274,9 @@ TEST(HybridCases, Naca0012BetweenWallsWithThirtyLayers) {
         }
     EXPECT_GT(sharp, 0);
     for (const PatchCoverage& c : rep.coverage.patches)
-        if (c.name.size() == 12 && c.name >= "surface_1102") EXPECT_EQ(c.min_layers, 30) << c.name;  // 1102-1106
+        if (c.name.size() == 12 && c.name >= "surface_1102") {
+            EXPECT_EQ(c.min_layers, 30) << c.name;  // 1102-1106
+        }
     expect_valid_case("naca0012_walls", s, m, rep);
     // The tunnel alone, without internal flow, is a body: a farfield is generated around it.
     const SurfaceMesh body = prepare_surface(example_data("naca0012_wing_between_walls.geo"), {});
