@@ -7,6 +7,7 @@
 
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
+#include <algorithm>
 #include <iterator>
 #include <map>
 #include <vector>
