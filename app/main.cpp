@@ -77,21 +77,7 @@ const char* after_bar() {
 /// do, exit 1. Nothing is left: outputs are written under a temporary name and renamed, and
 /// this happens before writing.
 [[noreturn]] void on_terminate() {
-    std::string what = "no message";
-    if (const std::exception_ptr e = std::current_exception()) {
-        try {
-            std::rethrow_exception(e);
-        } catch (const std::string& s) {
-            what = s;
-        } catch (const char* s) {
-            what = s;
-        } catch (const std::exception& x) {
-            what = x.what();
-        } catch (...) {
-        }
-    }
-    for (char& ch : what)
-        if (ch == '\n') ch = ' ';
+    const std::string what = strata::current_exception_text();
     std::fprintf(stderr,
                  "%sstrata: error: a library aborted the run (%s): Gmsh does so on a CAD face it cannot mesh; "
                  "repair or simplify that face in the CAD tool or export the model again (a STEP of solids rather "

@@ -153,23 +153,8 @@ namespace {
 std::string g_abort_context;  // Gmsh is locked by whoever calls it: one context at a time
 
 [[noreturn]] void on_gmsh_abort() {
-    std::string what = "no message";
-    if (const std::exception_ptr e = std::current_exception()) {
-        try {
-            std::rethrow_exception(e);
-        } catch (const std::string& text) {
-            what = text;
-        } catch (const char* text) {
-            what = text;
-        } catch (const std::exception& x) {
-            what = x.what();
-        } catch (...) {
-        }
-    }
-    std::string line = g_abort_context + ": Gmsh aborted the process (" + what +
-                       "), as it does on a face it cannot mesh; nothing was written";
-    for (char& ch : line)
-        if (ch == '\n') ch = ' ';
+    const std::string line = g_abort_context + ": Gmsh aborted the process (" + current_exception_text() +
+                             "), as it does on a face it cannot mesh; nothing was written";
     // After a line break where a progress bar may be drawn on the line (a terminal).
     std::fprintf(stderr, "%sstrata: error: %s\n", ::isatty(2) ? "\n" : "", line.c_str());
     std::fflush(stderr);

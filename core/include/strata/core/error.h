@@ -5,6 +5,7 @@
 
 #include <strata/core/types.h>
 
+#include <exception>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -52,5 +53,27 @@ class BackendError : public Error {
 public:
     using Error::Error;
 };
+
+/// The text of the exception being handled, whatever it is (a library's std::string or C
+/// string too, as Gmsh throws), on one line; "no message" for none or an unknown type. For
+/// std::terminate handlers, which are given no exception.
+inline std::string current_exception_text() {
+    std::string what = "no message";
+    if (const std::exception_ptr e = std::current_exception()) {
+        try {
+            std::rethrow_exception(e);
+        } catch (const std::string& text) {
+            what = text;
+        } catch (const char* text) {
+            what = text;
+        } catch (const std::exception& x) {
+            what = x.what();
+        } catch (...) {
+        }
+    }
+    for (char& ch : what)
+        if (ch == '\n') ch = ' ';
+    return what;
+}
 
 }  // namespace strata
