@@ -3,6 +3,7 @@
 #include <strata/core/face_geometry.h>
 #include <strata/core/format.h>
 #include <strata/core/solver_checks.h>
+#include <strata/core/union_find.h>
 #include <strata/io/gmsh_session.h>
 
 #include <gmsh.h>
@@ -225,17 +226,28 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
     // passes the blades and the fin on a body, but refines the M6's root, where the columns at
     // its leading edge then stop at the wall and the cells beside them, tetrahedra on the root
     // face 0.02 high, reach 1904 (the sizing does not predict such cells).
-    std::set<int> chain = fan;
-    for (bool grew = true; grew;) {
-        grew = false;
-        std::set<int> chain_points;
-        for (int c : chain)
-            for (int q : points_of[c]) chain_points.insert(q);
-        for (const auto& [c, pts] : points_of)
-            if (!chain.count(c) &&
-                std::any_of(pts.begin(), pts.end(), [&](int q) { return chain_points.count(q) > 0; }))
-                grew = chain.insert(c).second || grew;
+    // The sharp curves joined through shared end points (one set per chain).
+    std::vector<int> sharp_curves;  // index → curve tag, in tag order
+    std::map<int, std::size_t> index_of;
+    for (const auto& [c, pts] : points_of) {
+        index_of[c] = sharp_curves.size();
+        sharp_curves.push_back(c);
     }
+    UnionFind joined(sharp_curves.size());
+    {
+        std::map<int, std::size_t> first_at;  // point → the first sharp curve on it
+        for (const auto& [c, pts] : points_of)
+            for (const int q : pts) {
+                const auto [it, added] = first_at.emplace(q, index_of[c]);
+                if (!added) joined.unite(static_cast<Index>(it->second), static_cast<Index>(index_of[c]));
+            }
+    }
+    auto chain_of = [&](int c) { return joined.find(static_cast<Index>(index_of.at(c))); };
+    std::set<Index> fan_chains;
+    for (const int c : fan) fan_chains.insert(chain_of(c));
+    std::set<int> chain;
+    for (const int c : sharp_curves)
+        if (fan_chains.count(chain_of(c))) chain.insert(c);
     {
         std::set<int> fan_points;
         for (int c : fan)
@@ -257,28 +269,13 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
     // of its 160-degree edge, get two wedges of 45 degrees).
     std::map<int, int> wedges_of;
     {
-        std::map<int, int> part;  // chain curve → the lowest curve of its connected chain
-        for (int c : chain) part[c] = c;
-        for (bool merged = true; merged;) {
-            merged = false;
-            for (int a : chain)
-                for (int b : chain) {
-                    if (part[a] == part[b]) continue;
-                    const auto& pa = points_of[a];
-                    if (std::none_of(pa.begin(), pa.end(), [&](int q) {
-                            const auto& pb = points_of[b];
-                            return std::find(pb.begin(), pb.end(), q) != pb.end();
-                        }))
-                        continue;
-                    const int low = std::min(part[a], part[b]);
-                    part[a] = part[b] = low;
-                    merged = true;
-                }
+        std::map<Index, double> sharpest_of_chain;
+        for (const int c : chain) {
+            double& m = sharpest_of_chain[chain_of(c)];
+            m = std::max(m, sharpest[c]);
         }
-        std::map<int, double> sharpest_of_part;
-        for (int c : chain) sharpest_of_part[part[c]] = std::max(sharpest_of_part[part[c]], sharpest[c]);
-        for (int c : chain)
-            wedges_of[c] = std::max(1, static_cast<int>(std::ceil(sharpest_of_part[part[c]] / kWedgeDeg - 1e-9)));
+        for (const int c : chain)
+            wedges_of[c] = std::max(1, static_cast<int>(std::ceil(sharpest_of_chain[chain_of(c)] / kWedgeDeg - 1e-9)));
     }
     for (int c : fan) {
         double curve_worst = 0.0, need = std::numeric_limits<double>::infinity();
