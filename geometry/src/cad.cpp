@@ -73,6 +73,14 @@ std::string format_tags(std::vector<int> tags) {
 }
 
 void validate(const CadParams& p) {
+    if (!(p.size_point_growth > 0.0) || !std::isfinite(p.size_point_growth))
+        throw InputError("CadParams::size_point_growth = " + format_number(p.size_point_growth) +
+                         ": need a positive, finite rise of the size per unit of distance");
+    for (const SizePoint& q : p.size_points)
+        if (!(q.size > 0.0) || !std::isfinite(q.size) || !q.at.allFinite())
+            throw InputError("CadParams::size_points: the size " + format_number(q.size) + " at (" +
+                             format_number(q.at.x()) + ", " + format_number(q.at.y()) + ", " + format_number(q.at.z()) +
+                             "): need a positive, finite size at a finite point");
     if (!(p.size >= 0.0) || !std::isfinite(p.size))
         throw InputError("CAD meshing: size must be a finite number >= 0 (0 = automatic), got " +
                          format_number(p.size));
@@ -617,7 +625,8 @@ SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces, s
 /// patch each will belong to, each round the whole model meshed again (so the curves the walls
 /// share with the other surfaces stay conforming).
 SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, const std::vector<int>& surfaces,
-                              SurfaceMesh mesh, std::vector<int>& face_surface, WallSizeReport& r) {
+                              const PointSizes& points, SurfaceMesh mesh, std::vector<int>& face_surface,
+                              WallSizeReport& r) {
     std::set<int> walls;
     for (const auto& [s, name] : surface_patch_names(surfaces))
         if (patch_kind_of(name, params.wall_patch_kinds) == PatchKind::Wall) walls.insert(s);
@@ -635,7 +644,7 @@ SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, 
                           format_number(params.max_aspect_ratio) + ")",
                       [&] {
                           gmsh::model::mesh::clear();
-                          callback.emplace(entity_sizes(caps), factor);
+                          callback.emplace(entity_sizes(caps), factor, &points);
                           gmsh::model::mesh::generate(2);
                       });
         }
@@ -813,15 +822,22 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
 
     if (script) clear_script_mesh(path);
 
+    // CadParams::size_points, in the model's coordinates as the result's (scaled on import).
+    const PointSizes points(params.size_points, params.size_point_growth);
+    const double size_factor = get_number("Mesh.MeshSizeFactor");
     gmsh_call(path + ": Gmsh failed to mesh the surfaces (maximum size " + format_number(size) +
                   "); try a smaller size, another algorithm, or repair the CAD",
-              [] { gmsh::model::mesh::generate(2); });
+              [&] {
+                  std::optional<SizeCallback> callback;
+                  if (!points.empty()) callback.emplace(EntitySizes{}, size_factor, &points);
+                  gmsh::model::mesh::generate(2);
+              });
 
     std::vector<int> face_surface;
     SurfaceMesh mesh = extract(path, surfaces, face_surface);
     WallSizeReport wall_report;
     if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0)
-        mesh = limit_wall_aspect(path, params, surfaces, std::move(mesh), face_surface, wall_report);
+        mesh = limit_wall_aspect(path, params, surfaces, points, std::move(mesh), face_surface, wall_report);
     if (walls) *walls = wall_report;
     return mesh;
 }

@@ -4,6 +4,7 @@
 
 #include <strata/core/surface_mesh.h>
 #include <strata/geometry/cad.h>
+#include <strata/geometry/point_sizes.h>
 
 #include <functional>
 #include <map>
@@ -37,19 +38,21 @@ private:
     std::map<std::pair<int, int>, double> size_;
 };
 
-/// While alive, Gmsh's size callback gives each entity of \p sizes its size (Gmsh takes the
-/// smaller of the callback and its other sizes) and leaves every other entity alone, every size
-/// divided by \p factor (Gmsh multiplies the callback's by Mesh.MeshSizeFactor). Removed on
-/// destruction.
+/// While alive, Gmsh's size callback gives each entity of \p sizes its size and every point the
+/// size \p points asks there (the smaller of the two; Gmsh takes the smaller of the callback
+/// and its other sizes), every size divided by \p factor (Gmsh multiplies the callback's by
+/// Mesh.MeshSizeFactor). Removed on destruction. \p points (may be null) must outlive it.
 class SizeCallback {
 public:
-    SizeCallback(const EntitySizes& sizes, double factor);
+    SizeCallback(const EntitySizes& sizes, double factor, const PointSizes* points = nullptr);
     ~SizeCallback();
     SizeCallback(const SizeCallback&) = delete;
     SizeCallback& operator=(const SizeCallback&) = delete;
 
 private:
     std::map<std::pair<int, int>, double> size_;
+    const PointSizes* points_ = nullptr;
+    double factor_ = 1.0;
 };
 
 /// What the first layer may be: its height, the largest OpenFOAM aspect ratio of its cells, the

@@ -533,12 +533,43 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
     return scale;
 }
 
+/// Fans at sharp convex edges, and the stops at sharp edges without one (fans.h), come with
+/// local stopping, where smoothing runs.
+bool fans_on(const LayerParams& params) {
+    return params.min_quality > 0.0 && !params.keep_invalid && params.smoothing;
+}
+
+/// The fans (fans_on). \p w gets the fans' columns and strip faces; the result keeps
+/// their directions and bases (its mesh moved into \p w).
+FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, Wall& w) {
+    const Index nwall = w.mesh.num_points();
+    FanWall fans;
+    if (fans_on(params)) {
+        std::vector<char> excluded;
+        if (!params.no_fan_nodes.empty()) {
+            if (params.no_fan_nodes.size() != surface.points.size())
+                throw InputError("LayerParams::no_fan_nodes has " + std::to_string(params.no_fan_nodes.size()) +
+                                 " values for a surface of " + std::to_string(surface.points.size()) + " nodes");
+            for (const Index i : w.input_node) excluded.push_back(params.no_fan_nodes[static_cast<std::size_t>(i)]);
+        }
+        fans = build_fans(w.mesh, w.loops, params.fan_angle_deg, excluded);
+    }
+    if (!fans.empty()) {
+        for (Index i = nwall; i < fans.mesh.num_points(); ++i)
+            w.input_node.push_back(w.input_node[static_cast<std::size_t>(fans.base[static_cast<std::size_t>(i)])]);
+        w.input_face.resize(static_cast<std::size_t>(fans.mesh.num_faces()), kNone);
+        w.mesh = std::move(fans.mesh);
+    }
+    return fans;
+}
+
+/// \p plan_only: the directions and the proximity levels only (proximity_plan), no stencils
+/// or control functions.
 Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const FanWall& fans, const LayerParams& params,
                      const std::vector<double>& delta, std::vector<Shortfall>& scale_reason,
-                     std::vector<int>& max_levels) {
+                     std::vector<int>& max_levels, bool plan_only = false) {
     Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}, {}, {}};
     if (!fans.empty()) mc.fixed = fans.direction, mc.fan_face = fans.fan_face;
-    const NodeRings rings = node_rings(w.mesh);
     {
         const std::vector<Vec3> n = node_normals(w.mesh, w.mesh.points, mc.vf, params.normals, mc.threads);
         const std::size_t nn = static_cast<std::size_t>(w.mesh.num_points());
@@ -548,13 +579,15 @@ Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const FanWall& f
         patch_constraints(surface, w, w.loops, n, mc.planes, mc.node_plane, mc.node_line, fixed);
         boundary_planes(w.mesh, w.loops, n, fixed, mc.planes, mc.node_plane);
     }
-    mc.st = build_stencils(w.mesh, rings, mc.node_plane, mc.planes);
-    freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st, mc.threads);
-    freeze_degenerate_nodes(mc);
-    // A fan's columns march along their fixed directions, unsmoothed.
-    for (std::size_t i = 0; i < mc.fixed.size(); ++i)
-        if (mc.fixed[i] != Vec3::Zero()) mc.st.valid[i] = 0;
-    mc.control_functions();
+    if (!plan_only) {
+        mc.st = build_stencils(w.mesh, node_rings(w.mesh), mc.node_plane, mc.planes);
+        freeze_sharp_convex_nodes(w.mesh, mc.vf, mc.st, mc.threads);
+        freeze_degenerate_nodes(mc);
+        // A fan's columns march along their fixed directions, unsmoothed.
+        for (std::size_t i = 0; i < mc.fixed.size(); ++i)
+            if (mc.fixed[i] != Vec3::Zero()) mc.st.valid[i] = 0;
+        mc.control_functions();
+    }
     mc.height_scale = proximity_scale(surface, w, mc, delta, scale_reason, max_levels);
     return mc;
 }
@@ -804,6 +837,24 @@ ProximityMode parse_proximity_mode(std::string_view text) {
     return kProximityModeNames.parse(text, "LayerParams::proximity");
 }
 
+ProximityPlan proximity_plan(const SurfaceMesh& surface, const LayerParams& params) {
+    const std::vector<double> delta = layer_heights(params.distribution);
+    Wall w = extract_wall(surface);
+    const FanWall fans = add_fans(surface, params, w);
+    std::vector<Shortfall> reason;
+    std::vector<int> max_levels(static_cast<std::size_t>(w.mesh.num_points()), params.distribution.layers);
+    make_marcher(surface, w, fans, params, delta, reason, max_levels, true);
+    ProximityPlan plan;
+    plan.levels.assign(surface.points.size(), params.distribution.layers);
+    plan.proximity.assign(surface.points.size(), 0);
+    for (std::size_t i = 0; i < max_levels.size(); ++i) {  // a fan's columns: their wall node's lowest
+        const auto v = static_cast<std::size_t>(w.input_node[i]);
+        plan.levels[v] = std::min(plan.levels[v], max_levels[i]);
+        if (max_levels[i] < params.distribution.layers && reason[i] == Shortfall::Proximity) plan.proximity[v] = 1;
+    }
+    return plan;
+}
+
 LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
     const std::vector<double> delta = layer_heights(params.distribution);
     if (params.sweeps < 0)
@@ -826,26 +877,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
                          ": need an angle in [0, 180] degrees (0: no fans)");
     Wall w = extract_wall(surface);
     const Index nwall = w.mesh.num_points();
-    // Fans at sharp convex edges, and the stops at sharp edges without one (fans.h): with local
-    // stopping, where smoothing runs.
-    FanWall fans;
-    const bool fans_on = params.min_quality > 0.0 && !params.keep_invalid && params.smoothing;
-    if (fans_on) {
-        std::vector<char> excluded;
-        if (!params.no_fan_nodes.empty()) {
-            if (params.no_fan_nodes.size() != surface.points.size())
-                throw InputError("LayerParams::no_fan_nodes has " + std::to_string(params.no_fan_nodes.size()) +
-                                 " values for a surface of " + std::to_string(surface.points.size()) + " nodes");
-            for (const Index i : w.input_node) excluded.push_back(params.no_fan_nodes[static_cast<std::size_t>(i)]);
-        }
-        fans = build_fans(w.mesh, w.loops, params.fan_angle_deg, excluded);
-    }
-    if (!fans.empty()) {
-        for (Index i = nwall; i < fans.mesh.num_points(); ++i)
-            w.input_node.push_back(w.input_node[static_cast<std::size_t>(fans.base[static_cast<std::size_t>(i)])]);
-        w.input_face.resize(static_cast<std::size_t>(fans.mesh.num_faces()), kNone);
-        w.mesh = std::move(fans.mesh);
-    }
+    FanWall fans = add_fans(surface, params, w);
     const int layers = params.distribution.layers;
     double thickness = 0.0;
     for (int k = 0; k < layers; ++k) thickness += delta[static_cast<std::size_t>(k)];
@@ -883,7 +915,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         if (share < 1.0) ++out.thinned_nodes;
         out.min_thickness_share = std::min(out.min_thickness_share, share);
     }
-    if (fans_on && params.sharp_edge_stop_deg > 0.0) {
+    if (fans_on(params) && params.sharp_edge_stop_deg > 0.0) {
         // Sharp edges without a fan: their columns stop at the wall (ALGORITHM.md).
         const std::vector<char> sharp = sharp_single_nodes(w.mesh, plane_normal, params.sharp_edge_stop_deg);
         for (std::size_t u = 0; u < sharp.size(); ++u)

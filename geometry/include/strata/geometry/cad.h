@@ -4,6 +4,7 @@
 /// surface-meshed with Gmsh.
 
 #include <strata/core/surface_mesh.h>
+#include <strata/geometry/point_sizes.h>
 
 #include <string>
 #include <utility>
@@ -97,6 +98,37 @@ struct CadParams {
     /// up to 1e-5 of it. In [0, 0.001]; 0: not sewn. Models whose faces all bound solids are
     /// never touched.
     double sew_tolerance = 1e-6;
+    /// Sizes asked at points (in the unit of the result), each rising by size_point_growth per
+    /// unit of distance from its point (PointSizes), below the sizes the surfaces would get
+    /// (a Gmsh size callback on every surface, curve and point). The front-ends ask them where
+    /// the layers step low (step_size_points, LayerParams... see prepare_for_layers); empty: none.
+    std::vector<SizePoint> size_points;
+    double size_point_growth = 0.25;
+    /// For the front-ends' prepare_for_layers (not read here): where the layers step at a
+    /// proximity limit (a column of k layers beside a taller one), the cells closing the step
+    /// have a corner of scaled Jacobian about the layer height h_k over the wall spacing L; the
+    /// model is meshed again with size_points there (step_sizes) so that h_k / L reaches this
+    /// (the cells then reach about half of it). In [0, 1); 0: not.
+    double step_quality = 0.1;
+};
+
+/// What the front-ends' prepare_for_layers did for CadParams::step_quality.
+struct StepSizeReport {
+    double quality = 0.0;       ///< asked (0: off, or no CAD input or no layers)
+    Index points = 0;           ///< wall nodes whose steps asked a finer wall (0: none, nothing meshed again)
+    double smallest = 0.0;      ///< the smallest size asked, in the result's unit
+    Index faces_before = 0;     ///< wall and other faces of the surface before
+    Index faces_after = 0;      ///< and after meshing again
+    double faces_estimate = 0;  ///< the faces estimated from the sizes (before any raise)
+    double raised = 1.0;        ///< the sizes were multiplied by this to stay within the faces budget
+    bool over_budget = false;   ///< not meshed again: even raised 100-fold the sizes exceeded the faces budget
+    /// The thickness the layers' plan gives the walls (a share of the thickness asked, weighted
+    /// by wall area), on the first surface and on the finer one.
+    double thickness_before = 1.0, thickness_after = 1.0;
+    /// The finer surface was dropped: its plan gave the walls less thickness (a gap resolved
+    /// better limits the layers round it more), and the first one is returned.
+    bool kept = false;
+    double seconds = 0.0;  ///< the layers planned to find the steps, and the surface made again
 };
 
 /// What CadParams::sew_tolerance did.

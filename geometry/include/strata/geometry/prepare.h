@@ -59,6 +59,7 @@ struct PrepareReport {
     CadUnits units;               ///< CAD input: the unit read in and the one the file declares
     WallSizeReport walls;         ///< CAD input: what CadParams::max_aspect_ratio did (sizes as CadParams's)
     SewReport sew;                ///< CAD input: what CadParams::sew_tolerance did (several files: summed)
+    StepSizeReport steps;         ///< CAD input: what CadParams::step_quality did (prepare_for_layers)
     double scale = 1.0;           ///< PrepareParams::scale applied
     Index fused_components = 0;   ///< components replaced by their union (PrepareParams::fuse)
     Index touching_faces = 0;     ///< faces removed where bodies touch back to back (PrepareParams::fuse)

@@ -208,4 +208,15 @@ LayerReport layer_report(const LayerMesh& lm);
 /// progress: stage "layers", checked after every layer.
 LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, Progress* progress = nullptr);
 
+/// The columns' levels that extrude_layers plans before marching, from the proximity limits
+/// alone (LayerParams::proximity Stop; every column full otherwise): per node of \p wall, the
+/// layers that fit its limit (neighbours within one layer; LayerParams::node_thickness_limit
+/// included), and whether the proximity limit set them. Nothing is marched: the normals, the
+/// rays and the envelope only. Nodes off the walls keep every layer.
+struct ProximityPlan {
+    std::vector<int> levels;
+    std::vector<char> proximity;  ///< 1: fewer layers than asked, for the proximity limit
+};
+ProximityPlan proximity_plan(const SurfaceMesh& wall, const LayerParams& params);
+
 }  // namespace strata

@@ -1,0 +1,42 @@
+#include <strata/core/error.h>
+#include <strata/core/format.h>
+#include <strata/module/step_sizes.h>
+
+#include <cmath>
+#include <limits>
+
+namespace strata {
+
+std::vector<SizePoint> step_sizes(const SurfaceMesh& wall, const ProximityPlan& plan,
+                                  const std::vector<double>& heights, double quality) {
+    if (!(quality > 0.0 && quality <= 1.0))
+        throw InputError("step_sizes: quality = " + format_number(quality) +
+                         ": need a scaled Jacobian in (0, 1] for the cells closing a step");
+    const auto n = static_cast<std::size_t>(wall.num_points());
+    if (plan.levels.size() != n || plan.proximity.size() != n)
+        throw InputError("step_sizes: a plan of " + std::to_string(plan.levels.size()) + " nodes for a surface of " +
+                         std::to_string(n));
+    std::vector<double> size(n, std::numeric_limits<double>::infinity());
+    for (Index f = 0; f < wall.num_faces(); ++f) {
+        if (wall.patches[static_cast<std::size_t>(wall.face_patch[f])].kind != PatchKind::Wall) continue;
+        for (const Index* a = wall.face_begin(f); a != wall.face_end(f); ++a) {
+            const auto i = static_cast<std::size_t>(*a);
+            const int ki = plan.levels[i];
+            if (!plan.proximity[i] || ki < 0 || static_cast<std::size_t>(ki) >= heights.size()) continue;
+            for (const Index* b = wall.face_begin(f); b != wall.face_end(f); ++b) {
+                const auto j = static_cast<std::size_t>(*b);
+                if (plan.levels[j] <= ki) continue;
+                const double distance = (wall.points[j] - wall.points[i]).norm();
+                const double segment = heights[static_cast<std::size_t>(ki)];
+                if (!(segment < quality * distance)) continue;
+                size[i] = std::min(size[i], kStepSizeShare * segment / quality);
+            }
+        }
+    }
+    std::vector<SizePoint> points;
+    for (std::size_t i = 0; i < n; ++i)
+        if (std::isfinite(size[i]) && size[i] > 0.0) points.push_back({wall.points[i], size[i]});
+    return points;
+}
+
+}  // namespace strata
