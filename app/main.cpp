@@ -12,6 +12,7 @@
 #include <strata/core/solver_checks.h>
 #include <strata/core/validate.h>
 #include <strata/frontend/options.h>
+#include <strata/frontend/prepare_layers.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/prepare.h>
@@ -329,6 +330,38 @@ void print_wall_sizing(const strata::WallSizeReport& w) {
             strata::format_number(w.cap, 3).c_str());
 }
 
+/// What --step-quality did to the CAD walls (nothing to say when no step asked for it).
+void print_step_sizing(const strata::StepSizeReport& st) {
+    if (st.over_budget)
+        std::printf(
+            "warning: the layers step low at %d wall nodes, where the cells closing the steps would be nearly flat; "
+            "walls fine enough for --step-quality %s there would take about %.3g faces, more than Strata makes "
+            "unasked (%s times the surface's %d, at most %s): give a smaller --size there, or --step-quality 0 to "
+            "silence this\n",
+            static_cast<int>(st.points), strata::format_number(st.quality).c_str(), st.faces_estimate,
+            strata::format_number(strata::kStepFacesGrowth).c_str(), static_cast<int>(st.faces_before),
+            strata::format_number(strata::CadParams{}.wall_faces_budget).c_str());
+    else if (st.kept)
+        std::printf(
+            "steps: the layers step low at %d wall nodes; walls meshed finer there for --step-quality %s were "
+            "dropped, as their layers would reach %.1f %% of the thickness asked instead of %.1f %% (the gap, "
+            "better resolved, limits the layers round it more)\n",
+            static_cast<int>(st.points), strata::format_number(st.quality).c_str(), 100.0 * st.thickness_after,
+            100.0 * st.thickness_before);
+    else if (st.points > 0)
+        std::printf(
+            "steps: walls meshed again finer around %d wall nodes where the layers step low (sizes down to %s%s), "
+            "%d -> %d faces, so that a step's layer height is at least --step-quality %s of the wall spacing (the "
+            "cells closing it reach about half of that; %.2f s)\n",
+            static_cast<int>(st.points), strata::format_number(st.smallest, 3).c_str(),
+            st.raised > 1.0 ? (", raised " + strata::format_number(st.raised, 3) + "-fold to stay within " +
+                               strata::format_number(strata::kStepFacesGrowth) + " times the faces")
+                                  .c_str()
+                            : "",
+            static_cast<int>(st.faces_before), static_cast<int>(st.faces_after),
+            strata::format_number(st.quality).c_str(), st.seconds);
+}
+
 /// A surface mesh kept as it is (neither CAD nor --remesh, whose walls --max-aspect-ratio sizes):
 /// where its wall faces are too wide for a first layer of height \p h, say so (OpenFOAM's checkMesh
 /// fails cells over 1000) with the worst face and the remedy, before the solver does.
@@ -432,6 +465,7 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
             r.sharpest_after_deg);
     }
     print_wall_sizing(rep.remeshed ? rep.remesh.walls : rep.walls);
+    print_step_sizing(rep.steps);
     print_needles(mesh, rep, any_cad);
 }
 
@@ -688,7 +722,10 @@ struct Start {
 
 enum class Output { Surface, Volume };
 
-Start start(const Common& c, const strata::PrepareParams& params, Output output, Terminal& terminal) {
+/// \p mesh: the surface is for that hybrid mesh (prepare_for_layers: CAD walls finer where the
+/// layers would step low).
+Start start(const Common& c, const strata::PrepareParams& params, Output output, Terminal& terminal,
+            const strata::HybridParams* mesh = nullptr) {
     const auto t0 = std::chrono::steady_clock::now();
     Start s;
     s.msh_version = strata::parse_msh_version(c.msh_version);
@@ -696,7 +733,8 @@ Start start(const Common& c, const strata::PrepareParams& params, Output output,
         strata::check_surface_output(c.output, s.msh_version);
     else
         strata::check_volume_output(c.output, s.msh_version);
-    s.surface = strata::prepare_surfaces(c.o.surface.inputs, params, &s.report, &terminal);
+    s.surface = mesh ? strata::prepare_for_layers(c.o.surface.inputs, params, *mesh, &s.report, &terminal)
+                     : strata::prepare_surfaces(c.o.surface.inputs, params, &s.report, &terminal);
     s.any_cad = strata::any_cad_input(c.o.surface.inputs);
     s.seconds = seconds_since(t0);
     return s;
@@ -745,7 +783,7 @@ int run_mesh(const Common& c, const PlotOptions& po) {
     const strata::HybridParams hp = strata::hybrid_params(c.o.layers, c.o.mesh);
     const auto [cut_axis, cut_value] = parse_cut(po.cut);
     Terminal terminal(c.quiet);
-    const Start s = start(c, strata::prepare_params(c.o.surface, &hp.layers), Output::Volume, terminal);
+    const Start s = start(c, strata::prepare_params(c.o.surface, &hp.layers), Output::Volume, terminal, &hp);
     strata::HybridReport hr;
     const strata::VolumeMesh mesh = [&] {
         try {

@@ -276,6 +276,13 @@ std::vector<OptionSpec> make_table() {
         "above this (fans' first cells too) are meshed again finer, up to about 200,000 faces (checkMesh fails "
         "above 1000; 0: keep the size)"));
     t.push_back(spec(
+        "--step-quality", "step_quality", "CadParams::step_quality", Stage::Mesh,
+        [](Options& o) -> double& { return o.surface.prepare.cad.step_quality; },
+        "CAD input: where the layers step at a proximity limit (fewer layers beside more, in a narrow gap), the "
+        "walls are meshed again finer so that the step's layer height is at least Q of the wall spacing there (the "
+        "cells closing the step then reach a scaled Jacobian of about Q/2), with at most 3 times the faces; the "
+        "finer walls are dropped if the layers would lose thickness on them (0: keep the walls)"));
+    t.push_back(spec(
         "--sweeps", "sweeps", "LayerParams::sweeps", Stage::Layers,
         [](Options& o) -> int& { return o.layers.params.sweeps; }, "Poisson smoothing sweeps per layer"));
     t.push_back(spec(

@@ -9,6 +9,7 @@
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/hybrid/outer_boundary.h>
+#include <strata/module/step_sizes.h>
 
 #include <algorithm>
 #include <chrono>
@@ -228,6 +229,22 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
 /// Rounds of lowering colliding columns before giving up (each halves their thickness).
 constexpr int kFrontRounds = 8;
 
+/// The thickness asked: the sum of the layer heights.
+double asked_thickness(const LayerParams& layers) {
+    const std::vector<double> heights = layer_heights(layers.distribution);
+    double asked = 0.0;
+    for (int k = 0; k < layers.distribution.layers; ++k) asked += heights[static_cast<std::size_t>(k)];
+    return asked;
+}
+
+/// A fold \p e of the layers: the thickness limit of its nodes lowered to 0.7 of what they
+/// reached (half the thickness asked if they reached nothing), for the next march.
+void lower_fold(const LocalTopologyError& e, double asked, std::vector<double>& limit) {
+    const double to = e.reached() > 0.0 ? 0.7 * e.reached() : 0.5 * asked;
+    for (const Index n : e.nodes())
+        limit[static_cast<std::size_t>(n)] = std::min(limit[static_cast<std::size_t>(n)], to);
+}
+
 /// Mark the wall columns under layer-top face \p f of \p region: region node ids below the
 /// wall's node count are wall nodes; the next ones pyramid apexes (their quad's nodes count);
 /// outer points are left alone.
@@ -315,11 +332,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     Index top_patch = kNone;
     const Index farfield_patch = has_outer ? kNone : static_cast<Index>(surface.patches.size());
     std::vector<double>& limit = layer_params.node_thickness_limit;
-    double asked = 0.0;  // the thickness asked: the sum of the layer heights
-    {
-        const std::vector<double> heights = layer_heights(params.layers.distribution);
-        for (int k = 0; k < params.layers.distribution.layers; ++k) asked += heights[static_cast<std::size_t>(k)];
-    }
+    const double asked = asked_thickness(params.layers);
     if (!has_outer)
         check_layers_fit_farfield(surface, params.farfield, asked, params.layers.proximity_limits.other_patch);
     std::vector<Index> uncapped;  // input nodes whose fan's face on the layer top took no pyramid
@@ -332,9 +345,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         } catch (const LocalTopologyError& e) {  // a fold: lower the layers there and march again
             rep.seconds_layers += seconds_since(t0);
             if (round == kFrontRounds) throw;
-            const double to = e.reached() > 0.0 ? 0.7 * e.reached() : 0.5 * asked;
-            for (const Index n : e.nodes())
-                limit[static_cast<std::size_t>(n)] = std::min(limit[static_cast<std::size_t>(n)], to);
+            lower_fold(e, asked, limit);
             rep.front_lowered_nodes += static_cast<Index>(e.nodes().size());
             rep.front_rounds = round + 1;
             continue;
@@ -426,6 +437,33 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     rep.seconds_validate = seconds_since(t0);
     if (report) *report = std::move(rep);
     return mesh;
+}
+
+StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double quality) {
+    bool has_outer = false, half = false, internal = false;
+    const SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, half, internal);
+    LayerParams layer_params = params.layers;
+    layer_params.threads = params.threads;
+    const ProximityPlan plan = proximity_plan(surface, layer_params);
+    const std::vector<double> heights = layer_heights(params.layers.distribution);
+    StepPlan out;
+    out.points = step_sizes(surface, plan, heights, quality);
+    // Thickness per level, and each wall face's area shared among its nodes.
+    std::vector<double> reached(heights.size() + 1, 0.0);
+    for (std::size_t k = 0; k < heights.size(); ++k) reached[k + 1] = reached[k] + heights[k];
+    const double asked = reached.back();
+    double area = 0.0, covered = 0.0;
+    for (Index f = 0; f < surface.num_faces(); ++f) {
+        if (surface.patches[static_cast<std::size_t>(surface.face_patch[f])].kind != PatchKind::Wall) continue;
+        const double share = face_area_vector(surface, f).norm() / static_cast<double>(surface.face_size(f));
+        for (const Index* v = surface.face_begin(f); v != surface.face_end(f); ++v) {
+            const int k = std::clamp(plan.levels[static_cast<std::size_t>(*v)], 0, static_cast<int>(heights.size()));
+            area += share;
+            covered += share * reached[static_cast<std::size_t>(k)];
+        }
+    }
+    if (area > 0.0 && asked > 0.0) out.thickness_share = covered / (area * asked);
+    return out;
 }
 
 }  // namespace strata

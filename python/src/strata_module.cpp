@@ -23,6 +23,7 @@
 #include <strata/core/progress.h>
 #include <strata/core/validate.h>
 #include <strata/frontend/options.h>
+#include <strata/frontend/prepare_layers.h>
 #include <strata/geometry/check.h>
 #include <strata/gmsh_api/gmsh_api.h>
 #include <strata/hybrid/hybrid_mesh.h>
@@ -391,7 +392,13 @@ py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double sec
                      "solids"_a = r.sew.solids, "cracks"_a = r.sew.cracks, "widest_gap"_a = r.sew.widest_gap,
                      "suggested_tolerance"_a = r.sew.suggested_tolerance, "renumbered"_a = r.sew.renumbered,
                      "moved"_a = r.sew.moved, "rejected"_a = r.sew.rejected, "gap_before"_a = r.sew.gap_before,
-                     "first_tolerance"_a = r.sew.first_tolerance));
+                     "first_tolerance"_a = r.sew.first_tolerance),
+        "steps"_a = py::dict(
+            "quality"_a = r.steps.quality, "points"_a = r.steps.points, "smallest"_a = r.steps.smallest,
+            "faces_before"_a = r.steps.faces_before, "faces_after"_a = r.steps.faces_after,
+            "faces_estimate"_a = r.steps.faces_estimate, "raised"_a = r.steps.raised,
+            "over_budget"_a = r.steps.over_budget, "thickness_before"_a = r.steps.thickness_before,
+            "thickness_after"_a = r.steps.thickness_after, "kept"_a = r.steps.kept, "seconds"_a = r.steps.seconds));
 }
 
 py::dict coverage_report(const LayerReport& r) {
@@ -499,15 +506,18 @@ struct Prepared {
     double seconds = 0.0;
 };
 
-/// The inputs read and prepared as the CLI does (strata::prepare_params, prepare_surfaces).
+/// The inputs read and prepared as the CLI does (strata::prepare_params, prepare_surfaces; for
+/// a hybrid mesh \p mesh, prepare_for_layers).
 Prepared prepare(const std::vector<std::string>& inputs, Options& o, Progress* progress,
-                 const LayerParams* layers = nullptr) {
+                 const LayerParams* layers = nullptr, const HybridParams* mesh = nullptr) {
     const auto t0 = std::chrono::steady_clock::now();
     if (inputs.empty()) throw InputError("no input: give a CAD or surface-mesh file, or a list of them");
     o.surface.inputs = inputs;
     o.surface.input = input_name(inputs);
     Prepared p;
-    p.surface = prepare_surfaces(inputs, prepare_params(o.surface, layers), &p.report, progress);
+    const PrepareParams params = prepare_params(o.surface, layers);
+    p.surface = mesh ? prepare_for_layers(inputs, params, *mesh, &p.report, progress)
+                     : prepare_surfaces(inputs, params, &p.report, progress);
     p.seconds = seconds_since(t0);
     return p;
 }
@@ -579,7 +589,7 @@ py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::
     const double version = parse_msh_version(msh_version);
     if (output) check_volume_output(*output, version);
     return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
-        Prepared p = prepare(inputs, o, progress, &hp.layers);
+        Prepared p = prepare(inputs, o, progress, &hp.layers, &hp);
         HybridReport hr;
         auto result = std::make_unique<PyMesh>();
         try {

@@ -406,6 +406,30 @@ TEST(Cli, ShortEdgesOfAFusedCadModelAreCollapsed) {
     expect_clean_failure(args + "x.msh --collapse-edges 0.7", "--collapse-edges", "collapse_range");
 }
 
+TEST(Cli, WallsAreMeshedFinerWhereTheLayersStepAtAGap) {
+    // Two spheres 0.0118 apart (examples/data/two_spheres_narrow_gap.geo) under 12 layers from
+    // 1e-3: the columns facing the gap have fewer layers, and the cells closing each step have
+    // a corner of about its layer height over the wall spacing (0.017 at size 0.1). With
+    // --step-quality (default 0.1) the walls there are meshed again finer: the faces grow and
+    // the worst pyramid and tetrahedron rise above 0.03; with 0 the walls are kept.
+    test::ScratchDir dir("cli_step_sizes");
+    const std::string args = "mesh '" + example_data("two_spheres_narrow_gap.geo") +
+                             "' --size 0.1 --layers 12 --first-height 1e-3 --growth 1.2 -o ";
+    CliResult r = strata_cli(dir, args + "on.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("steps: walls meshed again finer around "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("where the layers step low"), std::string::npos) << r.out;
+    const std::string on = slurp(dir.file("on.msh.report.json"));
+    EXPECT_GT(report_min_quality(on, "pyramid"), 0.03) << r.out;
+    EXPECT_GT(report_min_quality(on, "tetrahedron"), 0.03) << r.out;
+    r = strata_cli(dir, args + "off.msh --step-quality 0");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out.find("steps:"), std::string::npos) << r.out;
+    const std::string off = slurp(dir.file("off.msh.report.json"));
+    EXPECT_LT(report_min_quality(off, "pyramid"), 0.03) << r.out;
+    expect_clean_failure(args + "x.msh --step-quality 1", "--step-quality = 1", "step_range");
+}
+
 TEST(Cli, TetGenStoppingOnAnInternalCheckLowersTheColumnsThere) {
     // tests/data/cli_wingbody_tangent.stl: a thin wing nearly tangent to a fuselage, fused by
     // OpenCASCADE and tessellated by it (cli_wingbody_tangent.geo says how), 1171 of its 3416

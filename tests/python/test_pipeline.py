@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import strata
-from conftest import BUILD_PYTHON, SPHERE_STL, TEST_DATA
+from conftest import BUILD_PYTHON, EXAMPLES, SPHERE_STL, TEST_DATA
 
 SMALL = dict(layers=4, first_height=1e-3, growth=1.2)
 
@@ -277,3 +277,18 @@ def test_ctrl_c_cancels_as_keyboard_interrupt(tmp_path):
     assert not out.exists()
     # and the next run works
     assert len(strata.mesh(SPHERE_STL, **SMALL).tets) > 0
+
+
+def test_walls_are_meshed_finer_where_the_layers_step_at_a_gap():
+    # Two spheres 0.0118 apart: mesh() meshes their walls again finer where the columns facing
+    # the gap step, as the CLI does (step_quality, default 0.1); the report says how much.
+    two = os.path.join(EXAMPLES, "two_spheres_narrow_gap.geo")
+    args = dict(size=0.1, layers=12, first_height=1e-3, growth=1.2)
+    m = strata.mesh(two, **args)
+    steps = m.report["surface"]["steps"]
+    assert steps["quality"] == 0.1 and steps["points"] > 0 and not steps["over_budget"], steps
+    assert steps["faces_after"] > 2 * steps["faces_before"], steps
+    assert m.report["min_scaled_jacobian"]["pyramid"] > 0.03
+    kept = strata.mesh(two, step_quality=0, **args)
+    assert kept.report["surface"]["steps"]["points"] == 0
+    assert kept.report["min_scaled_jacobian"]["pyramid"] < 0.03

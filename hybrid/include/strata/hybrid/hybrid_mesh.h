@@ -5,6 +5,7 @@
 
 #include <strata/core/progress.h>
 #include <strata/core/validate.h>
+#include <strata/geometry/point_sizes.h>
 #include <strata/hybrid/farfield.h>
 #include <strata/hybrid/pyramids.h>
 #include <strata/hybrid/tetgen_fill.h>
@@ -64,5 +65,17 @@ struct HybridReport {
 /// Cancelled is thrown at the next check.
 VolumeMesh build_hybrid_mesh(const SurfaceMesh& surface, const HybridParams& params, Progress* progress = nullptr,
                              HybridReport* report = nullptr);
+
+/// What the layers of build_hybrid_mesh plan at their proximity limits on a surface (nothing
+/// marched: proximity_plan over its closed domain, a half model closed as it closes it).
+struct StepPlan {
+    /// The sizes that would close their steps with a scaled Jacobian of about the quality
+    /// asked (step_sizes); empty where no such step is below it.
+    std::vector<SizePoint> points;
+    /// The thickness the plan gives the walls, a share of the thickness asked, weighted by the
+    /// wall area round each node (1: every column full).
+    double thickness_share = 1.0;
+};
+StepPlan step_plan(const SurfaceMesh& surface, const HybridParams& params, double quality);
 
 }  // namespace strata
