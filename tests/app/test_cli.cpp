@@ -419,7 +419,7 @@ TEST(Cli, WallsAreMeshedFinerWhereTheLayersStepAtAGap) {
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("steps: walls meshed again finer around "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("where the layers step low"), std::string::npos) << r.out;
-    const std::string on = slurp(dir.file("on.msh.report.json"));
+    const std::string on = slurp(dir.file("on.msh.report.json")), on_out = r.out;
     EXPECT_GT(report_min_quality(on, "pyramid"), 0.03) << r.out;
     EXPECT_GT(report_min_quality(on, "tetrahedron"), 0.03) << r.out;
     r = strata_cli(dir, args + "off.msh --step-quality 0");
@@ -427,6 +427,19 @@ TEST(Cli, WallsAreMeshedFinerWhereTheLayersStepAtAGap) {
     EXPECT_EQ(r.out.find("steps:"), std::string::npos) << r.out;
     const std::string off = slurp(dir.file("off.msh.report.json"));
     EXPECT_LT(report_min_quality(off, "pyramid"), 0.03) << r.out;
+    // The sizes go to the CAD in its own unit: the model scaled by 2 (--scale, and the first
+    // height with it) gets the same walls.
+    const auto faces = [](const std::string& out) {
+        const auto at = out.find(" faces, so that a step's layer height");
+        const auto from = out.rfind("-> ", at);
+        return at == std::string::npos || from == std::string::npos ? std::string() : out.substr(from, at - from);
+    };
+    const std::string unscaled = faces(on_out);
+    r = strata_cli(dir, "mesh '" + example_data("two_spheres_narrow_gap.geo") +
+                            "' --size 0.1 --scale 2 --layers 12 --first-height 2e-3 --growth 1.2 -o scaled.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_FALSE(unscaled.empty());
+    EXPECT_EQ(faces(r.out), unscaled) << r.out;
     expect_clean_failure(args + "x.msh --step-quality 1", "--step-quality = 1", "step_range");
 }
 
