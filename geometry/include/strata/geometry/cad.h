@@ -101,7 +101,7 @@ struct CadParams {
     /// Sizes asked at points (in the unit of the result), each rising by size_point_growth per
     /// unit of distance from its point (PointSizes), below the sizes the surfaces would get
     /// (a Gmsh size callback on every surface, curve and point). The front-ends ask them where
-    /// the layers step low (step_size_points, LayerParams... see prepare_for_layers); empty: none.
+    /// the layers step at a gap (step_sizes, through prepare_for_layers); empty: none.
     std::vector<SizePoint> size_points;
     double size_point_growth = 0.25;
     /// For the front-ends' prepare_for_layers (not read here): where the layers step at a
