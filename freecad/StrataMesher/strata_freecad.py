@@ -45,6 +45,7 @@ OPTIONS = [
     ("reynolds", "Boundary layers", None),
     ("reference_length", "Boundary layers", "length"),
     ("max_aspect_ratio", "Boundary layers", None),
+    ("step_quality", "Boundary layers", None),
     ("farfield", "Farfield", ("sphere", "box")),
     ("farfield_size", "Farfield", None),
     ("farfield_divisions", "Farfield", None),
