@@ -17,7 +17,10 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
     PrepareReport first_report;
     SurfaceMesh surface = prepare_surfaces(inputs, params, &first_report, progress);
     StepSizeReport steps;
+    const auto t0 = std::chrono::steady_clock::now();
     const auto done = [&](SurfaceMesh result, const PrepareReport& r) {
+        if (steps.quality > 0.0)
+            steps.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (report) {
             *report = r;
             report->steps = steps;
@@ -25,8 +28,6 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
         return result;
     };
     if (!(params.cad.step_quality > 0.0) || !any_cad_input(inputs)) return done(std::move(surface), first_report);
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     steps.quality = params.cad.step_quality;
     steps.faces_before = steps.faces_after = surface.num_faces();
 
@@ -36,15 +37,11 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
         StepPlan plan = step_plan(surface, mesh, params.cad.step_quality);
         points = std::move(plan.points);
         share_before = plan.thickness_share;
-    } catch (const Error&) {  // the layers cannot be marched: build_hybrid_mesh says why
-        steps.seconds = seconds();
+    } catch (const Error&) {  // the layers cannot be planned (an open surface): build_hybrid_mesh says why
         return done(std::move(surface), first_report);
     }
     steps.points = static_cast<Index>(points.size());
-    if (points.empty()) {
-        steps.seconds = seconds();
-        return done(std::move(surface), first_report);
-    }
+    if (points.empty()) return done(std::move(surface), first_report);
 
     // Within the faces budget, and at most kStepFacesGrowth times the faces the surface has:
     // the sizes raised (×1.25 at a time, up to 100-fold) until the estimate fits.
@@ -58,7 +55,6 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
         if (estimate <= budget) break;
         if (steps.raised * 1.25 > 100.0) {
             steps.over_budget = true;
-            steps.seconds = seconds();
             return done(std::move(surface), first_report);
         }
         steps.raised *= 1.25;
@@ -83,7 +79,6 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
     } catch (const Error&) {
         steps.thickness_after = 0.0;
     }
-    steps.seconds = seconds();
     if (steps.thickness_after < share_before - kStepThicknessLoss) {
         steps.kept = true;
         return done(std::move(surface), first_report);

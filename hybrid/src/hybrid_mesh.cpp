@@ -229,22 +229,6 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
 /// Rounds of lowering colliding columns before giving up (each halves their thickness).
 constexpr int kFrontRounds = 8;
 
-/// The thickness asked: the sum of the layer heights.
-double asked_thickness(const LayerParams& layers) {
-    const std::vector<double> heights = layer_heights(layers.distribution);
-    double asked = 0.0;
-    for (int k = 0; k < layers.distribution.layers; ++k) asked += heights[static_cast<std::size_t>(k)];
-    return asked;
-}
-
-/// A fold \p e of the layers: the thickness limit of its nodes lowered to 0.7 of what they
-/// reached (half the thickness asked if they reached nothing), for the next march.
-void lower_fold(const LocalTopologyError& e, double asked, std::vector<double>& limit) {
-    const double to = e.reached() > 0.0 ? 0.7 * e.reached() : 0.5 * asked;
-    for (const Index n : e.nodes())
-        limit[static_cast<std::size_t>(n)] = std::min(limit[static_cast<std::size_t>(n)], to);
-}
-
 /// Mark the wall columns under layer-top face \p f of \p region: region node ids below the
 /// wall's node count are wall nodes; the next ones pyramid apexes (their quad's nodes count);
 /// outer points are left alone.
@@ -332,7 +316,11 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     Index top_patch = kNone;
     const Index farfield_patch = has_outer ? kNone : static_cast<Index>(surface.patches.size());
     std::vector<double>& limit = layer_params.node_thickness_limit;
-    const double asked = asked_thickness(params.layers);
+    double asked = 0.0;  // the thickness asked: the sum of the layer heights
+    {
+        const std::vector<double> heights = layer_heights(params.layers.distribution);
+        for (int k = 0; k < params.layers.distribution.layers; ++k) asked += heights[static_cast<std::size_t>(k)];
+    }
     if (!has_outer)
         check_layers_fit_farfield(surface, params.farfield, asked, params.layers.proximity_limits.other_patch);
     std::vector<Index> uncapped;  // input nodes whose fan's face on the layer top took no pyramid
@@ -345,7 +333,9 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         } catch (const LocalTopologyError& e) {  // a fold: lower the layers there and march again
             rep.seconds_layers += seconds_since(t0);
             if (round == kFrontRounds) throw;
-            lower_fold(e, asked, limit);
+            const double to = e.reached() > 0.0 ? 0.7 * e.reached() : 0.5 * asked;
+            for (const Index n : e.nodes())
+                limit[static_cast<std::size_t>(n)] = std::min(limit[static_cast<std::size_t>(n)], to);
             rep.front_lowered_nodes += static_cast<Index>(e.nodes().size());
             rep.front_rounds = round + 1;
             continue;
