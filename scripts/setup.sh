@@ -18,7 +18,7 @@ packages=(
   libgmsh-dev          # Gmsh SDK 4.8 with OpenCASCADE: CAD import, surface meshing, .msh I/O
   libeigen3-dev        # small dense linear algebra
   libtet1.5-dev        # TetGen 1.5 (tetrahedral fill)
-  libnanoflann-dev     # k-d tree (the tetrahedra's size field)
+  libnanoflann-dev     # k-d trees (the tetrahedra's size field, the CAD walls' sizes at the layers' steps)
   libcgal-dev          # exact predicates: the layer front's self-intersection test
   libcgns-dev          # CGNS mid-level library (on HDF5): the .cgns writer
   openfoam             # checkMesh, OpenFOAM's verdict on our meshes (tests/openfoam)
