@@ -345,6 +345,12 @@ std::vector<OptionSpec> make_table() {
         "where the domain is narrower than the layers need: stop (fewer layers there, the first "
         "height kept), scale (thinner layers there) or off"));
     t.push_back(spec(
+        "--front-slope", "front_slope", "ProximityParams::front_slope", Stage::Mesh,
+        [](Options& o) -> double& { return o.layers.params.proximity_limits.front_slope; },
+        "where the layer top meets itself, the columns there are lowered and their neighbours follow within "
+        "this thickness per unit of wall distance; halved where the same columns must be lowered again, and "
+        "0.25 from the fifth round on (default 1: the lowering stays where the front met itself)"));
+    t.push_back(spec(
         "--threads", "threads", "LayerParams::threads", Stage::Layers,
         [](Options& o) -> int& { return o.layers.params.threads; },
         "threads (0: all cores); the output is the same for any count"));

@@ -494,10 +494,16 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
     std::vector<double> extra;
     if (!by_input.empty())
         for (std::size_t i = 0; i < nw; ++i) extra.push_back(by_input[static_cast<std::size_t>(w.input_node[i])]);
-    const std::vector<double> limit = thickness_limits(w.mesh, hits, mc.params.proximity_limits, extra);
-    // Which bound holds: the proximity limit alone, or the extra (front) bound below it.
-    const std::vector<double> by_proximity =
-        extra.empty() ? limit : thickness_limits(w.mesh, hits, mc.params.proximity_limits);
+    // Which bound holds: the proximity limit alone, or the extra (front) bound below it, each
+    // through its own envelope (the same as one envelope of the two where the slopes agree).
+    const std::vector<double> by_proximity = thickness_limits(w.mesh, hits, mc.params.proximity_limits);
+    std::vector<double> limit = by_proximity;
+    if (!extra.empty()) {
+        ProximityParams front = mc.params.proximity_limits;
+        front.slope = front.front_slope;
+        const std::vector<double> by_front = thickness_limits(w.mesh, std::vector<ProximityHit>(nw), front, extra);
+        for (std::size_t i = 0; i < nw; ++i) limit[i] = std::min(limit[i], by_front[i]);
+    }
     auto fitting = [&](double l) {  // the layers whose heights add up to l at most
         int n = 0;
         for (double sum = delta[0]; n < layers && sum <= l; sum += delta[static_cast<std::size_t>(++n)]) {
@@ -872,6 +878,9 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     if (!(params.sharp_edge_stop_deg >= 0.0 && params.sharp_edge_stop_deg <= 180.0))
         throw InputError("LayerParams::sharp_edge_stop_deg = " + format_number(params.sharp_edge_stop_deg) +
                          ": need an angle in [0, 180] degrees (0: never stop there)");
+    if (!(params.proximity_limits.front_slope > 0.0 && std::isfinite(params.proximity_limits.front_slope)))
+        throw InputError("ProximityParams::front_slope = " + format_number(params.proximity_limits.front_slope) +
+                         ": need a thickness per unit of wall distance above 0");
     if (!(params.fan_angle_deg >= 0.0 && params.fan_angle_deg <= 180.0))
         throw InputError("LayerParams::fan_angle_deg = " + format_number(params.fan_angle_deg) +
                          ": need an angle in [0, 180] degrees (0: no fans)");

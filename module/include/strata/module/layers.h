@@ -90,8 +90,8 @@ struct LayerParams {
     ProximityParams proximity_limits;
     /// Empty, or one per node of the surface given to extrude_layers: a further bound on the
     /// node's total thickness (infinity: none), smoothed along the wall like the proximity
-    /// limit and applied by scaling whatever the proximity mode. build_hybrid_mesh lowers it
-    /// where the layer front intersects itself.
+    /// limit but at ProximityParams::front_slope, and applied by scaling whatever the proximity
+    /// mode. build_hybrid_mesh lowers it where the layer front intersects itself.
     std::vector<double> node_thickness_limit;
     /// Threads of the smoothing and the normals (0: OpenMP's default); the layers are the same for
     /// any count. For extrude_layers called alone: build_hybrid_mesh sets it from HybridParams::threads.
