@@ -683,6 +683,10 @@ TEST(Cli, FrontRoundsLowerTheLayersLocallyFirst) {
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("front: "), std::string::npos) << r.out;
     EXPECT_GE(wall_coverage(r.out), 60.0) << r.out;
+    r = strata_cli(dir, "mesh '" + example_data("../sweep/winglet.geo") +
+                            "' --fuse --layers 30 --growth 1.2 --first-height 3e-4 --front-slope 0.25 -o w25.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_LT(wall_coverage(r.out), 50.0) << r.out;
     // The plate with holes, tessellated and remeshed: its front still meets itself after local
     // lowerings, and the rounds that follow spread wider (0.5, then 0.25 per unit) until it
     // does not (at 1 per unit throughout it still did after 8 rounds).
