@@ -328,8 +328,9 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     TetFill fill;
     // The front rounds' lowering spreads along the wall at front_slope (ProximityParams),
     // halved from the second round on that lowers a column lowered before, and from round
-    // kFrontRounds / 2 on at the proximity limits' slope: a lowering stays local unless the
-    // front keeps meeting itself there (ALGORITHM.md, "Proximity").
+    // kFrontRounds / 2 on at the proximity limits' slope (never above what was asked): a
+    // lowering stays local unless the front keeps meeting itself there (ALGORITHM.md,
+    // "Proximity").
     if (const double f = params.layers.proximity_limits.front_slope; !(f > 0.0 && std::isfinite(f)))
         throw InputError("ProximityParams::front_slope = " + format_number(f) +
                          ": need a thickness per unit of wall distance above 0");
@@ -342,8 +343,10 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
                 again = limit[i] < limit_before[i] && std::isfinite(limit_before[i]);
             ProximityParams& now = layer_params.proximity_limits;
             if (again && ++repeats > 1) now.front_slope *= 0.5;
+            const double floor =
+                std::min(params.layers.proximity_limits.front_slope, params.layers.proximity_limits.slope);
             if (round >= kFrontRounds / 2) now.front_slope = 0.0;
-            now.front_slope = std::max(now.front_slope, params.layers.proximity_limits.slope);
+            now.front_slope = std::max(now.front_slope, floor);
             limit_before = limit;
         }
         auto t0 = std::chrono::steady_clock::now();
