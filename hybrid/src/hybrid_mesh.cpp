@@ -331,9 +331,6 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     // kFrontRounds / 2 on at the proximity limits' slope (never above what was asked): a
     // lowering stays local unless the front keeps meeting itself there (ALGORITHM.md,
     // "Proximity").
-    if (const double f = params.layers.proximity_limits.front_slope; !(f > 0.0 && std::isfinite(f)))
-        throw InputError("ProximityParams::front_slope = " + format_number(f) +
-                         ": need a thickness per unit of wall distance above 0");
     std::vector<double> limit_before = limit;
     int repeats = 0;  // rounds that lowered a column lowered before
     for (int round = 0;; ++round) {
@@ -343,10 +340,10 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
                 again = limit[i] < limit_before[i] && std::isfinite(limit_before[i]);
             ProximityParams& now = layer_params.proximity_limits;
             if (again && ++repeats > 1) now.front_slope *= 0.5;
-            const double floor =
+            const double lowest =  // extrude_layers refuses a front_slope not above 0
                 std::min(params.layers.proximity_limits.front_slope, params.layers.proximity_limits.slope);
             if (round >= kFrontRounds / 2) now.front_slope = 0.0;
-            now.front_slope = std::max(now.front_slope, floor);
+            now.front_slope = std::max(now.front_slope, lowest);
             limit_before = limit;
         }
         auto t0 = std::chrono::steady_clock::now();
