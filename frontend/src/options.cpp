@@ -390,6 +390,11 @@ std::vector<OptionSpec> make_table() {
         "largest dihedral angle of the tetrahedra TetGen's optimisation works down to, degrees "
         "(TetGen -o/A; 0: TetGen's own, 165)"));
     t.push_back(spec(
+        "--tet-improve", "tet_improve", "TetImproveParams::below", Stage::Mesh,
+        [](Options& o) -> double& { return o.mesh.params.improve.below; },
+        "after TetGen, improve the tetrahedra below this scaled Jacobian by flips and by moving the points "
+        "TetGen added (0: off)"));
+    t.push_back(spec(
         "", "refine", "TetFillParams::refine", Stage::Mesh,
         [](Options& o) -> bool& { return o.mesh.params.tets.refine; },
         "add interior Steiner points for quality and size"));

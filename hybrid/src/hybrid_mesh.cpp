@@ -294,6 +294,7 @@ Index lower_columns_around(const SurfaceMesh& region, Index top_patch, const std
 VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& params, Progress* progress,
                              HybridReport* report) {
     HybridReport rep;
+    check_tet_improve_params(params.improve);  // before the work it would otherwise end
     bool has_outer = false;
     const SurfaceMesh surface =
         closed_domain(input, params.farfield, has_outer, rep.closed_half_model, rep.internal_flow);
@@ -422,6 +423,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
             rep.front_rounds = round + 1;
             continue;
         }
+        rep.tet_improve = improve_tets(fill, region.num_points(), params.improve, progress);
         rep.seconds_tets += seconds_since(t0);
         strata::report(progress, "tetrahedra", 1.0);
         break;

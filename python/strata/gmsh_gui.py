@@ -36,6 +36,7 @@ PANEL = [
     ("Strata/5Tetrahedra/2Size growth", "tet_growth"),
     ("Strata/5Tetrahedra/3Max dihedral (deg)", "max_dihedral"),
     ("Strata/5Tetrahedra/4Refine", "refine"),
+    ("Strata/5Tetrahedra/5Improve below (scaled Jacobian)", "tet_improve"),
 ]
 RESULT = "Strata/9Result"
 BUTTON = "ONELAB/Button"

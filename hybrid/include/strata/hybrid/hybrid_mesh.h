@@ -7,6 +7,7 @@
 #include <strata/core/validate.h>
 #include <strata/geometry/point_sizes.h>
 #include <strata/hybrid/farfield.h>
+#include <strata/hybrid/improve_tets.h>
 #include <strata/hybrid/pyramids.h>
 #include <strata/hybrid/tetgen_fill.h>
 #include <strata/module/layers.h>
@@ -17,7 +18,8 @@ struct HybridParams {
     LayerParams layers;  ///< its threads field is set from threads below
     PyramidParams pyramids;
     TetFillParams tets;
-    FarfieldParams farfield;  ///< used when the surface has no farfield patch
+    TetImproveParams improve;  ///< the tetrahedra below a scaled Jacobian improved after TetGen
+    FarfieldParams farfield;   ///< used when the surface has no farfield patch
     /// Threads of every parallel stage (layers, validation; 0: OpenMP's default). The mesh is the
     /// same for any count.
     int threads = 0;
@@ -47,6 +49,7 @@ struct HybridReport {
     /// The input's walls enclose the fluid (they point inward: PrepareParams::internal_flow), so
     /// no farfield was generated.
     bool internal_flow = false;
+    TetImproveReport tet_improve;  ///< what improve_tets changed
     ValidationReport validation;
     double seconds_layers = 0.0, seconds_pyramids = 0.0, seconds_tets = 0.0, seconds_validate = 0.0;
 };

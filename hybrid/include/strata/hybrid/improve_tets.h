@@ -1,0 +1,57 @@
+#pragma once
+/// \file
+/// Local improvement of a tetrahedral fill by its worst cells' scaled Jacobian, after TetGen.
+///
+/// TetGen's own optimisation (-o/A) works on the largest dihedral angle; the scaled Jacobian,
+/// which the validator, the summary and the bounds judge, is lowest on tetrahedra
+/// TetGen leaves alone. Each tetrahedron below a bound is offered, best first:
+///   - a 2-3 flip across each of its faces shared with another tetrahedron,
+///   - the removal of each of its edges whose ring of tetrahedra is closed (3 to 7 of them:
+///     the ring polygon re-triangulated, of all its triangulations the one whose worst
+///     tetrahedron is best, found by dynamic programming: Shewchuk's edge removal),
+///   - moving one of its corners that TetGen added (never a boundary node) to where the worst
+///     tetrahedron round it is best (a pattern search).
+/// A change is made only if the worst of the tetrahedra it creates is better than the worst of
+/// those it replaces, so the mesh's worst value never falls and the passes end. The boundary
+/// (its nodes and faces) is never changed: the result fills the same region with the same
+/// boundary triangles. New tetrahedra are checked by orientation: all positive with the same
+/// boundary as the ones they replace means they tile the same region once.
+///
+/// What it cannot change: a tetrahedron all four of whose corners are on the boundary and two
+/// or three of whose faces are (a sliver in a shallow valley of the layer top); only a better
+/// front lifts those.
+
+#include <strata/core/progress.h>
+#include <strata/hybrid/tetgen_fill.h>
+
+namespace strata {
+
+struct TetImproveParams {
+    /// Work on tetrahedra whose scaled Jacobian is below this (0: off). Tetrahedra above it
+    /// change only as neighbours of one below.
+    double below = 0.2;
+    int max_passes = 10;  ///< passes over the tetrahedra below the bound; each pass stops early when nothing changed
+};
+
+struct TetImproveReport {
+    double below = 0.0;                        ///< the bound worked to (TetImproveParams::below)
+    Index flips = 0;                           ///< 2-3 flips made
+    Index edge_removals = 0;                   ///< edges removed (a ring of n tetrahedra becomes 2n - 4)
+    Index moved_nodes = 0;                     ///< moves of interior nodes (a node may move in several passes)
+    Index below_before = 0, below_after = 0;   ///< tetrahedra below TetImproveParams::below
+    double min_before = 1.0, min_after = 1.0;  ///< the smallest scaled Jacobian
+    int passes = 0;
+};
+
+/// Throws InputError for a bound outside [0, 1) or fewer than one pass (before any work: the
+/// pipeline checks its parameters first).
+void check_tet_improve_params(const TetImproveParams& params);
+
+/// Improve \p fill in place: its tetrahedra change, and its points from \p num_fixed on (the
+/// points TetGen added) may move; the first \p num_fixed points (the boundary's) never do, nor
+/// does any point on a face of only one tetrahedron. Deterministic (one thread, a fixed order).
+/// Throws InputError as check_tet_improve_params does, and for \p num_fixed outside the points.
+TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImproveParams& params = {},
+                              const Progress* progress = nullptr);
+
+}  // namespace strata

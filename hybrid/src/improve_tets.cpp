@@ -1,0 +1,424 @@
+#include <strata/hybrid/improve_tets.h>
+
+#include <strata/core/error.h>
+#include <strata/core/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace strata {
+namespace {
+
+using Tet = std::array<Index, 4>;
+
+constexpr int kMaxRing = 7;  // edge removal: rings of 3 to 7 tetrahedra (Catalan(5) = 42 triangulations)
+constexpr double kNone = -std::numeric_limits<double>::infinity();
+
+/// A change is worth making when the worst tetrahedron it creates beats the worst it replaces
+/// by a thousandth (so the passes end) and is valid.
+bool improves(double made, double replaced) {
+    return made > 0.0 && made > replaced + std::max(1e-3 * std::abs(replaced), 1e-12);
+}
+
+/// True when \p arranged (the same four nodes as \p t) is an even permutation of \p t: the
+/// same orientation.
+bool same_orientation(const Tet& t, const Tet& arranged) {
+    std::array<int, 4> pos{};
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            if (t[static_cast<std::size_t>(j)] == arranged[static_cast<std::size_t>(i)]) pos[i] = j;
+    int inversions = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j)
+            if (pos[i] > pos[j]) ++inversions;
+    return inversions % 2 == 0;
+}
+
+/// The nodes of \p t as (x, y, a, b) with the orientation of \p t.
+Tet arranged_with(const Tet& t, Index x, Index y) {
+    Tet r{x, y, -1, -1};
+    int k = 2;
+    for (const Index w : t)
+        if (w != x && w != y) r[static_cast<std::size_t>(k++)] = w;
+    if (!same_orientation(t, r)) std::swap(r[2], r[3]);
+    return r;
+}
+
+bool has(const Tet& t, Index v) {
+    return t[0] == v || t[1] == v || t[2] == v || t[3] == v;
+}
+
+class Improver {
+public:
+    Improver(TetFill& fill, Index num_fixed, double below)
+        : p_(fill.points), tets_(std::move(fill.tets)), num_fixed_(num_fixed), below_(below) {
+        q_.resize(tets_.size());
+        alive_.assign(tets_.size(), 1);
+        tried_.assign(tets_.size(), 0);
+        node_tets_.resize(p_.size());
+        changed_.assign(p_.size(), 1);
+        node_tried_.assign(p_.size(), 0);
+        for (std::size_t t = 0; t < tets_.size(); ++t) {
+            q_[t] = quality(tets_[t]);
+            for (const Index v : tets_[t]) node_tets_[static_cast<std::size_t>(v)].push_back(static_cast<Index>(t));
+        }
+    }
+
+    /// The alive tetrahedra, in index order (the originals first, then those made, in order).
+    std::vector<Tet> release() {
+        std::vector<Tet> out;
+        out.reserve(tets_.size());
+        for (std::size_t t = 0; t < tets_.size(); ++t)
+            if (alive_[t]) out.push_back(tets_[t]);
+        return out;
+    }
+
+    void measure(Index& below, double& worst) const {
+        below = 0;
+        worst = 1.0;
+        for (std::size_t t = 0; t < tets_.size(); ++t) {
+            if (!alive_[t]) continue;
+            if (q_[t] < below_) ++below;
+            worst = std::min(worst, q_[t]);
+        }
+    }
+
+    /// One pass over the tetrahedra below the bound, worst first; true if anything changed.
+    bool pass(TetImproveReport& rep, const Progress* progress) {
+        std::vector<std::pair<double, Index>> bad;
+        for (std::size_t t = 0; t < tets_.size(); ++t)
+            if (alive_[t] && q_[t] < below_) bad.emplace_back(q_[t], static_cast<Index>(t));
+        std::sort(bad.begin(), bad.end());
+        bool changed = false;
+        std::size_t done = 0;
+        for (const auto& [q0, t] : bad) {
+            if ((++done & 1023u) == 0) check_cancelled(progress);
+            if (!alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_) continue;
+            if (!changed_since(tets_[static_cast<std::size_t>(t)], tried_[static_cast<std::size_t>(t)])) continue;
+            if (flip_or_remove(t, rep)) {
+                changed = true;
+                continue;
+            }
+            tried_[static_cast<std::size_t>(t)] = ++clock_;
+            for (const Index v : tets_[static_cast<std::size_t>(t)])
+                if (move_node(v)) {
+                    ++rep.moved_nodes;
+                    changed = true;
+                    if (!alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_) break;
+                }
+        }
+        return changed;
+    }
+
+private:
+    /// Whether anything a change at \p t depends on changed after \p when: a tetrahedron made
+    /// or removed at one of its nodes, or a node moved in a tetrahedron through one of them
+    /// (both stamp the nodes concerned). The ring of an edge, the tetrahedron across a face and
+    /// the star of a node all contain one of the nodes stamped.
+    bool changed_since(const Tet& t, std::uint64_t when) const {
+        for (const Index v : t)
+            if (changed_[static_cast<std::size_t>(v)] > when) return true;
+        return false;
+    }
+
+    void stamp(const Tet& t) {
+        ++clock_;
+        for (const Index v : t) changed_[static_cast<std::size_t>(v)] = clock_;
+    }
+
+    /// The tetrahedron's scaled Jacobian: at each corner det(e1, e2, e3) / (|e1| |e2| |e3|),
+    /// and the determinant is six times the volume at every corner, so the minimum is 6 V over
+    /// the largest product of a corner's three edge lengths (tet_min_scaled_jacobian's value
+    /// to rounding, for a sixth of the work).
+    double quality(const Tet& t) const {
+        const Vec3& a = p_[static_cast<std::size_t>(t[0])];
+        const Vec3& b = p_[static_cast<std::size_t>(t[1])];
+        const Vec3& c = p_[static_cast<std::size_t>(t[2])];
+        const Vec3& d = p_[static_cast<std::size_t>(t[3])];
+        const double ab = (b - a).norm(), ac = (c - a).norm(), ad = (d - a).norm();
+        const double bc = (c - b).norm(), bd = (d - b).norm(), cd = (d - c).norm();
+        const double largest = std::max(std::max(ab * ac * ad, ab * bc * bd), std::max(ac * bc * cd, ad * bd * cd));
+        const double q = (b - a).cross(c - a).dot(d - a) / largest;
+        return std::isfinite(q) ? q : kNone;
+    }
+
+    Index add(const Tet& t) {
+        const Index id = static_cast<Index>(tets_.size());
+        tets_.push_back(t);
+        q_.push_back(quality(t));
+        alive_.push_back(1);
+        tried_.push_back(0);
+        for (const Index v : t) node_tets_[static_cast<std::size_t>(v)].push_back(id);
+        stamp(t);
+        return id;
+    }
+
+    void kill(Index id) {
+        alive_[static_cast<std::size_t>(id)] = 0;
+        stamp(tets_[static_cast<std::size_t>(id)]);
+        for (const Index v : tets_[static_cast<std::size_t>(id)]) {
+            auto& l = node_tets_[static_cast<std::size_t>(v)];
+            l.erase(std::find(l.begin(), l.end(), id));
+        }
+    }
+
+    /// The other tetrahedron on face (a, b, c) of \p t, or -1 (a boundary face).
+    Index across(Index t, Index a, Index b, Index c) const {
+        for (const Index o : node_tets_[static_cast<std::size_t>(a)])
+            if (o != t && has(tets_[static_cast<std::size_t>(o)], b) && has(tets_[static_cast<std::size_t>(o)], c))
+                return o;
+        return -1;
+    }
+
+    // A candidate change: the tetrahedra it removes and those it makes.
+    struct Change {
+        double made = kNone;
+        std::vector<Index> removed;
+        std::vector<Tet> tets;
+    };
+
+    /// The best 2-3 flip or edge removal of tetrahedron \p t's faces and edges; made if it improves.
+    bool flip_or_remove(Index t, TetImproveReport& rep) {
+        const Tet tet = tets_[static_cast<std::size_t>(t)];
+        Change best;
+        bool best_is_flip = false;
+        for (int i = 0; i < 4; ++i) {
+            Change c = flip23(t, tet, i);
+            if (c.made > best.made) best = std::move(c), best_is_flip = true;
+        }
+        for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) {
+                Change c = remove_edge(tet[static_cast<std::size_t>(i)], tet[static_cast<std::size_t>(j)]);
+                if (c.made > best.made) best = std::move(c), best_is_flip = false;
+            }
+        if (best.removed.empty()) return false;
+        double replaced = 1.0;
+        for (const Index o : best.removed) replaced = std::min(replaced, q_[static_cast<std::size_t>(o)]);
+        if (!improves(best.made, replaced)) return false;
+        for (const Index o : best.removed) kill(o);
+        for (const Tet& n : best.tets) add(n);
+        ++(best_is_flip ? rep.flips : rep.edge_removals);
+        return true;
+    }
+
+    /// Tetrahedron \p t = (a, b, c, d) (d its node \p i) and its neighbour (a, b, c, e) become
+    /// three round the edge d–e.
+    Change flip23(Index t, const Tet& tet, int i) const {
+        const Index d = tet[static_cast<std::size_t>(i)];
+        Tet abcd{-1, -1, -1, d};
+        int k = 0;
+        for (const Index w : tet)
+            if (w != d) abcd[static_cast<std::size_t>(k++)] = w;
+        if (!same_orientation(tet, abcd)) std::swap(abcd[0], abcd[1]);
+        const Index n = across(t, abcd[0], abcd[1], abcd[2]);
+        if (n < 0) return {};
+        Index e = -1;
+        for (const Index w : tets_[static_cast<std::size_t>(n)])
+            if (w != abcd[0] && w != abcd[1] && w != abcd[2]) e = w;
+        // (a, b, c, d) positive: (e, d, a, b), (e, d, b, c), (e, d, c, a) are the positive three.
+        Change c;
+        c.made = 1.0;
+        for (int s = 0; s < 3; ++s) {
+            const Tet nt{e, d, abcd[static_cast<std::size_t>(s)], abcd[static_cast<std::size_t>((s + 1) % 3)]};
+            const double q = quality(nt);
+            if (!(q > 0.0)) return {};
+            c.made = std::min(c.made, q);
+            c.tets.push_back(nt);
+        }
+        c.removed = {t, n};
+        return c;
+    }
+
+    /// The tetrahedra round edge u–v (a closed ring of 3 to kMaxRing) replaced by the best
+    /// triangulation of the ring polygon, each triangle joined to u and to v.
+    Change remove_edge(Index u, Index v) const {
+        std::array<Index, kMaxRing> ring_tet{}, from{}, to{};
+        int m = 0;
+        for (const Index o : node_tets_[static_cast<std::size_t>(u)]) {
+            const Tet& ot = tets_[static_cast<std::size_t>(o)];
+            if (!has(ot, v)) continue;
+            if (m == kMaxRing) return {};
+            const Tet r = arranged_with(ot, u, v);  // (u, v, p, q) positive: the ring runs p -> q
+            ring_tet[static_cast<std::size_t>(m)] = o;
+            from[static_cast<std::size_t>(m)] = r[2];
+            to[static_cast<std::size_t>(m)] = r[3];
+            ++m;
+        }
+        if (m < 3) return {};
+        // Walk the ring; it must close through all m (an edge on the boundary leaves it open).
+        std::array<Index, kMaxRing> c{};
+        c[0] = from[0];
+        for (int k = 1; k <= m; ++k) {
+            const Index prev = c[static_cast<std::size_t>(k - 1)];
+            int next = -1;
+            for (int s = 0; s < m; ++s)
+                if (from[static_cast<std::size_t>(s)] == prev) next = s;
+            if (next < 0) return {};
+            const Index w = to[static_cast<std::size_t>(next)];
+            if (k == m) {
+                if (w != c[0]) return {};
+            } else {
+                for (int s = 0; s < k; ++s)
+                    if (c[static_cast<std::size_t>(s)] == w) return {};
+                c[static_cast<std::size_t>(k)] = w;
+            }
+        }
+        // Triangle (i, k, j), i < k < j along the ring: tetrahedra (c_k, c_i, c_j, u) and
+        // (c_i, c_k, c_j, v) are the positive ones.
+        auto pair_of = [&](int i, int k, int j) {
+            const auto ci = c[static_cast<std::size_t>(i)], ck = c[static_cast<std::size_t>(k)],
+                       cj = c[static_cast<std::size_t>(j)];
+            return std::array<Tet, 2>{Tet{ck, ci, cj, u}, Tet{ci, ck, cj, v}};
+        };
+        double best[kMaxRing][kMaxRing];
+        int split[kMaxRing][kMaxRing];
+        for (int len = 1; len < m; ++len)
+            for (int i = 0; i + len < m; ++i) {
+                const int j = i + len;
+                split[i][j] = -1;
+                if (len == 1) {
+                    best[i][j] = std::numeric_limits<double>::infinity();
+                    continue;
+                }
+                best[i][j] = kNone;
+                for (int k = i + 1; k < j; ++k) {
+                    const double sub = std::min(best[i][k], best[k][j]);
+                    if (sub <= best[i][j]) continue;
+                    const auto pr = pair_of(i, k, j);
+                    const double q = std::min(quality(pr[0]), quality(pr[1]));
+                    if (!(q > 0.0)) continue;
+                    const double val = std::min(sub, q);
+                    if (val > best[i][j]) best[i][j] = val, split[i][j] = k;
+                }
+            }
+        if (!(best[0][m - 1] > 0.0)) return {};
+        Change ch;
+        ch.made = best[0][m - 1];
+        std::vector<std::pair<int, int>> todo{{0, m - 1}};
+        while (!todo.empty()) {
+            const auto [i, j] = todo.back();
+            todo.pop_back();
+            if (j - i < 2) continue;
+            const int k = split[i][j];
+            const auto pr = pair_of(i, k, j);
+            ch.tets.push_back(pr[0]);
+            ch.tets.push_back(pr[1]);
+            todo.emplace_back(i, k);
+            todo.emplace_back(k, j);
+        }
+        ch.removed.assign(ring_tet.begin(), ring_tet.begin() + m);
+        return ch;
+    }
+
+    /// Move node \p v (one TetGen added, on no boundary face) to where the worst tetrahedron
+    /// round it is best: a pattern search along the axes, the step halved when no move helps.
+    bool move_node(Index v) {
+        if (v < num_fixed_ || changed_[static_cast<std::size_t>(v)] <= node_tried_[static_cast<std::size_t>(v)])
+            return false;
+        node_tried_[static_cast<std::size_t>(v)] = ++clock_;
+        const std::vector<Index> star = node_tets_[static_cast<std::size_t>(v)];
+        if (star.empty()) return false;
+        double mean = 0.0;
+        int count = 0;
+        for (const Index o : star) {
+            const Tet& t = tets_[static_cast<std::size_t>(o)];
+            for (int i = 0; i < 4; ++i) {
+                const Index w = t[static_cast<std::size_t>(i)];
+                if (w == v) continue;
+                // The face through v opposite w: with no tetrahedron across, it is on the
+                // boundary, and v stays.
+                Index a = -1, b = -1;
+                for (const Index x : t)
+                    if (x != v && x != w) (a < 0 ? a : b) = x;
+                if (across(o, v, a, b) < 0) return false;
+                mean += (p_[static_cast<std::size_t>(w)] - p_[static_cast<std::size_t>(v)]).norm();
+                ++count;
+            }
+        }
+        auto worst_at = [&]() {
+            double q = 1.0;
+            for (const Index o : star) q = std::min(q, quality(tets_[static_cast<std::size_t>(o)]));
+            return q;
+        };
+        const Vec3 start = p_[static_cast<std::size_t>(v)];
+        const double old = worst_at();
+        Vec3 at = start;
+        double now = old;
+        double step = 0.1 * mean / count;
+        for (int round = 0; round < 16 && step > 1e-3 * mean / count; ++round) {
+            bool moved = false;
+            for (int axis = 0; axis < 3 && !moved; ++axis)
+                for (const double sign : {1.0, -1.0}) {
+                    Vec3 x = at;
+                    x[axis] += sign * step;
+                    p_[static_cast<std::size_t>(v)] = x;
+                    const double q = worst_at();
+                    if (q > now) {
+                        now = q, at = x, moved = true;
+                        break;
+                    }
+                }
+            if (!moved) step *= 0.5;
+        }
+        if (!improves(now, old)) {
+            p_[static_cast<std::size_t>(v)] = start;
+            return false;
+        }
+        p_[static_cast<std::size_t>(v)] = at;
+        for (const Index o : star) {
+            q_[static_cast<std::size_t>(o)] = quality(tets_[static_cast<std::size_t>(o)]);
+            stamp(tets_[static_cast<std::size_t>(o)]);
+        }
+        return true;
+    }
+
+    std::vector<Vec3>& p_;
+    std::vector<Tet> tets_;
+    std::vector<double> q_;
+    std::vector<char> alive_;
+    std::vector<std::vector<Index>> node_tets_;
+    // Change stamps: a node's last change, a tetrahedron's and a node's last fruitless attempt.
+    std::uint64_t clock_ = 1;
+    std::vector<std::uint64_t> changed_, tried_, node_tried_;
+    Index num_fixed_;
+    double below_;
+};
+
+}  // namespace
+
+void check_tet_improve_params(const TetImproveParams& params) {
+    if (!(params.below >= 0.0 && params.below < 1.0))
+        throw InputError("improve_tets: TetImproveParams::below = " + format_number(params.below) +
+                         ": need a scaled-Jacobian bound in [0, 1) (0: off)");
+    if (params.max_passes < 1)
+        throw InputError("improve_tets: TetImproveParams::max_passes = " + std::to_string(params.max_passes) +
+                         ": need at least 1");
+}
+
+TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImproveParams& params,
+                              const Progress* progress) {
+    check_tet_improve_params(params);
+    if (num_fixed < 0 || num_fixed > static_cast<Index>(fill.points.size()))
+        throw InputError("improve_tets: num_fixed = " + std::to_string(num_fixed) + " for " +
+                         std::to_string(fill.points.size()) + " points");
+    TetImproveReport rep;
+    rep.below = params.below;
+    if (params.below == 0.0 || fill.tets.empty()) return rep;
+    Improver im(fill, num_fixed, params.below);
+    im.measure(rep.below_before, rep.min_before);
+    while (rep.passes < params.max_passes) {
+        check_cancelled(progress);
+        ++rep.passes;
+        if (!im.pass(rep, progress)) break;
+    }
+    im.measure(rep.below_after, rep.min_after);
+    fill.tets = im.release();
+    return rep;
+}
+
+}  // namespace strata
