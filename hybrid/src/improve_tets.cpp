@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -409,6 +410,7 @@ TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImprovePa
     TetImproveReport rep;
     rep.below = params.below;
     if (params.below == 0.0 || fill.tets.empty()) return rep;
+    const auto start = std::chrono::steady_clock::now();
     Improver im(fill, num_fixed, params.below);
     im.measure(rep.below_before, rep.min_before);
     while (rep.passes < params.max_passes) {
@@ -418,6 +420,7 @@ TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImprovePa
     }
     im.measure(rep.below_after, rep.min_after);
     fill.tets = im.release();
+    rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return rep;
 }
 

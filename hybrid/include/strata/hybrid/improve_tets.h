@@ -41,6 +41,7 @@ struct TetImproveReport {
     Index below_before = 0, below_after = 0;   ///< tetrahedra below TetImproveParams::below
     double min_before = 1.0, min_after = 1.0;  ///< the smallest scaled Jacobian
     int passes = 0;
+    double seconds = 0.0;  ///< wall-clock time taken
 };
 
 /// Throws InputError for a bound outside [0, 1) or fewer than one pass (before any work: the
