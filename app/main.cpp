@@ -37,6 +37,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <mutex>
@@ -146,11 +147,76 @@ void begin_writing() {
     g_writing.store(true);
 }
 
+// ---------------------------------------------------------------------------------------
+// A crash (SIGSEGV, SIGBUS, SIGFPE, SIGILL) ends the program with one line naming the stage it
+// was in, instead of the shell's bare "Segmentation fault": Gmsh's surface mesher has crashed
+// on some CAD faces and sizes (MeshAdapt, in-process: Gmsh cannot run in a child as TetGen
+// does, its OpenMP threads make a fork unsafe). The handler does only what a signal handler
+// may: write() a message built from a stage name kept in a fixed buffer, then _exit(1).
+// Outputs are written under a temporary name and renamed, so before the writers start
+// nothing is left; a crash while writing may leave that temporary file, and the line says so.
+
+char g_stage[24] = "reading";  // the stage last reported (Terminal::report), NUL-terminated
+char g_input[512] = "";        // the input's name (the Terminal's), NUL-terminated
+
+template <std::size_t N>
+void keep(char (&buffer)[N], std::string_view text) {
+    const std::size_t n = std::min(text.size(), N - 1);
+    for (std::size_t i = 0; i < n; ++i) buffer[i] = text[i];
+    buffer[n] = '\0';
+}
+
+void set_stage(std::string_view stage) {
+    keep(g_stage, stage);
+}
+
+void write_text(const char* text) {
+    std::size_t n = 0;
+    while (text[n] != '\0') ++n;
+    while (n > 0) {
+        const ssize_t w = ::write(2, text, n);
+        if (w <= 0) return;
+        text += w, n -= static_cast<std::size_t>(w);
+    }
+}
+
+extern "C" void on_crash(int sig) {
+    const char* name = sig == SIGSEGV ? "SIGSEGV" : sig == SIGBUS ? "SIGBUS" : sig == SIGFPE ? "SIGFPE" : "SIGILL";
+    write_text(isatty(2) ? "\nstrata: error: the program crashed (" : "strata: error: the program crashed (");
+    write_text(name);
+    write_text(") in its ");
+    write_text(g_stage);
+    write_text(" stage");
+    if (g_input[0] != '\0') {
+        write_text(" on ");
+        write_text(g_input);
+    }
+    const bool surface = std::strcmp(g_stage, "surface") == 0;
+    write_text(surface ? " (Gmsh meshing the surface: it crashes on some CAD faces and sizes; try another --size, "
+                         "--size-min or --curvature, or export the model again)"
+                       : " (a fault in Strata or a library it calls: please report it with the input and the "
+                         "command)");
+    write_text(g_writing.load() ? "; it was writing, and a temporary file (the output's name with .tmp) "
+                                  "may be left next to the output\n"
+                                : "; nothing was written\n");
+    ::_exit(1);
+}
+
+void install_crash_handler() {
+    struct sigaction sa {};
+    sa.sa_handler = on_crash;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND;  // a fault inside the handler ends the program the default way
+    for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) sigaction(sig, &sa, nullptr);
+}
+
 /// One-line progress bar on stderr when it is a terminal; cancelled once Ctrl-C was pressed.
 class Terminal : public strata::Progress {
 public:
-    explicit Terminal(bool quiet) : draw_(!quiet && isatty(2)) {}
+    /// \p input: the input's name, for the line a crash prints (on_crash).
+    Terminal(bool quiet, std::string_view input) : draw_(!quiet && isatty(2)) { keep(g_input, input); }
     void report(std::string_view stage, double fraction) override {
+        set_stage(stage);
         if (!draw_) return;
         const int w = 30, n = static_cast<int>(fraction * w + 0.5);
         std::fprintf(stderr, "\r%-10.*s [%-*s] %3d%%", static_cast<int>(stage.size()), stage.data(), w,
@@ -635,10 +701,10 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     if (const strata::TetImproveReport& ti = hr.tet_improve; ti.flips + ti.edge_removals + ti.moved_nodes > 0)
         std::printf(
             "tetrahedra improved: %lld flips, %lld edges removed, %lld interior nodes moved; below a scaled "
-            "Jacobian of %g: %lld -> %lld, the worst %.3g -> %.3g\n",
+            "Jacobian of %g: %lld -> %lld, the worst %.3g -> %.3g (%.2f s)\n",
             static_cast<long long>(ti.flips), static_cast<long long>(ti.edge_removals),
             static_cast<long long>(ti.moved_nodes), ti.below, static_cast<long long>(ti.below_before),
-            static_cast<long long>(ti.below_after), ti.min_before, ti.min_after);
+            static_cast<long long>(ti.below_after), ti.min_before, ti.min_after, ti.seconds);
     if (!hr.remeshed_patches.empty()) {
         std::string names;
         for (strata::Index p : hr.remeshed_patches)
@@ -749,7 +815,7 @@ Start start(const Common& c, const strata::PrepareParams& params, Output output,
 
 int run_surface(const Common& c) {
     const auto t0 = std::chrono::steady_clock::now();
-    Terminal terminal(c.quiet);
+    Terminal terminal(c.quiet, c.o.surface.input);
     const Start s = start(c, strata::prepare_params(c.o.surface), Output::Surface, terminal);
     begin_writing();
     strata::write_surface(s.surface, c.output, s.msh_version, &terminal);
@@ -761,7 +827,7 @@ int run_surface(const Common& c) {
 
 int run_layers(const Common& c) {
     const strata::LayerParams lp = strata::layer_params(c.o.layers);
-    Terminal terminal(c.quiet);
+    Terminal terminal(c.quiet, c.o.surface.input);
     const Start s = start(c, strata::prepare_params(c.o.surface, &lp), Output::Volume, terminal);
     const auto t1 = std::chrono::steady_clock::now();
     const strata::LayerMesh lm = strata::extrude_layers(s.surface, lp, &terminal);
@@ -789,7 +855,7 @@ int run_layers(const Common& c) {
 int run_mesh(const Common& c, const PlotOptions& po) {
     const strata::HybridParams hp = strata::hybrid_params(c.o.layers, c.o.mesh);
     const auto [cut_axis, cut_value] = parse_cut(po.cut);
-    Terminal terminal(c.quiet);
+    Terminal terminal(c.quiet, c.o.surface.input);
     const Start s = start(c, strata::prepare_params(c.o.surface, &hp.layers), Output::Volume, terminal, &hp);
     strata::HybridReport hr;
     const strata::VolumeMesh mesh = [&] {
@@ -832,6 +898,7 @@ int run_mesh(const Common& c, const PlotOptions& po) {
 int main(int argc, char** argv) {
     std::signal(SIGINT, on_sigint);
     std::set_terminate(on_terminate);
+    install_crash_handler();
     CLI::App app{
         "Strata: near-body hybrid meshes for viscous CFD.\n"
         "Boundary-layer prisms and hexahedra marched from the wall, tetrahedra beyond.",

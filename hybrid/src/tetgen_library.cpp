@@ -542,6 +542,9 @@ bool in_child(const std::function<void(Bytes&)>& body, Bytes& result, const Prog
         ::close(fds[0]);
         // Ends with this process (the CLI's --timeout ends it while TetGen runs).
         if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent) ::_exit(1);
+        // A crash must end the child by its signal, which the parent names (not a handler
+        // the program installed, such as the CLI's, which would exit with a status instead).
+        for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(sig, SIG_DFL);
         Bytes b;
         try {
             body(b);
