@@ -79,6 +79,11 @@ def test_mesh_sphere_arrays_and_report(tmp_path):
     for name, c in cov["patches"].items():
         assert c["nodes"] > 0 and 0.0 <= c["full"] <= 1.0
     assert set(r["times"]) >= {"surface", "layers", "pyramids", "tetrahedra", "validation", "write"}
+    # the tetrahedra improved after TetGen: never a worse worst, fewer below the bound
+    ti = r["tet_improve"]
+    assert ti["below"] == 0.2 and ti["min_after"] >= ti["min_before"] > 0, ti
+    assert ti["below_after"] <= ti["below_before"], ti
+    assert r["min_scaled_jacobian"]["tetrahedron"] <= ti["min_after"] + 1e-12, ti
     # patches: the sphere's wall and the generated farfield, with their boundary faces
     assert "farfield" in m.patch_names
     assert m.patch_kinds[m.patch_names.index("farfield")] == "farfield"
