@@ -19,6 +19,7 @@ using Tet = std::array<Index, 4>;
 
 constexpr int kMaxRing = 7;  // edge removal: rings of 3 to 7 tetrahedra (Catalan(5) = 42 triangulations)
 constexpr double kNone = -std::numeric_limits<double>::infinity();
+constexpr int kMaxCavity = 12;  // point insertion: tetrahedra replaced at most
 
 /// A change is worth making when the worst tetrahedron it creates beats the worst it replaces
 /// by a thousandth (so the passes end) and is valid.
@@ -116,6 +117,29 @@ public:
         return changed;
     }
 
+    /// Once flips and moves have done what they can: a point inserted round each tetrahedron
+    /// still below the bound whose four corners are boundary nodes (where nothing else
+    /// reaches), worst first; true if any was. Measured against inserting wherever flips and
+    /// moves failed, and during the passes: the same worst tetrahedra (notched box, M6) or worse
+    /// (mixed M6: 1.7e-4 instead of 4.6e-4), many more below the bound, up to 4 times the time.
+    bool insertion_pass(TetImproveReport& rep, const Progress* progress) {
+        std::vector<std::pair<double, Index>> bad;
+        for (std::size_t t = 0; t < tets_.size(); ++t)
+            if (alive_[t] && q_[t] < below_ && all_fixed(tets_[t])) bad.emplace_back(q_[t], static_cast<Index>(t));
+        std::sort(bad.begin(), bad.end());
+        bool changed = false;
+        std::size_t done = 0;
+        for (const auto& [q0, t] : bad) {
+            if ((++done & 255u) == 0) check_cancelled(progress);
+            if (!alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_) continue;
+            if (insert_point(t)) {
+                ++rep.inserted_nodes;
+                changed = true;
+            }
+        }
+        return changed;
+    }
+
 private:
     /// Whether anything a change at \p t depends on changed after \p when: a tetrahedron made
     /// or removed at one of its nodes, or a node moved in a tetrahedron through one of them
@@ -125,6 +149,11 @@ private:
         for (const Index v : t)
             if (changed_[static_cast<std::size_t>(v)] > when) return true;
         return false;
+    }
+
+    /// Whether every corner of \p t is a boundary node (none can move).
+    bool all_fixed(const Tet& t) const {
+        return t[0] < num_fixed_ && t[1] < num_fixed_ && t[2] < num_fixed_ && t[3] < num_fixed_;
     }
 
     void stamp(const Tet& t) {
@@ -316,6 +345,95 @@ private:
         return ch;
     }
 
+    /// A new point in a cavity round tetrahedron \p t: the cavity's tetrahedra replaced by the
+    /// point joined to each face of the cavity's boundary, the point placed where the worst of
+    /// them is best (a pattern search from the cavity's centroid). The cavity starts as \p t
+    /// and grows by the tetrahedron across the face whose new tetrahedron is worst, up to
+    /// kMaxCavity; made if it improves on the cavity's worst. This reaches what no flip and no
+    /// move of a node can: a sliver whose four corners are on the boundary, two of its faces on
+    /// it (a shallow valley of the layer top), with a point above the valley.
+    bool insert_point(Index t) {
+        std::vector<Index> cavity{t};
+        const Index np = static_cast<Index>(p_.size());
+        p_.emplace_back(Vec3::Zero());  // the candidate point, np; removed unless it is kept
+        std::vector<Tet> made;
+        for (;;) {
+            // The cavity's boundary: each face of a cavity tetrahedron with no cavity tetrahedron
+            // across; the new tetrahedron is that one with np in place of the face's opposite node.
+            made.clear();
+            std::vector<Index> across_of;
+            double replaced = 1.0;
+            Vec3 centre = Vec3::Zero();
+            double edge = 0.0;
+            for (const Index c : cavity) {
+                const Tet& ct = tets_[static_cast<std::size_t>(c)];
+                replaced = std::min(replaced, q_[static_cast<std::size_t>(c)]);
+                for (int i = 0; i < 4; ++i) {
+                    Index f[3];
+                    int k = 0;
+                    for (int j = 0; j < 4; ++j)
+                        if (j != i) f[k++] = ct[static_cast<std::size_t>(j)];
+                    const Index n = across(c, f[0], f[1], f[2]);
+                    if (n >= 0 && std::find(cavity.begin(), cavity.end(), n) != cavity.end()) continue;
+                    Tet nt = ct;
+                    nt[static_cast<std::size_t>(i)] = np;
+                    made.push_back(nt);
+                    across_of.push_back(n);
+                    for (const Index v : f) centre += p_[static_cast<std::size_t>(v)];
+                    edge += (p_[static_cast<std::size_t>(f[1])] - p_[static_cast<std::size_t>(f[0])]).norm();
+                }
+            }
+            centre /= 3.0 * static_cast<double>(made.size());
+            edge /= static_cast<double>(made.size());
+            auto worst_of = [&](const Vec3& x) {
+                p_[static_cast<std::size_t>(np)] = x;
+                double w = std::numeric_limits<double>::infinity();
+                for (const Tet& m : made) w = std::min(w, quality(m));
+                return w;
+            };
+            Vec3 at = centre;
+            double now = worst_of(at);
+            double step = 0.25 * edge;
+            for (int round = 0; round < 32 && step > 1e-3 * edge; ++round) {
+                bool moved = false;
+                for (int axis = 0; axis < 3 && !moved; ++axis)
+                    for (const double sign : {1.0, -1.0}) {
+                        Vec3 x = at;
+                        x[axis] += sign * step;
+                        const double q = worst_of(x);
+                        if (q > now) {
+                            now = q, at = x, moved = true;
+                            break;
+                        }
+                    }
+                if (!moved) step *= 0.5;
+            }
+            if (improves(now, replaced)) {
+                p_[static_cast<std::size_t>(np)] = at;
+                node_tets_.emplace_back();
+                changed_.push_back(0);
+                node_tried_.push_back(0);
+                for (const Index c : cavity) kill(c);
+                for (const Tet& m : made) add(m);
+                return true;
+            }
+            // Grow across the interior face whose new tetrahedron is worst (a face on the
+            // boundary stays one: the cavity grows round it).
+            p_[static_cast<std::size_t>(np)] = at;
+            Index grow = -1;
+            double grow_q = std::numeric_limits<double>::infinity();
+            for (std::size_t m = 0; m < made.size(); ++m) {
+                if (across_of[m] < 0) continue;
+                const double q = quality(made[m]);
+                if (q < grow_q) grow_q = q, grow = across_of[m];
+            }
+            if (grow < 0 || static_cast<int>(cavity.size()) >= kMaxCavity) break;
+            cavity.push_back(grow);
+        }
+        p_.pop_back();
+        return false;
+    }
+
     /// Move node \p v (one TetGen added, on no boundary face) to where the worst tetrahedron
     /// round it is best: a pattern search along the axes, the step halved when no move helps.
     bool move_node(Index v) {
@@ -418,6 +536,12 @@ TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImprovePa
         ++rep.passes;
         if (!im.pass(rep, progress)) break;
     }
+    if (im.insertion_pass(rep, progress))
+        for (int extra = 0; extra < 3; ++extra) {
+            check_cancelled(progress);
+            ++rep.passes;
+            if (!im.pass(rep, progress)) break;
+        }
     im.measure(rep.below_after, rep.min_after);
     fill.tets = im.release();
     rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

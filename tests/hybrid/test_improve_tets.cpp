@@ -1,4 +1,4 @@
-// improve_tets: the 2-3 flip, edge removal and the moving of interior nodes each on a
+// improve_tets: the 2-3 flip, edge removal, the moving of interior nodes and point insertion each on a
 // configuration that needs it, and on a TetGen fill the invariants whatever was changed: the same
 // region (volume), the same boundary triangles, conforming faces, every tetrahedron positive,
 // the boundary's nodes where they were, the worst never worse, the same result twice.
@@ -156,11 +156,26 @@ TEST(ImproveTets, MovesAnInteriorNodeAwayFromTheBoundary) {
     EXPECT_LT(worst(before), 0.1);
     EXPECT_GT(worst(f), 0.3);
     EXPECT_GT(f.points[8].z(), 0.3);
-    // The same cube with the point fixed (a boundary node): nothing can change.
-    TetFill g = before;
-    const TetImproveReport rg = improve_tets(g, 9);
-    EXPECT_EQ(rg.moved_nodes, 0);
-    EXPECT_EQ(g.points, before.points);
+    EXPECT_EQ(r.inserted_nodes, 0);  // only where every corner is fixed
+}
+
+TEST(ImproveTets, InsertsAPointWhereNoFlipOrMoveHelps) {
+    // The same cube with its point fixed (as if a boundary node): the flat tetrahedra at the
+    // bottom have four fixed corners, no flip helps them, and a point is inserted in a cavity
+    // round them; the nine nodes stay where they were.
+    const TetFill before = cube_star({0.5, 0.45, 0.03});
+    TetFill f = before;
+    const TetImproveReport r = improve_tets(f, 9);
+    EXPECT_EQ(r.moved_nodes, 0);
+    EXPECT_GE(r.inserted_nodes, 1);
+    ASSERT_EQ(f.points.size(), before.points.size() + static_cast<std::size_t>(r.inserted_nodes));
+    for (std::size_t i = 0; i < before.points.size(); ++i) EXPECT_EQ(f.points[i], before.points[i]);
+    for (const Tet& t : f.tets) EXPECT_GT(volume(f, t), 0.0);
+    for (const auto& [k, n] : face_counts(f)) EXPECT_LE(n, 2);
+    EXPECT_EQ(boundary_faces(f), boundary_faces(before));
+    EXPECT_NEAR(total_volume(f), 1.0, 1e-12);
+    EXPECT_LT(worst(before), 0.1);
+    EXPECT_GT(worst(f), 2.0 * worst(before));
 }
 
 TEST(ImproveTets, KeepsTheRegionOfATetGenFillAndRaisesItsWorst) {

@@ -10,16 +10,21 @@
 ///     the ring polygon re-triangulated, of all its triangulations the one whose worst
 ///     tetrahedron is best, found by dynamic programming: Shewchuk's edge removal),
 ///   - moving one of its corners that TetGen added (never a boundary node) to where the worst
-///     tetrahedron round it is best (a pattern search).
+///     tetrahedron round it is best (a pattern search);
+///   - when the passes of those have done what they can, for a tetrahedron still below whose
+///     four corners are all boundary nodes: a new point in a cavity round it (the cavity's
+///     tetrahedra replaced by the point joined to the cavity's faces, the point placed where
+///     their worst is best, the cavity grown across the face of the worst, up to 12
+///     tetrahedra), then up to three more passes.
 /// A change is made only if the worst of the tetrahedra it creates is better than the worst of
 /// those it replaces, so the mesh's worst value never falls and the passes end. The boundary
 /// (its nodes and faces) is never changed: the result fills the same region with the same
 /// boundary triangles. New tetrahedra are checked by orientation: all positive with the same
 /// boundary as the ones they replace means they tile the same region once.
 ///
-/// What it cannot change: a tetrahedron all four of whose corners are on the boundary and two
-/// or three of whose faces are (a sliver in a shallow valley of the layer top); only a better
-/// front lifts those.
+/// What it cannot change: a tetrahedron on a boundary face so poor that no apex makes it good
+/// (a needle of the layer top); and it sees only the fill, not the layers' own tetrahedra
+/// (those closing a layer step). Only a better front lifts those.
 
 #include <strata/core/progress.h>
 #include <strata/hybrid/tetgen_fill.h>
@@ -38,6 +43,7 @@ struct TetImproveReport {
     Index flips = 0;                           ///< 2-3 flips made
     Index edge_removals = 0;                   ///< edges removed (a ring of n tetrahedra becomes 2n - 4)
     Index moved_nodes = 0;                     ///< moves of interior nodes (a node may move in several passes)
+    Index inserted_nodes = 0;                  ///< points inserted into a cavity round a tetrahedron
     Index below_before = 0, below_after = 0;   ///< tetrahedra below TetImproveParams::below
     double min_before = 1.0, min_after = 1.0;  ///< the smallest scaled Jacobian
     int passes = 0;
@@ -48,10 +54,10 @@ struct TetImproveReport {
 /// pipeline checks its parameters first).
 void check_tet_improve_params(const TetImproveParams& params);
 
-/// Improve \p fill in place: its tetrahedra change, and its points from \p num_fixed on (the
-/// points TetGen added) may move; the first \p num_fixed points (the boundary's) never do, nor
-/// does any point on a face of only one tetrahedron. Deterministic (one thread, a fixed order).
-/// Throws InputError as check_tet_improve_params does, and for \p num_fixed outside the points.
+/// Improve \p fill in place: its tetrahedra change, its points from \p num_fixed on (the
+/// points TetGen added) may move and points may be added after them; the first \p num_fixed
+/// points (the boundary's) never move, nor does any point on a face of only one tetrahedron. Deterministic (one thread,
+/// a fixed order). Throws InputError as check_tet_improve_params does, and for \p num_fixed outside the points.
 TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImproveParams& params = {},
                               const Progress* progress = nullptr);
 
