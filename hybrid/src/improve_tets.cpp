@@ -92,13 +92,9 @@ public:
 
     /// One pass over the tetrahedra below the bound, worst first; true if anything changed.
     bool pass(TetImproveReport& rep, const Progress* progress) {
-        std::vector<std::pair<double, Index>> bad;
-        for (std::size_t t = 0; t < tets_.size(); ++t)
-            if (alive_[t] && q_[t] < below_) bad.emplace_back(q_[t], static_cast<Index>(t));
-        std::sort(bad.begin(), bad.end());
         bool changed = false;
         std::size_t done = 0;
-        for (const auto& [q0, t] : bad) {
+        for (const Index t : worst_first(false)) {
             if ((++done & 1023u) == 0) check_cancelled(progress);
             if (!alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_) continue;
             if (!changed_since(tets_[static_cast<std::size_t>(t)], tried_[static_cast<std::size_t>(t)])) continue;
@@ -119,17 +115,12 @@ public:
 
     /// Once flips and moves have done what they can: a point inserted round each tetrahedron
     /// still below the bound whose four corners are boundary nodes (where nothing else
-    /// reaches), worst first; true if any was. Measured against inserting wherever flips and
-    /// moves failed, and during the passes: the same worst tetrahedra (notched box, M6) or worse
-    /// (mixed M6: 1.7e-4 instead of 4.6e-4), many more below the bound, up to 4 times the time.
+    /// reaches), worst first; true if any was. Inserting wherever flips and moves failed, or
+    /// during the passes, did worse (docs/ALGORITHM.md, "Tetrahedra improved after TetGen").
     bool insertion_pass(TetImproveReport& rep, const Progress* progress) {
-        std::vector<std::pair<double, Index>> bad;
-        for (std::size_t t = 0; t < tets_.size(); ++t)
-            if (alive_[t] && q_[t] < below_ && all_fixed(tets_[t])) bad.emplace_back(q_[t], static_cast<Index>(t));
-        std::sort(bad.begin(), bad.end());
         bool changed = false;
         std::size_t done = 0;
-        for (const auto& [q0, t] : bad) {
+        for (const Index t : worst_first(true)) {
             if ((++done & 255u) == 0) check_cancelled(progress);
             if (!alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_) continue;
             if (insert_point(t)) {
@@ -141,6 +132,19 @@ public:
     }
 
 private:
+    /// The tetrahedra below the bound (\p fixed_only: whose corners are all boundary nodes),
+    /// worst first, ties by index.
+    std::vector<Index> worst_first(bool fixed_only) const {
+        std::vector<std::pair<double, Index>> bad;
+        for (std::size_t t = 0; t < tets_.size(); ++t)
+            if (alive_[t] && q_[t] < below_ && (!fixed_only || all_fixed(tets_[t])))
+                bad.emplace_back(q_[t], static_cast<Index>(t));
+        std::sort(bad.begin(), bad.end());
+        std::vector<Index> order(bad.size());
+        for (std::size_t i = 0; i < bad.size(); ++i) order[i] = bad[i].second;
+        return order;
+    }
+
     /// Whether anything a change at \p t depends on changed after \p when: a tetrahedron made
     /// or removed at one of its nodes, or a node moved in a tetrahedron through one of them
     /// (both stamp the nodes concerned). The ring of an edge, the tetrahedron across a face and
