@@ -702,12 +702,11 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
         ti.flips + ti.edge_removals + ti.moved_nodes + ti.inserted_nodes > 0)
         std::printf(
             "tetrahedra improved: %lld flips, %lld edges removed, %lld interior nodes moved, %lld inserted; below a "
-            "scaled "
-            "Jacobian of %g: %lld -> %lld, the worst %.3g -> %.3g (%.2f s)\n",
+            "scaled Jacobian of %g: %lld -> %lld, the worst %.3g -> %.3g (%.2f s%s)\n",
             static_cast<long long>(ti.flips), static_cast<long long>(ti.edge_removals),
             static_cast<long long>(ti.moved_nodes), static_cast<long long>(ti.inserted_nodes), ti.below,
             static_cast<long long>(ti.below_before), static_cast<long long>(ti.below_after), ti.min_before,
-            ti.min_after, ti.seconds);
+            ti.min_after, ti.seconds, ti.budget_reached ? "; stopped at its work budget" : "");
     if (!hr.remeshed_patches.empty()) {
         std::string names;
         for (strata::Index p : hr.remeshed_patches)

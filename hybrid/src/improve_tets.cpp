@@ -19,7 +19,8 @@ using Tet = std::array<Index, 4>;
 
 constexpr int kMaxRing = 7;  // edge removal: rings of 3 to 7 tetrahedra (Catalan(5) = 42 triangulations)
 constexpr double kNone = -std::numeric_limits<double>::infinity();
-constexpr int kMaxCavity = 12;  // point insertion: tetrahedra replaced at most
+constexpr int kMaxCavity = 12;
+// point insertion: tetrahedra replaced at most
 
 /// A change is worth making when the worst tetrahedron it creates beats the worst it replaces
 /// by a thousandth (so the passes end) and is valid.
@@ -96,6 +97,7 @@ public:
         std::size_t done = 0;
         for (const Index t : worst_first(false)) {
             if ((++done & 1023u) == 0) check_cancelled(progress);
+            if (over_budget()) break;
             if (!alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_) continue;
             if (!changed_since(tets_[static_cast<std::size_t>(t)], tried_[static_cast<std::size_t>(t)])) continue;
             if (flip_or_remove(t, rep)) {
@@ -122,6 +124,7 @@ public:
         std::size_t done = 0;
         for (const Index t : worst_first(true)) {
             if ((++done & 255u) == 0) check_cancelled(progress);
+            if (over_budget()) break;
             if (!alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_) continue;
             if (insert_point(t)) {
                 ++rep.inserted_nodes;
@@ -130,6 +133,10 @@ public:
         }
         return changed;
     }
+
+    /// The work allowed, in tetrahedron qualities computed.
+    void set_budget(std::uint64_t b) { budget_ = b; }
+    bool over_budget() const { return evaluations_ > budget_; }
 
 private:
     /// The tetrahedra below the bound (\p fixed_only: whose corners are all boundary nodes),
@@ -170,6 +177,7 @@ private:
     /// the largest product of a corner's three edge lengths (tet_min_scaled_jacobian's value
     /// to rounding, for a sixth of the work).
     double quality(const Tet& t) const {
+        ++evaluations_;
         const Vec3& a = p_[static_cast<std::size_t>(t[0])];
         const Vec3& b = p_[static_cast<std::size_t>(t[1])];
         const Vec3& c = p_[static_cast<std::size_t>(t[2])];
@@ -507,6 +515,8 @@ private:
     std::vector<std::vector<Index>> node_tets_;
     // Change stamps: a node's last change, a tetrahedron's and a node's last fruitless attempt.
     std::uint64_t clock_ = 1;
+    mutable std::uint64_t evaluations_ = 0;  // tetrahedron qualities computed: the work done
+    std::uint64_t budget_ = 0;
     std::vector<std::uint64_t> changed_, tried_, node_tried_;
     Index num_fixed_;
     double below_;
@@ -518,6 +528,12 @@ void check_tet_improve_params(const TetImproveParams& params) {
     if (!(params.below >= 0.0 && params.below < 1.0))
         throw InputError("improve_tets: TetImproveParams::below = " + format_number(params.below) +
                          ": need a scaled-Jacobian bound in [0, 1) (0: off)");
+    if (!(params.evaluations_per_tet > 0.0 && params.evaluations_per_tet < 1e9 && params.evaluations_floor >= 0.0 &&
+          params.evaluations_floor < 1e15))
+        throw InputError(
+            "improve_tets: TetImproveParams::evaluations_per_tet = " + format_number(params.evaluations_per_tet) +
+            ", evaluations_floor = " + format_number(params.evaluations_floor) +
+            ": need a work budget above 0 per tetrahedron and a floor of 0 or more");
     if (params.max_passes < 1)
         throw InputError("improve_tets: TetImproveParams::max_passes = " + std::to_string(params.max_passes) +
                          ": need at least 1");
@@ -533,7 +549,10 @@ TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImprovePa
     rep.below = params.below;
     if (params.below == 0.0 || fill.tets.empty()) return rep;
     const auto start = std::chrono::steady_clock::now();
-    Improver im(fill, num_fixed, params.below);
+    const auto num_tets = static_cast<std::uint64_t>(fill.tets.size());
+    Improver im(fill, num_fixed, params.below);  // takes fill.tets
+    im.set_budget(static_cast<std::uint64_t>(params.evaluations_floor +
+                                             params.evaluations_per_tet * static_cast<double>(num_tets)));
     im.measure(rep.below_before, rep.min_before);
     while (rep.passes < params.max_passes) {
         check_cancelled(progress);
@@ -547,6 +566,7 @@ TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImprovePa
             if (!im.pass(rep, progress)) break;
         }
     im.measure(rep.below_after, rep.min_after);
+    rep.budget_reached = im.over_budget();
     fill.tets = im.release();
     rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return rep;

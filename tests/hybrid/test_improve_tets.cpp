@@ -196,10 +196,19 @@ TEST(ImproveTets, KeepsTheRegionOfATetGenFillAndRaisesItsWorst) {
     EXPECT_LT(r.below_after, r.below_before / 10);
     EXPECT_GT(r.min_after, 2.0 * r.min_before);
     EXPECT_NEAR(r.min_after, worst(f), 1e-12);
+    EXPECT_FALSE(r.budget_reached);
     TetFill again = before;
     improve_tets(again, b.num_points());
     EXPECT_EQ(again.tets, f.tets);
     EXPECT_EQ(again.points, f.points);
+    // With work for 3 qualities per tetrahedron: it stops early, what it did is sound.
+    TetFill brief = before;
+    const TetImproveReport rb =
+        improve_tets(brief, b.num_points(), {.evaluations_per_tet = 3.0, .evaluations_floor = 0.0});
+    EXPECT_TRUE(rb.budget_reached);
+    expect_same_region(before, brief, b.num_points());
+    EXPECT_LT(rb.edge_removals + rb.flips + rb.moved_nodes, r.edge_removals + r.flips + r.moved_nodes);
+    EXPECT_GT(rb.below_after, r.below_after);
 }
 
 TEST(ImproveTets, OffLeavesTheFillAsItIs) {
@@ -216,6 +225,7 @@ TEST(ImproveTets, RefusesBadParameters) {
     test::expect_error<InputError>([&] { improve_tets(f, 5, {.below = -0.1}); }, {"below"});
     test::expect_error<InputError>([&] { improve_tets(f, 5, {.below = std::nan("")}); }, {"below"});
     test::expect_error<InputError>([&] { improve_tets(f, 5, {.below = 0.2, .max_passes = 0}); }, {"max_passes"});
+    test::expect_error<InputError>([&] { improve_tets(f, 5, {.evaluations_per_tet = 0.0}); }, {"evaluations_per_tet"});
     test::expect_error<InputError>([&] { improve_tets(f, 6); }, {"num_fixed = 6"});
 }
 

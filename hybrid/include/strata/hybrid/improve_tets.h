@@ -35,6 +35,15 @@ struct TetImproveParams {
     /// Work on tetrahedra whose scaled Jacobian is below this (0: off). Tetrahedra above it
     /// change only as neighbours of one below.
     double below = 0.2;
+    /// The work allowed, in tetrahedron qualities computed: evaluations_floor plus
+    /// evaluations_per_tet per tetrahedron of the fill; the passes stop when it is spent
+    /// (TetImproveReport::budget_reached). The README's cases stay within it (the M6 of the main
+    /// job needs 57 per tetrahedron, the mixed M6 98, a small fill such as the notched box's
+    /// over 200 but a few million in all); the half M6 of hexahedra on 1:60 quads, 68,000 of
+    /// its 434,000 tetrahedra below 0.2, took 1,600 per tetrahedron (35 s) and ended with more
+    /// below the bound than it started with.
+    double evaluations_per_tet = 200.0;
+    double evaluations_floor = 5e7;
     int max_passes = 10;  ///< passes over the tetrahedra below the bound; each pass stops early when nothing changed
 };
 
@@ -47,7 +56,8 @@ struct TetImproveReport {
     Index below_before = 0, below_after = 0;   ///< tetrahedra below TetImproveParams::below
     double min_before = 1.0, min_after = 1.0;  ///< the smallest scaled Jacobian
     int passes = 0;
-    double seconds = 0.0;  ///< wall-clock time taken
+    bool budget_reached = false;  ///< stopped at TetImproveParams::evaluations_per_tet
+    double seconds = 0.0;         ///< wall-clock time taken
 };
 
 /// Throws InputError for a bound outside [0, 1) or fewer than one pass (before any work: the
