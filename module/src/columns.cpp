@@ -384,6 +384,10 @@ double column_cell_jacobian(const Columns& col, Index f, const std::vector<Vec3>
     return closing_quality(type, true, p, unused);
 }
 
+double cell_bar(double min_quality, double best) {
+    return best >= min_quality ? std::max(min_quality * best, 0.5 * min_quality) : min_quality * best;
+}
+
 Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vector<Vec3>& next) {
     const Index nw = static_cast<Index>(col.levels.size());
     std::vector<char> go = col.active;
@@ -415,10 +419,11 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
             for (int c = 0; c < n; ++c)
                 finite &= next[static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)])].allFinite();
             // Relative to the right cell on the same face: a needle triangle's cells are as good
-            // as the face allows, and only what the marching does to them stops a column.
+            // as the face allows, and only what the marching does to them stops a column; a
+            // face that allows a fair cell keeps its cells at half of min_quality (cell_bar).
             std::array<Vec3, 8> p;  // the cell's corners, bottom then top, in the face's order
             const double q = finite ? column_cell_jacobian(col, f, next, &p) : std::nan("");
-            poor[u] = q >= rules.min_quality * col.best[u] ? 0 : 1;
+            poor[u] = q >= cell_bar(rules.min_quality, col.best[u]) ? 0 : 1;
             if (!poor[u]) {
                 std::array<Vec3, 4> bottom, top;
                 for (int c = 0; c < n; ++c) {

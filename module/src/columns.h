@@ -69,10 +69,18 @@ struct StopRules {
     int threads = 0;      ///< threads of the quality test (0: OpenMP's default); the result is the same for any count
 };
 
+/// The scaled Jacobian below which a cell over a face whose best is \p best (face_corner_quality)
+/// stops its columns: \p min_quality times the best, and at least half of min_quality on a
+/// face whose best reaches min_quality. The relative bar lets a needle face (best 1e-3), or a
+/// sharp edge without a fan, be judged on what the marching does to it; the floor keeps a fair
+/// face's cells from shearing to nearly flat (a concave corner's prisms, best about 0.45, fell
+/// to 0.09 under the relative bar alone; ALGORITHM.md, "Local stopping").
+double cell_bar(double min_quality, double best);
+
 /// Decide which columns go on from level \p k to k + 1, \p next holding the marched level k + 1
 /// of every node (ghosts too). A column stops at its max_levels, where its position is not
 /// finite, where a cell of its own over a face whose columns all go on would be below
-/// min_quality times face_corner_quality (the best a cell on that face can be) or twist more
+/// cell_bar(min_quality, face_corner_quality) (the best a cell on that face can be) or twist more
 /// than max_twist_deg (cell_twist_deg), or it would turn more than max_turn_deg; then, until
 /// nothing changes, where the
 /// cell closing a step would be unusable (a triangle with one column going on, a quad with one or

@@ -5,6 +5,7 @@
 // (build_hybrid_mesh validates before it returns, so asserting its report is ok would prove
 // nothing; these checks are independent of it.)
 
+#include <strata/core/cell_quality.h>
 #include <strata/geometry/prepare.h>
 #include <strata/hybrid/hybrid_mesh.h>
 
@@ -200,6 +201,30 @@ Index short_by(const HybridReport& rep, Shortfall reason) {
     Index n = 0;
     for (const PatchCoverage& c : rep.coverage.patches) n += c.short_nodes(reason);
     return n;
+}
+
+TEST(HybridCases, NotchedBoxKeepsItsLayerCellsAboveHalfTheQualityBound) {
+    // The notch's concave corner: one direction there cannot stand square on both walls, so its
+    // faces' best cells are about 0.45, and 0.2 of that let the prisms over it shear to 0.091 by
+    // layer 29. Below half of --min-quality they stop (at the top of the layers, where the
+    // step they leave is a fair one), and most of the wall keeps every layer.
+    PrepareParams pp;
+    for (const char* n : {"surface_1", "surface_2", "surface_3", "surface_4", "surface_6"})
+        pp.patch_kinds.emplace_back(n, PatchKind::Farfield);
+    const SurfaceMesh s = prepare_surface(example_data("bl3d_4_box_notch_concave_corner.brep"), pp);
+    HybridReport rep;
+    const VolumeMesh m = build_hybrid_mesh(s, params(30, 1e-4), nullptr, &rep);
+    double worst = 1.0;
+    for (const auto& c : m.prisms) worst = std::min(worst, prism_min_scaled_jacobian(m.points, c));
+    EXPECT_GE(worst, 0.1);
+    Index nodes = 0, all = 0;
+    for (const PatchCoverage& c : rep.coverage.patches) {
+        nodes += c.nodes;
+        all += c.all_layers;
+    }
+    EXPECT_GE(static_cast<double>(all) / static_cast<double>(nodes), 0.85);
+    EXPECT_GT(short_by(rep, Shortfall::Quality), 0);
+    expect_valid_case("notched_box", s, m, rep);
 }
 
 TEST(HybridCases, TwoSpheresWithAGapOfATenthOfTheLayers) {

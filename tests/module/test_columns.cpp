@@ -141,6 +141,54 @@ TEST(Columns, ATwistedCellStopsItsColumns) {
     }
 }
 
+TEST(Columns, TheBarIsRelativeToTheFaceAndRaisedToHalfTheBoundWhereTheFaceAllowsIt) {
+    // A fair face (best 0.6): 0.2 of it; one whose best is 0.4 (under 0.5): raised to 0.1; a
+    // poor face (best 0.1, under min_quality: a needle): 0.2 of it.
+    EXPECT_DOUBLE_EQ(cell_bar(0.2, 0.6), 0.2 * 0.6);
+    EXPECT_DOUBLE_EQ(cell_bar(0.2, 0.4), 0.1);
+    EXPECT_DOUBLE_EQ(cell_bar(0.2, 0.2), 0.1);
+    EXPECT_DOUBLE_EQ(cell_bar(0.2, 0.1), 0.2 * 0.1);
+    EXPECT_DOUBLE_EQ(cell_bar(0.0, 0.5), 0.0);
+}
+
+/// One parallelogram quad with corner angle \p deg (its best cell: sin deg) and its next level
+/// moved by (\p shear, 0, \p height): a hexahedron whose corners are all sin(deg) cos(tilt).
+/// Returns whether its columns stopped (for quality), after checking the cell's quality is
+/// \p q_min to \p q_max.
+bool sheared_cell_stops(double deg, double shear, double height, double q_min, double q_max) {
+    SurfaceMesh wall = test::quad_grid(1, 1, 1.0);
+    const double a = deg * std::numbers::pi / 180.0;
+    for (Vec3& x : wall.points) x = Vec3(x.x() + x.y() * std::cos(a), x.y() * std::sin(a), 0.0);
+    std::vector<Vec3> points = wall.points;
+    Columns col(wall, 3, points);
+    EXPECT_NEAR(face_corner_quality(col, 0), std::sin(a), 1e-12);
+    std::vector<Vec3> next(wall.points.size());
+    for (std::size_t i = 0; i < next.size(); ++i) next[i] = wall.points[i] + Vec3(shear, 0.0, height);
+    const double q = column_cell_jacobian(col, 0, next);
+    EXPECT_GT(q, q_min);
+    EXPECT_LT(q, q_max);
+    StopRules rules;  // min_quality 0.2
+    const Index stopped = stop_columns(col, rules, 0, next);
+    if (stopped > 0) {
+        for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(col.reason[i], Shortfall::Quality) << i;
+    }
+    return stopped > 0;
+}
+
+TEST(Columns, ACellOnAFairFaceStopsBelowHalfTheBoundAndOnAPoorFaceAtAFifthOfItsBest) {
+    // Best 0.41 (24 degrees): a cell of 0.09 is above 0.2 of the best (0.081), which let the
+    // notched box's corner prisms fall to 0.091; below 0.1 it now stops. One of 0.3 goes on.
+    const double fair = std::sin(24.0 * std::numbers::pi / 180.0);
+    const double tilt = std::sqrt(std::pow(fair / 0.09, 2) - 1.0);
+    EXPECT_TRUE(sheared_cell_stops(24.0, 0.5 * tilt, 0.5, 0.085, 0.095));
+    EXPECT_TRUE(sheared_cell_stops(24.0, 0.01 * tilt, 0.01, 0.085, 0.095));
+    EXPECT_FALSE(sheared_cell_stops(24.0, 0.5, 0.5, 0.25, 0.35));
+    // Best 0.14 (8 degrees, a poor face): a cell at 0.35 of it goes on, one at 0.15 stops.
+    const double poor = std::sin(8.0 * std::numbers::pi / 180.0);
+    EXPECT_FALSE(sheared_cell_stops(8.0, 0.5 * std::sqrt(std::pow(1.0 / 0.35, 2) - 1.0), 0.5, 0.3 * poor, 0.4 * poor));
+    EXPECT_TRUE(sheared_cell_stops(8.0, 0.5 * std::sqrt(std::pow(1.0 / 0.15, 2) - 1.0), 0.5, 0.1 * poor, 0.2 * poor));
+}
+
 TEST(Columns, FullColumnsKeepTheUniformNumbering) {
     const SurfaceMesh wall = plate(true);
     LayerParams p = limited_centre(wall);

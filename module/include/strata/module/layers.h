@@ -57,7 +57,8 @@ struct LayerParams {
     /// Stop mode neighbouring columns then differ by at most one layer.
     ProximityMode proximity = ProximityMode::Stop;
     /// Local stopping: a column stops (its node gets no further level) when a cell it would
-    /// make has a scaled Jacobian below this, or cannot be computed. Where columns stop
+    /// make has a scaled Jacobian below this times the best its wall face allows, or below half
+    /// of this where the face allows this (columns.h, cell_bar), or cannot be computed. Where columns stop
     /// unevenly, the cells over a face close the step (ALGORITHM.md, "Local stopping"). 0 turns
     /// stopping off: every column marches every layer and a fold is an error.
     double min_quality = 0.2;
