@@ -299,6 +299,39 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
     }
 }
 
+/// Each wall surface of \p out's boundary curves: their lengths in the current mesh and the
+/// surfaces on their other side (refine_walls' estimate of what a capped neighbour's curves do).
+void wall_boundaries(WallAspect& out) {
+    std::map<int, double> length;  // curve → its mesh length
+    for (const auto& [s, unused] : out.area) {
+        std::vector<int> up, down;
+        gmsh::model::getAdjacencies(2, s, up, down);
+        for (int c : down) {
+            c = std::abs(c);
+            auto [it, fresh] = length.emplace(c, 0.0);
+            if (fresh) {
+                std::vector<std::size_t> tags, line_tags, line_nodes;
+                std::vector<double> xyz, uvw;
+                gmsh::model::mesh::getNodes(tags, xyz, uvw, 1, c, true, false);
+                std::map<std::size_t, Vec3> x;
+                for (std::size_t i = 0; i < tags.size(); ++i)
+                    x[tags[i]] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+                gmsh::model::mesh::getElementsByType(1, line_tags, line_nodes, c);
+                for (std::size_t l = 0; l + 1 < line_nodes.size(); l += 2) {
+                    const auto p = x.find(line_nodes[l]), q = x.find(line_nodes[l + 1]);
+                    if (p != x.end() && q != x.end()) it->second += (p->second - q->second).norm();
+                }
+            }
+            std::vector<int> sides, ends;
+            gmsh::model::getAdjacencies(1, c, sides, ends);
+            std::vector<int> others;
+            for (int o : sides)
+                if (o != s) others.push_back(o);
+            out.boundary[s].push_back({c, it->second, std::move(others)});
+        }
+    }
+}
+
 }  // namespace
 
 WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_surface, const std::set<int>& walls,
@@ -366,6 +399,7 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
         out.worst = std::max(out.worst, w);
         if (w > limit) out.surfaces.push_back(s);
     }
+    wall_boundaries(out);
     return out;
 }
 
@@ -409,6 +443,30 @@ void refine_walls(const WallLimits& params, WallAspect now, WallSizeReport& r,
                 const double current = std::sqrt(a / (0.4330127 * n));
                 estimate += faces_at_size(a, std::sqrt(need * std::max(current, need))) - n;
             }
+        }
+        // A surface left as it is takes the sizes of its boundary curves into its interior
+        // (Gmsh's Mesh.MeshSizeExtendFromBoundary): those on a capped surface's boundary are
+        // at its cap. Counted as the share of its boundary so capped, at that cap: a surface
+        // whose whole boundary is capped (a farfield sphere between two capped planes) is
+        // meshed at the cap throughout.
+        for (const auto& [s, a] : now.area) {
+            if (caps.surface.count(s)) continue;
+            const auto b = now.boundary.find(s);
+            if (b == now.boundary.end()) continue;
+            double total = 0.0, capped = 0.0, cap = std::numeric_limits<double>::infinity();
+            for (const WallAspect::Side& side : b->second) {
+                total += side.length;
+                for (int o : side.others) {
+                    const auto it = caps.surface.find(o);
+                    if (it == caps.surface.end()) continue;
+                    capped += side.length;
+                    cap = std::min(cap, it->second);
+                    break;
+                }
+            }
+            if (!(total > 0.0) || !(capped > 0.0)) continue;
+            const double n = static_cast<double>(now.faces.at(s));
+            estimate += std::max(0.0, capped / total * faces_at_size(a, cap) - n);
         }
         r.faces_estimate = estimate;
         // The size to name: the surfaces' (what --size can give), else the finest curve's.

@@ -72,6 +72,14 @@ struct WallAspect {
     std::map<int, double> area;                ///< wall surface → its area
     std::map<int, Index> faces;                ///< wall surface → its faces
     std::map<int, std::vector<int>> curve_up;  ///< curve between two wall surfaces → those surfaces
+    /// A boundary curve of a wall surface: its tag, its length in the mesh, the surfaces on its
+    /// other side.
+    struct Side {
+        int curve = 0;
+        double length = 0.0;
+        std::vector<int> others;
+    };
+    std::map<int, std::vector<Side>> boundary;  ///< wall surface → its boundary curves
 };
 
 /// Measure \p mesh, the current Gmsh model's mesh (each face's Gmsh surface in \p face_surface,
