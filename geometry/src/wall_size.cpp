@@ -327,7 +327,7 @@ void wall_boundaries(WallAspect& out) {
             std::vector<int> others;
             for (int o : sides)
                 if (o != s) others.push_back(o);
-            out.boundary[s].push_back({c, it->second, std::move(others)});
+            out.boundary[s].push_back({it->second, std::move(others)});
         }
     }
 }
@@ -399,7 +399,7 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
         out.worst = std::max(out.worst, w);
         if (w > limit) out.surfaces.push_back(s);
     }
-    wall_boundaries(out);
+    if (!out.surfaces.empty() || !out.curve_need.empty()) wall_boundaries(out);  // only refine_walls' rounds use it
     return out;
 }
 

@@ -72,10 +72,9 @@ struct WallAspect {
     std::map<int, double> area;                ///< wall surface → its area
     std::map<int, Index> faces;                ///< wall surface → its faces
     std::map<int, std::vector<int>> curve_up;  ///< curve between two wall surfaces → those surfaces
-    /// A boundary curve of a wall surface: its tag, its length in the mesh, the surfaces on its
-    /// other side.
+    /// A boundary curve of a wall surface: its length in the mesh, the surfaces on its other
+    /// side. Filled only where a surface or curve is over the limit (refine_walls' estimate).
     struct Side {
-        int curve = 0;
         double length = 0.0;
         std::vector<int> others;
     };

@@ -19,8 +19,7 @@ using Tet = std::array<Index, 4>;
 
 constexpr int kMaxRing = 7;  // edge removal: rings of 3 to 7 tetrahedra (Catalan(5) = 42 triangulations)
 constexpr double kNone = -std::numeric_limits<double>::infinity();
-constexpr int kMaxCavity = 12;
-// point insertion: tetrahedra replaced at most
+constexpr int kMaxCavity = 12;  // point insertion: tetrahedra replaced at most
 
 /// A change is worth making when the worst tetrahedron it creates beats the worst it replaces
 /// by a thousandth (so the passes end) and is valid.

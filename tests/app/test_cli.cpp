@@ -456,8 +456,8 @@ TEST(Cli, TetGenStoppingOnAnInternalCheckLowersTheColumnsThere) {
     // a front changes with how the columns stop: it was 1e-3 at --front-slope 0.25 before
     // cells on fair faces stopped at half of --min-quality.)
     test::ScratchDir dir("cli_tetgen_retry");
-    const CliResult r = strata_cli(dir, "mesh '" + test_data("cli_wingbody_tangent.stl") +
-                                            "' --layers 10 --first-height 2e-3 -o m.msh");
+    const CliResult r = strata_cli(
+        dir, "mesh '" + test_data("cli_wingbody_tangent.stl") + "' --layers 10 --first-height 2e-3 -o m.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("short edges: 6 collapsed"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("of them TetGen failed recovering a layer-top face"), std::string::npos) << r.out;
@@ -980,8 +980,48 @@ bool catches(pid_t pid, int sig) {
     return false;
 }
 
-bool catches_sigint(pid_t pid) {
-    return catches(pid, SIGINT);
+/// What run_and_signal saw: the program's wait status and its stderr, or that it ended before
+/// it caught the signal (or could not be started).
+struct SignalledRun {
+    bool ended_early = false;
+    int status = 0;
+    std::string err;
+};
+
+/// The strata program run with \p args in \p dir (stdout to /dev/null, stderr to a file read
+/// and removed afterwards), sent \p sig \p delay_ms after it installs its handler for it.
+SignalledRun run_and_signal(const test::ScratchDir& dir, const std::vector<std::string>& args, int sig, int delay_ms) {
+    const std::string err = dir.file("stderr.txt");
+    std::vector<std::string> words{STRATA_CLI};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    SignalledRun r;
+    const pid_t pid = fork();
+    if (pid < 0) return {true, 0, "fork failed"};
+    if (pid == 0) {
+        if (chdir(dir.path().c_str()) != 0 || !std::freopen("/dev/null", "w", stdout) ||
+            !std::freopen(err.c_str(), "w", stderr))
+            _exit(127);
+        execv(STRATA_CLI, argv.data());
+        _exit(127);
+    }
+    for (int waited = 0; !catches(pid, sig) && waited < 30000; waited += 5) {
+        if (waitpid(pid, &r.status, WNOHANG) == pid) {
+            r.ended_early = true;
+            break;
+        }
+        usleep(5000);
+    }
+    if (!r.ended_early) {
+        usleep(static_cast<useconds_t>(delay_ms) * 1000);
+        kill(pid, sig);
+        waitpid(pid, &r.status, 0);
+    }
+    r.err = slurp(err);
+    fs::remove(err);
+    return r;
 }
 
 TEST(Cli, ACrashEndsWithOneLineNamingTheStage) {
@@ -991,27 +1031,13 @@ TEST(Cli, ACrashEndsWithOneLineNamingTheStage) {
     // written, instead of the shell's bare "Segmentation fault".
     test::ScratchDir dir("cli_crash");
     { std::ofstream(dir.file("ball.geo")) << "SetFactory(\"OpenCASCADE\");\nSphere(1) = {0, 0, 0, 1};\n"; }
-    const std::string err = dir.file("stderr.txt");
-    const pid_t pid = fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-        if (chdir(dir.path().c_str()) != 0 || !std::freopen("/dev/null", "w", stdout) ||
-            !std::freopen(err.c_str(), "w", stderr))
-            _exit(127);
-        execl(STRATA_CLI, STRATA_CLI, "mesh", "ball.geo", "-o", "ball.msh", "--size", "0.002", "--layers", "5",
-              "--first-height", "1e-3", static_cast<char*>(nullptr));
-        _exit(127);
-    }
-    int status = 0;
-    for (int waited = 0; !catches(pid, SIGSEGV) && waited < 30000; waited += 5) {
-        if (waitpid(pid, &status, WNOHANG) == pid) FAIL() << "the program ended before the signal";
-        usleep(5000);
-    }
-    usleep(800 * 1000);  // into Gmsh's meshing, which takes seconds at this size
-    kill(pid, SIGSEGV);
-    ASSERT_EQ(waitpid(pid, &status, 0), pid);
-    const std::string message = slurp(err);
-    fs::remove(err);
+    // Into Gmsh's meshing, which takes seconds at this size.
+    const SignalledRun run = run_and_signal(
+        dir, {"mesh", "ball.geo", "-o", "ball.msh", "--size", "0.002", "--layers", "5", "--first-height", "1e-3"},
+        SIGSEGV, 800);
+    ASSERT_FALSE(run.ended_early) << "the program ended before the signal: " << run.err;
+    const int status = run.status;
+    const std::string& message = run.err;
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << message;
     EXPECT_EQ(lines(message), 1u) << message;
     EXPECT_EQ(message.rfind("strata: error: the program crashed (SIGSEGV) in its surface stage on ball.geo (Gmsh "
@@ -1052,28 +1078,14 @@ TEST(Cli, CtrlCCancelsAndLeavesNoFile) {
     // whole process group, two SIGINTs, and the second ends the program by design.)
     for (const int delay_ms : {0, 400, 1500}) {
         test::ScratchDir dir("cli_ctrl_c_" + std::to_string(delay_ms));
-        const std::string err = dir.file("stderr.txt");
-        const std::string input = example_data("onera_m6_pyhyp_quads.msh");
-        const pid_t pid = fork();
-        ASSERT_GE(pid, 0);
-        if (pid == 0) {
-            if (chdir(dir.path().c_str()) != 0 || !std::freopen("/dev/null", "w", stdout) ||
-                !std::freopen(err.c_str(), "w", stderr))
-                _exit(127);
-            execl(STRATA_CLI, STRATA_CLI, "mesh", input.c_str(), "-o", "m6.cgr", "--layers", "20", "--first-height",
-                  "1e-5", "--growth", "1.15", "--farfield", "box", static_cast<char*>(nullptr));
-            _exit(127);
-        }
-        int status = 0;
-        for (int waited = 0; !catches_sigint(pid) && waited < 30000; waited += 5) {
-            if (waitpid(pid, &status, WNOHANG) == pid) FAIL() << "the program ended before it could be interrupted";
-            usleep(5000);
-        }
-        usleep(static_cast<useconds_t>(delay_ms) * 1000);
-        kill(pid, SIGINT);
-        ASSERT_EQ(waitpid(pid, &status, 0), pid);
-        const std::string message = slurp(err);
-        fs::remove(err);
+        const SignalledRun run =
+            run_and_signal(dir,
+                           {"mesh", example_data("onera_m6_pyhyp_quads.msh"), "-o", "m6.cgr", "--layers", "20",
+                            "--first-height", "1e-5", "--growth", "1.15", "--farfield", "box"},
+                           SIGINT, delay_ms);
+        ASSERT_FALSE(run.ended_early) << "the program ended before it could be interrupted: " << run.err;
+        const int status = run.status;
+        const std::string& message = run.err;
         EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << delay_ms << " ms: " << message;
         EXPECT_NE(message.find("cancelled"), std::string::npos) << delay_ms << " ms: " << message;
         EXPECT_TRUE(files_in(dir).empty()) << delay_ms << " ms";
