@@ -698,6 +698,11 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
                                   "lowered)")
                                      .c_str()
                                : "");
+    if (hr.split_quads > 0)
+        std::printf(
+            "quads: %d wall quads could take no pyramid on the layer top (too warped for an apex, their columns at the "
+            "wall or lowered for it before) and were split into two triangles, their columns prisms\n",
+            hr.split_quads);
     if (const strata::TetImproveReport& ti = hr.tet_improve;
         ti.flips + ti.edge_removals + ti.moved_nodes + ti.inserted_nodes > 0)
         std::printf(

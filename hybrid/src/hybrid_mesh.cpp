@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <set>
 
 namespace strata {
 namespace {
@@ -229,6 +230,36 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
 /// Rounds of lowering colliding columns before giving up (each halves their thickness).
 constexpr int kFrontRounds = 8;
 
+/// The quad face of \p mesh over the four nodes \p nodes (any order), replaced in place by two
+/// triangles split along its shorter diagonal, each keeping the quad's orientation and patch.
+/// False if \p mesh has no such quad.
+bool split_wall_quad(SurfaceMesh& mesh, std::vector<Index> nodes) {
+    if (nodes.size() != 4) return false;
+    std::sort(nodes.begin(), nodes.end());
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        if (mesh.face_size(f) != 4) continue;
+        std::array<Index, 4> q{mesh.face_node(f, 0), mesh.face_node(f, 1), mesh.face_node(f, 2), mesh.face_node(f, 3)};
+        std::array<Index, 4> sorted = q;
+        std::sort(sorted.begin(), sorted.end());
+        if (!std::equal(sorted.begin(), sorted.end(), nodes.begin())) continue;
+        auto at = [&](int i) { return mesh.points[static_cast<std::size_t>(q[static_cast<std::size_t>(i)])]; };
+        const int d = (at(0) - at(2)).norm() <= (at(1) - at(3)).norm() ? 0 : 1;  // the diagonal from corner d
+        const std::array<Index, 6> tris{q[static_cast<std::size_t>(d)],     q[static_cast<std::size_t>(d + 1)],
+                                        q[static_cast<std::size_t>(d + 2)], q[static_cast<std::size_t>(d)],
+                                        q[static_cast<std::size_t>(d + 2)], q[static_cast<std::size_t>((d + 3) % 4)]};
+        const auto begin = mesh.face_nodes.begin() + mesh.face_offsets[static_cast<std::size_t>(f)];
+        mesh.face_nodes.erase(begin, begin + 4);
+        mesh.face_nodes.insert(mesh.face_nodes.begin() + mesh.face_offsets[static_cast<std::size_t>(f)], tris.begin(),
+                               tris.end());
+        mesh.face_offsets.insert(mesh.face_offsets.begin() + f + 1, mesh.face_offsets[static_cast<std::size_t>(f)] + 3);
+        for (std::size_t g = static_cast<std::size_t>(f) + 2; g < mesh.face_offsets.size(); ++g)
+            mesh.face_offsets[g] += 2;
+        mesh.face_patch.insert(mesh.face_patch.begin() + f + 1, mesh.face_patch[static_cast<std::size_t>(f)]);
+        return true;
+    }
+    return false;
+}
+
 /// Mark the wall columns under layer-top face \p f of \p region: region node ids below the
 /// wall's node count are wall nodes; the next ones pyramid apexes (their quad's nodes count);
 /// outer points are left alone.
@@ -296,8 +327,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     HybridReport rep;
     check_tet_improve_params(params.improve);  // before the work it would otherwise end
     bool has_outer = false;
-    const SurfaceMesh surface =
-        closed_domain(input, params.farfield, has_outer, rep.closed_half_model, rep.internal_flow);
+    SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, rep.closed_half_model, rep.internal_flow);
     if (const std::vector<FacePair> crossing = self_intersections(surface, 1, params.threads); !crossing.empty())
         throw InputError("the surface intersects itself: " + describe_face(surface, crossing[0].a) + " meets " +
                          describe_face(surface, crossing[0].b) +
@@ -324,7 +354,8 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     }
     if (!has_outer)
         check_layers_fit_farfield(surface, params.farfield, asked, params.layers.proximity_limits.other_patch);
-    std::vector<Index> uncapped;  // input nodes whose fan's face on the layer top took no pyramid
+    std::vector<Index> uncapped;              // input nodes whose fan's face on the layer top took no pyramid
+    std::set<std::vector<Index>> uncappable;  // the input nodes of quads that took no pyramid
     TetFillParams tet_params = params.tets;
     TetFill fill;
     // The front rounds' lowering spreads along the wall at front_slope (ProximityParams),
@@ -379,6 +410,22 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
                     if (!no) uncapped.push_back(v);
                     no = 1;
                 }
+                rep.front_rounds = round + 1;
+                continue;
+            }
+            // A wall quad with no layer on it (its columns stopped at the wall), or whose columns
+            // were lowered for it before, that no apex can cap (a quad bent round a small hole):
+            // split into two triangles, whose columns need no pyramid.
+            std::vector<Index> wall_nodes;
+            bool on_wall = true;
+            for (const Index w : e.nodes()) {
+                on_wall &= lm.top_node(w) == lm.level_node(0, w);
+                wall_nodes.push_back(lm.input_node[static_cast<std::size_t>(w)]);
+            }
+            std::sort(wall_nodes.begin(), wall_nodes.end());
+            const bool again = !uncappable.insert(wall_nodes).second;
+            if ((on_wall || again) && split_wall_quad(surface, wall_nodes)) {
+                ++rep.split_quads;
                 rep.front_rounds = round + 1;
                 continue;
             }

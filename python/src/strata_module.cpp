@@ -481,6 +481,7 @@ py::dict hybrid_report(const VolumeMesh& mesh, const HybridReport& hr) {
     d["closed_half_model"] = hr.closed_half_model;
     d["front_rounds"] = hr.front_rounds;
     d["tet_retries"] = hr.tet_retries;
+    d["split_quads"] = hr.split_quads;
     const TetImproveReport& ti = hr.tet_improve;
     d["tet_improve"] =
         py::dict("below"_a = ti.below, "flips"_a = ti.flips, "edge_removals"_a = ti.edge_removals,

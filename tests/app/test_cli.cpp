@@ -702,6 +702,25 @@ TEST(Cli, FrontRoundsLowerTheLayersLocallyFirst) {
         "--front-slope = 0", "front_slope_range");
 }
 
+TEST(Cli, AWallQuadNoPyramidCanCapIsSplitIntoTwoTriangles) {
+    // The pipe junction of the sweep meshed in quads, 15 layers from 1e-3: a quad bent round the
+    // branch pipe's small radius takes no pyramid on the layer top at any apex height, and
+    // lowering its columns did not change that (the run stopped with "cannot be capped with a
+    // pyramid" after 8 rounds). Such a quad is split into two triangles, whose columns need no
+    // pyramid, and the mesh is made.
+    test::ScratchDir dir("cli_split_quad");
+    const CliResult r =
+        strata_cli(dir, "mesh '" + example_data("../sweep/pipes.geo") +
+                            "' --internal --quads --layers 15 --growth 1.2 --first-height 1e-3 -o p.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto at = r.out.find("quads: ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    EXPECT_GE(std::atoi(r.out.c_str() + at + 7), 1) << r.out;
+    EXPECT_NE(r.out.find("valid: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(dir.path() / "p.msh"));
+}
+
 /// The summary's smallest scaled Jacobian of \p type ("tetrahedron", ...); NaN if absent.
 double summary_min_quality(const std::string& out, const std::string& type) {
     const auto at = out.find("  " + type + ":");

@@ -41,6 +41,10 @@ struct HybridReport {
     /// Rounds where TetGen stopped on one of its internal checks recovering a layer-top face
     /// (fill_with_tets' LocalTopologyError) and the columns around it were lowered.
     int tet_retries = 0;
+    /// Rounds where a wall quad could not take a pyramid on the layer top (too warped for an
+    /// apex: a quad bent round a small hole), its columns at the wall or lowered for it in a
+    /// round before, and was split into two triangles (its columns prisms).
+    int split_quads = 0;
     std::vector<Index>
         remeshed_patches;  ///< patches (of the result's boundary) re-meshed around the layers' side faces
     /// The input was a half model (walls open along one plane): a half farfield and a
