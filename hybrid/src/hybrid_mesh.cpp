@@ -331,8 +331,10 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     if (const std::vector<FacePair> crossing = self_intersections(surface, 1, params.threads); !crossing.empty())
         throw InputError("the surface intersects itself: " + describe_face(surface, crossing[0].a) + " meets " +
                          describe_face(surface, crossing[0].b) +
-                         "; overlapping bodies must be fused into one (CadParams::fuse) and a surface crossing "
-                         "itself repaired before layers can grow on it");
+                         "; overlapping bodies must be fused into one (CadParams::fuse), and a surface mesh that "
+                         "folds where two of its faces nearly touch (quads recombined across a narrow junction, a "
+                         "coarse size there) meshed again finer, without quads, or repaired, before layers can grow "
+                         "on it");
 
     // Layers, pyramids and the front TetGen fills against; where the front intersects itself,
     // the columns under the faces involved are lowered and the layers marched again.
