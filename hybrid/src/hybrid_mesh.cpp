@@ -234,30 +234,34 @@ constexpr int kFrontRounds = 8;
 /// triangles split along its shorter diagonal, each keeping the quad's orientation and patch.
 /// False if \p mesh has no such quad.
 bool split_wall_quad(SurfaceMesh& mesh, std::vector<Index> nodes) {
-    if (nodes.size() != 4) return false;
     std::sort(nodes.begin(), nodes.end());
-    for (Index f = 0; f < mesh.num_faces(); ++f) {
-        if (mesh.face_size(f) != 4) continue;
-        std::array<Index, 4> q{mesh.face_node(f, 0), mesh.face_node(f, 1), mesh.face_node(f, 2), mesh.face_node(f, 3)};
-        std::array<Index, 4> sorted = q;
+    const auto over_nodes = [&](Index f) {
+        if (mesh.face_size(f) != 4 || nodes.size() != 4) return false;
+        std::array<Index, 4> sorted{};
+        std::copy(mesh.face_begin(f), mesh.face_end(f), sorted.begin());
         std::sort(sorted.begin(), sorted.end());
-        if (!std::equal(sorted.begin(), sorted.end(), nodes.begin())) continue;
-        auto at = [&](int i) { return mesh.points[static_cast<std::size_t>(q[static_cast<std::size_t>(i)])]; };
+        return std::equal(sorted.begin(), sorted.end(), nodes.begin());
+    };
+    Index quad = 0;
+    while (quad < mesh.num_faces() && !over_nodes(quad)) ++quad;
+    if (quad == mesh.num_faces()) return false;
+    SurfaceMesh out;
+    out.points = mesh.points;
+    out.patches = mesh.patches;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const Index p = mesh.face_patch[static_cast<std::size_t>(f)];
+        if (f != quad) {
+            out.add_face(mesh.face_begin(f), mesh.face_size(f), p);
+            continue;
+        }
+        const Index* q = mesh.face_begin(f);
+        const auto at = [&](int i) -> const Vec3& { return mesh.points[static_cast<std::size_t>(q[i])]; };
         const int d = (at(0) - at(2)).norm() <= (at(1) - at(3)).norm() ? 0 : 1;  // the diagonal from corner d
-        const std::array<Index, 6> tris{q[static_cast<std::size_t>(d)],     q[static_cast<std::size_t>(d + 1)],
-                                        q[static_cast<std::size_t>(d + 2)], q[static_cast<std::size_t>(d)],
-                                        q[static_cast<std::size_t>(d + 2)], q[static_cast<std::size_t>((d + 3) % 4)]};
-        const auto begin = mesh.face_nodes.begin() + mesh.face_offsets[static_cast<std::size_t>(f)];
-        mesh.face_nodes.erase(begin, begin + 4);
-        mesh.face_nodes.insert(mesh.face_nodes.begin() + mesh.face_offsets[static_cast<std::size_t>(f)], tris.begin(),
-                               tris.end());
-        mesh.face_offsets.insert(mesh.face_offsets.begin() + f + 1, mesh.face_offsets[static_cast<std::size_t>(f)] + 3);
-        for (std::size_t g = static_cast<std::size_t>(f) + 2; g < mesh.face_offsets.size(); ++g)
-            mesh.face_offsets[g] += 2;
-        mesh.face_patch.insert(mesh.face_patch.begin() + f + 1, mesh.face_patch[static_cast<std::size_t>(f)]);
-        return true;
+        out.add_face({q[d], q[d + 1], q[d + 2]}, p);
+        out.add_face({q[d], q[d + 2], q[(d + 3) % 4]}, p);
     }
-    return false;
+    mesh = std::move(out);
+    return true;
 }
 
 /// Mark the wall columns under layer-top face \p f of \p region: region node ids below the
