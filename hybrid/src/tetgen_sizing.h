@@ -76,8 +76,9 @@ private:
 void set_sizes(tetgenio& io, Index num_boundary, const SizeField& h);
 
 /// The boundary of the background mesh: \p b with its farfield 1 % larger about the
-/// farfield's centroid (unchanged when the farfield shares a node with another patch). Why:
-/// tetgen_sizing.cpp.
+/// farfield's centroid, or, when there is no farfield or it shares a node with another patch,
+/// \p b and after its nodes the 8 corners of a box round it (loose points, in no face), so the
+/// convex hull lies outside every point of the final mesh. Why: tetgen_sizing.cpp.
 SurfaceMesh background_boundary(const SurfaceMesh& b);
 
 }  // namespace strata::tetgen

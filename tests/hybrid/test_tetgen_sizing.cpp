@@ -87,6 +87,39 @@ TEST(TetgenSizing, FarfieldCapsAndVolumeBound) {
     EXPECT_LE(hv.boundary_size(n), edge * (1 + 1e-12));
 }
 
+TEST(TetgenSizing, BackgroundHullLiesOutsideEveryPoint) {
+    // Internal flow: the walls are the outer boundary, no farfield. The background's boundary is
+    // the walls unchanged and, after their nodes, 8 loose corners of a box outside them.
+    const SurfaceMesh walls = icosphere(Vec3::Zero(), 1.0, 2, {"duct", PatchKind::Wall});
+    const SurfaceMesh bg = tetgen::background_boundary(walls);
+    ASSERT_EQ(bg.num_points(), walls.num_points() + 8);
+    EXPECT_EQ(bg.face_nodes, walls.face_nodes);
+    EXPECT_EQ(bg.face_offsets, walls.face_offsets);
+    for (Index i = 0; i < walls.num_points(); ++i) EXPECT_EQ(bg.points[i], walls.points[i]);
+    const BoundingBox box = bounding_box(walls.points);
+    for (Index k = walls.num_points(); k < bg.num_points(); ++k)
+        for (int a = 0; a < 3; ++a)
+            EXPECT_TRUE(bg.points[k][a] < box.min[a] || bg.points[k][a] > box.max[a])
+                << "corner " << k << " axis " << a;
+
+    // A separate farfield is pushed out by 1 % instead; no point is added.
+    SurfaceMesh b = icosphere(Vec3::Zero(), 1.0, 2, {"wall", PatchKind::Wall});
+    const SurfaceMesh far = icosphere(Vec3::Zero(), 10.0, 1, {"far", PatchKind::Farfield});
+    const Index n = b.num_points();
+    b.patches.push_back(far.patches[0]);
+    b.points.insert(b.points.end(), far.points.begin(), far.points.end());
+    for (Index f = 0; f < far.num_faces(); ++f)
+        b.add_face({far.face_node(f, 0) + n, far.face_node(f, 1) + n, far.face_node(f, 2) + n}, 1);
+    const SurfaceMesh pushed = tetgen::background_boundary(b);
+    ASSERT_EQ(pushed.num_points(), b.num_points());
+    for (Index i = n; i < b.num_points(); ++i) EXPECT_NEAR(pushed.points[i].norm(), 10.1, 1e-9);
+
+    // A farfield sharing nodes with another patch (a half model's symmetry plane): the corners.
+    b.patches.push_back({"symmetry", PatchKind::Symmetry});
+    b.face_patch[static_cast<std::size_t>(b.num_faces() - 1)] = 2;
+    EXPECT_EQ(tetgen::background_boundary(b).num_points(), b.num_points() + 8);
+}
+
 TEST(TetgenSizing, Switches) {
     TetFillParams p;
     p.min_dihedral = 12.0;
