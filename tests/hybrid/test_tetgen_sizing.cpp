@@ -28,6 +28,18 @@ double brute_force_h(const SurfaceMesh& b, const tetgen::SizeField& h, double gr
     return std::min(h.boundary_size(best) + growth * (x - b.points[best]).norm(), cap);
 }
 
+/// A unit wall sphere (patch 0) inside a farfield sphere of radius 10 (patch 1), given in \p far.
+SurfaceMesh wall_in_far_sphere(SurfaceMesh& far) {
+    SurfaceMesh b = icosphere(Vec3::Zero(), 1.0, 2, {"wall", PatchKind::Wall});
+    far = icosphere(Vec3::Zero(), 10.0, 1, {"far", PatchKind::Farfield});
+    const Index n = b.num_points();
+    b.patches.push_back(far.patches[0]);
+    b.points.insert(b.points.end(), far.points.begin(), far.points.end());
+    for (Index f = 0; f < far.num_faces(); ++f)
+        b.add_face({far.face_node(f, 0) + n, far.face_node(f, 1) + n, far.face_node(f, 2) + n}, 1);
+    return b;
+}
+
 TEST(TetgenSizing, NearestWallNodeAsByBruteForce) {
     // An ellipsoid (node sizes differ from node to node), no farfield: capped at the diagonal.
     SurfaceMesh b = icosphere(Vec3::Zero(), 1.0, 3, {"wall", PatchKind::Wall});
@@ -64,13 +76,9 @@ TEST(TetgenSizing, ExactTieTakesTheSmallerSize) {
 }
 
 TEST(TetgenSizing, FarfieldCapsAndVolumeBound) {
-    SurfaceMesh b = icosphere(Vec3::Zero(), 1.0, 2, {"wall", PatchKind::Wall});
-    const SurfaceMesh far = icosphere(Vec3::Zero(), 10.0, 1, {"far", PatchKind::Farfield});
-    const Index n = b.num_points();
-    b.patches.push_back(far.patches[0]);
-    b.points.insert(b.points.end(), far.points.begin(), far.points.end());
-    for (Index f = 0; f < far.num_faces(); ++f)
-        b.add_face({far.face_node(f, 0) + n, far.face_node(f, 1) + n, far.face_node(f, 2) + n}, 1);
+    SurfaceMesh far;
+    SurfaceMesh b = wall_in_far_sphere(far);
+    const Index n = b.num_points() - far.num_points();
     const tetgen::SizeField h(b, 1.0, 0.0);
     // The far sphere's mean edge caps h (8.5 from the wall); near the wall h is the wall's edge.
     double far_edge = 0.0;
@@ -103,13 +111,9 @@ TEST(TetgenSizing, BackgroundHullLiesOutsideEveryPoint) {
                 << "corner " << k << " axis " << a;
 
     // A separate farfield is pushed out by 1 % instead; no point is added.
-    SurfaceMesh b = icosphere(Vec3::Zero(), 1.0, 2, {"wall", PatchKind::Wall});
-    const SurfaceMesh far = icosphere(Vec3::Zero(), 10.0, 1, {"far", PatchKind::Farfield});
-    const Index n = b.num_points();
-    b.patches.push_back(far.patches[0]);
-    b.points.insert(b.points.end(), far.points.begin(), far.points.end());
-    for (Index f = 0; f < far.num_faces(); ++f)
-        b.add_face({far.face_node(f, 0) + n, far.face_node(f, 1) + n, far.face_node(f, 2) + n}, 1);
+    SurfaceMesh far;
+    SurfaceMesh b = wall_in_far_sphere(far);
+    const Index n = b.num_points() - far.num_points();
     const SurfaceMesh pushed = tetgen::background_boundary(b);
     ASSERT_EQ(pushed.num_points(), b.num_points());
     for (Index i = n; i < b.num_points(); ++i) EXPECT_NEAR(pushed.points[i].norm(), 10.1, 1e-9);
