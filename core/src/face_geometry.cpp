@@ -22,6 +22,12 @@ Vec3 face_centroid(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Ind
     return c / static_cast<double>(mesh.face_size(f));
 }
 
+int quad_shorter_diagonal(const SurfaceMesh& mesh, Index f) {
+    const Index* n = mesh.face_begin(f);
+    const auto at = [&](int i) -> const Vec3& { return mesh.points[static_cast<std::size_t>(n[i])]; };
+    return (at(0) - at(2)).squaredNorm() <= (at(1) - at(3)).squaredNorm() ? 0 : 1;
+}
+
 BoundingBox bounding_box(const std::vector<Vec3>& points) {
     BoundingBox b;
     if (points.empty()) return b;

@@ -74,8 +74,7 @@ Triangles triangles_of(const SurfaceMesh& m) {
             t.face.push_back(f);
             continue;
         }
-        auto at = [&](int i) -> const Vec3& { return m.points[static_cast<std::size_t>(n[i])]; };
-        if ((at(0) - at(2)).squaredNorm() <= (at(1) - at(3)).squaredNorm()) {
+        if (quad_shorter_diagonal(m, f) == 0) {
             t.tri.push_back({n[0], n[1], n[2]});
             t.tri.push_back({n[0], n[2], n[3]});
         } else {

@@ -234,9 +234,10 @@ constexpr int kFrontRounds = 8;
 /// triangles split along its shorter diagonal, each keeping the quad's orientation and patch.
 /// False if \p mesh has no such quad.
 bool split_wall_quad(SurfaceMesh& mesh, std::vector<Index> nodes) {
+    if (nodes.size() != 4) return false;
     std::sort(nodes.begin(), nodes.end());
     const auto over_nodes = [&](Index f) {
-        if (mesh.face_size(f) != 4 || nodes.size() != 4) return false;
+        if (mesh.face_size(f) != 4) return false;
         std::array<Index, 4> sorted{};
         std::copy(mesh.face_begin(f), mesh.face_end(f), sorted.begin());
         std::sort(sorted.begin(), sorted.end());
@@ -255,8 +256,7 @@ bool split_wall_quad(SurfaceMesh& mesh, std::vector<Index> nodes) {
             continue;
         }
         const Index* q = mesh.face_begin(f);
-        const auto at = [&](int i) -> const Vec3& { return mesh.points[static_cast<std::size_t>(q[i])]; };
-        const int d = (at(0) - at(2)).norm() <= (at(1) - at(3)).norm() ? 0 : 1;  // the diagonal from corner d
+        const int d = quad_shorter_diagonal(mesh, f);
         out.add_face({q[d], q[d + 1], q[d + 2]}, p);
         out.add_face({q[d], q[d + 2], q[(d + 3) % 4]}, p);
     }

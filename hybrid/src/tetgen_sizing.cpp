@@ -272,7 +272,7 @@ SurfaceMesh background_boundary(const SurfaceMesh& b) {
         return out;
     }
     const BoundingBox box = bounding_box(b.points);
-    const Vec3 margin = Vec3::Constant(0.05 * (box.max - box.min).norm());
+    const Vec3 margin = Vec3::Constant(0.05 * box.diagonal());
     const Vec3 lo = box.min - margin, hi = box.max + margin;
     for (int k = 0; k < 8; ++k)
         out.points.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());

@@ -38,6 +38,17 @@ TEST(FaceGeometry, AreaVectorOfTriangleAndNonPlanarQuad) {
     EXPECT_TRUE(face_centroid(m, m.points, 1).isApprox(Vec3(1, 1.5, 0.25)));
 }
 
+TEST(FaceGeometry, QuadShorterDiagonal) {
+    SurfaceMesh m;
+    m.points = {{0, 0, 0}, {3, 0, 0}, {3, 1, 0}, {0, 1, 0}, {2, 0, 0}, {0, 3, 0}};
+    m.add_face({0, 1, 2, 3}, 0);  // a rectangle: both diagonals equal, corner 0
+    m.add_face({0, 4, 2, 5}, 0);  // 0–2 is sqrt(10), 4–5 sqrt(13): corner 0
+    m.add_face({4, 2, 5, 0}, 0);  // the same quad from corner 4: 4–5 is its diagonal from corner 0
+    EXPECT_EQ(quad_shorter_diagonal(m, 0), 0);
+    EXPECT_EQ(quad_shorter_diagonal(m, 1), 0);
+    EXPECT_EQ(quad_shorter_diagonal(m, 2), 1);
+}
+
 TEST(FaceGeometry, BoundingBox) {
     const SurfaceMesh g = test::quad_grid(3, 2, 0.5);
     const BoundingBox b = bounding_box(g.points);

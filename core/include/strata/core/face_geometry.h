@@ -15,6 +15,9 @@ inline Vec3 face_area_vector(const SurfaceMesh& mesh, Index f) {
 }
 /// Centroid (mean of the corners) of face \p f.
 Vec3 face_centroid(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f);
+/// The corner of quad face \p f where its shorter diagonal starts: 0 for the diagonal 0–2 (also
+/// on a tie), 1 for 1–3. A quad split into two triangles is split along it.
+int quad_shorter_diagonal(const SurfaceMesh& mesh, Index f);
 
 /// Volume a closed surface encloses, signed by its orientation (positive for normals outward),
 /// measured from the centroid of its points so that a body far from the origin keeps it.
