@@ -367,7 +367,10 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
     if (params.fan_angle_deg > 0.0) fan_curves(mesh, walls, params, faces_of_edge, out, fan_nodes);
 
     // Each wall face's first cell: its columns along their start directions (a fan's, and one
-    // beside another patch, along the face's normal), leaning off the face on its edges.
+    // beside another patch, along the face's normal), leaning off the face on its edges; a
+    // column leaning too far for one direction stops at the wall, and the cell over the face
+    // is then the step cell closing it (a pyramid or tetrahedron down to that node: its top
+    // corner there is the node itself), flatter than the prism: about the face's width over h.
     const std::map<Index, Vec3> start = start_directions(mesh, faces_at);
     const double stop_cos = std::cos(kStopLeanDeg * std::numbers::pi / 180.0);
     for (Index f = 0; f < mesh.num_faces(); ++f) {
@@ -376,7 +379,7 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
         const Index n = mesh.face_size(f);
         const Vec3 normal = face_area_vector(mesh, f).normalized();
         std::array<Vec3, 4> c, d;
-        bool stopped = false;
+        Index stopped = 0;
         for (Index i = 0; i < n; ++i) {
             const Index v = mesh.face_node(f, i);
             c[static_cast<std::size_t>(i)] = corner(f, i);
@@ -384,14 +387,20 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
             const auto it = start.find(v);
             if (!fan_nodes.count(v) && !by_other.count(v) && it != start.end() && it->second != Vec3::Zero()) {
                 dir = it->second.dot(normal) < 0.0 ? Vec3(-it->second) : it->second;
-                stopped |= dir.dot(normal) < stop_cos;
+                if (dir.dot(normal) < stop_cos) {
+                    dir = Vec3::Zero();
+                    ++stopped;
+                }
             }
             d[static_cast<std::size_t>(i)] = dir;
         }
-        if (stopped) continue;  // no layer over it
+        if (stopped == n) continue;  // no layer over it
         // A lean the cell cannot take (no volume) is left to the marching: the right prism's.
         double ar = leaning_prism_aspect_ratio(c.data(), d.data(), static_cast<int>(n), h);
-        if (!std::isfinite(ar)) ar = right_prism_aspect_ratio(c.data(), static_cast<int>(n), h);
+        if (!std::isfinite(ar)) {
+            if (stopped > 0) continue;
+            ar = right_prism_aspect_ratio(c.data(), static_cast<int>(n), h);
+        }
         double& w = worst[s];
         w = std::max(w, ar);
     }

@@ -86,9 +86,10 @@ struct WallAspect {
 /// columns starting along the angle-weighted mean normal of their node's wall faces (oriented
 /// round the node, whatever each Gmsh surface's own orientation), so leaning over convex and
 /// concave edges (leaning_prism_aspect_ratio); along the face's normal at a node of a fan chain,
-/// or of another patch; no cell where a column leans more than 55 degrees (an edge the layers
-/// stop at). And on each curve between two wall surfaces whose faces turn by the fan angle or
-/// more, the fan's first wedge (fan_wedge_aspect_ratio).
+/// or of another patch; a column leaning more than 55 degrees stops at the wall (an edge the
+/// layers stop at), and the face's cell is then the step cell down to it (no cell where all
+/// do). And on each curve between two wall surfaces whose faces turn by the fan angle or more,
+/// the fan's first wedge (fan_wedge_aspect_ratio).
 /// Inside a GmshSession (Gmsh's exceptions pass through).
 WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_surface, const std::set<int>& walls,
                        const WallLimits& limits);

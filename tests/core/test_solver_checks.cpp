@@ -143,7 +143,9 @@ namespace {
 template <std::size_t N>
 VolumeMesh one_cell(std::vector<Vec3> points, CellType type) {
     const Vec3 bottom = (points[1] - points[0]).cross(points[2] - points[0]);
-    if (bottom.dot(points[N / 2] - points[0]) < 0.0) {  // Strata's bottom faces its top
+    if constexpr (N == 4 || N == 5) {  // a tetrahedron's 0-1-2 and a pyramid's base face its apex
+        if (bottom.dot(points[N - 1] - points[0]) < 0.0) std::swap(points[1], points[N - 2]);
+    } else if (bottom.dot(points[N / 2] - points[0]) < 0.0) {  // Strata's bottom faces its top
         std::swap(points[1], points[N / 2 - 1]);
         std::swap(points[N / 2 + 1], points[N - 1]);
     }
@@ -151,6 +153,8 @@ VolumeMesh one_cell(std::vector<Vec3> points, CellType type) {
     m.points = std::move(points);
     std::array<Index, N> cell{};
     for (std::size_t i = 0; i < N; ++i) cell[i] = static_cast<Index>(i);
+    if constexpr (N == 4) m.tets.push_back(cell);
+    if constexpr (N == 5) m.pyramids.push_back(cell);
     if constexpr (N == 6) m.prisms.push_back(cell);
     if constexpr (N == 8) m.hexes.push_back(cell);
     m.boundary.patches.push_back({"wall", PatchKind::Wall});
@@ -229,6 +233,32 @@ TEST(SolverChecks, LeaningPrismAspectRatioIsThatOfTheCellItPredicts) {
     const std::array<Vec3, 4> square{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
     const std::array<Vec3, 4> z{Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(0, 0, 1)};
     EXPECT_NEAR(leaning_prism_aspect_ratio(square.data(), z.data(), 4, 1e-4), 1e4, 1e-6);
+}
+
+TEST(SolverChecks, LeaningPrismAspectRatioWithAColumnAtTheWallIsTheStepCells) {
+    // A wall triangle (0.3 wide, tilted against the axes) whose first corner's column stops at
+    // the wall (a sharp edge without a fan): the first-layer cell is the pyramid closing that
+    // step, base the side face of the two moving columns, apex the corner; with two stopped,
+    // the tetrahedron. Their figures are checkMesh's on those cells, and flatter than the
+    // prism's: a step at the first layer spans the face at the layer's height.
+    const double h = 1e-4;
+    const Vec3 a(0.0, 0.0, 0.0), b(0.3, 0.05, 0.02), c(0.1, 0.28, -0.03);
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    const Vec3 db = (n + 0.2 * Vec3(1, 0, 0)).normalized(), dc = (n - 0.1 * Vec3(0, 1, 0)).normalized();
+    const std::array<Vec3, 3> tri{a, b, c};
+    const std::array<Vec3, 3> one{Vec3::Zero(), db, dc}, two{Vec3::Zero(), Vec3::Zero(), dc};
+    const double pyramid = leaning_prism_aspect_ratio(tri.data(), one.data(), 3, h);
+    const double tet = leaning_prism_aspect_ratio(tri.data(), two.data(), 3, h);
+    EXPECT_NEAR(checks(one_cell<5>({b, c, c + h * dc, b + h * db, a}, CellType::Pyramid)).max_aspect_ratio, pyramid,
+                1e-6 * pyramid);
+    EXPECT_NEAR(checks(one_cell<4>({a, b, c, c + h * dc}, CellType::Tet)).max_aspect_ratio, tet, 1e-6 * tet);
+    const std::array<Vec3, 3> all{n, db, dc};
+    const double prism = leaning_prism_aspect_ratio(tri.data(), all.data(), 3, h);
+    EXPECT_GT(pyramid, 1.3 * prism);
+    EXPECT_GT(tet, pyramid);
+    // Every column at the wall: no cell.
+    const std::array<Vec3, 3> none{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+    EXPECT_FALSE(std::isfinite(leaning_prism_aspect_ratio(tri.data(), none.data(), 3, h)));
 }
 
 TEST(SolverChecks, FanWedgeAspectRatioIsThatOfTheCellItPredicts) {

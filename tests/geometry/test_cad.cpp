@@ -716,6 +716,38 @@ TEST(MeshCadWalls, FanEdgesAreMeshedFinerAlongTheirCurve) {
     EXPECT_LT(r.cap, 0.1);
 }
 
+TEST(MeshCadWalls, StepCellsAtASharpEdgeWithoutAFanAreMeshedFinerToo) {
+    // The blade of the test above without fans: the columns on its 20-degree edge lean 80
+    // degrees off each face and stop at the wall, so the first-layer cells beside the edge are
+    // the tetrahedra and pyramids closing those steps, as flat as the faces are wide (checkMesh
+    // 1172 under 1.2e-4 at size 0.15, where the prisms stay under 1000). They are forecast too,
+    // and the surfaces beside the edge meshed finer for them.
+    const ScratchDir dir("mesh_cad_steps");
+    const std::string geo =
+        write_file(dir, "blade.geo",
+                   "SetFactory(\"OpenCASCADE\");\n"
+                   "Point(1) = {0, 0, 0};\nPoint(2) = {1, 0, 0.1763};\nPoint(3) = {1, 0, -0.1763};\n"
+                   "Line(1) = {1, 2};\nLine(2) = {2, 3};\nLine(3) = {3, 1};\n"
+                   "Curve Loop(1) = {1, 2, 3};\nPlane Surface(1) = {1};\n"
+                   "Extrude {0, 1, 0} { Surface{1}; }\n");
+    CadParams p;
+    p.size = 0.15;
+    p.first_height = 1.2e-4;
+    p.fan_angle_deg = 0.0;
+    WallSizeReport r;
+    const SurfaceMesh m = mesh_cad(geo, p, nullptr, &r);
+    expect_well_formed(m);
+    EXPECT_TRUE(closed(m));
+    EXPECT_GT(r.worst_before, 1100.0);
+    EXPECT_LE(r.worst_after, 1000.0);
+    EXPECT_GE(r.surfaces, 2);
+    // A first layer the faces allow: nothing to do.
+    p.first_height = 2e-4;
+    (void)mesh_cad(geo, p, nullptr, &r);
+    EXPECT_LT(r.worst_before, 1000.0);
+    EXPECT_EQ(r.surfaces + r.curves, 0);
+}
+
 TEST(MeshCadWalls, BadLimitsAreInputErrors) {
     const std::string path = test_data("cad_unit_sphere.geo");
     CadParams p;

@@ -66,7 +66,9 @@ double right_prism_aspect_ratio(const Vec3* corners, int n, double h);
 /// or 4, either orientation) whose top corner i is corners[i] + h directions[i] (unit, all on
 /// the face's one side): a column on a convex or concave edge leans along the bisector of its
 /// faces, and its cell stands only h cos(lean) off the face. right_prism_aspect_ratio when every
-/// direction is the face's normal. Non-finite for a face without area or a cell without volume.
+/// direction is the face's normal. A zero direction keeps that corner on the wall: a column
+/// stopped there, the cell the pyramid or tetrahedron closing the step. Non-finite for a face
+/// without area or a cell without volume.
 double leaning_prism_aspect_ratio(const Vec3* corners, const Vec3* directions, int n, double h);
 
 /// checkMesh's aspect ratio of the first cell of a fan (ALGORITHM.md, "Fans") on the wall edge
