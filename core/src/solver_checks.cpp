@@ -46,6 +46,32 @@ FaceGeometry face_geometry(const std::vector<Vec3>& p, const Index* v, int n) {
     return {sum_ac / (3.0 * sum_a), 0.5 * sum_n};
 }
 
+/// A cell's centre as OpenFOAM computes it from its \p count faces \p fg (outward): the
+/// volume-weighted centroid of the pyramids from each face to the mean of the face centres;
+/// \p mag the summed absolute area components, \p vol3 three times the volume.
+Vec3 cell_centre(const std::array<FaceGeometry, 6>& fg, int count, Vec3& mag, double& vol3) {
+    Vec3 est = Vec3::Zero();
+    for (int i = 0; i < count; ++i) est += fg[static_cast<std::size_t>(i)].centre;
+    est /= static_cast<double>(count);
+    Vec3 sum_c = Vec3::Zero();
+    mag = Vec3::Zero();
+    vol3 = 0.0;
+    for (int i = 0; i < count; ++i) {
+        const FaceGeometry& f = fg[static_cast<std::size_t>(i)];
+        const double pyr3 = f.area.dot(f.centre - est);
+        sum_c += pyr3 * (0.75 * f.centre + 0.25 * est);
+        vol3 += pyr3;
+        mag += f.area.cwiseAbs();
+    }
+    return std::abs(vol3) > kRootVSmall ? Vec3(sum_c / vol3) : est;
+}
+
+/// The pyramid from a face (outward area \p area, centre \p fc) to a cell centre \p cc is
+/// inverted: below checkMesh's -1e-15.
+bool inverted_pyramid(const Vec3& area, const Vec3& fc, const Vec3& cc) {
+    return area.dot(fc - cc) / 3.0 < -1e-15;
+}
+
 std::string cell_name(const FaceSlots& slots, std::uint64_t slot) {
     const FaceSlots::Slot s = slots.locate(slot);
     return std::string(to_string(s.type)) + " " + std::to_string(s.index);
@@ -154,6 +180,26 @@ double leaning_prism_aspect_ratio(const Vec3* corners, const Vec3* directions, i
     return aspect_ratio_of(mag, volume);
 }
 
+bool face_pyramids_inverted(const Vec3* corners, CellType type) {
+    const CellFaceTable& t = cell_faces(type);
+    const int nodes = type == CellType::Tet ? 4 : type == CellType::Pyramid ? 5 : type == CellType::Prism ? 6 : 8;
+    const std::vector<Vec3> p(corners, corners + nodes);
+    std::array<FaceGeometry, 6> fg;
+    for (int f = 0; f < t.count; ++f) {
+        Index v[4];
+        for (int c = 0; c < t.size[static_cast<std::size_t>(f)]; ++c)
+            v[c] = static_cast<Index>(t.node[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)]);
+        fg[static_cast<std::size_t>(f)] = face_geometry(p, v, t.size[static_cast<std::size_t>(f)]);
+    }
+    Vec3 mag;
+    double vol3 = 0.0;
+    const Vec3 cc = cell_centre(fg, t.count, mag, vol3);
+    for (int f = 0; f < t.count; ++f)
+        if (inverted_pyramid(fg[static_cast<std::size_t>(f)].area, fg[static_cast<std::size_t>(f)].centre, cc))
+            return true;
+    return false;
+}
+
 SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads) {
     SolverChecks r;
     const FaceSlots& slots = match.slots;
@@ -172,24 +218,14 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
         const auto count = static_cast<std::uint64_t>(cell_faces(c.type).count);
         const std::uint64_t s0 = slots.start(c.type) + static_cast<std::uint64_t>(c.index) * count, s1 = s0 + count;
         std::array<FaceGeometry, 6> fg;
-        Vec3 est = Vec3::Zero();
         for (std::uint64_t s = s0; s < s1; ++s) {
             Index v[4];
             const int n = slots.nodes(s, v);
             fg[s - s0] = face_geometry(p, v, n);
-            est += fg[s - s0].centre;
         }
-        est /= static_cast<double>(s1 - s0);
-        Vec3 sum_c = Vec3::Zero(), mag = Vec3::Zero();
+        Vec3 mag = Vec3::Zero();
         double vol3 = 0.0;
-        for (std::uint64_t s = s0; s < s1; ++s) {
-            const FaceGeometry& f = fg[s - s0];
-            const double pyr3 = f.area.dot(f.centre - est);
-            sum_c += pyr3 * (0.75 * f.centre + 0.25 * est);
-            vol3 += pyr3;
-            mag += f.area.cwiseAbs();
-        }
-        centre[static_cast<std::size_t>(g)] = std::abs(vol3) > kRootVSmall ? Vec3(sum_c / vol3) : est;
+        centre[static_cast<std::size_t>(g)] = cell_centre(fg, static_cast<int>(s1 - s0), mag, vol3);
         const double v = std::max(kRootVSmall, vol3 / 3.0);
         aspect[static_cast<std::size_t>(g)] =
             std::max(mag.maxCoeff() / (mag.minCoeff() + kRootVSmall), mag.sum() / 6.0 / std::pow(v, 2.0 / 3.0));
@@ -216,7 +252,7 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
         // The pyramid from a face (outward area \p area, centre \p fc) to a cell centre \p cc,
         // inverted below checkMesh's -1e-15.
         auto pyramid = [&q](const Vec3& area, const Vec3& fc, const Vec3& cc, std::uint64_t s) {
-            if (!(area.dot(fc - cc) / 3.0 < -1e-15)) return;
+            if (!inverted_pyramid(area, fc, cc)) return;
             ++q.pyramids;
             if (!q.has_pyramid) q.first_pyramid = s, q.has_pyramid = true;
         };

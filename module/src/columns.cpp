@@ -7,6 +7,7 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/core/parallel.h>
+#include <strata/core/solver_checks.h>
 #include <strata/geometry/normals.h>
 
 #include <algorithm>
@@ -290,7 +291,7 @@ bool split_keeps_cells(const Columns& col, Index f, int c, int k, const StopRule
                                           col.reach[static_cast<std::size_t>(t[1])],
                                           col.reach[static_cast<std::size_t>(t[2])], 1.0};
             const double fq = corner_sines({lo(t[0]), lo(t[1]), lo(t[2]), Vec3::Zero()}, 3, &w);
-            if (!usable(type, m == 3, p, fq, rules)) return false;
+            if (!usable(type, m == 3, p, fq, rules) || face_pyramids_inverted(p.data(), type)) return false;
         }
     return true;
 }
@@ -360,9 +361,28 @@ void close_steps(Columns& col, const StopRules& rules, int k, const std::vector<
             CellType type{};
             std::array<Vec3, 8> p{};
             // As for whole cells, relative to the best a cell on the face can be.
-            if (closing_cell(col.faces.nodes[u], n, m.data(), lo, hi, type, p) &&
-                usable(type, false, p, face_corner_quality(col, f), rules))
-                continue;
+            const bool fair = closing_cell(col.faces.nodes[u], n, m.data(), lo, hi, type, p) &&
+                              usable(type, false, p, face_corner_quality(col, f), rules);
+            // A cell thinner than one of its faces is warped can have every corner positive and
+            // its centre on the wrong side of that face, which checkMesh fails ("incorrectly
+            // oriented faces"): a step's side-on prism in the first layer over a quad that Gmsh
+            // bent round a leading edge.
+            const bool inverted = fair && face_pyramids_inverted(p.data(), type);
+            if (fair && !inverted) continue;
+            if (inverted && n == 4) {
+                // The quad split through a stopped corner instead (a pyramid and a tetrahedron
+                // over planar triangles), where that keeps the cells below usable.
+                bool split = false;
+                for (int c = 0; c < 4 && !split; ++c)
+                    if (!m[static_cast<std::size_t>(c)] && split_keeps_cells(col, f, c, k, rules)) {
+                        col.faces.split(f, c);
+                        split = true;
+                    }
+                if (split) {
+                    changed = true;
+                    continue;
+                }
+            }
             for (int c = 0; c < n; ++c)
                 changed |= stop(col, go, col.faces.nodes[u][static_cast<std::size_t>(c)], Shortfall::Neighbours);
         }

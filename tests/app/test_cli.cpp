@@ -721,6 +721,21 @@ TEST(Cli, AWallQuadNoPyramidCanCapIsSplitIntoTwoTriangles) {
     EXPECT_TRUE(fs::exists(dir.path() / "p.msh"));
 }
 
+TEST(Cli, AStepOverAQuadBentRoundALeadingEdgeIsSplitNotInverted) {
+    // The slotted two-element wing of the sweep in quads, 15 layers from 7.5e-4: where two
+    // adjacent columns of a quad bent round the main element's leading edge stop at the wall,
+    // the prism lying on its side that closed the step had every corner positive but its
+    // centre outside the wall quad's side, and checkMesh failed the mesh on 5 "incorrectly
+    // oriented" faces. Such a quad is split through a stopped corner (a pyramid and a
+    // tetrahedron over planar triangles) and the mesh passes.
+    test::ScratchDir dir("cli_bent_quad_step");
+    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/slot.geo") +
+                                            "' --quads --layers 15 --growth 1.2 --first-height 7.5e-4 -o s.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out.find("pyramid to a cell centre is inverted"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
 /// The summary's smallest scaled Jacobian of \p type ("tetrahedron", ...); NaN if absent.
 double summary_min_quality(const std::string& out, const std::string& type) {
     const auto at = out.find("  " + type + ":");

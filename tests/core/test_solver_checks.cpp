@@ -5,6 +5,7 @@
 #include "box_mesh.h"
 
 #include <strata/core/cell_faces.h>
+#include <strata/core/cell_quality.h>
 #include <strata/core/face_match.h>
 #include <strata/core/solver_checks.h>
 
@@ -259,6 +260,30 @@ TEST(SolverChecks, LeaningPrismAspectRatioWithAColumnAtTheWallIsTheStepCells) {
     // Every column at the wall: no cell.
     const std::array<Vec3, 3> none{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
     EXPECT_FALSE(std::isfinite(leaning_prism_aspect_ratio(tri.data(), none.data(), 3, h)));
+}
+
+TEST(SolverChecks, FacePyramidsInvertedIsCheckMeshsTestOnOneCell) {
+    // The first-layer prism lying on its side that closed a step over a quad Gmsh bent round
+    // the slotted wing's leading edge (the sweep's slot.geo with --quads, 15 layers from
+    // 7.5e-4): its two moving segments 0-2 and 3-5 are 9e-4 long, its stopped corners 1 and 4
+    // the far side of a wall quad whose diagonals' midpoints lie 0.039 apart. Every corner is
+    // positive, but the cell's centre lies outside the wall quad's side: checkMesh counted the
+    // face as incorrectly oriented.
+    const std::vector<Vec3> bent{Vec3(-0.41875205, 0.0335252, 0.17833375),   Vec3(-0.49170131, 0.0108862, 0.19718511),
+                                 Vec3(-0.41911334, 0.03434486, 0.17830355),  Vec3(-0.47772075, 0.01812715, 0.11648235),
+                                 Vec3(-0.47690067, -0.01802628, 0.15739478), Vec3(-0.47856202, 0.01829784, 0.11645318)};
+    EXPECT_GT(min_scaled_jacobian(bent.data(), CellType::Prism), 0.0);
+    EXPECT_TRUE(face_pyramids_inverted(bent.data(), CellType::Prism));
+    EXPECT_GT(checks(one_cell<6>(bent, CellType::Prism)).negative_pyramids, 0);
+    // A prism over a flat triangle, and a tetrahedron and pyramid of the same region: none.
+    const std::vector<Vec3> flat{Vec3(0, 0, 0),     Vec3(1, 0, 0),     Vec3(0, 1, 0),
+                                 Vec3(0, 0, 0.001), Vec3(1, 0, 0.001), Vec3(0, 1, 0.001)};
+    EXPECT_FALSE(face_pyramids_inverted(flat.data(), CellType::Prism));
+    EXPECT_EQ(checks(one_cell<6>(flat, CellType::Prism)).negative_pyramids, 0);
+    const std::array<Vec3, 4> tet{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    EXPECT_FALSE(face_pyramids_inverted(tet.data(), CellType::Tet));
+    const std::array<Vec3, 5> pyramid{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(0.5, 0.5, 0.5)};
+    EXPECT_FALSE(face_pyramids_inverted(pyramid.data(), CellType::Pyramid));
 }
 
 TEST(SolverChecks, FanWedgeAspectRatioIsThatOfTheCellItPredicts) {

@@ -71,6 +71,12 @@ double right_prism_aspect_ratio(const Vec3* corners, int n, double h);
 /// without area or a cell without volume.
 double leaning_prism_aspect_ratio(const Vec3* corners, const Vec3* directions, int n, double h);
 
+/// Whether checkMesh would find a face of the cell of \p type with corners \p corners (Gmsh
+/// order, as cell_faces lists its faces) whose pyramid to the cell's centre is inverted
+/// ("incorrectly oriented"): its centre, OpenFOAM's, on the wrong side of a face, as in a cell
+/// thinner than one of its faces is warped. The test solver_checks makes on a whole mesh.
+bool face_pyramids_inverted(const Vec3* corners, CellType type);
+
 /// checkMesh's aspect ratio of the first cell of a fan (ALGORITHM.md, "Fans") on the wall edge
 /// \p a - \p b: the wedge between the directions \p d1 and \p d2 (unit, square to the edge),
 /// \p h long. Its end triangles are about h² small against sides of the edge's length, so it is
