@@ -677,18 +677,23 @@ TEST(MeshCadWalls, TheBudgetCountsASurfaceWhoseBoundaryTheCapsFill) {
     EXPECT_LT(kept.num_faces(), 2000);
 }
 
+/// A blade 1 long and 1 wide in y, its 20-degree edge along y at x = 0 (its faces turn by 160
+/// degrees there), as a .geo in \p dir.
+std::string write_blade(const ScratchDir& dir) {
+    return write_file(dir, "blade.geo",
+                      "SetFactory(\"OpenCASCADE\");\n"
+                      "Point(1) = {0, 0, 0};\nPoint(2) = {1, 0, 0.1763};\nPoint(3) = {1, 0, -0.1763};\n"
+                      "Line(1) = {1, 2};\nLine(2) = {2, 3};\nLine(3) = {3, 1};\n"
+                      "Curve Loop(1) = {1, 2, 3};\nPlane Surface(1) = {1};\n"
+                      "Extrude {0, 1, 0} { Surface{1}; }\n");
+}
+
 TEST(MeshCadWalls, FanEdgesAreMeshedFinerAlongTheirCurve) {
     // A blade with a 20-degree edge along y (its faces turn by 160 degrees: a fan at the default
     // 150) at size 0.15: the fan's first wedge is about twice the edge over h, 2 * 0.14 / 1.5e-4
     // = 1900, while a prism on a face is near 500. Only the edge's curve is refined.
     const ScratchDir dir("mesh_cad_fan");
-    const std::string geo =
-        write_file(dir, "blade.geo",
-                   "SetFactory(\"OpenCASCADE\");\n"
-                   "Point(1) = {0, 0, 0};\nPoint(2) = {1, 0, 0.1763};\nPoint(3) = {1, 0, -0.1763};\n"
-                   "Line(1) = {1, 2};\nLine(2) = {2, 3};\nLine(3) = {3, 1};\n"
-                   "Curve Loop(1) = {1, 2, 3};\nPlane Surface(1) = {1};\n"
-                   "Extrude {0, 1, 0} { Surface{1}; }\n");
+    const std::string geo = write_blade(dir);
     CadParams p;
     p.size = 0.15;
     p.first_height = 1.5e-4;
@@ -723,13 +728,7 @@ TEST(MeshCadWalls, StepCellsAtASharpEdgeWithoutAFanAreMeshedFinerToo) {
     // 1172 under 1.2e-4 at size 0.15, where the prisms stay under 1000). They are forecast too,
     // and the surfaces beside the edge meshed finer for them.
     const ScratchDir dir("mesh_cad_steps");
-    const std::string geo =
-        write_file(dir, "blade.geo",
-                   "SetFactory(\"OpenCASCADE\");\n"
-                   "Point(1) = {0, 0, 0};\nPoint(2) = {1, 0, 0.1763};\nPoint(3) = {1, 0, -0.1763};\n"
-                   "Line(1) = {1, 2};\nLine(2) = {2, 3};\nLine(3) = {3, 1};\n"
-                   "Curve Loop(1) = {1, 2, 3};\nPlane Surface(1) = {1};\n"
-                   "Extrude {0, 1, 0} { Surface{1}; }\n");
+    const std::string geo = write_blade(dir);
     CadParams p;
     p.size = 0.15;
     p.first_height = 1.2e-4;
