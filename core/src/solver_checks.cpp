@@ -27,7 +27,7 @@ struct FaceGeometry {
 
 /// A face's centre and area vector as OpenFOAM computes them: triangles from each edge to the
 /// mean of the corners, the centre their area-weighted centroid.
-FaceGeometry face_geometry(const std::vector<Vec3>& p, const Index* v, int n) {
+FaceGeometry face_geometry(const Vec3* p, const Index* v, int n) {
     Vec3 mean = Vec3::Zero();
     for (int i = 0; i < n; ++i) mean += p[static_cast<std::size_t>(v[i])];
     mean /= static_cast<double>(n);
@@ -182,14 +182,12 @@ double leaning_prism_aspect_ratio(const Vec3* corners, const Vec3* directions, i
 
 bool face_pyramids_inverted(const Vec3* corners, CellType type) {
     const CellFaceTable& t = cell_faces(type);
-    const int nodes = type == CellType::Tet ? 4 : type == CellType::Pyramid ? 5 : type == CellType::Prism ? 6 : 8;
-    const std::vector<Vec3> p(corners, corners + nodes);
     std::array<FaceGeometry, 6> fg;
     for (int f = 0; f < t.count; ++f) {
         Index v[4];
         for (int c = 0; c < t.size[static_cast<std::size_t>(f)]; ++c)
             v[c] = static_cast<Index>(t.node[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)]);
-        fg[static_cast<std::size_t>(f)] = face_geometry(p, v, t.size[static_cast<std::size_t>(f)]);
+        fg[static_cast<std::size_t>(f)] = face_geometry(corners, v, t.size[static_cast<std::size_t>(f)]);
     }
     Vec3 mag;
     double vol3 = 0.0;
@@ -221,7 +219,7 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
         for (std::uint64_t s = s0; s < s1; ++s) {
             Index v[4];
             const int n = slots.nodes(s, v);
-            fg[s - s0] = face_geometry(p, v, n);
+            fg[s - s0] = face_geometry(p.data(), v, n);
         }
         Vec3 mag = Vec3::Zero();
         double vol3 = 0.0;
@@ -264,7 +262,7 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
             if (interior && static_cast<std::uint64_t>(other) < s) continue;
             Index v[4];
             const int n = slots.nodes(s, v);
-            const FaceGeometry f = face_geometry(p, v, n);  // outward from the owner, cell(s)
+            const FaceGeometry f = face_geometry(p.data(), v, n);  // outward from the owner, cell(s)
             const Vec3& co = centre[static_cast<std::size_t>(slots.cell(s))];
             double skew = 0.0;
             auto extent = [&](const Vec3& dir) {
@@ -318,7 +316,7 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
     auto face_name = [&](std::uint64_t s) {
         Index v[4];
         const int n = slots.nodes(s, v);
-        const FaceGeometry f = face_geometry(p, v, n);
+        const FaceGeometry f = face_geometry(p.data(), v, n);
         const std::int64_t other = match.across[s];
         std::string who = cell_name(slots, s);
         if (other >= 0) who += " and " + cell_name(slots, static_cast<std::uint64_t>(other));
