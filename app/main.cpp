@@ -150,8 +150,9 @@ void begin_writing() {
 // ---------------------------------------------------------------------------------------
 // A crash (SIGSEGV, SIGBUS, SIGFPE, SIGILL) ends the program with one line naming the stage it
 // was in, instead of the shell's bare "Segmentation fault": Gmsh's surface mesher has crashed
-// on some CAD faces and sizes (MeshAdapt, in-process: Gmsh cannot run in a child as TetGen
-// does, its OpenMP threads make a fork unsafe). The handler does only what a signal handler
+// on some CAD faces and sizes (MeshAdapt, in this process: a trial in a child as for TetGen
+// would double every surface's meshing time; only quads with Blossom, which aborts the process
+// on some surfaces, are tried in a child first, io/gmsh_session.h). The handler does only what a signal handler
 // may: write() a message built from a stage name kept in a fixed buffer, then _exit(1).
 // Outputs are written under a temporary name and renamed, so before the writers start
 // nothing is left; a crash while writing may leave that temporary file, and the line says so.
@@ -398,7 +399,12 @@ void print_wall_sizing(const strata::WallSizeReport& w) {
 
 /// What --step-quality did to the CAD walls (nothing to say when no step asked for it).
 void print_step_sizing(const strata::StepSizeReport& st) {
-    if (st.over_budget)
+    if (!st.failure.empty())
+        std::printf(
+            "warning: the layers step low at %d wall nodes, where the cells closing the steps would be nearly flat; "
+            "meshing the walls finer there for --step-quality %s failed, so the first surface is kept: %s\n",
+            static_cast<int>(st.points), strata::format_number(st.quality).c_str(), st.failure.c_str());
+    else if (st.over_budget)
         std::printf(
             "warning: the layers step low at %d wall nodes, where the cells closing the steps would be nearly flat; "
             "walls fine enough for --step-quality %s there would take about %.3g faces, more than Strata makes "
@@ -530,6 +536,11 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
             static_cast<int>(r.needles_before), static_cast<int>(r.needles_after), r.sharpest_before_deg,
             r.sharpest_after_deg);
     }
+    if (!rep.recombination.blossom_failure.empty())
+        std::printf(
+            "quads: Gmsh's Blossom recombination would have ended the process on this model (\"%s\"), so the surfaces "
+            "were recombined with Gmsh's simple algorithm instead, which leaves more triangles\n",
+            rep.recombination.blossom_failure.c_str());
     print_wall_sizing(rep.remeshed ? rep.remesh.walls : rep.walls);
     print_step_sizing(rep.steps);
     print_needles(mesh, rep, any_cad);

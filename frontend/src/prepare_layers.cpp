@@ -70,7 +70,15 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
         q.size /= params.scale;
     }
     PrepareReport second_report;
-    SurfaceMesh finer = prepare_surfaces(inputs, again, &second_report, progress);
+    SurfaceMesh finer;
+    try {
+        finer = prepare_surfaces(inputs, again, &second_report, progress);
+    } catch (const BackendError& e) {
+        // The finer walls are an improvement, not the surface asked for: Gmsh failing on their
+        // sizes (quads it cannot make there) leaves the first surface, which it could mesh.
+        steps.failure = e.what();
+        return done(std::move(surface), first_report);
+    }
     // The finer walls must not cost layers: they resolve the gap better, and its limits, spread
     // along the walls, took 60.9 % of the thickness to 14.5 % on a slotted wing's main element.
     steps.thickness_before = share_before;

@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -626,7 +627,8 @@ SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces, s
 /// share with the other surfaces stay conforming).
 SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, const std::vector<int>& surfaces,
                               const PointSizes& points, SurfaceMesh mesh, std::vector<int>& face_surface,
-                              WallSizeReport& r) {
+                              WallSizeReport& r, bool quads, GmshOptionScope& options,
+                              RecombinationReport& recombination) {
     std::set<int> walls;
     for (const auto& [s, name] : surface_patch_names(surfaces))
         if (patch_kind_of(name, params.wall_patch_kinds) == PatchKind::Wall) walls.insert(s);
@@ -639,14 +641,19 @@ SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, 
     const double factor = get_number("Mesh.MeshSizeFactor");
     refine_walls(limits, std::move(first), r, [&](const WallCaps& caps, WallAspect& measured) {
         {
-            std::optional<SizeCallback> callback;
-            gmsh_call(path + ": meshing the walls again finer for the first layer's aspect ratio (max_aspect_ratio " +
-                          format_number(params.max_aspect_ratio) + ")",
-                      [&] {
-                          gmsh::model::mesh::clear();
-                          callback.emplace(entity_sizes(caps), factor, &points);
-                          gmsh::model::mesh::generate(2);
-                      });
+            const std::string context = path +
+                                        ": meshing the walls again finer for the first layer's aspect ratio "
+                                        "(max_aspect_ratio " +
+                                        format_number(params.max_aspect_ratio) + ")";
+            const auto generate = [&] {
+                std::optional<SizeCallback> callback;
+                gmsh::model::mesh::clear();
+                callback.emplace(entity_sizes(caps), factor, &points);
+                gmsh::model::mesh::generate(2);
+            };
+            const std::string failure = avoid_blossom_abort(context, quads, options, generate);
+            if (!failure.empty()) recombination.blossom_failure = failure;
+            gmsh_call(context, generate);
         }
         face_surface.clear();
         mesh = extract(path, surfaces, face_surface);
@@ -663,7 +670,7 @@ bool is_cad_file(const std::string& path) {
 }
 
 SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units, WallSizeReport* walls,
-                     SewReport* sew) {
+                     SewReport* sew, RecombinationReport* recombination) {
     const std::optional<CadFormat> format = format_of(path);
     if (!format)
         throw InputError(path +
@@ -825,20 +832,26 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     // CadParams::size_points, in the model's coordinates as the result's (scaled on import).
     const PointSizes points(params.size_points, params.size_point_growth);
     const double size_factor = get_number("Mesh.MeshSizeFactor");
-    gmsh_call(path + ": Gmsh failed to mesh the surfaces (maximum size " + format_number(size) +
-                  "); try a smaller size, another algorithm, or repair the CAD",
-              [&] {
-                  std::optional<SizeCallback> callback;
-                  if (!points.empty()) callback.emplace(EntitySizes{}, size_factor, &points);
-                  gmsh::model::mesh::generate(2);
-              });
+    const std::string context = path + ": Gmsh failed to mesh the surfaces (maximum size " + format_number(size) +
+                                "); try a smaller size, another algorithm, or repair the CAD";
+    const auto generate = [&] {
+        std::optional<SizeCallback> callback;
+        if (!points.empty()) callback.emplace(EntitySizes{}, size_factor, &points);
+        gmsh::model::mesh::generate(2);
+    };
+    const bool quads = get_number("Mesh.RecombineAll") > 0.0 || params.elements == SurfaceElements::Mixed;
+    RecombinationReport recombined;
+    recombined.blossom_failure = avoid_blossom_abort(context, quads, options, generate);
+    gmsh_call(context, generate);
 
     std::vector<int> face_surface;
     SurfaceMesh mesh = extract(path, surfaces, face_surface);
     WallSizeReport wall_report;
     if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0)
-        mesh = limit_wall_aspect(path, params, surfaces, points, std::move(mesh), face_surface, wall_report);
+        mesh = limit_wall_aspect(path, params, surfaces, points, std::move(mesh), face_surface, wall_report, quads,
+                                 options, recombined);
     if (walls) *walls = wall_report;
+    if (recombination) *recombination = recombined;
     return mesh;
 }
 

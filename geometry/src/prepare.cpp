@@ -24,14 +24,17 @@ std::string lower(std::string s) {
 
 /// The reader for \p path's extension: CAD through Gmsh (mesh_cad), STL and MSH through io/.
 SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const CadParams& cad, CadUnits* units,
-                     WallSizeReport* walls, SewReport* sew) {
+                     WallSizeReport* walls, SewReport* sew, RecombinationReport* recombination) {
     check_input_file(path);
     if (is_cad_file(path)) {
         CadParams with_kinds = cad;
         with_kinds.wall_patch_kinds = params.patch_kinds;
         WallSizeReport one;
         SewReport sewn;
-        SurfaceMesh mesh = mesh_cad(path, with_kinds, units, &one, &sewn);
+        RecombinationReport recombined;
+        SurfaceMesh mesh = mesh_cad(path, with_kinds, units, &one, &sewn, &recombined);
+        // Several inputs: the first file whose recombination fell back says so.
+        if (recombination && recombination->blossom_failure.empty()) *recombination = recombined;
         if (sew) sew->written_twice += sewn.written_twice;
         if (sew && sewn.faces > 0) {
             // Several inputs: summed, the widest gap and the largest tolerance kept.
@@ -203,6 +206,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         report->short_edges = short_edges;
         report->remeshed = params.remesh;
         report->remesh = remesh;
+        report->recombination = remesh.recombination;
         report->scale = params.scale;
         report->fused_components = fuse.fused;
         report->touching_faces = touching;
@@ -227,6 +231,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
     CadUnits units;
     WallSizeReport walls;
     SewReport sew;
+    RecombinationReport recombination;
     SurfaceMesh all;
     std::string source;
     for (const std::string& path : paths) {
@@ -236,7 +241,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
         const bool has_unit = ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
         CadParams this_cad = cad;
         if (!has_unit) this_cad.units = params.cad.units;
-        const SurfaceMesh one = read_any(path, params, this_cad, &read_in, &walls, &sew);
+        const SurfaceMesh one = read_any(path, params, this_cad, &read_in, &walls, &sew, &recombination);
         // The first CAD file with a unit sets it for the others (unless one was asked).
         if (!read_in.unit.empty() && units.unit.empty()) {
             units = read_in;
@@ -264,6 +269,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
         report->units = units;
         report->walls = walls;
         report->sew = sew;
+        if (report->recombination.blossom_failure.empty()) report->recombination = recombination;
     }
     return out;
 }
@@ -274,12 +280,14 @@ SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params
     CadUnits units;
     WallSizeReport walls;
     SewReport sew;
-    SurfaceMesh raw = read_any(path, params, params.cad, &units, &walls, &sew);
+    RecombinationReport recombination;
+    SurfaceMesh raw = read_any(path, params, params.cad, &units, &walls, &sew, &recombination);
     SurfaceMesh out = prepare_mesh(std::move(raw), params, path, report, progress);
     if (report) {
         report->units = units;
         report->walls = walls;
         report->sew = sew;
+        if (report->recombination.blossom_failure.empty()) report->recombination = recombination;
     }
     return out;
 }

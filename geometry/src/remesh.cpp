@@ -114,7 +114,8 @@ struct Attempt {
     Index surfaces = 0;
     Index bad = 0;  ///< faces inverted against the old surface or without area
     Index first_bad = kNone;
-    WallAspect aspect;  ///< with RemeshParams::first_height: the first layer over its walls
+    WallAspect aspect;            ///< with RemeshParams::first_height: the first layer over its walls
+    std::string blossom_failure;  ///< RecombinationReport::blossom_failure
 };
 
 /// One run of Gmsh's route at feature angle \p angle_deg, the result checked against \p in.
@@ -205,6 +206,8 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             for (auto& [tag, s] : scaled.curve) s /= frame.scale;
             callback.emplace(entity_sizes(scaled), 1.0);
         }
+        // Blossom may abort the process on this surface: then Gmsh's simple recombination.
+        out.blossom_failure = avoid_blossom_abort(ctx, p.quads, options, [] { gmsh::model::mesh::generate(2); });
         gmsh::model::mesh::generate(2);
     });
     out.mesh = surface_from_gmsh_model("the remeshed " + source, NodeOrder::FirstUse, &face_surface);
@@ -373,6 +376,7 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
                 rep.faces_after = a->mesh.num_faces();
                 rep.surfaces = a->surfaces;
             }
+            rep.recombination.blossom_failure = a->blossom_failure;
             const NeedleReport final_needles = needle_faces(a->mesh, kNeedleCornerDeg);
             rep.needles_after = final_needles.needles;
             rep.sharpest_after_deg = final_needles.sharpest_deg;

@@ -39,16 +39,13 @@
 
 #include "tetgen_library.h"
 
+#include <strata/core/child_process.h>
 #include <strata/core/error.h>
 
 #include <dlfcn.h>
 #include <elf.h>
-#include <fcntl.h>
 #include <link.h>
-#include <poll.h>
 #include <sys/mman.h>
-#include <sys/prctl.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -348,10 +345,11 @@ const Library& library() {
 // TetGen in a child process. A TetGen failure that is neither an exit code nor an assert()
 // (a SIGSEGV: Debian's libtet 1.5.0 crashes in sremovevertex on some fronts whose facets it
 // cannot recover) would end the whole process, a FreeCAD or Gmsh session with it. So each run
-// is forked: the child runs tetrahedralize on its copy of the input and writes its outcome down
-// a pipe (the output arrays, or the failure), then _exit()s; the parent reads it back into
-// `out`. A child that dies on a signal is a BackendError naming the signal. Where fork() is
-// not available (EAGAIN, ENOMEM, a sandbox) TetGen runs in this process as before.
+// is forked (run_in_child, core/child_process.h): the child runs tetrahedralize on its copy of
+// the input and writes its outcome down a pipe (the output arrays, or the failure), then
+// _exit()s; the parent reads it back into `out`. A child that dies on a signal is a
+// BackendError naming the signal. Where fork() is not available (EAGAIN, ENOMEM, a sandbox)
+// TetGen runs in this process as before.
 
 /// The outcome of a run, as the child sends it.
 enum class Outcome : char { Done = 0, Code = 1, Assert = 2, NoMemory = 3, Other = 4 };
@@ -465,17 +463,6 @@ void get_output(Bytes& b, tetgenio& o) {
     o.edgeadjtetlist = b.get_array<int>(ne);
 }
 
-bool write_all(int fd, const char* p, std::size_t n) {
-    while (n > 0) {
-        const ssize_t w = ::write(fd, p, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) return false;
-        p += w;
-        n -= static_cast<std::size_t>(w);
-    }
-    return true;
-}
-
 /// tetrahedralize here, its outcome into \p b; true if it succeeded.
 bool tetrahedralize_into(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background, Bytes& b) {
     std::vector<char> buf(switches.begin(), switches.end());
@@ -524,78 +511,38 @@ void throw_outcome(Bytes& b) {
     throw BackendError("TetGen failed with an exception it does not document");
 }
 
-/// \p body run in a forked child (which sends what it puts into its Bytes and _exit()s), its
+/// \p body run in a forked child (run_in_child; it sends what it puts into its Bytes), its
 /// bytes returned; false (nothing run) where fork() is not available. BackendError when the
 /// child dies on a signal. The caller holds tetgen_mutex().
 bool in_child(const std::function<void(Bytes&)>& body, Bytes& result, const Progress* progress) {
-    int fds[2];
-    if (::pipe2(fds, O_CLOEXEC) != 0) return false;
-    std::fflush(nullptr);  // nothing buffered twice
-    const pid_t parent = ::getpid();
-    const pid_t pid = ::fork();
-    if (pid < 0) {
-        ::close(fds[0]);
-        ::close(fds[1]);
-        return false;
-    }
-    if (pid == 0) {  // the child: run, send, leave without unwinding or atexit handlers
-        ::close(fds[0]);
-        // Ends with this process (the CLI's --timeout ends it while TetGen runs).
-        if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent) ::_exit(1);
-        // A crash must end the child by its signal, which the parent names (not a handler
-        // the program installed, such as the CLI's, which would exit with a status instead).
-        for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(sig, SIG_DFL);
-        Bytes b;
-        try {
-            body(b);
-        } catch (...) {
-            b.data.clear();
-            b.put(Outcome::Other);
-        }
-        const bool sent = write_all(fds[1], b.data.data(), b.data.size());
-        ::_exit(sent ? 0 : 1);
-    }
-    ::close(fds[1]);
-    result.data.clear();
+    const ChildResult child = run_in_child(
+        [&](std::vector<char>& sent) {
+            Bytes b;
+            try {
+                body(b);
+            } catch (...) {
+                b.data.clear();
+                b.put(Outcome::Other);
+            }
+            sent = std::move(b.data);
+        },
+        progress);
+    if (!child.forked) return false;
+    result.data = child.sent;
     result.at = 0;
-    // Read until the child closes its end, asking \p progress every 0.1 s whether to stop:
-    // then the child is killed (TetGen itself cannot be asked).
-    char chunk[1 << 16];
-    bool cancelled = false;
-    for (;;) {
-        pollfd p{fds[0], POLLIN, 0};
-        const int ready = ::poll(&p, 1, 100);
-        if (ready < 0 && errno != EINTR) break;
-        if (progress != nullptr && progress->cancelled()) {
-            cancelled = true;
-            ::kill(pid, SIGKILL);
-            break;
-        }
-        if (ready <= 0) continue;
-        const ssize_t r = ::read(fds[0], chunk, sizeof chunk);
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) break;
-        result.data.insert(result.data.end(), chunk, chunk + r);
-    }
-    ::close(fds[0]);
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (cancelled) throw Cancelled();
-    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL)  // not its own doing: the system's
+    if (child.signal == SIGKILL)  // not its own doing: the system's
         throw BackendError("TetGen was killed (signal 9), most likely by the system for want of memory: " +
                            failure_message(1));
-    if (WIFSIGNALED(status)) {
-        const int sig = WTERMSIG(status);
-        const char* name = sigdescr_np(sig);
-        throw LocalFailure("TetGen crashed (signal " + std::to_string(sig) + ", " + (name ? name : "unknown") +
+    if (child.signal != 0) {
+        const char* name = sigdescr_np(child.signal);
+        throw LocalFailure("TetGen crashed (signal " + std::to_string(child.signal) + ", " + (name ? name : "unknown") +
                            "), usually on boundary faces it could not recover (nearly coplanar or nearly "
                            "touching faces of the layer top); remesh the surface (needle faces) or change the "
                            "layers (fewer or thinner) there, and retry");
     }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || result.data.empty())
+    if (child.exit_status != 0 || result.data.empty())
         throw BackendError("TetGen's child process ended without sending its result (exit status " +
-                           std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+                           std::to_string(child.exit_status) + ")");
     return true;
 }
 

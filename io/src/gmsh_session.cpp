@@ -1,11 +1,14 @@
 #include <strata/io/gmsh_session.h>
 
+#include <strata/core/child_process.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <limits>
+#include <vector>
 
 #include <unistd.h>
 
@@ -171,6 +174,70 @@ GmshAbortScope::GmshAbortScope(std::string context) : previous_context_(std::mov
 GmshAbortScope::~GmshAbortScope() {
     g_abort_context = std::move(previous_context_);
     std::set_terminate(previous_handler_);
+}
+
+namespace {
+
+// In gmsh_probe's child: an abort is sent to the parent as 'A' and its text, not printed.
+[[noreturn]] void on_probe_abort() {
+    const std::string sent = "A" + current_exception_text();
+    child_exit(std::vector<char>(sent.begin(), sent.end()), 0);
+    std::_Exit(1);
+}
+
+}  // namespace
+
+GmshProbe gmsh_probe(const std::function<void()>& f) {
+    ChildOptions options;
+    options.free_openmp_threads = true;
+    const ChildResult child = run_in_child(
+        [&](std::vector<char>& sent) {
+            std::set_terminate(on_probe_abort);
+            try {
+                gmsh::option::setNumber("General.Terminal", 0);
+            } catch (...) {
+            }
+            std::string outcome = "R";
+            try {
+                f();
+            } catch (...) {
+                outcome = "E" + current_exception_text();
+            }
+            sent.assign(outcome.begin(), outcome.end());
+        },
+        nullptr, options);
+    GmshProbe probe;
+    probe.ran = child.forked;
+    if (!child.forked) return probe;
+    probe.signal = child.signal;
+    if (child.signal == 0 && !child.sent.empty()) {
+        probe.returned = child.sent[0] == 'R';
+        probe.aborted = child.sent[0] == 'A';
+        probe.threw = child.sent[0] == 'E';
+        probe.message.assign(child.sent.begin() + 1, child.sent.end());
+    }
+    return probe;
+}
+
+std::string avoid_blossom_abort(const std::string& context, bool quads_asked, GmshOptionScope& options,
+                                const std::function<void()>& generate) {
+    if (!quads_asked) return "";
+    double algorithm = 0.0;
+    gmsh::option::getNumber("Mesh.RecombinationAlgorithm", algorithm);
+    if (algorithm != 1.0) return "";
+    const GmshProbe blossom = gmsh_probe(generate);
+    // Blossom's own words (Gmsh 4.8, meshGFaceOptimize.cpp): any other abort is not its, and
+    // the simple algorithm would not help.
+    if (!blossom.aborted || blossom.message.find("Perfect Match") == std::string::npos) return "";
+    options.set("Mesh.RecombinationAlgorithm", 0);
+    const GmshProbe simple = gmsh_probe(generate);
+    if (!simple.ran || simple.returned) return blossom.message;
+    const std::string how = simple.signal != 0 ? "crashes (signal " + std::to_string(simple.signal) + ")"
+                            : simple.aborted   ? "aborts (" + simple.message + ")"
+                                               : "fails (" + simple.message + ")";
+    throw BackendError(context + ": quads cannot be made here: Gmsh's Blossom recombination fails (" +
+                       blossom.message + ") and with its simple recombination Gmsh " + how +
+                       "; mesh triangles instead, or with another size");
 }
 
 std::string GmshSession::last_error() {

@@ -736,6 +736,22 @@ TEST(Cli, AStepOverAQuadBentRoundALeadingEdgeIsSplitNotInverted) {
     EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
 }
 
+TEST(Cli, QuadsWhereBlossomWouldAbortTheProcess) {
+    // The sweep's sphere with three cones in quads: Gmsh's Blossom recombination threw out of
+    // Gmsh's OpenMP loop on a cone, and the run stopped with "Gmsh aborted the process
+    // (Perfect Match failed in quadrangulation ...)". Tried first in a child, the surfaces are
+    // recombined with Gmsh's simple algorithm instead, the summary says so, and the mesh passes.
+    test::ScratchDir dir("cli_blossom_aborts");
+    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/spiky.geo") +
+                                            "' --fuse --quads --layers 15 --growth 1.2 --first-height 8e-4 -o s.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("quads: Gmsh's Blossom recombination would have ended the process on this model (\"Perfect "
+                         "Match failed"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
 /// The summary's smallest scaled Jacobian of \p type ("tetrahedron", ...); NaN if absent.
 double summary_min_quality(const std::string& out, const std::string& type) {
     const auto at = out.find("  " + type + ":");

@@ -297,3 +297,15 @@ def test_walls_are_meshed_finer_where_the_layers_step_at_a_gap():
     kept = strata.mesh(two, step_quality=0, **args)
     assert kept.report["surface"]["steps"]["points"] == 0
     assert kept.report["min_scaled_jacobian"]["pyramid"] < 0.03
+
+
+def test_quads_where_blossom_would_end_the_python_process():
+    # The sweep's sphere with three cones in quads: Gmsh's Blossom recombination throws out of
+    # Gmsh's OpenMP loop on a cone, which ended the whole process (this Python session with it).
+    # Tried in a child first, the surfaces are recombined with Gmsh's simple algorithm instead,
+    # and the report says why.
+    spiky = os.path.join(EXAMPLES, "..", "sweep", "spiky.geo")
+    s = strata.surface(spiky, fuse=True, quads=True)
+    assert "Perfect Match failed" in s.report["blossom_failure"]
+    assert s.report["quads"] > s.report["triangles"]
+    assert strata.surface(spiky, fuse=True).report["blossom_failure"] == ""

@@ -128,6 +128,8 @@ struct StepSizeReport {
     /// The finer surface was dropped: its plan gave the walls less thickness (a gap resolved
     /// better limits the layers round it more), and the first one is returned.
     bool kept = false;
+    /// Gmsh could not mesh the finer surface (its error): the first one is returned.
+    std::string failure;
     double seconds = 0.0;  ///< the layers planned to find the steps, and the surface made again
 };
 
@@ -172,6 +174,16 @@ struct WallSizeReport {
     bool over_budget = false;       ///< not meshed again: faces_estimate above CadParams::wall_faces_budget
 };
 
+/// What Gmsh's recombination into quadrilaterals did, where quads were asked
+/// (CadParams::elements, RemeshParams::quads).
+struct RecombinationReport {
+    /// Gmsh's Blossom algorithm would have ended the process on this model (a std::terminate
+    /// out of Gmsh 4.8's meshing loop; gmsh_session.h, avoid_blossom_abort): its message. The surfaces
+    /// were then recombined with Gmsh's simple algorithm, which leaves more triangles. Empty:
+    /// Blossom did it (or no quads were asked).
+    std::string blossom_failure;
+};
+
 /// What mesh_cad read the coordinates in.
 struct CadUnits {
     std::string unit;      ///< the unit of the result ("m", "mm", ...); empty for BREP and .geo (none)
@@ -194,9 +206,11 @@ struct CadUnits {
 /// Throws InputError for bad parameters, a missing, unreadable or corrupt file, or a model
 /// without surfaces (each naming the file); BackendError when Gmsh fails to mesh or leaves a
 /// surface without elements (naming the surface).
-/// \p walls, if given, receives what the wall-size cap did; \p sew what the sewing did.
+/// \p walls, if given, receives what the wall-size cap did; \p sew what the sewing did;
+/// \p recombination what the recombination into quads did.
 SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units = nullptr,
-                     WallSizeReport* walls = nullptr, SewReport* sew = nullptr);
+                     WallSizeReport* walls = nullptr, SewReport* sew = nullptr,
+                     RecombinationReport* recombination = nullptr);
 
 /// True for the extensions mesh_cad understands (case-insensitive); looks at the name only.
 bool is_cad_file(const std::string& path);

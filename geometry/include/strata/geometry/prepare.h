@@ -52,21 +52,22 @@ struct PrepareParams {
 
 /// What prepare_surface did, for the CLI's summary.
 struct PrepareReport {
-    Index merged_nodes = 0;       ///< nodes removed by merging
-    Index collapsed_faces = 0;    ///< faces with a repeated node removed (remove_collapsed_faces)
-    Index duplicate_faces = 0;    ///< faces written twice, the copies removed (remove_duplicate_faces)
-    Index t_junctions = 0;        ///< faces split where a node lay inside their open edge (split_t_junctions)
-    CadUnits units;               ///< CAD input: the unit read in and the one the file declares
-    WallSizeReport walls;         ///< CAD input: what CadParams::max_aspect_ratio did (sizes as CadParams's)
-    SewReport sew;                ///< CAD input: what CadParams::sew_tolerance did (several files: summed)
-    StepSizeReport steps;         ///< CAD input: what CadParams::step_quality did (prepare_for_layers)
-    double scale = 1.0;           ///< PrepareParams::scale applied
-    Index fused_components = 0;   ///< components replaced by their union (PrepareParams::fuse)
-    Index touching_faces = 0;     ///< faces removed where bodies touch back to back (PrepareParams::fuse)
-    bool internal_flow = false;   ///< PrepareParams::internal_flow: oriented for the fluid inside the walls
-    ShortEdgeReport short_edges;  ///< PrepareParams::collapse_ratio: the edges collapsed
-    HoleReport holes;             ///< PrepareParams::fill_holes: the loops closed and left
-    bool remeshed = false;        ///< PrepareParams::remesh done; \p remesh says how
+    Index merged_nodes = 0;             ///< nodes removed by merging
+    Index collapsed_faces = 0;          ///< faces with a repeated node removed (remove_collapsed_faces)
+    Index duplicate_faces = 0;          ///< faces written twice, the copies removed (remove_duplicate_faces)
+    Index t_junctions = 0;              ///< faces split where a node lay inside their open edge (split_t_junctions)
+    CadUnits units;                     ///< CAD input: the unit read in and the one the file declares
+    WallSizeReport walls;               ///< CAD input: what CadParams::max_aspect_ratio did (sizes as CadParams's)
+    SewReport sew;                      ///< CAD input: what CadParams::sew_tolerance did (several files: summed)
+    RecombinationReport recombination;  ///< quads asked (CAD or PrepareParams::remesh): what Gmsh's recombination did
+    StepSizeReport steps;               ///< CAD input: what CadParams::step_quality did (prepare_for_layers)
+    double scale = 1.0;                 ///< PrepareParams::scale applied
+    Index fused_components = 0;         ///< components replaced by their union (PrepareParams::fuse)
+    Index touching_faces = 0;           ///< faces removed where bodies touch back to back (PrepareParams::fuse)
+    bool internal_flow = false;         ///< PrepareParams::internal_flow: oriented for the fluid inside the walls
+    ShortEdgeReport short_edges;        ///< PrepareParams::collapse_ratio: the edges collapsed
+    HoleReport holes;                   ///< PrepareParams::fill_holes: the loops closed and left
+    bool remeshed = false;              ///< PrepareParams::remesh done; \p remesh says how
     RemeshReport remesh;
     OrientReport orient;
 };

@@ -57,6 +57,7 @@ struct RemeshReport {
     double sharpest_before_deg = 180.0;    ///< sharpest corner before
     double sharpest_after_deg = 180.0;     ///< and after
     WallSizeReport walls;                  ///< what RemeshParams::max_aspect_ratio did
+    RecombinationReport recombination;     ///< RemeshParams::quads: what Gmsh's recombination did
 };
 
 /// Mesh the surface \p mesh again (triangles, or quadrilaterals if asked). Each patch keeps its

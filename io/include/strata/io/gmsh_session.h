@@ -10,6 +10,7 @@
 #include <gmsh.h>
 
 #include <exception>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -100,6 +101,39 @@ private:
     std::string previous_context_;
     std::terminate_handler previous_handler_ = nullptr;
 };
+
+/// How gmsh_probe's trial of a Gmsh call ended.
+struct GmshProbe {
+    bool ran = false;       ///< false: no child process could be started; nothing was tried
+    bool returned = false;  ///< the call returned
+    bool aborted = false;   ///< Gmsh ended the process (a std::terminate, GmshAbortScope): \p message is its text
+    bool threw = false;     ///< the call threw: \p message is the exception's text
+    int signal = 0;         ///< the call crashed the process on this signal
+    std::string message;
+};
+
+/// \p f (calls into gmsh::) tried in a forked child on a copy of Gmsh's state
+/// (run_in_child, its OpenMP threads freed first: Gmsh meshes surfaces in an OpenMP loop), to
+/// learn whether it would abort or crash the process before running it here; nothing it does
+/// reaches this process. Gmsh prints nothing in the child. Costs the call's time once more.
+/// The caller holds Gmsh (GmshSession or GmshLock) and is not inside an OpenMP parallel region.
+GmshProbe gmsh_probe(const std::function<void()>& f);
+
+/// Gmsh 4.8's Blossom recombination (Mesh.RecombinationAlgorithm 1) throws "Perfect Match
+/// failed in quadrangulation" out of its OpenMP surface-meshing loop on some surfaces (the apex
+/// of a cone, a tiny hole in a large face): a std::terminate that ends the process, which no
+/// caller can catch. So where \p quads_asked (Mesh.RecombineAll, or some surfaces' own
+/// recombination) and Blossom is the algorithm, \p generate (the caller's generate(2), with
+/// its size callback) is tried first in a child (gmsh_probe). Where Blossom aborted it,
+/// Mesh.RecombinationAlgorithm is set to 0 through \p options (Gmsh's simple recombination,
+/// which never needs a perfect matching and leaves more triangles) and Blossom's message is
+/// returned, for the caller's report. Gmsh got no further than Blossom's failure, and the
+/// faces after it may crash its mesher (MeshAdapt did on the block with a 1/500 hole), so that
+/// is tried in a child too: BackendError "<context>: quads cannot be made here: ..." if it
+/// fails. "" otherwise: nothing tried (no quads, another algorithm, no child started), it went
+/// through, or it failed some other way, which the caller's own call reports as before.
+std::string avoid_blossom_abort(const std::string& context, bool quads_asked, GmshOptionScope& options,
+                                const std::function<void()>& generate);
 
 /// Run \p f (calls into gmsh::), turning any exception Gmsh throws into a BackendError
 /// "<context>: <Gmsh's message>". strata::Error passes through unchanged. An abort inside it

@@ -1,0 +1,119 @@
+// A forked child (child_process.h): what it sends, how it ends, and an OpenMP team in the
+// child after the parent had one.
+#include <strata/core/child_process.h>
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <csignal>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace strata {
+namespace {
+
+std::string text(const std::vector<char>& bytes) {
+    return std::string(bytes.begin(), bytes.end());
+}
+
+TEST(ChildProcess, SendsWhatItsBodyPuts) {
+    const ChildResult r = run_in_child([](std::vector<char>& out) { out = {'o', 'k', '\0', 'x'}; });
+    ASSERT_TRUE(r.forked);
+    EXPECT_EQ(r.signal, 0);
+    EXPECT_EQ(r.exit_status, 0);
+    EXPECT_EQ(r.sent, (std::vector<char>{'o', 'k', '\0', 'x'}));
+}
+
+TEST(ChildProcess, LargeResultsArriveWhole) {
+    // Larger than a pipe's buffer and the parent's read chunk.
+    const ChildResult r = run_in_child([](std::vector<char>& out) {
+        out.resize(3'000'000);
+        for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<char>(i % 251);
+    });
+    ASSERT_TRUE(r.forked);
+    ASSERT_EQ(r.sent.size(), 3'000'000u);
+    for (std::size_t i = 0; i < r.sent.size(); i += 99'991) EXPECT_EQ(r.sent[i], static_cast<char>(i % 251));
+}
+
+TEST(ChildProcess, ItsChangesStayInTheChild) {
+    int value = 1;
+    const ChildResult r = run_in_child([&](std::vector<char>&) { value = 2; });
+    ASSERT_TRUE(r.forked);
+    EXPECT_EQ(value, 1);
+}
+
+TEST(ChildProcess, ACrashIsItsSignal) {
+    const ChildResult r = run_in_child([](std::vector<char>& out) {
+        out = {'x'};
+        std::raise(SIGSEGV);
+    });
+    ASSERT_TRUE(r.forked);
+    EXPECT_EQ(r.signal, SIGSEGV);
+    EXPECT_TRUE(r.sent.empty());
+}
+
+TEST(ChildProcess, AnExceptionIsExitStatusOneAndNothingSent) {
+    const ChildResult r = run_in_child([](std::vector<char>& out) {
+        out = {'x'};
+        throw std::runtime_error("no");
+    });
+    ASSERT_TRUE(r.forked);
+    EXPECT_EQ(r.signal, 0);
+    EXPECT_EQ(r.exit_status, 1);
+    EXPECT_TRUE(r.sent.empty());
+}
+
+TEST(ChildProcess, ChildExitSendsFromAnywhere) {
+    // As from a terminate handler deep inside a library: the body never returns.
+    const ChildResult r = run_in_child([](std::vector<char>& out) {
+        out = {'n', 'o'};
+        child_exit({'y', 'e', 's'}, 3);
+        out = {'n', 'e', 'v', 'e', 'r'};
+    });
+    ASSERT_TRUE(r.forked);
+    EXPECT_EQ(r.exit_status, 3);
+    EXPECT_EQ(text(r.sent), "yes");
+    child_exit({'z'}, 4);  // outside a child: nothing happens
+    SUCCEED();
+}
+
+TEST(ChildProcess, ACancelledRunKillsTheChild) {
+    struct Stop : Progress {
+        void report(std::string_view, double) override {}
+        bool cancelled() const override { return true; }
+    } stop;
+    EXPECT_THROW(run_in_child([](std::vector<char>&) { ::pause(); }, &stop), Cancelled);
+}
+
+#ifdef _OPENMP
+TEST(ChildProcess, OpenMPInTheChildAfterTheParentsTeam) {
+    // Without freeing the parent's workers first, the child's team waits for ever on workers
+    // fork did not copy (GCC's libgomp); the test would then hang until ctest's timeout.
+    long parent = 0;
+#pragma omp parallel for reduction(+ : parent) num_threads(2)
+    for (int i = 0; i < 1000; ++i) parent += i;
+    ChildOptions options;
+    options.free_openmp_threads = true;
+    const ChildResult r = run_in_child(
+        [](std::vector<char>& out) {
+            long sum = 0;
+#pragma omp parallel for reduction(+ : sum) num_threads(2)
+            for (int i = 0; i < 1000; ++i) sum += i;
+            const std::string s = std::to_string(sum);
+            out.assign(s.begin(), s.end());
+        },
+        nullptr, options);
+    ASSERT_TRUE(r.forked);
+    EXPECT_EQ(text(r.sent), "499500");
+    long again = 0;  // the parent's next team is made anew
+#pragma omp parallel for reduction(+ : again) num_threads(2)
+    for (int i = 0; i < 1000; ++i) again += i;
+    EXPECT_EQ(parent, 499500);
+    EXPECT_EQ(again, 499500);
+}
+#endif
+
+}  // namespace
+}  // namespace strata

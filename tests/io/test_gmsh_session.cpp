@@ -1,0 +1,130 @@
+// The Gmsh adapter's trial runs (gmsh_session.h): gmsh_probe's outcomes, and
+// avoid_blossom_abort on a model whose Blossom recombination ends the process
+// (examples/sweep/spiky.geo fused).
+#include <strata/core/error.h>
+#include <strata/io/gmsh_session.h>
+
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace strata {
+namespace {
+
+using test::example_data;
+
+[[noreturn]] void throw_out_of_the_loop() {
+    throw std::runtime_error("out of the loop");
+}
+
+TEST(GmshProbe, AReturnIsReturned) {
+    GmshSession session("probe_returns");
+    int touched = 0;
+    const GmshProbe p = gmsh_probe([&] {
+        gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
+        gmsh::model::occ::synchronize();
+        touched = 1;
+    });
+    ASSERT_TRUE(p.ran);
+    EXPECT_TRUE(p.returned);
+    EXPECT_FALSE(p.aborted || p.threw);
+    EXPECT_EQ(p.signal, 0);
+    // Nothing of the trial reaches this process: neither the variable nor Gmsh's model.
+    EXPECT_EQ(touched, 0);
+    gmsh::vectorpair volumes;
+    gmsh::model::getEntities(volumes, 3);
+    EXPECT_TRUE(volumes.empty());
+}
+
+TEST(GmshProbe, AnExceptionIsItsText) {
+    GmshSession session("probe_throws");
+    const GmshProbe p = gmsh_probe([] { throw std::string("Gmsh's words"); });
+    ASSERT_TRUE(p.ran);
+    EXPECT_TRUE(p.threw);
+    EXPECT_FALSE(p.returned || p.aborted);
+    EXPECT_EQ(p.message, "Gmsh's words");
+}
+
+TEST(GmshProbe, AnAbortIsItsTextAndThisProcessLivesOn) {
+    // As Gmsh 4.8 does: an exception out of a region no exception may leave (an OpenMP loop;
+    // here a noexcept function) ends the process through std::terminate.
+    GmshSession session("probe_aborts");
+    const GmshProbe p = gmsh_probe([] { []() noexcept { throw_out_of_the_loop(); }(); });
+    ASSERT_TRUE(p.ran);
+    EXPECT_TRUE(p.aborted);
+    EXPECT_FALSE(p.returned || p.threw);
+    EXPECT_EQ(p.message, "out of the loop");
+}
+
+TEST(GmshProbe, ACrashIsItsSignal) {
+    GmshSession session("probe_crashes");
+    const GmshProbe p = gmsh_probe([] { std::raise(SIGSEGV); });
+    ASSERT_TRUE(p.ran);
+    EXPECT_EQ(p.signal, SIGSEGV);
+    EXPECT_FALSE(p.returned || p.aborted || p.threw);
+}
+
+/// The sphere with three cones fused, quads asked with Blossom at the size the sweep's quads
+/// run gives it: Blossom finds no perfect matching on a cone and Gmsh throws out of its
+/// OpenMP meshing loop.
+void spiky_with_blossom(GmshOptionScope& options) {
+    gmsh::merge(example_data("../sweep/spiky.geo"));
+    gmsh::vectorpair volumes, out;
+    std::vector<gmsh::vectorpair> map;
+    gmsh::model::getEntities(volumes, 3);
+    ASSERT_EQ(volumes.size(), 4u);
+    gmsh::model::occ::fuse({volumes[0]}, gmsh::vectorpair(volumes.begin() + 1, volumes.end()), out, map);
+    gmsh::model::occ::synchronize();
+    options.set("Mesh.MeshSizeMax", 0.127131);
+    options.set("Mesh.RecombineAll", 1);
+    options.set("Mesh.RecombinationAlgorithm", 1);
+}
+
+double option(const std::string& name) {
+    double v = 0.0;
+    gmsh::option::getNumber(name, v);
+    return v;
+}
+
+TEST(AvoidBlossomAbort, FoundInAChildAndTheSimpleAlgorithmMeshesIt) {
+    GmshSession session("blossom_aborts");
+    GmshOptionScope options;
+    spiky_with_blossom(options);
+    const auto generate = [] { gmsh::model::mesh::generate(2); };
+    // Not asked for quads: nothing is tried.
+    EXPECT_EQ(avoid_blossom_abort("spiky", false, options, generate), "");
+    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
+    const std::string failure = avoid_blossom_abort("spiky", true, options, generate);
+    EXPECT_NE(failure.find("Perfect Match failed"), std::string::npos) << failure;
+    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
+    // This process is untouched (no mesh), and the simple algorithm gives quads.
+    std::vector<std::size_t> nodes;
+    std::vector<double> xyz, uvw;
+    gmsh::model::mesh::getNodes(nodes, xyz, uvw);
+    EXPECT_TRUE(nodes.empty());
+    EXPECT_EQ(avoid_blossom_abort("spiky", true, options, generate), "");  // not Blossom any more: nothing tried
+    gmsh::model::mesh::generate(2);
+    std::vector<std::size_t> quads, quad_nodes;
+    gmsh::model::mesh::getElementsByType(3, quads, quad_nodes);
+    EXPECT_GT(quads.size(), 100u);
+}
+
+TEST(AvoidBlossomAbort, NothingWhereBlossomGoesThrough) {
+    GmshSession session("blossom_ok");
+    GmshOptionScope options;
+    gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
+    gmsh::model::occ::synchronize();
+    options.set("Mesh.MeshSizeMax", 0.3);
+    options.set("Mesh.RecombineAll", 1);
+    options.set("Mesh.RecombinationAlgorithm", 1);
+    EXPECT_EQ(avoid_blossom_abort("box", true, options, [] { gmsh::model::mesh::generate(2); }), "");
+    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
+}
+
+}  // namespace
+}  // namespace strata
