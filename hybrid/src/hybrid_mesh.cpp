@@ -401,46 +401,51 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         t0 = std::chrono::steady_clock::now();
         try {
             pyr = build_pyramids(lm.top, params.pyramids, progress);
-        } catch (const LocalTopologyError& e) {  // no room for a pyramid: lower its quad's columns
+        } catch (const LocalTopologyError& e) {  // no room for a pyramid: lower its quads' columns
             rep.seconds_pyramids += seconds_since(t0);
             if (round == kFrontRounds) throw;
-            // A face of a fan (its columns twist from one end to the other where the wall is
-            // small against the layers): no fan on its nodes.
-            bool fan = false;
-            for (const Index w : e.nodes()) fan |= !lm.fan_column.empty() && lm.fan_column[static_cast<std::size_t>(w)];
-            if (fan) {
-                if (layer_params.no_fan_nodes.empty()) layer_params.no_fan_nodes.assign(surface.points.size(), 0);
-                for (const Index w : e.nodes()) {
-                    const Index v = lm.input_node[static_cast<std::size_t>(w)];
-                    char& no = layer_params.no_fan_nodes[static_cast<std::size_t>(v)];
-                    if (!no) uncapped.push_back(v);
-                    no = 1;
+            // Four nodes per quad that took no pyramid (pyramids.h), all mended in this round.
+            const std::vector<Index>& failed = e.nodes();
+            for (std::size_t at = 0; at + 4 <= failed.size(); at += 4) {
+                const auto quad_begin = failed.begin() + static_cast<std::ptrdiff_t>(at);
+                const std::vector<Index> quad(quad_begin, quad_begin + 4);
+                // A face of a fan (its columns twist from one end to the other where the wall is
+                // small against the layers): no fan on its nodes.
+                bool fan = false;
+                for (const Index w : quad) fan |= !lm.fan_column.empty() && lm.fan_column[static_cast<std::size_t>(w)];
+                if (fan) {
+                    if (layer_params.no_fan_nodes.empty()) layer_params.no_fan_nodes.assign(surface.points.size(), 0);
+                    for (const Index w : quad) {
+                        const Index v = lm.input_node[static_cast<std::size_t>(w)];
+                        char& no = layer_params.no_fan_nodes[static_cast<std::size_t>(v)];
+                        if (!no) uncapped.push_back(v);
+                        no = 1;
+                    }
+                    continue;
                 }
-                rep.front_rounds = round + 1;
-                continue;
+                // A wall quad with no layer on it (its columns stopped at the wall), or whose
+                // columns were lowered for it before, that no apex can cap (a quad bent round a
+                // small hole): split into two triangles, whose columns need no pyramid.
+                std::vector<Index> wall_nodes;
+                bool on_wall = true;
+                for (const Index w : quad) {
+                    on_wall &= lm.top_node(w) == lm.level_node(0, w);
+                    wall_nodes.push_back(lm.input_node[static_cast<std::size_t>(w)]);
+                }
+                std::sort(wall_nodes.begin(), wall_nodes.end());
+                const bool again = !uncappable.insert(wall_nodes).second;
+                if ((on_wall || again) && split_wall_quad(surface, wall_nodes)) {
+                    ++rep.split_quads;
+                    continue;
+                }
+                for (const Index w : quad) {
+                    const double reached =
+                        (lm.mesh.points[lm.top_node(w)] - lm.mesh.points[lm.level_node(0, w)]).norm();
+                    double& l = limit[static_cast<std::size_t>(lm.input_node[static_cast<std::size_t>(w)])];
+                    l = std::min(l, 0.5 * reached);
+                }
+                rep.front_lowered_nodes += 4;
             }
-            // A wall quad with no layer on it (its columns stopped at the wall), or whose columns
-            // were lowered for it before, that no apex can cap (a quad bent round a small hole):
-            // split into two triangles, whose columns need no pyramid.
-            std::vector<Index> wall_nodes;
-            bool on_wall = true;
-            for (const Index w : e.nodes()) {
-                on_wall &= lm.top_node(w) == lm.level_node(0, w);
-                wall_nodes.push_back(lm.input_node[static_cast<std::size_t>(w)]);
-            }
-            std::sort(wall_nodes.begin(), wall_nodes.end());
-            const bool again = !uncappable.insert(wall_nodes).second;
-            if ((on_wall || again) && split_wall_quad(surface, wall_nodes)) {
-                ++rep.split_quads;
-                rep.front_rounds = round + 1;
-                continue;
-            }
-            for (const Index w : e.nodes()) {
-                const double reached = (lm.mesh.points[lm.top_node(w)] - lm.mesh.points[lm.level_node(0, w)]).norm();
-                double& l = limit[static_cast<std::size_t>(lm.input_node[static_cast<std::size_t>(w)])];
-                l = std::min(l, 0.5 * reached);
-            }
-            rep.front_lowered_nodes += static_cast<Index>(e.nodes().size());
             rep.front_rounds = round + 1;
             continue;
         }

@@ -333,7 +333,9 @@ private:
     Failure check_static(Index k, double h) const;
     bool pair_conflict(Index k, Index m) const;
     int next_level(Index k);
-    [[noreturn]] void fail(Index k, const Failure& why, double h) const;
+    /// Throw the LocalTopologyError naming quad \p k, carrying its nodes and then those of the
+    /// quads \p others (four each) that cannot be capped either.
+    [[noreturn]] void fail(Index k, const Failure& why, double h, const std::vector<Index>& others = {}) const;
 
     const SurfaceMesh& top_;
     const PyramidParams& params_;
@@ -585,7 +587,7 @@ int Builder::next_level(Index k) {
     return -1;
 }
 
-void Builder::fail(Index k, const Failure& why, double h) const {
+void Builder::fail(Index k, const Failure& why, double h, const std::vector<Index>& others) const {
     const Pyr& p = pyr_[static_cast<std::size_t>(k)];
     auto face_at = [&](Index g) {
         return "face " + std::to_string(g) + " of the layer top at " +
@@ -617,14 +619,22 @@ void Builder::fail(Index k, const Failure& why, double h) const {
         case Failure::None:
             break;
     }
-    throw LocalTopologyError("pyramids: quad " + std::to_string(p.face) + " of the layer top (centroid " +
-                                 format_point(p.c) + ", mean edge " + format_number(p.size) +
-                                 ") cannot be capped with a pyramid: " + reason + ", even with the apex at " +
-                                 format_number(h) + " (min_height " + format_number(params_.min_height) +
-                                 " x shortest edge " + format_number(p.shortest) +
-                                 "). The layer top leaves no room there: use fewer layers or a smaller total "
-                                 "layer thickness, or a smaller pyramid min_height",
-                             std::vector<Index>(p.v.begin(), p.v.end()));
+    std::vector<Index> nodes(p.v.begin(), p.v.end());
+    for (const Index o : others) {
+        const auto& v = pyr_[static_cast<std::size_t>(o)].v;
+        nodes.insert(nodes.end(), v.begin(), v.end());
+    }
+    throw LocalTopologyError(
+        "pyramids: quad " + std::to_string(p.face) + " of the layer top (centroid " + format_point(p.c) +
+            ", mean edge " + format_number(p.size) + ") cannot be capped with a pyramid: " + reason +
+            ", even with the apex at " + format_number(h) + " (min_height " + format_number(params_.min_height) +
+            " x shortest edge " + format_number(p.shortest) +
+            "). The layer top leaves no room there: use fewer layers or a smaller total "
+            "layer thickness, or a smaller pyramid min_height" +
+            (others.empty()
+                 ? std::string()
+                 : " (and " + std::to_string(others.size()) + " other quads of the layer top cannot be capped either)"),
+        std::move(nodes));
 }
 
 PyramidLayer Builder::run() {
@@ -635,7 +645,9 @@ PyramidLayer Builder::run() {
     if (np > 0) {
         build_neighbours();
 
-        // Phase 1: each pyramid against the fixed top surface.
+        // Phase 1: each pyramid against the fixed top surface; every quad that fails is named
+        // at once (the caller mends them all in one round, not one per march of the layers).
+        std::vector<Index> failed;
         for (Index k = 0; k < np; ++k) {
             if (k % 4096 == 0) check_cancelled(progress_);
             Pyr& p = pyr_[static_cast<std::size_t>(k)];
@@ -643,7 +655,12 @@ PyramidLayer Builder::run() {
             p.static_why.assign(p.heights.size(), Failure{});
             p.level = -1;
             p.level = next_level(k);
-            if (p.level < 0) fail(k, p.static_why.back(), p.heights.back());
+            if (p.level < 0) failed.push_back(k);
+        }
+        if (!failed.empty()) {
+            const Pyr& first = pyr_[static_cast<std::size_t>(failed.front())];
+            fail(failed.front(), first.static_why.back(), first.heights.back(),
+                 std::vector<Index>(failed.begin() + 1, failed.end()));
         }
 
         // Phase 2: pairs, in rounds.

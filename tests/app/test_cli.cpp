@@ -752,6 +752,27 @@ TEST(Cli, QuadsWhereBlossomWouldAbortTheProcess) {
     EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
 }
 
+TEST(Cli, QuadsRoundATinyHoleWhereBlossomWouldAbort) {
+    // The sweep's block with a hole of 1/500 in quads: Blossom aborts on it (the simple
+    // algorithm then meshes it); the walls meshed again finer round the layers' steps make
+    // Gmsh crash (MeshAdapt) under the simple algorithm, found in a child, so the first surface
+    // is kept and the summary says why; and 18 quads bent round the hole that take no pyramid,
+    // several per march of the layers, are all mended within the rounds allowed (they were
+    // mended one per round, and the 8 rounds ran out).
+    test::ScratchDir dir("cli_blossom_tiny_hole");
+    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/tinyhole.geo") +
+                                            "' --quads --layers 15 --growth 1.2 --first-height 5e-4 -o h.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("quads: Gmsh's Blossom recombination would have ended the process"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("meshing the walls finer there for --step-quality 0.1 failed, so the first surface is kept"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("Gmsh crashes (signal 11)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("were split into two triangles"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
 /// The summary's smallest scaled Jacobian of \p type ("tetrahedron", ...); NaN if absent.
 double summary_min_quality(const std::string& out, const std::string& type) {
     const auto at = out.find("  " + type + ":");

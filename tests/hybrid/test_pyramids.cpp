@@ -416,6 +416,30 @@ TEST(Pyramids, ImpossibleGapThrowsNamingTheQuad) {
     }
 }
 
+TEST(Pyramids, EveryQuadThatCannotBeCappedIsNamedAtOnce) {
+    // Two dart-shaped quads (a reflex corner: no apex above inverts none of the pyramid's
+    // corners) far apart, and a good one: the error carries both darts' nodes, four each, so
+    // build_hybrid_mesh mends both in one round instead of marching the layers once per quad.
+    SurfaceMesh top;
+    top.patches.push_back({"top", PatchKind::Wall});
+    for (const double x : {0.0, 10.0}) {
+        const auto b = static_cast<Index>(top.points.size());
+        top.points.insert(top.points.end(), {{x, 0, 0}, {x + 1, 0, 0}, {x + 1, 1, 0}, {x + 0.7, 0.3, 0}});
+        top.add_face({b, b + 1, b + 2, b + 3}, 0);
+    }
+    top.points.insert(top.points.end(), {{5, 0, 0}, {6, 0, 0}, {6, 1, 0}, {5, 1, 0}});
+    top.add_face({8, 9, 10, 11}, 0);
+    try {
+        build_pyramids(top, {0.5, 0.02});
+        FAIL() << "expected LocalTopologyError";
+    } catch (const LocalTopologyError& e) {
+        EXPECT_EQ(e.nodes(), (std::vector<Index>{0, 1, 2, 3, 4, 5, 6, 7}));
+        const std::string what = e.what();
+        EXPECT_NE(what.find("quad 0 "), std::string::npos) << what;
+        EXPECT_NE(what.find("and 1 other quads of the layer top cannot be capped either"), std::string::npos) << what;
+    }
+}
+
 TEST(Pyramids, BadParametersAreInputErrors) {
     const SurfaceMesh top = test::quad_grid(2, 2);
     EXPECT_THROW(build_pyramids(top, {0.0, 0.1}), InputError);

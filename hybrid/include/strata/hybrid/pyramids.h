@@ -31,8 +31,9 @@ struct PyramidLayer {
 /// region still to mesh) with a pyramid. Apex at centroid + h × unit normal, with h shortened
 /// (down to min_height) where the pyramid would intersect another pyramid or the surface
 /// nearby or invert its side faces; throws TopologyError naming the quad if it cannot be
-/// placed (a LocalTopologyError carrying the quad's nodes). Triangles of \p top pass through unchanged. \p progress:
-/// stage "pyramids".
+/// placed (a LocalTopologyError carrying the quad's nodes, and after them four nodes for each
+/// other quad that cannot be placed against the top surface alone). Triangles of \p top pass
+/// through unchanged. \p progress: stage "pyramids".
 PyramidLayer build_pyramids(const SurfaceMesh& top, const PyramidParams& params, Progress* progress = nullptr);
 
 }  // namespace strata
