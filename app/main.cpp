@@ -536,7 +536,12 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
             static_cast<int>(r.needles_before), static_cast<int>(r.needles_after), r.sharpest_before_deg,
             r.sharpest_after_deg);
     }
-    if (!rep.recombination.blossom_failure.empty())
+    if (rep.recombination.folded)
+        std::printf(
+            "quads: Gmsh's Blossom quads folded where the surface nearly touches itself (%s), so the surfaces were "
+            "recombined with Gmsh's simple algorithm instead, which leaves more triangles\n",
+            rep.recombination.blossom_failure.c_str());
+    else if (!rep.recombination.blossom_failure.empty())
         std::printf(
             "quads: Gmsh's Blossom recombination would have ended the process on this model (\"%s\"), so the surfaces "
             "were recombined with Gmsh's simple algorithm instead, which leaves more triangles\n",

@@ -2,6 +2,7 @@
 #include <strata/core/format.h>
 #include <strata/frontend/options.h>
 #include <strata/frontend/prepare_layers.h>
+#include <strata/geometry/intersections.h>
 
 #include <algorithm>
 #include <chrono>
@@ -16,6 +17,31 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
                          ": need a scaled Jacobian in [0, 1) for the cells closing the layers' steps (0: off)");
     PrepareReport first_report;
     SurfaceMesh surface = prepare_surfaces(inputs, params, &first_report, progress);
+    // Blossom's quads can fold where the surface nearly touches itself (the winglet's junction
+    // under --fuse --quads), and no layer can grow on a surface that intersects itself; Gmsh's
+    // simple recombination pairs fewer triangles and may not fold there. Kept if it does not.
+    PrepareParams chosen = params;
+    if (params.cad.elements != SurfaceElements::Triangles && !params.cad.simple_recombination && !params.remesh &&
+        first_report.recombination.blossom_failure.empty() && any_cad_input(inputs)) {
+        const std::vector<FacePair> folds = self_intersections(surface, 1, mesh.threads);
+        if (!folds.empty()) {
+            PrepareParams simple = params;
+            simple.cad.simple_recombination = true;
+            PrepareReport simple_report;
+            try {
+                SurfaceMesh again = prepare_surfaces(inputs, simple, &simple_report, progress);
+                if (self_intersections(again, 1, mesh.threads).empty()) {
+                    simple_report.recombination.folded = true;
+                    simple_report.recombination.blossom_failure =
+                        describe_face(surface, folds[0].a) + " meets " + describe_face(surface, folds[0].b);
+                    surface = std::move(again);
+                    first_report = std::move(simple_report);
+                    chosen = std::move(simple);
+                }
+            } catch (const Error&) {  // Blossom's surface stays; build_hybrid_mesh names its fold
+            }
+        }
+    }
     StepSizeReport steps;
     const auto t0 = std::chrono::steady_clock::now();
     const auto done = [&](SurfaceMesh result, const PrepareReport& r) {
@@ -63,7 +89,7 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
     steps.smallest = points.front().size;
     for (const SizePoint& q : points) steps.smallest = std::min(steps.smallest, q.size);
 
-    PrepareParams again = params;
+    PrepareParams again = chosen;
     again.cad.size_points = points;
     for (SizePoint& q : again.cad.size_points) {  // the CAD's unit: before PrepareParams::scale
         q.at /= params.scale;
@@ -79,6 +105,14 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
         steps.failure = e.what();
         return done(std::move(surface), first_report);
     }
+    // Nor a fold the first surface did not have (quads recombined across a narrow junction).
+    if (const std::vector<FacePair> folds = self_intersections(finer, 1, mesh.threads);
+        !folds.empty() && self_intersections(surface, 1, mesh.threads).empty()) {
+        steps.failure = "the finer surface intersects itself: " + describe_face(finer, folds[0].a) + " meets " +
+                        describe_face(finer, folds[0].b);
+        return done(std::move(surface), first_report);
+    }
+    second_report.recombination = first_report.recombination;  // the choice made on the first surface
     // The finer walls must not cost layers: they resolve the gap better, and its limits, spread
     // along the walls, took 60.9 % of the thickness to 14.5 % on a slotted wing's main element.
     steps.thickness_before = share_before;

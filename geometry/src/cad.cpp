@@ -800,7 +800,10 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     // recombination settings still gives it quads.
     if (const double a = get_number("Mesh.Algorithm"); a == 7 || a == 8)
         set_number("Mesh.Algorithm", kDefaultAlgorithm);
-    if (!script_set("Mesh.RecombinationAlgorithm")) set_number("Mesh.RecombinationAlgorithm", 1);  // Blossom
+    if (params.simple_recombination)
+        set_number("Mesh.RecombinationAlgorithm", 0);
+    else if (!script_set("Mesh.RecombinationAlgorithm"))
+        set_number("Mesh.RecombinationAlgorithm", 1);  // Blossom
 
     switch (params.elements) {
         case SurfaceElements::Triangles:

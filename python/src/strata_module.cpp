@@ -372,34 +372,35 @@ py::list patch_kinds(const SurfaceMesh& s) {
 
 py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double seconds) {
     const WallSizeReport& w = r.remeshed ? r.remesh.walls : r.walls;
-    return py::dict("nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
-                    "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes,
-                    "collapsed_faces"_a = r.collapsed_faces, "duplicate_faces"_a = r.duplicate_faces,
-                    "t_junctions"_a = r.t_junctions, "flipped_faces"_a = r.orient.flipped_faces,
-                    "components"_a = r.orient.components, "closed_components"_a = r.orient.closed_components,
-                    "fused_components"_a = r.fused_components, "touching_faces"_a = r.touching_faces,
-                    "remeshed"_a = r.remeshed, "internal_flow"_a = r.internal_flow, "units"_a = r.units.unit,
-                    "scale"_a = r.scale, "seconds"_a = seconds, "blossom_failure"_a = r.recombination.blossom_failure,
-                    "walls"_a = py::dict("max_aspect_ratio"_a = w.max_aspect_ratio, "worst_before"_a = w.worst_before,
-                                         "worst_after"_a = w.worst_after, "size"_a = w.cap, "surfaces"_a = w.surfaces,
-                                         "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate,
-                                         "over_budget"_a = w.over_budget),
-                    "holes"_a = py::dict("filled"_a = r.holes.holes, "triangles"_a = r.holes.triangles,
-                                         "largest"_a = r.holes.largest, "left"_a = r.holes.left),
-                    "sewn"_a = py::dict(
-                        "faces"_a = r.sew.faces, "written_twice"_a = r.sew.written_twice,
-                        "tolerance"_a = r.sew.tolerance, "free_edges_before"_a = r.sew.free_before,
-                        "free_edges_after"_a = r.sew.free_after, "solids"_a = r.sew.solids, "cracks"_a = r.sew.cracks,
-                        "widest_gap"_a = r.sew.widest_gap, "suggested_tolerance"_a = r.sew.suggested_tolerance,
-                        "renumbered"_a = r.sew.renumbered, "moved"_a = r.sew.moved, "rejected"_a = r.sew.rejected,
-                        "gap_before"_a = r.sew.gap_before, "first_tolerance"_a = r.sew.first_tolerance),
-                    "steps"_a = py::dict(
-                        "quality"_a = r.steps.quality, "points"_a = r.steps.points, "smallest"_a = r.steps.smallest,
-                        "faces_before"_a = r.steps.faces_before, "faces_after"_a = r.steps.faces_after,
-                        "faces_estimate"_a = r.steps.faces_estimate, "raised"_a = r.steps.raised,
-                        "over_budget"_a = r.steps.over_budget, "failure"_a = r.steps.failure,
-                        "thickness_before"_a = r.steps.thickness_before, "thickness_after"_a = r.steps.thickness_after,
-                        "kept"_a = r.steps.kept, "seconds"_a = r.steps.seconds));
+    return py::dict(
+        "nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
+        "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes, "collapsed_faces"_a = r.collapsed_faces,
+        "duplicate_faces"_a = r.duplicate_faces, "t_junctions"_a = r.t_junctions,
+        "flipped_faces"_a = r.orient.flipped_faces, "components"_a = r.orient.components,
+        "closed_components"_a = r.orient.closed_components, "fused_components"_a = r.fused_components,
+        "touching_faces"_a = r.touching_faces, "remeshed"_a = r.remeshed, "internal_flow"_a = r.internal_flow,
+        "units"_a = r.units.unit, "scale"_a = r.scale, "seconds"_a = seconds,
+        "blossom_failure"_a = r.recombination.blossom_failure, "blossom_folded"_a = r.recombination.folded,
+        "walls"_a =
+            py::dict("max_aspect_ratio"_a = w.max_aspect_ratio, "worst_before"_a = w.worst_before,
+                     "worst_after"_a = w.worst_after, "size"_a = w.cap, "surfaces"_a = w.surfaces,
+                     "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate, "over_budget"_a = w.over_budget),
+        "holes"_a = py::dict("filled"_a = r.holes.holes, "triangles"_a = r.holes.triangles,
+                             "largest"_a = r.holes.largest, "left"_a = r.holes.left),
+        "sewn"_a =
+            py::dict("faces"_a = r.sew.faces, "written_twice"_a = r.sew.written_twice, "tolerance"_a = r.sew.tolerance,
+                     "free_edges_before"_a = r.sew.free_before, "free_edges_after"_a = r.sew.free_after,
+                     "solids"_a = r.sew.solids, "cracks"_a = r.sew.cracks, "widest_gap"_a = r.sew.widest_gap,
+                     "suggested_tolerance"_a = r.sew.suggested_tolerance, "renumbered"_a = r.sew.renumbered,
+                     "moved"_a = r.sew.moved, "rejected"_a = r.sew.rejected, "gap_before"_a = r.sew.gap_before,
+                     "first_tolerance"_a = r.sew.first_tolerance),
+        "steps"_a =
+            py::dict("quality"_a = r.steps.quality, "points"_a = r.steps.points, "smallest"_a = r.steps.smallest,
+                     "faces_before"_a = r.steps.faces_before, "faces_after"_a = r.steps.faces_after,
+                     "faces_estimate"_a = r.steps.faces_estimate, "raised"_a = r.steps.raised,
+                     "over_budget"_a = r.steps.over_budget, "failure"_a = r.steps.failure,
+                     "thickness_before"_a = r.steps.thickness_before, "thickness_after"_a = r.steps.thickness_after,
+                     "kept"_a = r.steps.kept, "seconds"_a = r.steps.seconds));
 }
 
 py::dict coverage_report(const LayerReport& r) {

@@ -752,6 +752,21 @@ TEST(Cli, QuadsWhereBlossomWouldAbortTheProcess) {
     EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
 }
 
+TEST(Cli, QuadsWhereBlossomsFoldAreMadeWithTheSimpleAlgorithm) {
+    // The sweep's wing with a winglet, fused, in quads: Blossom's quads fold where the winglet
+    // meets the wing (two faces of the surface intersect), and the run stopped with "the
+    // surface intersects itself". Gmsh's simple recombination does not fold there: the surfaces
+    // are made with it, the summary names the fold, and the mesh passes.
+    test::ScratchDir dir("cli_blossom_folds");
+    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/winglet.geo") +
+                                            "' --fuse --quads --layers 15 --growth 1.2 --first-height 1.5e-3 -o w.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("quads: Gmsh's Blossom quads folded where the surface nearly touches itself (face "),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
 TEST(Cli, QuadsRoundATinyHoleWhereBlossomWouldAbort) {
     // The sweep's block with a hole of 1/500 in quads: Blossom aborts on it (the simple
     // algorithm then meshes it); the walls meshed again finer round the layers' steps make

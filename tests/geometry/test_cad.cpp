@@ -184,6 +184,33 @@ TEST(MeshCad, OneraM6QuadsAreMostlyQuads) {
     EXPECT_EQ(r.blossom_failure, "");  // Blossom did it
 }
 
+TEST(MeshCad, SimpleRecombinationPairsFewerTriangles) {
+    // CadParams::simple_recombination: Gmsh's simple algorithm instead of Blossom, over a
+    // script's own choice too (the M6 has none; a .geo saying Blossom is below).
+    CadParams p;
+    p.size = 40.0;
+    p.elements = SurfaceElements::Quads;
+    const SurfaceMesh blossom = mesh_cad(example_data("onera_m6_sharp_te.stp"), p);
+    p.simple_recombination = true;
+    const SurfaceMesh simple = mesh_cad(example_data("onera_m6_sharp_te.stp"), p);
+    expect_well_formed(simple);
+    EXPECT_TRUE(closed(simple));
+    EXPECT_GT(simple.num_quads(), simple.num_faces() / 2);
+    EXPECT_GT(simple.num_triangles(), blossom.num_triangles());
+    ScratchDir dir("cad_simple_recombination");
+    const std::string geo = dir.file("blossom.geo");
+    std::ofstream(geo) << "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n"
+                          "Mesh.RecombinationAlgorithm = 1;\nMesh.RecombineAll = 1;\n";
+    CadParams q;
+    q.size = 0.13;
+    const SurfaceMesh box_blossom = mesh_cad(geo, q);
+    q.simple_recombination = true;
+    const SurfaceMesh box_simple = mesh_cad(geo, q);
+    EXPECT_GT(box_blossom.num_quads(), 0);
+    EXPECT_GT(box_simple.num_quads(), 0);
+    EXPECT_NE(box_simple.num_triangles(), box_blossom.num_triangles());
+}
+
 TEST(MeshCad, QuadsWhereBlossomWouldAbortTheProcess) {
     // The sphere with three cones fused (examples/sweep/spiky.geo), quads at the default size:
     // Gmsh's Blossom finds no perfect matching on a cone and throws out of Gmsh's OpenMP loop,

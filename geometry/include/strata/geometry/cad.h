@@ -44,6 +44,11 @@ struct CadParams {
     /// (Mesh.MeshSizeFromCurvature); 0 = off.
     int curvature_points = 0;
     SurfaceElements elements = SurfaceElements::Triangles;
+    /// With quads (elements Quads or Mixed): Gmsh's simple recombination
+    /// (Mesh.RecombinationAlgorithm 0, which pairs fewer triangles and leaves more of them)
+    /// instead of Blossom (1), over a .geo script's own choice too. prepare_for_layers asks it
+    /// where Blossom's quads fold (RecombinationReport::folded).
+    bool simple_recombination = false;
     /// CAD surface tags (as Gmsh numbers them, after fuse if fuse is set) meshed with quads when
     /// elements is Mixed; ignored otherwise. A tag that is not a surface → InputError listing
     /// the valid tags.
@@ -182,6 +187,10 @@ struct RecombinationReport {
     /// were then recombined with Gmsh's simple algorithm, which leaves more triangles. Empty:
     /// Blossom did it (or no quads were asked).
     std::string blossom_failure;
+    /// Blossom's quads folded where the surface nearly touches itself (two of its faces
+    /// intersect: \p blossom_failure names them), so the surfaces were meshed again with the
+    /// simple recombination (CadParams::simple_recombination; prepare_for_layers).
+    bool folded = false;
 };
 
 /// What mesh_cad read the coordinates in.
