@@ -628,7 +628,7 @@ SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces, s
 SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, const std::vector<int>& surfaces,
                               const PointSizes& points, SurfaceMesh mesh, std::vector<int>& face_surface,
                               WallSizeReport& r, bool quads, GmshOptionScope& options,
-                              RecombinationReport& recombination) {
+                              RecombinationReport& recombination, const Progress* progress) {
     std::set<int> walls;
     for (const auto& [s, name] : surface_patch_names(surfaces))
         if (patch_kind_of(name, params.wall_patch_kinds) == PatchKind::Wall) walls.insert(s);
@@ -651,7 +651,8 @@ SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, 
                 callback.emplace(entity_sizes(caps), factor, &points);
                 gmsh::model::mesh::generate(2);
             };
-            const std::string failure = avoid_blossom_abort(context, quads, options, generate);
+            const std::string failure =
+                try_generate_in_child(context, quads, params.isolate_gmsh, options, generate, progress);
             if (!failure.empty()) recombination.blossom_failure = failure;
             gmsh_call(context, generate);
         }
@@ -670,7 +671,7 @@ bool is_cad_file(const std::string& path) {
 }
 
 SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units, WallSizeReport* walls,
-                     SewReport* sew, RecombinationReport* recombination) {
+                     SewReport* sew, RecombinationReport* recombination, const Progress* progress) {
     const std::optional<CadFormat> format = format_of(path);
     if (!format)
         throw InputError(path +
@@ -844,7 +845,8 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     };
     const bool quads = get_number("Mesh.RecombineAll") > 0.0 || params.elements == SurfaceElements::Mixed;
     RecombinationReport recombined;
-    recombined.blossom_failure = avoid_blossom_abort(context, quads, options, generate);
+    recombined.blossom_failure =
+        try_generate_in_child(context, quads, params.isolate_gmsh, options, generate, progress);
     gmsh_call(context, generate);
 
     std::vector<int> face_surface;
@@ -852,7 +854,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     WallSizeReport wall_report;
     if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0)
         mesh = limit_wall_aspect(path, params, surfaces, points, std::move(mesh), face_surface, wall_report, quads,
-                                 options, recombined);
+                                 options, recombined, progress);
     if (walls) *walls = wall_report;
     if (recombination) *recombination = recombined;
     return mesh;

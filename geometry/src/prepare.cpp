@@ -24,7 +24,8 @@ std::string lower(std::string s) {
 
 /// The reader for \p path's extension: CAD through Gmsh (mesh_cad), STL and MSH through io/.
 SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const CadParams& cad, CadUnits* units,
-                     WallSizeReport* walls, SewReport* sew, RecombinationReport* recombination) {
+                     WallSizeReport* walls, SewReport* sew, RecombinationReport* recombination,
+                     const Progress* progress) {
     check_input_file(path);
     if (is_cad_file(path)) {
         CadParams with_kinds = cad;
@@ -32,7 +33,7 @@ SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const
         WallSizeReport one;
         SewReport sewn;
         RecombinationReport recombined;
-        SurfaceMesh mesh = mesh_cad(path, with_kinds, units, &one, &sewn, &recombined);
+        SurfaceMesh mesh = mesh_cad(path, with_kinds, units, &one, &sewn, &recombined, progress);
         // Several inputs: the first file whose recombination fell back says so.
         if (recombination && recombination->blossom_failure.empty()) *recombination = recombined;
         if (sew) sew->written_twice += sewn.written_twice;
@@ -241,7 +242,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
         const bool has_unit = ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
         CadParams this_cad = cad;
         if (!has_unit) this_cad.units = params.cad.units;
-        const SurfaceMesh one = read_any(path, params, this_cad, &read_in, &walls, &sew, &recombination);
+        const SurfaceMesh one = read_any(path, params, this_cad, &read_in, &walls, &sew, &recombination, progress);
         // The first CAD file with a unit sets it for the others (unless one was asked).
         if (!read_in.unit.empty() && units.unit.empty()) {
             units = read_in;
@@ -281,7 +282,7 @@ SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params
     WallSizeReport walls;
     SewReport sew;
     RecombinationReport recombination;
-    SurfaceMesh raw = read_any(path, params, params.cad, &units, &walls, &sew, &recombination);
+    SurfaceMesh raw = read_any(path, params, params.cad, &units, &walls, &sew, &recombination, progress);
     SurfaceMesh out = prepare_mesh(std::move(raw), params, path, report, progress);
     if (report) {
         report->units = units;

@@ -207,7 +207,8 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             callback.emplace(entity_sizes(scaled), 1.0);
         }
         // Blossom may abort the process on this surface: then Gmsh's simple recombination.
-        out.blossom_failure = avoid_blossom_abort(ctx, p.quads, options, [] { gmsh::model::mesh::generate(2); });
+        out.blossom_failure =
+            try_generate_in_child(ctx, p.quads, p.isolate_gmsh, options, [] { gmsh::model::mesh::generate(2); });
         gmsh::model::mesh::generate(2);
     });
     out.mesh = surface_from_gmsh_model("the remeshed " + source, NodeOrder::FirstUse, &face_surface);

@@ -187,7 +187,7 @@ namespace {
 
 }  // namespace
 
-GmshProbe gmsh_probe(const std::function<void()>& f) {
+GmshProbe gmsh_probe(const std::function<void()>& f, const Progress* progress) {
     ChildOptions options;
     options.free_openmp_threads = true;
     const ChildResult child = run_in_child(
@@ -205,7 +205,7 @@ GmshProbe gmsh_probe(const std::function<void()>& f) {
             }
             sent.assign(outcome.begin(), outcome.end());
         },
-        nullptr, options);
+        progress, options);
     GmshProbe probe;
     probe.ran = child.forked;
     if (!child.forked) return probe;
@@ -219,25 +219,41 @@ GmshProbe gmsh_probe(const std::function<void()>& f) {
     return probe;
 }
 
-std::string avoid_blossom_abort(const std::string& context, bool quads_asked, GmshOptionScope& options,
-                                const std::function<void()>& generate) {
-    if (!quads_asked) return "";
+namespace {
+
+/// How a trial that did not return ended, for a message: "crashes (signal 11)", "aborts
+/// (<its text>)", "fails (<its text>)".
+std::string how_it_failed(const GmshProbe& p) {
+    return p.signal != 0 ? "crashes (signal " + std::to_string(p.signal) + ")"
+           : p.aborted   ? "aborts (" + p.message + ")"
+                         : "fails (" + p.message + ")";
+}
+
+}  // namespace
+
+std::string try_generate_in_child(const std::string& context, bool quads_asked, bool isolate, GmshOptionScope& options,
+                                  const std::function<void()>& generate, const Progress* progress) {
     double algorithm = 0.0;
     gmsh::option::getNumber("Mesh.RecombinationAlgorithm", algorithm);
-    if (algorithm != 1.0) return "";
-    const GmshProbe blossom = gmsh_probe(generate);
+    const bool blossom = quads_asked && algorithm == 1.0;
+    if (!blossom && !isolate) return "";
+    const GmshProbe first = gmsh_probe(generate, progress);
+    if (!first.ran || first.returned) return "";
     // Blossom's own words (Gmsh 4.8, meshGFaceOptimize.cpp): any other abort is not its, and
     // the simple algorithm would not help.
-    if (!blossom.aborted || blossom.message.find("Perfect Match") == std::string::npos) return "";
-    options.set("Mesh.RecombinationAlgorithm", 0);
-    const GmshProbe simple = gmsh_probe(generate);
-    if (!simple.ran || simple.returned) return blossom.message;
-    const std::string how = simple.signal != 0 ? "crashes (signal " + std::to_string(simple.signal) + ")"
-                            : simple.aborted   ? "aborts (" + simple.message + ")"
-                                               : "fails (" + simple.message + ")";
-    throw BackendError(context + ": quads cannot be made here: Gmsh's Blossom recombination fails (" +
-                       blossom.message + ") and with its simple recombination Gmsh " + how +
-                       "; mesh triangles instead, or with another size");
+    if (blossom && first.aborted && first.message.find("Perfect Match") != std::string::npos) {
+        options.set("Mesh.RecombinationAlgorithm", 0);
+        const GmshProbe simple = gmsh_probe(generate, progress);
+        if (!simple.ran || simple.returned) return first.message;
+        throw BackendError(context + ": quads cannot be made here: Gmsh's Blossom recombination fails (" +
+                           first.message + ") and with its simple recombination Gmsh " + how_it_failed(simple) +
+                           "; mesh triangles instead, or with another size");
+    }
+    if (isolate)
+        throw BackendError(context + ": Gmsh " + how_it_failed(first) +
+                           " meshing the surfaces (tried in a child process, so this session goes on); try another "
+                           "size or algorithm, or repair the CAD");
+    return "";
 }
 
 std::string GmshSession::last_error() {

@@ -1,6 +1,6 @@
 // The Gmsh adapter's trial runs (gmsh_session.h): gmsh_probe's outcomes, and
-// avoid_blossom_abort on a model whose Blossom recombination ends the process
-// (examples/sweep/spiky.geo fused).
+// try_generate_in_child on a model whose Blossom recombination ends the process
+// (examples/sweep/spiky.geo fused) and on calls that crash or abort.
 #include <strata/core/error.h>
 #include <strata/io/gmsh_session.h>
 
@@ -91,15 +91,15 @@ double option(const std::string& name) {
     return v;
 }
 
-TEST(AvoidBlossomAbort, FoundInAChildAndTheSimpleAlgorithmMeshesIt) {
+TEST(TryGenerateInChild, FoundInAChildAndTheSimpleAlgorithmMeshesIt) {
     GmshSession session("blossom_aborts");
     GmshOptionScope options;
     spiky_with_blossom(options);
     const auto generate = [] { gmsh::model::mesh::generate(2); };
     // Not asked for quads: nothing is tried.
-    EXPECT_EQ(avoid_blossom_abort("spiky", false, options, generate), "");
+    EXPECT_EQ(try_generate_in_child("spiky", false, false, options, generate), "");
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
-    const std::string failure = avoid_blossom_abort("spiky", true, options, generate);
+    const std::string failure = try_generate_in_child("spiky", true, false, options, generate);
     EXPECT_NE(failure.find("Perfect Match failed"), std::string::npos) << failure;
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
     // This process is untouched (no mesh), and the simple algorithm gives quads.
@@ -107,14 +107,15 @@ TEST(AvoidBlossomAbort, FoundInAChildAndTheSimpleAlgorithmMeshesIt) {
     std::vector<double> xyz, uvw;
     gmsh::model::mesh::getNodes(nodes, xyz, uvw);
     EXPECT_TRUE(nodes.empty());
-    EXPECT_EQ(avoid_blossom_abort("spiky", true, options, generate), "");  // not Blossom any more: nothing tried
+    EXPECT_EQ(try_generate_in_child("spiky", true, false, options, generate),
+              "");  // not Blossom any more: nothing tried
     gmsh::model::mesh::generate(2);
     std::vector<std::size_t> quads, quad_nodes;
     gmsh::model::mesh::getElementsByType(3, quads, quad_nodes);
     EXPECT_GT(quads.size(), 100u);
 }
 
-TEST(AvoidBlossomAbort, NothingWhereBlossomGoesThrough) {
+TEST(TryGenerateInChild, NothingWhereBlossomGoesThrough) {
     GmshSession session("blossom_ok");
     GmshOptionScope options;
     gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
@@ -122,8 +123,23 @@ TEST(AvoidBlossomAbort, NothingWhereBlossomGoesThrough) {
     options.set("Mesh.MeshSizeMax", 0.3);
     options.set("Mesh.RecombineAll", 1);
     options.set("Mesh.RecombinationAlgorithm", 1);
-    EXPECT_EQ(avoid_blossom_abort("box", true, options, [] { gmsh::model::mesh::generate(2); }), "");
+    EXPECT_EQ(try_generate_in_child("box", true, false, options, [] { gmsh::model::mesh::generate(2); }), "");
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
+}
+
+TEST(TryGenerateInChild, IsolatedACrashOrAnAbortIsAnError) {
+    // For a host that must live on (Python, FreeCAD): whatever ends the trial's process is a
+    // BackendError naming it; without isolation (and without Blossom) nothing is tried.
+    GmshSession session("isolated");
+    GmshOptionScope options;
+    const auto crash = [] { std::raise(SIGSEGV); };
+    const auto abort = [] { []() noexcept { throw_out_of_the_loop(); }(); };
+    EXPECT_EQ(try_generate_in_child("ctx", false, false, options, crash), "");
+    test::expect_error<BackendError>([&] { try_generate_in_child("the model", false, true, options, crash); },
+                                     {"the model: Gmsh crashes (signal 11)", "this session goes on"});
+    test::expect_error<BackendError>([&] { try_generate_in_child("the model", true, true, options, abort); },
+                                     {"the model: Gmsh aborts (out of the loop)"});
+    EXPECT_EQ(try_generate_in_child("ctx", false, true, options, [] {}), "");
 }
 
 }  // namespace

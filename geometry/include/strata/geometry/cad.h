@@ -3,6 +3,7 @@
 /// CAD input (STEP, IGES, BREP through Gmsh's OpenCASCADE kernel, and Gmsh .geo scripts),
 /// surface-meshed with Gmsh.
 
+#include <strata/core/progress.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/geometry/point_sizes.h>
 
@@ -49,6 +50,15 @@ struct CadParams {
     /// instead of Blossom (1), over a .geo script's own choice too. prepare_for_layers asks it
     /// where Blossom's quads fold (RecombinationReport::folded).
     bool simple_recombination = false;
+    /// Try Gmsh's surface meshing in a child process before running it here
+    /// (try_generate_in_child, io/gmsh_session.h): a crash of Gmsh's mesher (MeshAdapt has
+    /// crashed on some faces and sizes) or an error it throws out of its OpenMP loop (a
+    /// std::terminate) is then a BackendError naming it, and the process goes on. Twice the
+    /// surface meshing time. For hosts that must live on: the Python package and FreeCAD set
+    /// it; the strata program leaves it off (a crash ends its run with one line anyway). With
+    /// quads and Blossom the trial is made whatever this says (Blossom aborts on some surfaces,
+    /// and the simple recombination then meshes them: RecombinationReport).
+    bool isolate_gmsh = false;
     /// CAD surface tags (as Gmsh numbers them, after fuse if fuse is set) meshed with quads when
     /// elements is Mixed; ignored otherwise. A tag that is not a surface → InputError listing
     /// the valid tags.
@@ -183,7 +193,7 @@ struct WallSizeReport {
 /// (CadParams::elements, RemeshParams::quads).
 struct RecombinationReport {
     /// Gmsh's Blossom algorithm would have ended the process on this model (a std::terminate
-    /// out of Gmsh 4.8's meshing loop; gmsh_session.h, avoid_blossom_abort): its message. The surfaces
+    /// out of Gmsh 4.8's meshing loop; gmsh_session.h, try_generate_in_child): its message. The surfaces
     /// were then recombined with Gmsh's simple algorithm, which leaves more triangles. Empty:
     /// Blossom did it (or no quads were asked).
     std::string blossom_failure;
@@ -216,10 +226,11 @@ struct CadUnits {
 /// without surfaces (each naming the file); BackendError when Gmsh fails to mesh or leaves a
 /// surface without elements (naming the surface).
 /// \p walls, if given, receives what the wall-size cap did; \p sew what the sewing did;
-/// \p recombination what the recombination into quads did.
+/// \p recombination what the recombination into quads did. \p progress may stop Gmsh's meshing
+/// where it is tried in a child process (CadParams::isolate_gmsh, quads): Cancelled.
 SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units = nullptr,
                      WallSizeReport* walls = nullptr, SewReport* sew = nullptr,
-                     RecombinationReport* recombination = nullptr);
+                     RecombinationReport* recombination = nullptr, const Progress* progress = nullptr);
 
 /// True for the extensions mesh_cad understands (case-insensitive); looks at the name only.
 bool is_cad_file(const std::string& path);

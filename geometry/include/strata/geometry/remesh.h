@@ -28,6 +28,9 @@ struct RemeshParams {
     double feature_angle_deg = 40.0;
     /// Recombine into quadrilaterals (Blossom), as CAD meshing does with quads asked.
     bool quads = false;
+    /// As CadParams::isolate_gmsh: Gmsh's meshing tried in a child process first, so that its
+    /// crash or abort is an error and not the end of this process.
+    bool isolate_gmsh = false;
     /// Gmsh 2D algorithm: 1 MeshAdapt, 2 Automatic, 5 Delaunay, 6 Frontal-Delaunay, 9 packing of
     /// parallelograms (the values CadParams::algorithm accepts).
     int algorithm = 6;

@@ -6,6 +6,7 @@
 /// re-thrown as BackendError with context and Gmsh's last logged error).
 
 #include <strata/core/error.h>
+#include <strata/core/progress.h>
 
 #include <gmsh.h>
 
@@ -88,7 +89,8 @@ private:
 /// <context>: Gmsh aborted the process (<its message>) ...", and status 1, instead of
 /// "terminate called after throwing an instance of std::string" and SIGABRT: Gmsh 4.8 throws
 /// its error text out of its OpenMP meshing loops when it cannot mesh a face, and no caller can
-/// catch that. The process cannot go on (not in Python or FreeCAD either); this says why.
+/// catch that. The process cannot go on; this says why. (Hosts that must live on try Gmsh's
+/// meshing in a child first: try_generate_in_child.)
 /// Nested scopes stack; the handler before the outermost is put back at its end.
 class GmshAbortScope {
 public:
@@ -116,24 +118,35 @@ struct GmshProbe {
 /// (run_in_child, its OpenMP threads freed first: Gmsh meshes surfaces in an OpenMP loop), to
 /// learn whether it would abort or crash the process before running it here; nothing it does
 /// reaches this process. Gmsh prints nothing in the child. Costs the call's time once more.
+/// Where \p progress asks to stop (polled every 0.1 s), the child is killed and Cancelled
+/// thrown: unlike Gmsh in this process, a trial can be stopped.
 /// The caller holds Gmsh (GmshSession or GmshLock) and is not inside an OpenMP parallel region.
-GmshProbe gmsh_probe(const std::function<void()>& f);
+GmshProbe gmsh_probe(const std::function<void()>& f, const Progress* progress = nullptr);
 
-/// Gmsh 4.8's Blossom recombination (Mesh.RecombinationAlgorithm 1) throws "Perfect Match
-/// failed in quadrangulation" out of its OpenMP surface-meshing loop on some surfaces (the apex
-/// of a cone, a tiny hole in a large face): a std::terminate that ends the process, which no
-/// caller can catch. So where \p quads_asked (Mesh.RecombineAll, or some surfaces' own
-/// recombination) and Blossom is the algorithm, \p generate (the caller's generate(2), with
-/// its size callback) is tried first in a child (gmsh_probe). Where Blossom aborted it,
-/// Mesh.RecombinationAlgorithm is set to 0 through \p options (Gmsh's simple recombination,
-/// which never needs a perfect matching and leaves more triangles) and Blossom's message is
-/// returned, for the caller's report. Gmsh got no further than Blossom's failure, and the
-/// faces after it may crash its mesher (MeshAdapt did on the block with a 1/500 hole), so that
-/// is tried in a child too: BackendError "<context>: quads cannot be made here: ..." if it
-/// fails. "" otherwise: nothing tried (no quads, another algorithm, no child started), it went
-/// through, or it failed some other way, which the caller's own call reports as before.
-std::string avoid_blossom_abort(const std::string& context, bool quads_asked, GmshOptionScope& options,
-                                const std::function<void()>& generate);
+/// \p generate (the caller's generate(2), with its size callback) tried first in a child
+/// (gmsh_probe) where it may end the process, before the caller runs it here:
+///
+/// - Gmsh 4.8's Blossom recombination (Mesh.RecombinationAlgorithm 1) throws "Perfect Match
+///   failed in quadrangulation" out of its OpenMP surface-meshing loop on some surfaces (the
+///   apex of a cone, a tiny hole in a large face): a std::terminate that ends the process,
+///   which no caller can catch. So where \p quads_asked (Mesh.RecombineAll, or some surfaces'
+///   own recombination) and Blossom is the algorithm, it is tried; where Blossom aborted it,
+///   Mesh.RecombinationAlgorithm is set to 0 through \p options (Gmsh's simple recombination,
+///   which never needs a perfect matching and leaves more triangles) and Blossom's message is
+///   returned, for the caller's report. Gmsh got no further than Blossom's failure, and the
+///   faces after it may crash its mesher (MeshAdapt did on the block with a 1/500 hole), so
+///   that is tried in a child too: BackendError "<context>: quads cannot be made here: ..." if
+///   it fails.
+/// - With \p isolate (a host that must live on: a Python or FreeCAD session), it is tried in
+///   every case, and any abort or crash of Gmsh's is a BackendError "<context>: Gmsh aborted
+///   (its message)" or "crashed (signal)" instead of the end of the process.
+///
+/// "" where nothing needed saying: nothing tried (no quads and no isolation, another
+/// algorithm, no child started), it went through, or without \p isolate it failed some other
+/// way, which the caller's own call reports as before. Each trial costs the call's time once
+/// more, and is stopped (Cancelled) where \p progress asks (gmsh_probe).
+std::string try_generate_in_child(const std::string& context, bool quads_asked, bool isolate, GmshOptionScope& options,
+                                  const std::function<void()>& generate, const Progress* progress = nullptr);
 
 /// Run \p f (calls into gmsh::), turning any exception Gmsh throws into a BackendError
 /// "<context>: <Gmsh's message>". strata::Error passes through unchanged. An abort inside it
