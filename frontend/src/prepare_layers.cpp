@@ -18,15 +18,19 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
     PrepareReport first_report;
     SurfaceMesh surface = prepare_surfaces(inputs, params, &first_report, progress);
     // Blossom's quads can fold where the surface nearly touches itself (the winglet's junction
-    // under --fuse --quads), and no layer can grow on a surface that intersects itself; Gmsh's
-    // simple recombination pairs fewer triangles and may not fold there. Kept if it does not.
+    // under --fuse --quads, the plate's holes remeshed in quads), and no layer can grow on a
+    // surface that intersects itself; Gmsh's simple recombination pairs fewer triangles and may
+    // not fold there. Kept if it does not.
     PrepareParams chosen = params;
-    if (params.cad.elements != SurfaceElements::Triangles && !params.cad.simple_recombination && !params.remesh &&
-        first_report.recombination.blossom_failure.empty() && any_cad_input(inputs)) {
+    const bool cad_blossom = !params.remesh && params.cad.elements != SurfaceElements::Triangles &&
+                             !params.cad.simple_recombination && any_cad_input(inputs);
+    const bool remesh_blossom = params.remesh && params.remeshing.quads && !params.remeshing.simple_recombination;
+    if ((cad_blossom || remesh_blossom) && first_report.recombination.blossom_failure.empty()) {
         const std::vector<FacePair> folds = self_intersections(surface, 1, mesh.threads);
         if (!folds.empty()) {
             PrepareParams simple = params;
-            simple.cad.simple_recombination = true;
+            simple.cad.simple_recombination = cad_blossom;
+            simple.remeshing.simple_recombination = remesh_blossom;
             PrepareReport simple_report;
             try {
                 SurfaceMesh again = prepare_surfaces(inputs, simple, &simple_report, progress);

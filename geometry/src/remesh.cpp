@@ -151,7 +151,7 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
         options.set("Mesh.SubdivisionAlgorithm", 0);
         options.set("Mesh.Algorithm", p.algorithm);
         options.set("Mesh.RecombineAll", p.quads ? 1 : 0);
-        options.set("Mesh.RecombinationAlgorithm", 1);  // Blossom
+        options.set("Mesh.RecombinationAlgorithm", p.simple_recombination ? 0 : 1);  // simple or Blossom
         // The old surface as one discrete surface, and as one discrete curve its patch
         // boundaries and the cuts that put every long sharp edge between two regions
         // (feature_cuts.h): classifySurfaces never lets a new surface cross an existing curve's

@@ -767,6 +767,21 @@ TEST(Cli, QuadsWhereBlossomsFoldAreMadeWithTheSimpleAlgorithm) {
     EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
 }
 
+TEST(Cli, RemeshedQuadsWhereBlossomsFoldAreMadeWithTheSimpleAlgorithm) {
+    // The sweep's plate with holes as a CAD tool's STL, remeshed in quads: Blossom's quads fold
+    // at a hole (two faces intersect) and the run stopped with "the surface intersects itself".
+    // Remeshed with the simple recombination (RemeshParams::simple_recombination) it passes.
+    test::ScratchDir dir("cli_remesh_blossom_folds");
+    const CliResult r =
+        strata_cli(dir, "mesh '" + example_data("../sweep/holes_brepmesh.stl") +
+                            "' --remesh --quads --fuse --layers 15 --growth 1.2 --first-height 1e-3 -o p.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("quads: Gmsh's Blossom quads folded where the surface nearly touches itself (face "),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
 TEST(Cli, QuadsRoundATinyHoleWhereBlossomWouldAbort) {
     // The sweep's block with a hole of 1/500 in quads: Blossom aborts on it (the simple
     // algorithm then meshes it); the walls meshed again finer round the layers' steps make

@@ -28,6 +28,8 @@ struct RemeshParams {
     double feature_angle_deg = 40.0;
     /// Recombine into quadrilaterals (Blossom), as CAD meshing does with quads asked.
     bool quads = false;
+    /// With quads: Gmsh's simple recombination instead of Blossom (CadParams::simple_recombination).
+    bool simple_recombination = false;
     /// As CadParams::isolate_gmsh: Gmsh's meshing tried in a child process first, so that its
     /// crash or abort is an error and not the end of this process.
     bool isolate_gmsh = false;
