@@ -36,8 +36,7 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
                 SurfaceMesh again = prepare_surfaces(inputs, simple, &simple_report, progress);
                 if (self_intersections(again, 1, mesh.threads).empty()) {
                     simple_report.recombination.folded = true;
-                    simple_report.recombination.blossom_failure =
-                        describe_face(surface, folds[0].a) + " meets " + describe_face(surface, folds[0].b);
+                    simple_report.recombination.blossom_failure = describe_pair(surface, folds[0]);
                     surface = std::move(again);
                     first_report = std::move(simple_report);
                     chosen = std::move(simple);
@@ -112,8 +111,7 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
     // Nor a fold the first surface did not have (quads recombined across a narrow junction).
     if (const std::vector<FacePair> folds = self_intersections(finer, 1, mesh.threads);
         !folds.empty() && self_intersections(surface, 1, mesh.threads).empty()) {
-        steps.failure = "the finer surface intersects itself: " + describe_face(finer, folds[0].a) + " meets " +
-                        describe_face(finer, folds[0].b);
+        steps.failure = "the finer surface intersects itself: " + describe_pair(finer, folds[0]);
         return done(std::move(surface), first_report);
     }
     second_report.recombination = first_report.recombination;  // the choice made on the first surface

@@ -622,13 +622,29 @@ SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces, s
     return mesh;
 }
 
+/// Gmsh's generate(2) for mesh_cad, each time the same way: tried in a child first where it
+/// may end the process (try_generate_in_child: quads with Blossom, CadParams::isolate_gmsh),
+/// the fallback to the simple recombination recorded in \p report, then run here.
+struct SurfaceGenerator {
+    bool quads = false;
+    bool isolate = false;
+    GmshOptionScope& options;
+    const Progress* progress = nullptr;
+    RecombinationReport& report;
+
+    void operator()(const std::string& context, const std::function<void()>& generate) const {
+        const std::string failure = try_generate_in_child(context, quads, isolate, options, generate, progress);
+        if (!failure.empty()) report.blossom_failure = failure;
+        gmsh_call(context, generate);
+    }
+};
+
 /// CadParams::max_aspect_ratio on the mesh just made (refine_walls): its wall surfaces by the
 /// patch each will belong to, each round the whole model meshed again (so the curves the walls
 /// share with the other surfaces stay conforming).
 SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, const std::vector<int>& surfaces,
                               const PointSizes& points, SurfaceMesh mesh, std::vector<int>& face_surface,
-                              WallSizeReport& r, bool quads, GmshOptionScope& options,
-                              RecombinationReport& recombination, const Progress* progress) {
+                              WallSizeReport& r, const SurfaceGenerator& generate_surfaces) {
     std::set<int> walls;
     for (const auto& [s, name] : surface_patch_names(surfaces))
         if (patch_kind_of(name, params.wall_patch_kinds) == PatchKind::Wall) walls.insert(s);
@@ -651,10 +667,7 @@ SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, 
                 callback.emplace(entity_sizes(caps), factor, &points);
                 gmsh::model::mesh::generate(2);
             };
-            const std::string failure =
-                try_generate_in_child(context, quads, params.isolate_gmsh, options, generate, progress);
-            if (!failure.empty()) recombination.blossom_failure = failure;
-            gmsh_call(context, generate);
+            generate_surfaces(context, generate);
         }
         face_surface.clear();
         mesh = extract(path, surfaces, face_surface);
@@ -845,16 +858,15 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     };
     const bool quads = get_number("Mesh.RecombineAll") > 0.0 || params.elements == SurfaceElements::Mixed;
     RecombinationReport recombined;
-    recombined.blossom_failure =
-        try_generate_in_child(context, quads, params.isolate_gmsh, options, generate, progress);
-    gmsh_call(context, generate);
+    const SurfaceGenerator generate_surfaces{quads, params.isolate_gmsh, options, progress, recombined};
+    generate_surfaces(context, generate);
 
     std::vector<int> face_surface;
     SurfaceMesh mesh = extract(path, surfaces, face_surface);
     WallSizeReport wall_report;
     if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0)
-        mesh = limit_wall_aspect(path, params, surfaces, points, std::move(mesh), face_surface, wall_report, quads,
-                                 options, recombined, progress);
+        mesh = limit_wall_aspect(path, params, surfaces, points, std::move(mesh), face_surface, wall_report,
+                                 generate_surfaces);
     if (walls) *walls = wall_report;
     if (recombination) *recombination = recombined;
     return mesh;

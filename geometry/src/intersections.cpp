@@ -141,4 +141,8 @@ std::string describe_face(const SurfaceMesh& mesh, Index f) {
     return s + " at " + format_point(c / static_cast<double>(mesh.face_size(f)));
 }
 
+std::string describe_pair(const SurfaceMesh& mesh, const FacePair& pair) {
+    return describe_face(mesh, pair.a) + " meets " + describe_face(mesh, pair.b);
+}
+
 }  // namespace strata

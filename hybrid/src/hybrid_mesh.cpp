@@ -216,7 +216,7 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
 [[noreturn]] void throw_front_intersects(const SurfaceMesh& region, const std::vector<FacePair>& pairs, int rounds) {
     std::string where;
     for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 3); ++i)
-        where += (i ? "; " : "") + describe_face(region, pairs[i].a) + " meets " + describe_face(region, pairs[i].b);
+        where += (i ? "; " : "") + describe_pair(region, pairs[i]);
     throw TopologyError(
         "the boundary of the region to fill with tetrahedra (the layer top and the outer boundary) "
         "intersects itself in " +
@@ -333,8 +333,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     bool has_outer = false;
     SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, rep.closed_half_model, rep.internal_flow);
     if (const std::vector<FacePair> crossing = self_intersections(surface, 1, params.threads); !crossing.empty())
-        throw InputError("the surface intersects itself: " + describe_face(surface, crossing[0].a) + " meets " +
-                         describe_face(surface, crossing[0].b) +
+        throw InputError("the surface intersects itself: " + describe_pair(surface, crossing[0]) +
                          "; overlapping bodies must be fused into one (CadParams::fuse), and a surface mesh that "
                          "folds where two of its faces nearly touch (quads recombined across a narrow junction, a "
                          "coarse size there) meshed again finer, without quads, or repaired, before layers can grow "

@@ -41,4 +41,7 @@ std::vector<SurfaceTriangle> surface_triangles(const SurfaceMesh& mesh);
 /// "face 12 (patch 'layer_top') at (x, y, z)": for messages about the pairs above.
 std::string describe_face(const SurfaceMesh& mesh, Index f);
 
+/// "face 12 (...) at (...) meets face 40 (...) at (...)": a pair above, for messages.
+std::string describe_pair(const SurfaceMesh& mesh, const FacePair& pair);
+
 }  // namespace strata
