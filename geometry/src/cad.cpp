@@ -7,6 +7,7 @@
 #include <strata/geometry/prepare.h>
 #include <strata/io/cad_units.h>
 #include <strata/io/files.h>
+#include <strata/io/geo_script.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
 
@@ -206,7 +207,7 @@ void load(const std::string& path, CadFormat format) {
             if (format == CadFormat::Geo) {
                 // merge, not open: gmsh::open renames the current model after the file (or
                 // adds a new one), and the current model belongs to our GmshSession.
-                gmsh::merge(path);
+                merge_geo_script(path);  // the script's Macros renamed if Gmsh holds them already
                 // A script may have used either kernel; both must be visible to the model.
                 gmsh::model::geo::synchronize();
                 gmsh::model::occ::synchronize();
