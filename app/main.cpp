@@ -575,13 +575,13 @@ void print_held_back(const std::vector<strata::LayerStats>& stats) {
 }
 
 /// The fans at sharp convex edges, if any, and the wall nodes where none could be built (\p
-/// no_fan: its first cells would have been unusable, or its face on the layer top could not
-/// take a pyramid), each reason with the first such node's position.
+/// no_fan: its first cells would have been unusable, its face on the layer top could not take a
+/// pyramid, or its cells had skewed faces), each reason with the first such node's position.
 void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners, const strata::LayerReport& no_fan) {
     if (edges > 0)
         std::printf("fans: %d sharp convex edges, %d wall nodes with a column per side and between (%d corners)\n",
                     static_cast<int>(edges), static_cast<int>(nodes), static_cast<int>(corners));
-    for (const strata::NoFan reason : {strata::NoFan::Unusable, strata::NoFan::Uncapped}) {
+    for (const strata::NoFan reason : {strata::NoFan::Unusable, strata::NoFan::Uncapped, strata::NoFan::Skewed}) {
         const strata::Index n = no_fan.no_fan_nodes(reason);
         if (n == 0) continue;
         const auto first = std::find_if(no_fan.no_fan.begin(), no_fan.no_fan.end(),
@@ -590,8 +590,11 @@ void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners,
                     static_cast<int>(n),
                     reason == strata::NoFan::Unusable
                         ? "its first cells would have been unusable (a needle face or a narrow gap beside it)"
-                        : "a fan's face on the layer top could not be capped with a pyramid (its columns twist: the "
-                          "wall there is small against the layers' thickness)",
+                    : reason == strata::NoFan::Uncapped
+                        ? "a fan's face on the layer top could not be capped with a pyramid (its columns twist: the "
+                          "wall there is small against the layers' thickness)"
+                        : "a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (a fan over a coarsely "
+                          "faceted wall; a finer wall keeps it)",
                     n > 1 ? "the first," : "", static_cast<int>(first->node),
                     strata::format_point(first->position).c_str());
     }

@@ -83,6 +83,7 @@ struct Partial {
     std::uint64_t worst_ortho = 0, worst_skew = 0, first_pyramid = 0;
     bool has_ortho = false, has_skew = false, has_pyramid = false;
     Index faces = 0, severe = 0, errors = 0, skew = 0, pyramids = 0;
+    std::vector<std::uint64_t> skewed;  ///< the slots of the faces above kFoamSkewness, if asked
 };
 
 }  // namespace
@@ -198,8 +199,10 @@ bool face_pyramids_inverted(const Vec3* corners, CellType type) {
     return false;
 }
 
-SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads) {
+SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads,
+                           std::vector<std::uint64_t>* skewed) {
     SolverChecks r;
+    if (skewed) skewed->clear();
     const FaceSlots& slots = match.slots;
     const CellNumbering& cells = slots.cells();
     const std::vector<Vec3>& p = mesh.points;
@@ -291,7 +294,10 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
                 const double m = sv.norm();
                 skew = m / std::max(0.4 * d.norm() + kRootVSmall, extent(sv / (m + kRootVSmall)));
             }
-            if (skew > kFoamSkewness) ++q.skew;
+            if (skew > kFoamSkewness) {
+                ++q.skew;
+                if (skewed) q.skewed.push_back(s);
+            }
             if (skew > q.max_skew) q.max_skew = skew, q.worst_skew = s, q.has_skew = true;
             pyramid(f.area, f.centre, co, s);
         }
@@ -308,6 +314,7 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
         r.severely_non_orthogonal += q.severe;
         r.non_orthogonality_errors += q.errors;
         r.skew_faces += q.skew;
+        if (skewed) skewed->insert(skewed->end(), q.skewed.begin(), q.skewed.end());
         r.negative_pyramids += q.pyramids;
         if (q.has_ortho && q.min_cos < min_cos) min_cos = q.min_cos, worst_ortho = q.worst_ortho, has_ortho = true;
         if (q.has_skew && q.max_skew > max_skew) max_skew = q.max_skew, worst_skew = q.worst_skew, has_skew = true;

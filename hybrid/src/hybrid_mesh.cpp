@@ -360,6 +360,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     if (!has_outer)
         check_layers_fit_farfield(surface, params.farfield, asked, params.layers.proximity_limits.other_patch);
     std::vector<Index> uncapped;              // input nodes whose fan's face on the layer top took no pyramid
+    std::set<Index> unusable, skewed;         // input nodes whose fan extrude_layers dropped (LayerMesh)
     std::set<std::vector<Index>> uncappable;  // the input nodes of quads that took no pyramid
     TetFillParams tet_params = params.tets;
     TetFill fill;
@@ -397,6 +398,15 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
             continue;
         }
         rep.seconds_layers += seconds_since(t0);
+        // The fans extrude_layers dropped stay dropped in the rounds after: the same march
+        // without trying them again.
+        for (const auto& [dropped, into] :
+             {std::pair{&lm.fans_dropped, &unusable}, std::pair{&lm.fans_skewed, &skewed}})
+            for (const Index v : *dropped) {
+                if (layer_params.no_fan_nodes.empty()) layer_params.no_fan_nodes.assign(surface.points.size(), 0);
+                layer_params.no_fan_nodes[static_cast<std::size_t>(v)] = 1;
+                into->insert(v);
+            }
         t0 = std::chrono::steady_clock::now();
         try {
             pyr = build_pyramids(lm.top, params.pyramids, progress);
@@ -490,6 +500,8 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     rep.fan_edges = lm.fan_edges, rep.fan_nodes = lm.fan_nodes, rep.fan_corners = lm.fan_corners;
     rep.thinned_nodes = lm.thinned_nodes;
     rep.min_thickness_share = lm.min_thickness_share;
+    lm.fans_dropped.assign(unusable.begin(), unusable.end());
+    lm.fans_skewed.assign(skewed.begin(), skewed.end());
     rep.coverage = layer_report(lm);
     std::sort(uncapped.begin(), uncapped.end());
     for (const Index v : uncapped)

@@ -7,8 +7,10 @@
 #include <strata/core/enum_names.h>
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/face_match.h>
 #include <strata/core/format.h>
 #include <strata/core/parallel.h>
+#include <strata/core/solver_checks.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/topology.h>
 #include <strata/module/layers.h>
@@ -545,6 +547,44 @@ bool fans_on(const LayerParams& params) {
     return params.min_quality > 0.0 && !params.keep_invalid && params.smoothing;
 }
 
+/// The nodes of the input surface (ascending) whose fan's columns have a node on an interior
+/// face of \p lm's cells that OpenFOAM's checkMesh would fail as skewed (above kFoamSkewness):
+/// a fan through a coarsely faceted wall, whose chain doubles back on itself, makes wedges whose
+/// shared faces stand far off the line between their centres. Only the cells with a node on a
+/// fan's column are looked at (a face with such a node has such cells on both sides).
+std::vector<Index> skewed_fan_nodes(const LayerMesh& lm, int threads) {
+    std::vector<Index> column(lm.mesh.points.size(), kNone);  // the fan column each node is on
+    for (Index i = 0; i < lm.wall_nodes(); ++i)
+        if (lm.fan_column[static_cast<std::size_t>(i)])
+            for (int k = 0; k <= lm.node_layers(i); ++k) column[static_cast<std::size_t>(lm.level_node(k, i))] = i;
+    VolumeMesh fan_cells;
+    fan_cells.points = lm.mesh.points;
+    auto take = [&](const auto& cells, auto& into) {
+        for (const auto& c : cells)
+            if (std::any_of(c.begin(), c.end(), [&](Index v) { return column[static_cast<std::size_t>(v)] != kNone; }))
+                into.push_back(c);
+    };
+    take(lm.mesh.tets, fan_cells.tets);
+    take(lm.mesh.pyramids, fan_cells.pyramids);
+    take(lm.mesh.prisms, fan_cells.prisms);
+    take(lm.mesh.hexes, fan_cells.hexes);
+    std::vector<std::uint64_t> skewed;
+    const FaceMatch match = match_faces(fan_cells, threads);
+    solver_checks(fan_cells, match, threads, &skewed);
+    std::vector<Index> out;
+    for (const std::uint64_t s : skewed) {
+        if (match.across[s] < 0) continue;  // not a face between two cells
+        Index v[4];
+        const int n = match.slots.nodes(s, v);
+        for (int c = 0; c < n; ++c)
+            if (const Index i = column[static_cast<std::size_t>(v[c])]; i != kNone)
+                out.push_back(lm.input_node[static_cast<std::size_t>(i)]);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
 /// The fans (fans_on). \p w gets the fans' columns and strip faces; the result keeps
 /// their directions and bases (its mesh moved into \p w).
 FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, Wall& w) {
@@ -1011,6 +1051,24 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         if (col.levels[static_cast<std::size_t>(i)] < layers)
             out.stop_reason[static_cast<std::size_t>(i)] = col.reason[static_cast<std::size_t>(i)];
     build_layer_cells(col, w.mesh, w.loops, side_patches(surface, w), out);
+    if (!fans.empty() && rules.quality) {
+        // Fans whose cells have faces checkMesh would fail as skewed: no fan at those wall
+        // nodes, and march again (each round marks new nodes, so this ends).
+        std::vector<Index> dropped;
+        LayerParams again = params;
+        if (again.no_fan_nodes.empty()) again.no_fan_nodes.assign(surface.points.size(), 0);
+        for (const Index v : skewed_fan_nodes(out, mc.threads)) {
+            char& no = again.no_fan_nodes[static_cast<std::size_t>(v)];
+            if (!no) dropped.push_back(v);
+            no = 1;
+        }
+        if (!dropped.empty()) {
+            LayerMesh retry = extrude_layers(surface, again, progress);
+            retry.fans_skewed.insert(retry.fans_skewed.end(), dropped.begin(), dropped.end());
+            std::sort(retry.fans_skewed.begin(), retry.fans_skewed.end());
+            return retry;
+        }
+    }
     return out;
 }
 
@@ -1056,18 +1114,20 @@ LayerReport layer_report(const LayerMesh& lm) {
         r.short_nodes.push_back(
             {lm.input_node.empty() ? i : lm.input_node[u], lm.mesh.points[base(i)], share[u], levels[u], why[u]});
     }
-    if (!lm.fans_dropped.empty()) {
-        std::vector<Index> wall_of(lm.fans_dropped.size(), kNone);  // a wall node of each
+    for (const auto& [dropped, reason] :
+         {std::pair{&lm.fans_dropped, NoFan::Unusable}, std::pair{&lm.fans_skewed, NoFan::Skewed}}) {
+        if (dropped->empty()) continue;
+        std::vector<Index> wall_of(dropped->size(), kNone);  // a wall node of each
         for (Index i = 0; i < nw; ++i) {
             const Index v = lm.input_node.empty() ? i : lm.input_node[static_cast<std::size_t>(i)];
-            const auto it = std::lower_bound(lm.fans_dropped.begin(), lm.fans_dropped.end(), v);
-            if (it != lm.fans_dropped.end() && *it == v)
-                wall_of[static_cast<std::size_t>(it - lm.fans_dropped.begin())] = i;
+            const auto it = std::lower_bound(dropped->begin(), dropped->end(), v);
+            if (it != dropped->end() && *it == v) wall_of[static_cast<std::size_t>(it - dropped->begin())] = i;
         }
         for (std::size_t j = 0; j < wall_of.size(); ++j)
-            if (wall_of[j] != kNone)
-                r.no_fan.push_back({lm.fans_dropped[j], lm.mesh.points[base(wall_of[j])], NoFan::Unusable});
+            if (wall_of[j] != kNone) r.no_fan.push_back({(*dropped)[j], lm.mesh.points[base(wall_of[j])], reason});
     }
+    std::stable_sort(r.no_fan.begin(), r.no_fan.end(),
+                     [](const NoFanNode& a, const NoFanNode& b) { return a.node < b.node; });
     // Per patch of the wall: its faces, and its nodes once each.
     const SurfaceMesh& wall = lm.top;
     r.patches.resize(wall.patches.size());

@@ -736,6 +736,24 @@ TEST(Cli, AStepOverAQuadBentRoundALeadingEdgeIsSplitNotInverted) {
     EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
 }
 
+TEST(Cli, AFanWhoseCellsCheckMeshFindsSkewedIsDropped) {
+    // The wing-fuselage at its default size (426 wall faces), 10 layers from 1e-3 of its length:
+    // the wing's leading edge (151 degrees on so coarse a wall) seeds a fan chain that closes
+    // through the fuselage's coarse facets and its nose pole, where the chain doubles back and
+    // two wedges share a face checkMesh found skewed 4.17 (6 faces). The fans there are dropped
+    // and the layers marched again: the summary says where, and the mesh passes.
+    test::ScratchDir dir("cli_skewed_fan");
+    const CliResult r = strata_cli(dir, "mesh '" + example_data("wing_fuselage.step") +
+                                            "' --fuse --layers 10 --growth 1.3 --first-height 4.47e-4 -o w.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("where a fan's cells had faces OpenFOAM's checkMesh would fail as skewed"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    std::ifstream json(dir.path() / "w.msh.report.json");
+    const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\"reason\": \"skewed\""), std::string::npos);
+}
+
 TEST(Cli, QuadsWhereBlossomWouldAbortTheProcess) {
     // The sweep's sphere with three cones in quads: Gmsh's Blossom recombination threw out of
     // Gmsh's OpenMP loop on a cone, and the run stopped with "Gmsh aborted the process

@@ -79,6 +79,23 @@ TEST(SolverChecks, StrongLeanIsSeverelyNonOrthogonalAndTooSkewForCheckMesh) {
         << s.failures()[0];
 }
 
+TEST(SolverChecks, SkewedFacesAreListedByTheirSlots) {
+    // The same strong lean: the one face above 4 (the far face, on the boundary) is listed by
+    // its slot; with the lean of 2 (skewness 2) nothing is listed.
+    const VolumeMesh m = leaning_pair(10.0);
+    const FaceMatch match = match_faces(m);
+    std::vector<std::uint64_t> skewed{7, 8, 9};  // cleared first
+    const SolverChecks s = solver_checks(m, match, 0, &skewed);
+    ASSERT_EQ(skewed.size(), 1u);
+    EXPECT_EQ(static_cast<Index>(skewed.size()), s.skew_faces);
+    EXPECT_LT(match.across[skewed[0]], 0);  // a boundary face
+    Index v[4];
+    ASSERT_EQ(match.slots.nodes(skewed[0], v), 4);
+    const VolumeMesh calm = leaning_pair(2.0);
+    solver_checks(calm, match_faces(calm), 0, &skewed);
+    EXPECT_TRUE(skewed.empty());
+}
+
 TEST(SolverChecks, FlatCellsHaveTheRatioOfTheirSides) {
     // A 1 × 1 × h box: Σ|S| = (2h, 2h, 2), so the ratio of components is 1/h.
     VolumeMesh m = BoxMesh(2, 1, 1).build();

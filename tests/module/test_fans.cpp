@@ -163,13 +163,17 @@ TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
     EXPECT_TRUE(std::is_sorted(lm.fans_dropped.begin(), lm.fans_dropped.end()));
     EXPECT_EQ(std::adjacent_find(lm.fans_dropped.begin(), lm.fans_dropped.end()), lm.fans_dropped.end());
     EXPECT_NE(std::find(lm.fans_dropped.begin(), lm.fans_dropped.end(), 3 * 4 + 2), lm.fans_dropped.end());
-    // The report says where: each such node once, at its place on the wall.
+    // The report says where: each such node once, at its place on the wall, by node id (with
+    // those whose fan went for skewed cells where the dropped one's chain was cut).
     const LayerReport r = layer_report(lm);
-    ASSERT_EQ(r.no_fan.size(), lm.fans_dropped.size());
+    ASSERT_EQ(r.no_fan.size(), lm.fans_dropped.size() + lm.fans_skewed.size());
     EXPECT_EQ(r.no_fan_nodes(NoFan::Unusable), static_cast<Index>(lm.fans_dropped.size()));
+    EXPECT_EQ(r.no_fan_nodes(NoFan::Skewed), static_cast<Index>(lm.fans_skewed.size()));
     for (std::size_t j = 0; j < r.no_fan.size(); ++j) {
-        EXPECT_EQ(r.no_fan[j].node, lm.fans_dropped[j]);
-        EXPECT_EQ(r.no_fan[j].position, wall.points[static_cast<std::size_t>(lm.fans_dropped[j])]);
+        const std::vector<Index>& list = r.no_fan[j].reason == NoFan::Unusable ? lm.fans_dropped : lm.fans_skewed;
+        EXPECT_NE(std::find(list.begin(), list.end(), r.no_fan[j].node), list.end());
+        EXPECT_EQ(r.no_fan[j].position, wall.points[static_cast<std::size_t>(r.no_fan[j].node)]);
+        if (j > 0) EXPECT_LT(r.no_fan[j - 1].node, r.no_fan[j].node);
     }
     EXPECT_LT(lm.fan_edges, 30);
     EXPECT_EQ(lm.node_layers(3 * 4 + 2), 0);

@@ -63,9 +63,10 @@ struct ShortNode {
 enum class NoFan : std::uint8_t {
     Unusable,  ///< the fan's first cells would have been unusable (a needle face or a narrow gap beside it)
     Uncapped,  ///< a fan's face on the layer top could not be capped with a pyramid (its columns twist)
+    Skewed,    ///< a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (kFoamSkewness)
 };
-inline constexpr std::size_t kNoFanReasons = 2;
-/// "unusable", "uncapped".
+inline constexpr std::size_t kNoFanReasons = 3;
+/// "unusable", "uncapped", "skewed".
 std::string_view to_string(NoFan reason);
 
 /// A wall node on a sharp convex edge that got no fan.

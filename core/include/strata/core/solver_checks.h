@@ -20,6 +20,7 @@
 #include <strata/core/face_match.h>
 #include <strata/core/volume_mesh.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,11 @@ struct SolverChecks {
 
 /// checkMesh's figures for \p mesh, whose faces \p match matched (match_faces; faces that are
 /// not a clean interior or boundary match are skipped: the validator reports them). Fixed
-/// chunks merged in order (ties to the lower face): the same for any \p threads.
-SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads = 0);
+/// chunks merged in order (ties to the lower face): the same for any \p threads. \p skewed:
+/// if given, receives the face slots (FaceSlots of \p match) of the faces above kFoamSkewness,
+/// ascending.
+SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads = 0,
+                           std::vector<std::uint64_t>* skewed = nullptr);
 
 /// checkMesh's aspect ratio of the right prism (hexahedron for a quad) of height \p h standing
 /// on the wall face with corners \p corners (3 or 4, either orientation): what the first layer

@@ -155,6 +155,9 @@ public:
     /// Nodes of the input surface with no fan because its first cells would have been unusable
     /// (ascending; layer_report lists them with their positions).
     std::vector<Index> fans_dropped;
+    /// Nodes of the input surface with no fan because its cells had faces checkMesh would fail
+    /// as skewed (ascending; layer_report lists them with their positions).
+    std::vector<Index> fans_skewed;
 
     Index wall_nodes() const { return wall_nodes_; }
     /// Levels asked above the wall: the tallest a column can be.
