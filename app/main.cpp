@@ -378,8 +378,14 @@ void print_sewing(const strata::SewReport& s) {
             strata::format_point(s.gap_at).c_str(), strata::format_number(s.suggested_tolerance, 2).c_str());
 }
 
-/// What --max-aspect-ratio did to the CAD walls (nothing to say when their first layer was fine).
+/// What --max-aspect-ratio did to the CAD walls (nothing to say when their first layer was fine),
+/// and the default size halved for a thin part.
 void print_wall_sizing(const strata::WallSizeReport& w) {
+    if (w.thin_size > 0.0)
+        std::printf(
+            "size: the default size %s left a part thinner than it with its two sides meshed through the same "
+            "nodes (edges of four faces); meshed at %s instead (--size sets it)\n",
+            strata::format_number(w.default_size, 3).c_str(), strata::format_number(w.thin_size, 3).c_str());
     if (w.surfaces > 0 || w.curves > 0)
         std::printf(
             "walls: meshed again finer (%d surfaces, %d curves under fans; size %s) so that the first "

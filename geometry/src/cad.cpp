@@ -5,6 +5,7 @@
 #include <strata/core/error.h>
 #include <strata/core/format.h>
 #include <strata/geometry/prepare.h>
+#include <strata/geometry/topology.h>
 #include <strata/io/cad_units.h>
 #include <strata/io/files.h>
 #include <strata/io/geo_script.h>
@@ -640,6 +641,15 @@ struct SurfaceGenerator {
     }
 };
 
+/// Whether an edge of \p mesh bounds more than two faces: Gmsh meshed two sides of a part
+/// thinner than the size through the same nodes.
+bool has_shared_chords(const SurfaceMesh& mesh) {
+    const EdgeTable et = edge_table(mesh);
+    for (Index e = 0; e < et.faces.rows(); ++e)
+        if (et.faces.row_size(e) > 2) return true;
+    return false;
+}
+
 /// CadParams::max_aspect_ratio on the mesh just made (refine_walls): its wall surfaces by the
 /// patch each will belong to, each round the whole model meshed again (so the curves the walls
 /// share with the other surfaces stay conforming).
@@ -780,6 +790,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
         throw InputError(path + ": the model has no extent (bounding-box diagonal " + format_number(diagonal) +
                          "); check the file's geometry");
 
+    const bool default_size = !(params.size > 0.0) && !script_set("Mesh.MeshSizeMax");  // before it is set
     if (params.size > 0.0)
         set_number("Mesh.MeshSizeMax", params.size);
     else if (!script_set("Mesh.MeshSizeMax"))
@@ -792,6 +803,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
         set_number("Mesh.MeshSizeFromCurvature", 0);
     const bool curvature = get_number("Mesh.MeshSizeFromCurvature") > 0;
 
+    const bool default_size_min = !(params.size_min > 0.0) && !script_set("Mesh.MeshSizeMin");
     if (params.size_min > 0.0)
         set_number("Mesh.MeshSizeMin", params.size_min);
     else if (!script_set("Mesh.MeshSizeMin"))
@@ -865,6 +877,27 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     std::vector<int> face_surface;
     SurfaceMesh mesh = extract(path, surfaces, face_surface);
     WallSizeReport wall_report;
+    if (default_size) {
+        // A part thinner than the default size can get its two sides meshed through the same
+        // nodes (a blade's tip, one chord across): halve the size, up to three times.
+        for (int round = 0; round < 3 && has_shared_chords(mesh); ++round) {
+            const double smaller = get_number("Mesh.MeshSizeMax") / 2.0;
+            set_number("Mesh.MeshSizeMax", smaller);
+            if (curvature && default_size_min) set_number("Mesh.MeshSizeMin", smaller / 20.0);
+            generate_surfaces(path + ": Gmsh failed to mesh the surfaces again finer (maximum size " +
+                                  format_number(smaller) +
+                                  ") where the default size left a thin part's two sides on one chord; give a "
+                                  "smaller size",
+                              [&] {
+                                  gmsh::model::mesh::clear();
+                                  generate();
+                              });
+            face_surface.clear();
+            mesh = extract(path, surfaces, face_surface);
+            wall_report.thin_size = smaller;
+            wall_report.default_size = size;
+        }
+    }
     if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0)
         mesh = limit_wall_aspect(path, params, surfaces, points, std::move(mesh), face_surface, wall_report,
                                  generate_surfaces);

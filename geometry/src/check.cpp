@@ -77,7 +77,8 @@ void check_surface(const SurfaceMesh& mesh, const std::string& source) {
                             std::to_string(edges.faces.row_size(first)) + " faces: " + faces +
                             (bad > 1 ? " (" + std::to_string(bad - 1) + " more such edges)" : std::string()) +
                             "; an edge may bound at most two faces: fix the surface in the CAD tool or merge "
-                            "the duplicate faces");
+                            "the duplicate faces (meshed from CAD, a part thinner than the size gets its two "
+                            "sides meshed through the same nodes: give a smaller --size)");
     }
 }
 

@@ -63,6 +63,8 @@ SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const
             walls->curves += one.curves;
             walls->faces_estimate += one.faces_estimate;
             walls->over_budget = walls->over_budget || one.over_budget;
+            if (one.thin_size > 0.0 && (walls->thin_size == 0.0 || one.thin_size < walls->thin_size))
+                walls->thin_size = one.thin_size, walls->default_size = one.default_size;
         }
         return mesh;
     }

@@ -384,7 +384,8 @@ py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double sec
         "walls"_a =
             py::dict("max_aspect_ratio"_a = w.max_aspect_ratio, "worst_before"_a = w.worst_before,
                      "worst_after"_a = w.worst_after, "size"_a = w.cap, "surfaces"_a = w.surfaces,
-                     "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate, "over_budget"_a = w.over_budget),
+                     "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate, "over_budget"_a = w.over_budget,
+                     "thin_size"_a = w.thin_size, "default_size"_a = w.default_size),
         "holes"_a = py::dict("filled"_a = r.holes.holes, "triangles"_a = r.holes.triangles,
                              "largest"_a = r.holes.largest, "left"_a = r.holes.left),
         "sewn"_a =

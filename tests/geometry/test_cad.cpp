@@ -6,6 +6,7 @@
 #include <strata/core/solver_checks.h>
 #include <strata/geometry/cad.h>
 #include <strata/geometry/prepare.h>
+#include <strata/geometry/topology.h>
 #include <strata/io/gmsh_session.h>
 
 #include "test_support.h"
@@ -378,6 +379,31 @@ TEST(MeshCad, ExtensionCaseAndBrpAreAccepted) {
     const SurfaceMesh b = mesh_cad(example_data("bl3d_4_box_notch_concave_corner.brep"), {});
     EXPECT_EQ(a.num_faces(), b.num_faces());
     EXPECT_EQ(a.num_points(), b.num_points());
+}
+
+TEST(MeshCad, AThinPartUnderTheDefaultSizeIsMeshedFiner) {
+    // The sweep's propeller: at the default size (a twentieth of the diagonal, 0.127) Gmsh meshed
+    // both sides of the blades' thin outer parts through the same nodes, one chord across (edges
+    // of four faces), and the run stopped on a non-manifold edge. Unasked, the size is halved
+    // until no edge has more than two faces; asked, it is the user's.
+    auto most_faces_on_an_edge = [](const SurfaceMesh& m) {
+        const EdgeTable et = edge_table(m);
+        Index most = 0;
+        for (Index e = 0; e < et.faces.rows(); ++e) most = std::max(most, et.faces.row_size(e));
+        return most;
+    };
+    const std::string path = example_data("../sweep/propeller.geo");
+    CadParams p;
+    p.fuse = true;
+    WallSizeReport walls;
+    const SurfaceMesh m = mesh_cad(path, p, nullptr, &walls);
+    EXPECT_EQ(most_faces_on_an_edge(m), 2);
+    EXPECT_NEAR(walls.default_size, 0.1266, 1e-3);
+    EXPECT_NEAR(walls.thin_size, walls.default_size / 2.0, 1e-12);
+    p.size = walls.default_size;
+    WallSizeReport asked;
+    EXPECT_GT(most_faces_on_an_edge(mesh_cad(path, p, nullptr, &asked)), 2);
+    EXPECT_EQ(asked.thin_size, 0.0);
 }
 
 TEST(MeshCad, GeoSphereNodesLieOnTheSphere) {

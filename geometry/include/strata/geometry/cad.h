@@ -187,6 +187,13 @@ struct WallSizeReport {
     Index curves = 0;               ///< fan curves meshed again finer (0: none)
     double faces_estimate = 0.0;    ///< faces those surfaces were estimated to get
     bool over_budget = false;       ///< not meshed again: faces_estimate above CadParams::wall_faces_budget
+    /// Where the default size (none asked: CadParams::size 0, no size in a .geo script) left a
+    /// part thinner than it (a propeller blade's tip, a thin fin) with its two sides meshed
+    /// through the same nodes, one chord across (edges of four faces: not a surface layers can
+    /// stand on), the surfaces were meshed again at half the size, up to three times: the size
+    /// used (0: the default served), and the default.
+    double thin_size = 0.0;
+    double default_size = 0.0;
 };
 
 /// What Gmsh's recombination into quadrilaterals did, where quads were asked
