@@ -737,6 +737,11 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
             static_cast<long long>(ti.moved_nodes), static_cast<long long>(ti.inserted_nodes), ti.below,
             static_cast<long long>(ti.below_before), static_cast<long long>(ti.below_after), ti.min_before,
             ti.min_after, ti.seconds, ti.budget_reached ? "; stopped at its work budget" : "");
+    for (const auto& [p, planes] : hr.planes_of_patches)
+        std::printf(
+            "planes: patch '%s' is %d planes, the layers end on it; each was re-meshed round them as a "
+            "plane, and it is one patch in the mesh\n",
+            mesh.boundary.patches[static_cast<std::size_t>(p)].name.c_str(), planes);
     if (!hr.remeshed_patches.empty()) {
         std::string names;
         for (strata::Index p : hr.remeshed_patches)

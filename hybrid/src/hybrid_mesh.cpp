@@ -168,6 +168,91 @@ OuterBoundary outer_part(const SurfaceMesh& surface, const LayerMesh& lm, bool h
 /// mapped so that layer-top nodes are the layers' top nodes and the rest follow the layers'
 /// nodes in order; the boundary: the layers' (walls, sides on planes) but not their top, then
 /// the region's outer faces.
+/// Most planes a non-wall patch the layers end on is split into (split_into_planes): a wind
+/// tunnel's five faces; a curved patch, faceted, would give a piece per few faces.
+constexpr std::size_t kMostPlanes = 16;
+
+/// The non-wall patches of \p surface that the walls meet (a node of a wall face on them) and
+/// that are not planar but made of at most kMostPlanes planes (faces connected across an edge
+/// whose nodes lie in one plane, to 1e-6 of the patch's size): each plane after the first
+/// becomes a patch of its own, appended with the same kind (the hybrid stage re-meshes only
+/// planar patches round the layers' sides). Returns, per appended patch, the patch it came from.
+std::vector<Index> split_into_planes(SurfaceMesh& surface) {
+    const auto np = static_cast<Index>(surface.patches.size());
+    std::vector<char> wall_node(surface.points.size(), 0), meets(surface.patches.size(), 0);
+    auto wall = [&](Index f) {
+        return surface.patches[static_cast<std::size_t>(surface.face_patch[f])].kind == PatchKind::Wall;
+    };
+    for (Index f = 0; f < surface.num_faces(); ++f)
+        if (wall(f))
+            for (const Index* v = surface.face_begin(f); v != surface.face_end(f); ++v)
+                wall_node[static_cast<std::size_t>(*v)] = 1;
+    for (Index f = 0; f < surface.num_faces(); ++f)
+        if (!wall(f))
+            for (const Index* v = surface.face_begin(f); v != surface.face_end(f); ++v)
+                if (wall_node[static_cast<std::size_t>(*v)]) meets[static_cast<std::size_t>(surface.face_patch[f])] = 1;
+    std::vector<Index> from;
+    const EdgeTable et = edge_table(surface);
+    for (Index p = 0; p < np; ++p) {
+        if (!meets[static_cast<std::size_t>(p)]) continue;
+        const PatchPlane whole = patch_plane(surface, p);
+        if (whole.planar()) continue;
+        const double tol = 1e-6 * whole.size;
+        // Grow each plane from its lowest unassigned face across edges to faces whose nodes lie
+        // in the seed face's plane.
+        std::vector<Index> piece(static_cast<std::size_t>(surface.num_faces()), kNone);
+        std::vector<std::vector<Index>> pieces;
+        for (Index seed = 0; seed < surface.num_faces() && pieces.size() <= kMostPlanes; ++seed) {
+            if (surface.face_patch[seed] != p || piece[static_cast<std::size_t>(seed)] != kNone) continue;
+            const Vec3 n = face_area_vector(surface, seed).normalized();
+            const Vec3 o = surface.points[surface.face_node(seed, 0)];
+            const auto id = static_cast<Index>(pieces.size());
+            pieces.push_back({seed});
+            piece[static_cast<std::size_t>(seed)] = id;
+            for (std::size_t q = 0; q < pieces.back().size(); ++q) {
+                const Index f = pieces.back()[q];
+                const Index k = surface.face_size(f);
+                for (Index c = 0; c < k; ++c) {
+                    const Index e = find_edge(et, surface.face_node(f, c), surface.face_node(f, (c + 1) % k));
+                    for (const Index* g = et.faces.row_begin(e); g != et.faces.row_end(e); ++g) {
+                        if (surface.face_patch[*g] != p || piece[static_cast<std::size_t>(*g)] != kNone) continue;
+                        bool flat = true;
+                        for (const Index* v = surface.face_begin(*g); v != surface.face_end(*g); ++v)
+                            flat &= std::abs((surface.points[*v] - o).dot(n)) <= tol;
+                        if (!flat) continue;
+                        piece[static_cast<std::size_t>(*g)] = id;
+                        pieces.back().push_back(*g);
+                    }
+                }
+            }
+        }
+        if (pieces.size() < 2 || pieces.size() > kMostPlanes) continue;  // curved: the error names it
+        for (std::size_t k = 1; k < pieces.size(); ++k) {
+            Patch extra = surface.patches[static_cast<std::size_t>(p)];
+            extra.name += " (plane " + std::to_string(k + 1) + ")";
+            surface.patches.push_back(extra);
+            for (const Index f : pieces[k]) surface.face_patch[f] = static_cast<Index>(surface.patches.size() - 1);
+            from.push_back(p);
+        }
+    }
+    return from;
+}
+
+/// The planes split_into_planes made one patch again in \p mesh's boundary: the \p from.size()
+/// patches from \p first on go back to the patch they came from, the ones after them move down.
+void merge_planes(VolumeMesh& mesh, Index first, const std::vector<Index>& from, std::vector<Index>& remeshed) {
+    if (from.empty()) return;
+    const auto n = static_cast<Index>(from.size());
+    auto to = [&](Index p) {
+        return p < first ? p : p < first + n ? from[static_cast<std::size_t>(p - first)] : p - n;
+    };
+    for (Index& p : mesh.boundary.face_patch) p = to(p);
+    mesh.boundary.patches.erase(mesh.boundary.patches.begin() + first, mesh.boundary.patches.begin() + first + n);
+    for (Index& p : remeshed) p = to(p);
+    std::sort(remeshed.begin(), remeshed.end());
+    remeshed.erase(std::unique(remeshed.begin(), remeshed.end()), remeshed.end());
+}
+
 VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceMesh& region, Index top_patch,
                     const TetFill& fill, const std::vector<Patch>& patches) {
     VolumeMesh mesh;
@@ -332,6 +417,13 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     check_tet_improve_params(params.improve);  // before the work it would otherwise end
     bool has_outer = false;
     SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, rep.closed_half_model, rep.internal_flow);
+    const auto input_patches = static_cast<Index>(surface.patches.size());
+    const std::vector<Index> plane_of = has_outer ? split_into_planes(surface) : std::vector<Index>{};
+    for (const Index p : plane_of) {
+        if (rep.planes_of_patches.empty() || rep.planes_of_patches.back().first != p)
+            rep.planes_of_patches.emplace_back(p, 1);
+        ++rep.planes_of_patches.back().second;
+    }
     if (const std::vector<FacePair> crossing = self_intersections(surface, 1, params.threads); !crossing.empty())
         throw InputError("the surface intersects itself: " + describe_pair(surface, crossing[0]) +
                          "; overlapping bodies must be fused into one (CadParams::fuse), and a surface mesh that "
@@ -512,7 +604,8 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
 
     auto t0 = std::chrono::steady_clock::now();
     const std::vector<Patch> patches(region.patches.begin(), region.patches.begin() + top_patch);
-    const VolumeMesh mesh = assemble(lm, pyr, region, top_patch, fill, patches);
+    VolumeMesh mesh = assemble(lm, pyr, region, top_patch, fill, patches);
+    merge_planes(mesh, input_patches, plane_of, rep.remeshed_patches);
     rep.validation = require_valid_mesh(mesh, "hybrid mesh", {.threads = params.threads, .progress = progress});
     rep.seconds_validate = seconds_since(t0);
     if (report) *report = std::move(rep);
@@ -521,7 +614,8 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
 
 StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double quality) {
     bool has_outer = false, half = false, internal = false;
-    const SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, half, internal);
+    SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, half, internal);
+    if (has_outer) split_into_planes(surface);  // as build_hybrid_mesh marches them
     LayerParams layer_params = params.layers;
     layer_params.threads = params.threads;
     const ProximityPlan plan = proximity_plan(surface, layer_params);

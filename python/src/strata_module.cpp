@@ -485,6 +485,10 @@ py::dict hybrid_report(const VolumeMesh& mesh, const HybridReport& hr) {
     d["front_rounds"] = hr.front_rounds;
     d["tet_retries"] = hr.tet_retries;
     d["split_quads"] = hr.split_quads;
+    py::dict planes;  // patch name → the planes it was re-meshed as
+    for (const auto& [p, n] : hr.planes_of_patches)
+        planes[py::str(mesh.boundary.patches[static_cast<std::size_t>(p)].name)] = n;
+    d["planes_of_patches"] = planes;
     const TetImproveReport& ti = hr.tet_improve;
     d["tet_improve"] =
         py::dict("below"_a = ti.below, "flips"_a = ti.flips, "edge_removals"_a = ti.edge_removals,

@@ -754,6 +754,26 @@ TEST(Cli, AFanWhoseCellsCheckMeshFindsSkewedIsDropped) {
     EXPECT_NE(text.find("\"reason\": \"skewed\""), std::string::npos);
 }
 
+TEST(Cli, AFarfieldOfSeveralPlanesTheLayersEndOnIsMeshedPlaneByPlane) {
+    // A wind tunnel whose inlet, outlet, sides and top are one physical group "farfield" (the
+    // road and a bump on it walls): the road's layers end on four of its planes, and the run
+    // stopped with "patch 'farfield' meets the walls, so the layers end on it, but it is not
+    // planar". Each plane is now re-meshed round the layers as one, and the mesh keeps the
+    // group as one patch.
+    test::ScratchDir dir("cli_tunnel_one_farfield");
+    const CliResult r = strata_cli(dir, "mesh '" + test_data("cli_tunnel_one_farfield.geo") +
+                                            "' --layers 10 --growth 1.2 --first-height 1e-3 -o t.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("planes: patch 'farfield' is 5 planes"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    std::ifstream msh(dir.path() / "t.msh");
+    const std::string text((std::istreambuf_iterator<char>(msh)), std::istreambuf_iterator<char>());
+    const auto names = text.find("$PhysicalNames");
+    ASSERT_NE(names, std::string::npos);
+    EXPECT_EQ(text.substr(names, text.find("$EndPhysicalNames") - names),
+              "$PhysicalNames\n4\n2 1 \"road\"\n2 2 \"bump\"\n2 3 \"farfield\"\n3 1 \"fluid\"\n");
+}
+
 TEST(Cli, QuadsWhereBlossomWouldAbortTheProcess) {
     // The sweep's sphere with three cones in quads: Gmsh's Blossom recombination threw out of
     // Gmsh's OpenMP loop on a cone, and the run stopped with "Gmsh aborted the process

@@ -47,6 +47,11 @@ struct HybridReport {
     int split_quads = 0;
     std::vector<Index>
         remeshed_patches;  ///< patches (of the result's boundary) re-meshed around the layers' side faces
+    /// Non-wall patches the layers end on that are not one plane but a few (a wind tunnel's
+    /// single "farfield" group over its inlet, outlet, sides and top): re-meshed plane by plane
+    /// round the layers, one patch in the result as in the input. Per such patch (of the
+    /// result's boundary), the planes it was made of.
+    std::vector<std::pair<Index, int>> planes_of_patches;
     /// The input was a half model (walls open along one plane): a half farfield and a
     /// "symmetry" patch were generated; their patches follow the input's.
     bool closed_half_model = false;
