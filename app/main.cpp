@@ -514,8 +514,12 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
         std::printf("fused: %d faces removed where bodies touch back to back along a common face (--fuse)\n",
                     static_cast<int>(rep.touching_faces));
     if (rep.fused_components > 0)
-        std::printf("fused: %d overlapping components replaced by their union (--fuse)\n",
-                    static_cast<int>(rep.fused_components));
+        std::printf("fused: %d overlapping components replaced by their union (--fuse)%s\n",
+                    static_cast<int>(rep.fused_components),
+                    rep.fused_slivers > 0 ? ("; " + std::to_string(rep.fused_slivers) +
+                                             " flat slivers where their facets nearly coincide flipped away")
+                                                .c_str()
+                                          : "");
     if (rep.short_edges.collapsed > 0) {
         const strata::ShortEdgeReport& e = rep.short_edges;
         std::printf(

@@ -29,7 +29,7 @@ std::string face_text(const SurfaceMesh& mesh, Index f) {
 
 }  // namespace
 
-void check_surface(const SurfaceMesh& mesh, const std::string& source) {
+void check_surface(const SurfaceMesh& mesh, const std::string& source, bool small_faces_ok) {
     // The arrays first (one check for every stage): everything below indexes through them.
     require_sound(check_surface_arrays(mesh), source + ": ");
     // Before anything computes an area or a volume from the coordinates.
@@ -50,7 +50,7 @@ void check_surface(const SurfaceMesh& mesh, const std::string& source) {
 
     // Relative to the model size, so the check means the same in millimetres and metres.
     const double diag = box.diagonal();
-    const double min_area = 1e-12 * diag * diag;
+    const double min_area = small_faces_ok ? 0.0 : 1e-12 * diag * diag;
     for (Index f = 0; f < nf; ++f) {
         const double a = face_area_vector(mesh, f).norm();
         if (!(a > min_area))  // also catches a == 0 on a zero-size model

@@ -135,6 +135,11 @@ SurfaceMesh fuse_components(const SurfaceMesh& mesh, FuseReport* report) {
                 throw TopologyError("fuse: the component of " + describe_face(mesh, first) +
                                     " intersects itself, so it cannot be unioned with the others it overlaps; "
                                     "repair it first (remesh it)");
+            // Each body outward: orient_surface takes a body whose probe point lies inside another
+            // (a wing root inside a fuselage) for a cavity and turns it inward, and the "union"
+            // of an inward body is the outside of the intersection (an airliner of 12 parts came
+            // out as 30 triangles).
+            if (!PMP::is_outward_oriented(part)) PMP::reverse_face_orientations(part);
             if (k == 0) {
                 result = std::move(part);
                 continue;
@@ -156,6 +161,39 @@ SurfaceMesh fuse_components(const SurfaceMesh& mesh, FuseReport* report) {
             result = std::move(united);
         }
         rep.fused += static_cast<Index>(members.size());
+        {
+            // A union spans what its bodies span: anything else is not their union.
+            BoundingBox span;
+            bool first_point = true;
+            for (const Index c : members)
+                for (const Index f : faces[static_cast<std::size_t>(c)])
+                    for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v) {
+                        const Vec3& x = mesh.points[*v];
+                        span.min = first_point ? x : Vec3(span.min.cwiseMin(x));
+                        span.max = first_point ? x : Vec3(span.max.cwiseMax(x));
+                        first_point = false;
+                    }
+            BoundingBox got;
+            got.min = got.max = span.min;
+            first_point = true;
+            for (const auto v : result.vertices()) {
+                const auto& q = result.point(v);
+                const Vec3 x(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+                got.min = first_point ? x : Vec3(got.min.cwiseMin(x));
+                got.max = first_point ? x : Vec3(got.max.cwiseMax(x));
+                first_point = false;
+            }
+            const double tol = 1e-6 * (span.max - span.min).norm();
+            if (first_point || (got.min - span.min).cwiseAbs().maxCoeff() > tol ||
+                (got.max - span.max).cwiseAbs().maxCoeff() > tol)
+                throw TopologyError("fuse: the union of the " + std::to_string(members.size()) +
+                                    " bodies overlapping the component of " +
+                                    describe_face(mesh, faces[static_cast<std::size_t>(root)].front()) +
+                                    " does not span what they span (CGAL's corefinement gave " +
+                                    std::to_string(result.number_of_faces()) +
+                                    " faces); check that each body is closed and its faces consistent, or mesh the "
+                                    "CAD model with --fuse instead of its STL");
+        }
         // Back to Strata's mesh in an order of the geometry alone: CGAL's corefinement visits the
         // intersecting faces in an order that depends on heap addresses (its boxes' ids are
         // their addresses), so its vertex and face order changed with, e.g., the length of the

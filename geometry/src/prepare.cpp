@@ -181,7 +181,22 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
             Index reduced = 0;
             fused = remove_collapsed_faces(fused, &reduced);
             collapsed += reduced;
-            check_surface(fused, source + " (fused)");
+            // And where two bodies' facets nearly coincide, flat slivers (a cap, its apex on its
+            // longest edge): flipped away.
+            Index flipped = 0;
+            fused = flip_flat_triangles(fused, 1e-6, &flipped);
+            fuse.flipped_slivers = flipped;
+            try {
+                check_surface(fused, source + " (fused)", params.remesh);
+            } catch (const TopologyError& e) {
+                // The union's cuts where two bodies' facets nearly coincide (a cylinder and a cone
+                // tessellated apart, meeting at one circle) can leave faces far smaller than
+                // the mesh: remeshing rebuilds the surface over them.
+                if (params.remesh) throw;
+                throw TopologyError(std::string(e.what()) +
+                                    " (the union of the bodies left it where their facets nearly coincide: --remesh "
+                                    "rebuilds the united surface)");
+            }
             oriented = orient_surface(fused, &orient, params.internal_flow);
         }
     }
@@ -212,6 +227,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         report->recombination = remesh.recombination;
         report->scale = params.scale;
         report->fused_components = fuse.fused;
+        report->fused_slivers = fuse.flipped_slivers;
         report->touching_faces = touching;
         report->internal_flow = params.internal_flow;
         report->merged_nodes = merged_nodes;

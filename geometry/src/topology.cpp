@@ -325,6 +325,53 @@ SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, const EdgeTable& et, Inde
     return out;
 }
 
+SurfaceMesh flip_flat_triangles(const SurfaceMesh& mesh, double rel_height, Index* flipped) {
+    SurfaceMesh out = mesh;
+    Index count = 0;
+    for (int round = 0; round < 8; ++round) {
+        const EdgeTable et = edge_table(out);
+        std::vector<char> touched(static_cast<std::size_t>(out.num_faces()), 0);
+        Index now = 0;
+        for (Index f = 0; f < out.num_faces(); ++f) {
+            if (out.face_size(f) != 3 || touched[static_cast<std::size_t>(f)]) continue;
+            // The longest edge (a, b), in the face's order, and the apex c.
+            int longest = 0;
+            double len2 = -1.0;
+            for (int i = 0; i < 3; ++i) {
+                const double l =
+                    (out.points[out.face_node(f, (i + 1) % 3)] - out.points[out.face_node(f, i)]).squaredNorm();
+                if (l > len2) len2 = l, longest = i;
+            }
+            const Index a = out.face_node(f, longest), b = out.face_node(f, (longest + 1) % 3),
+                        c = out.face_node(f, (longest + 2) % 3);
+            const double height = 2.0 * face_area_vector(out, f).norm() / std::sqrt(len2);
+            if (!(len2 > 0.0) || !(height < rel_height * std::sqrt(len2))) continue;
+            const Index e = find_edge(et, a, b);
+            if (e == kNone || et.faces.row_size(e) != 2) continue;
+            const Index g = et.faces.row_begin(e)[0] == f ? et.faces.row_begin(e)[1] : et.faces.row_begin(e)[0];
+            if (out.face_size(g) != 3 || touched[static_cast<std::size_t>(g)] || out.face_patch[g] != out.face_patch[f])
+                continue;
+            Index d = kNone;
+            bool opposite = false;  // g runs b → a, as a consistent neighbour does
+            for (int i = 0; i < 3; ++i) {
+                const Index x = out.face_node(g, i), y = out.face_node(g, (i + 1) % 3);
+                if (x == b && y == a) opposite = true, d = out.face_node(g, (i + 2) % 3);
+            }
+            if (!opposite || d == c || find_edge(et, c, d) != kNone) continue;
+            Index* fn = out.face_nodes.data() + out.face_offsets[f];
+            Index* gn = out.face_nodes.data() + out.face_offsets[g];
+            fn[0] = a, fn[1] = d, fn[2] = c;
+            gn[0] = d, gn[1] = b, gn[2] = c;
+            touched[static_cast<std::size_t>(f)] = touched[static_cast<std::size_t>(g)] = 1;
+            ++now;
+        }
+        count += now;
+        if (now == 0) break;
+    }
+    if (flipped) *flipped = count;
+    return out;
+}
+
 SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed) {
     require_valid_ids(mesh, "remove_collapsed_faces", true);
     SurfaceMesh out;

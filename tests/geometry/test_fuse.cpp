@@ -14,12 +14,21 @@
 
 #include "test_support.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 
 namespace strata {
 namespace {
+
+/// The volume of two spheres of radii \p r1 and \p r2 whose centres are \p d apart (they
+/// overlap): both less their lens.
+double union_of_spheres_volume(double d, double r1, double r2) {
+    const double lens = std::numbers::pi * std::pow(r1 + r2 - d, 2) *
+                        (d * d + 2 * d * r2 - 3 * r2 * r2 + 2 * d * r1 + 6 * r1 * r2 - 3 * r1 * r1) / (12 * d);
+    return 4.0 / 3.0 * std::numbers::pi * (r1 * r1 * r1 + r2 * r2 * r2) - lens;
+}
 
 TEST(Fuse, TwoOverlappingSpheresBecomeOneKeepingTheirPatches) {
     const Vec3 a(0, 0, 0), b(1.2, 0.1, 0);
@@ -43,11 +52,46 @@ TEST(Fuse, TwoOverlappingSpheresBecomeOneKeepingTheirPatches) {
         EXPECT_GT((c - (on_a ? b : a)).norm(), on_a ? 0.8 - 0.02 : 1.0 - 0.02) << f;
     }
     // The union's volume: both spheres less their lens (exact for spheres, faceting aside).
-    const double d = (b - a).norm(), r1 = 1.0, r2 = 0.8;
-    const double lens = std::numbers::pi * std::pow(r1 + r2 - d, 2) *
-                        (d * d + 2 * d * r2 - 3 * r2 * r2 + 2 * d * r1 + 6 * r1 * r2 - 3 * r1 * r1) / (12 * d);
-    const double exact = 4.0 / 3.0 * std::numbers::pi * (r1 * r1 * r1 + r2 * r2 * r2) - lens;
+    const double exact = union_of_spheres_volume((b - a).norm(), 1.0, 0.8);
     EXPECT_NEAR(test::enclosed_volume(u), exact, 0.02 * exact);
+}
+
+TEST(Fuse, ABodyTurnedInwardIsUnitedAsTheBodyItIs) {
+    // orient_surface takes a body whose probe point lies inside another (a wing root inside a
+    // fuselage) for a cavity and turns it inward; CGAL's "union" with an inward body is the
+    // outside of their intersection, and an airliner STL of 12 parts came out as 30 triangles.
+    // Each body is made outward first: the union is that of the two spheres.
+    const Vec3 a(0, 0, 0), b(1.2, 0.1, 0);
+    SurfaceMesh two =
+        test::merged(icosphere(a, 1.0, 3, {"a", PatchKind::Wall}), icosphere(b, 0.8, 3, {"b", PatchKind::Wall}));
+    for (Index f = 0; f < two.num_faces(); ++f)
+        if (two.face_patch[f] == 1)
+            std::reverse(two.face_nodes.begin() + two.face_offsets[f] + 1,
+                         two.face_nodes.begin() + two.face_offsets[f + 1]);
+    const SurfaceMesh u = orient_surface(fuse_components(two));
+    const BoundingBox box = bounding_box(u.points);
+    EXPECT_NEAR(box.min.x(), -1.0, 0.02);
+    EXPECT_NEAR(box.max.x(), 2.0, 0.02);
+    const double exact = union_of_spheres_volume((b - a).norm(), 1.0, 0.8);
+    EXPECT_NEAR(test::enclosed_volume(u), exact, 0.02 * exact);
+}
+
+TEST(Topology, FlatTrianglesAreFlippedWithTheirNeighbour) {
+    // A cap (apex 1e-9 off its longest edge) and the triangle across that edge become two
+    // triangles through the apex and the far node, oriented as before; a fair pair stays.
+    SurfaceMesh m;
+    m.patches = {{"w", PatchKind::Wall}};
+    m.points = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(1, 1e-9, 0), Vec3(1, -1, 0)};
+    m.add_face({0, 1, 2}, 0);
+    m.add_face({1, 0, 3}, 0);
+    Index flipped = 0;
+    const SurfaceMesh f = flip_flat_triangles(m, 1e-6, &flipped);
+    EXPECT_EQ(flipped, 1);
+    for (Index i = 0; i < 2; ++i) EXPECT_GT(face_area_vector(f, i).z(), 0.1) << i;  // fair, and up as before
+    EXPECT_EQ(find_edge(edge_table(f), 0, 1), kNone);
+    m.points[2] = Vec3(1, 0.5, 0);
+    flip_flat_triangles(m, 1e-6, &flipped);
+    EXPECT_EQ(flipped, 0);
 }
 
 TEST(Fuse, TheUnionIsOrderedByItsGeometryAlone) {

@@ -173,7 +173,9 @@ TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
         const std::vector<Index>& list = r.no_fan[j].reason == NoFan::Unusable ? lm.fans_dropped : lm.fans_skewed;
         EXPECT_NE(std::find(list.begin(), list.end(), r.no_fan[j].node), list.end());
         EXPECT_EQ(r.no_fan[j].position, wall.points[static_cast<std::size_t>(r.no_fan[j].node)]);
-        if (j > 0) EXPECT_LT(r.no_fan[j - 1].node, r.no_fan[j].node);
+        if (j > 0) {
+            EXPECT_LT(r.no_fan[j - 1].node, r.no_fan[j].node);
+        }
     }
     EXPECT_LT(lm.fan_edges, 30);
     EXPECT_EQ(lm.node_layers(3 * 4 + 2), 0);

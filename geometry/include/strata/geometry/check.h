@@ -16,8 +16,9 @@ namespace strata {
 /// bounding-box diagonal from which areas and volumes overflow; the message gives the box).
 /// Then TopologyError for a face with a repeated node or (near) zero area (relative to the
 /// bounding box), and for an edge shared by more than two faces (naming the edge's nodes,
-/// coordinates and faces). \p source names the input.
-void check_surface(const SurfaceMesh& mesh, const std::string& source);
+/// coordinates and faces). \p source names the input. \p small_faces_ok: only a face of no
+/// area at all is refused (a surface that is to be meshed again: remeshing rebuilds it).
+void check_surface(const SurfaceMesh& mesh, const std::string& source, bool small_faces_ok = false);
 
 /// What orient_surface did.
 struct OrientReport {

@@ -12,9 +12,12 @@ namespace strata {
 struct FuseReport {
     Index components = 0;  ///< closed wall components looked at
     Index fused = 0;       ///< of which unioned with another (they overlapped or touched)
+    /// Flat slivers of the union (prepare_surface: flip_flat_triangles) flipped away.
+    Index flipped_slivers = 0;
 };
 
-/// \p mesh (oriented: closed bodies outward, as orient_surface leaves them) with its closed
+/// \p mesh (oriented as orient_surface leaves it; each body to be unioned is made outward
+/// first, since orient_surface turns one whose probe point lies inside another inward) with its closed
 /// components of walls that intersect one another replaced by their union; the others, and
 /// every face that is not a wall's, kept as they are. Faces of the union keep the patch of the
 /// face they came from (split faces: of the face they were cut from); quads of the components

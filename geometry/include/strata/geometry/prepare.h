@@ -63,6 +63,7 @@ struct PrepareReport {
     StepSizeReport steps;               ///< CAD input: what CadParams::step_quality did (prepare_for_layers)
     double scale = 1.0;                 ///< PrepareParams::scale applied
     Index fused_components = 0;         ///< components replaced by their union (PrepareParams::fuse)
+    Index fused_slivers = 0;            ///< flat slivers of the union flipped away (flip_flat_triangles)
     Index touching_faces = 0;           ///< faces removed where bodies touch back to back (PrepareParams::fuse)
     bool internal_flow = false;         ///< PrepareParams::internal_flow: oriented for the fluid inside the walls
     ShortEdgeReport short_edges;        ///< PrepareParams::collapse_ratio: the edges collapsed

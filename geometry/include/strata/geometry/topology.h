@@ -25,6 +25,15 @@ SurfaceMesh merge_coincident_nodes(const SurfaceMesh& mesh, double rel_tol = 1e-
 /// entry per face.
 SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed = nullptr);
 
+/// \p mesh with every flat triangle (a cap: its apex within \p rel_height of its longest edge's
+/// length from that edge, an angle near 180°) flipped with the triangle across that edge, where
+/// that one is on the same patch and the flip makes no edge twice: the two become triangles
+/// through the apex and the far node, oriented as the pair was. Mesh Booleans leave such faces
+/// where two bodies' facets nearly coincide (an airliner's cylinder and tail cone, each
+/// tessellated, meeting at one circle). Repeated while a flip happens, a bounded number of
+/// times. \p flipped: how many flips.
+SurfaceMesh flip_flat_triangles(const SurfaceMesh& mesh, double rel_height = 1e-6, Index* flipped = nullptr);
+
 /// \p mesh without the faces where \p drop (one per face) is nonzero; nodes no face uses any
 /// more are dropped, order kept.
 SurfaceMesh remove_faces(const SurfaceMesh& mesh, const std::vector<char>& drop);
