@@ -42,6 +42,8 @@ shapes=(
   "block with a hole of 1/500|$s/tinyhole.geo|1"
   "filleted box|$s/fillet.geo|2"
   "cylinder with a 1 mm fin|$s/thinfin.geo --fuse|3"
+  "airliner with nacelles|$s/airliner.geo --fuse|10"
+  "three-bladed propeller|$s/propeller.geo --fuse|2"
   "two spheres 0.0118 apart|$d/two_spheres_narrow_gap.geo --size 0.05|1"
   "sphere with a fin through it|$d/sphere_fin_through.geo --fuse|1"
   "box with a notch|$d/bl3d_4_box_notch_concave_corner.brep --patch surface_1=farfield --patch surface_2=farfield --patch surface_3=farfield --patch surface_4=farfield --patch surface_6=farfield|1"
