@@ -641,13 +641,13 @@ struct SurfaceGenerator {
     }
 };
 
-/// Whether an edge of \p mesh bounds more than two faces: Gmsh meshed two sides of a part
-/// thinner than the size through the same nodes.
-bool has_shared_chords(const SurfaceMesh& mesh) {
+/// The edges of \p mesh that bound more than two faces: where Gmsh meshed two sides of a part
+/// thinner than the size through the same nodes (or the model is not manifold there).
+Index shared_chords(const SurfaceMesh& mesh) {
     const EdgeTable et = edge_table(mesh);
-    for (Index e = 0; e < et.faces.rows(); ++e)
-        if (et.faces.row_size(e) > 2) return true;
-    return false;
+    Index n = 0;
+    for (Index e = 0; e < et.faces.rows(); ++e) n += et.faces.row_size(e) > 2 ? 1 : 0;
+    return n;
 }
 
 /// CadParams::max_aspect_ratio on the mesh just made (refine_walls): its wall surfaces by the
@@ -879,21 +879,34 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     WallSizeReport wall_report;
     if (default_size) {
         // A part thinner than the default size can get its two sides meshed through the same
-        // nodes (a blade's tip, one chord across): halve the size, up to three times.
-        for (int round = 0; round < 3 && has_shared_chords(mesh); ++round) {
-            const double smaller = get_number("Mesh.MeshSizeMax") / 2.0;
-            set_number("Mesh.MeshSizeMax", smaller);
-            if (curvature && default_size_min) set_number("Mesh.MeshSizeMin", smaller / 20.0);
-            generate_surfaces(path + ": Gmsh failed to mesh the surfaces again finer (maximum size " +
-                                  format_number(smaller) +
-                                  ") where the default size left a thin part's two sides on one chord; give a "
-                                  "smaller size",
-                              [&] {
-                                  gmsh::model::mesh::clear();
-                                  generate();
-                              });
-            face_surface.clear();
-            mesh = extract(path, surfaces, face_surface);
+        // nodes (a blade's tip, one chord across): halve the size, up to three times, while
+        // that leaves fewer such edges. Where it does not (a model whose surfaces meet three to
+        // an edge, which no size mends), the size and mesh before stay: no finer mesh for nothing.
+        Index chords = shared_chords(mesh);
+        for (int round = 0; round < 3 && chords > 0; ++round) {
+            const double before = get_number("Mesh.MeshSizeMax"), smaller = before / 2.0;
+            const std::string finer_context = path + ": Gmsh failed to mesh the surfaces again finer (maximum size " +
+                                              format_number(smaller) +
+                                              ") where the default size left a thin part's two sides on one chord; "
+                                              "give a smaller size";
+            auto remesh_at = [&](double at) {
+                set_number("Mesh.MeshSizeMax", at);
+                if (curvature && default_size_min) set_number("Mesh.MeshSizeMin", at / 20.0);
+                generate_surfaces(finer_context, [&] {
+                    gmsh::model::mesh::clear();
+                    generate();
+                });
+                face_surface.clear();
+                return extract(path, surfaces, face_surface);
+            };
+            SurfaceMesh finer = remesh_at(smaller);
+            const Index left = shared_chords(finer);
+            if (left >= chords) {
+                mesh = remesh_at(before);  // the Gmsh model back to the mesh kept
+                break;
+            }
+            mesh = std::move(finer);
+            chords = left;
             wall_report.thin_size = smaller;
             wall_report.default_size = size;
         }

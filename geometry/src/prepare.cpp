@@ -301,7 +301,19 @@ SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params
     SewReport sew;
     RecombinationReport recombination;
     SurfaceMesh raw = read_any(path, params, params.cad, &units, &walls, &sew, &recombination, progress);
-    SurfaceMesh out = prepare_mesh(std::move(raw), params, path, report, progress);
+    SurfaceMesh out;
+    try {
+        out = prepare_mesh(std::move(raw), params, path, report, progress);
+    } catch (const TopologyError& e) {
+        // A surface model (faces, sewn here) of several bodies that share edges or faces (an
+        // assembly written as IGES faces): sewing cannot tell the bodies apart.
+        if (sew.faces == 0) throw;
+        throw TopologyError(std::string(e.what()) + " (this CAD file is a surface model: its " +
+                            std::to_string(sew.faces) +
+                            " faces bound no solid and were sewn here, and where several bodies touch or share "
+                            "an edge, sewing cannot tell them apart: export the bodies as solids, STEP or BREP, "
+                            "and give --fuse)");
+    }
     if (report) {
         report->units = units;
         report->walls = walls;

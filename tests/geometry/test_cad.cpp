@@ -404,6 +404,19 @@ TEST(MeshCad, AThinPartUnderTheDefaultSizeIsMeshedFiner) {
     WallSizeReport asked;
     EXPECT_GT(most_faces_on_an_edge(mesh_cad(path, p, nullptr, &asked)), 2);
     EXPECT_EQ(asked.thin_size, 0.0);
+    // Where no size mends it (two boxes sharing a face: three faces to an edge round it), the
+    // default size and its mesh stay, not one 64 times finer.
+    ScratchDir dir("cad_thin_part");
+    const std::string shared = dir.file("shared_face.geo");
+    std::ofstream(shared) << "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\nBox(2) = {1, 0, 0, 1, 1, "
+                             "1};\nBooleanFragments{ Volume{1}; Delete; }{ Volume{2}; Delete; }\n";
+    WallSizeReport none;
+    const SurfaceMesh boxes = mesh_cad(shared, {}, nullptr, &none);
+    EXPECT_EQ(most_faces_on_an_edge(boxes), 3);
+    EXPECT_EQ(none.thin_size, 0.0);
+    CadParams at_default;
+    at_default.size = std::sqrt(6.0) / 20.0;                                     // a twentieth of the diagonal, asked
+    EXPECT_LT(boxes.num_faces(), 2 * mesh_cad(shared, at_default).num_faces());  // halved once: 4 times
 }
 
 TEST(MeshCad, GeoSphereNodesLieOnTheSphere) {
