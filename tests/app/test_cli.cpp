@@ -200,6 +200,15 @@ void expect_clean_failure(const std::string& args, const std::string& must_name,
     EXPECT_TRUE(files_in(dir).empty()) << args;
 }
 
+TEST(Cli, ASewnSurfaceModelOfTouchingBodiesSaysToExportSolids) {
+    // Two boxes sharing a face, written as IGES faces: sewn, the surface has edges of three
+    // and four faces. The error says that sewing cannot tell an assembly's bodies apart and to
+    // export them as solids.
+    expect_clean_failure("surface '" + test_data("cad_two_boxes_shared_face.igs") + "' -o s.msh",
+                         "this CAD file is a surface model: its 12 faces bound no solid and were sewn here",
+                         "sewn_assembly");
+}
+
 TEST(Cli, UnitsAreStatedAndConvertedOnRequest) {
     // The STEP declares metres: read in metres, and the summary says so; --units mm converts;
     // --scale scales any input; --units on a surface mesh is refused.
