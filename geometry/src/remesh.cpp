@@ -108,6 +108,12 @@ std::vector<std::array<Index, 2>> patch_seams(const SurfaceMesh& m) {
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<
     cgal::Kernel, CGAL::AABB_triangle_primitive<cgal::Kernel, std::vector<cgal::Triangle>::const_iterator>>>;
 
+/// The time budget of Gmsh's classification of the surface for one remeshing attempt (tried in a
+/// child process first: remesh_once), seconds: a fixed part and a part per input triangle, far
+/// above what it takes where it ends (0.2 s for 8,000 triangles).
+constexpr double kClassifySeconds = 20.0;
+constexpr double kClassifySecondsPerTriangle = 2e-3;
+
 /// One attempt's result: the new mesh and its faults.
 struct Attempt {
     SurfaceMesh mesh;
@@ -187,8 +193,31 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             }
             gmsh::model::mesh::addElementsByType(1, 1, line_tags, line_nodes);
         }
-        gmsh::model::mesh::classifySurfaces(angle_deg * kPi / 180.0, true, true, kPi);
-        gmsh::model::mesh::createGeometry();
+        // Gmsh 4.8 splits a surface again and again (METIS) until each piece can be
+        // parametrized, which on poor triangles (a union's slivers, needles) can go on for ever:
+        // the fused propeller STL ran 12 minutes in one attempt. So it is tried first in a child
+        // process with a time budget; past it, this attempt fails and the next angle or size is
+        // tried. It costs the classification's time once more (0.2 s on that propeller).
+        const double budget = kClassifySeconds + kClassifySecondsPerTriangle * static_cast<double>(tris.tri.size());
+        const auto classify = [angle_deg] {
+            gmsh::model::mesh::classifySurfaces(angle_deg * kPi / 180.0, true, true, kPi);
+            gmsh::model::mesh::createGeometry();
+        };
+        DeadlineProgress deadline(budget);
+        GmshProbe trial;
+        try {
+            trial = gmsh_probe(classify, &deadline);
+        } catch (const Cancelled&) {
+            if (!deadline.expired()) throw;
+            throw BackendError(ctx + ": Gmsh's split of the surface for its parametrization did not end within " +
+                               format_number(budget, 3) +
+                               " s (it splits again and again where the triangles are poor: slivers, needles)");
+        }
+        if (trial.ran && !trial.returned && !trial.threw)
+            throw BackendError(ctx + ": Gmsh's split of the surface for its parametrization " +
+                               (trial.signal != 0 ? "crashed (signal " + std::to_string(trial.signal) + ")"
+                                                  : "aborted (" + trial.message + ")"));
+        classify();
         gmsh::vectorpair surfaces;
         gmsh::model::getEntities(surfaces, 2);
         for (const auto& [dim, tag] : surfaces) {

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <unistd.h>
 
 #include <csignal>
@@ -85,6 +87,29 @@ TEST(ChildProcess, ACancelledRunKillsTheChild) {
         bool cancelled() const override { return true; }
     } stop;
     EXPECT_THROW(run_in_child([](std::vector<char>&) { ::pause(); }, &stop), Cancelled);
+}
+
+TEST(ChildProcess, ADeadlineKillsAChildThatRunsOn) {
+    // DeadlineProgress: past its seconds it asks to stop, and says that it was the deadline
+    // (remeshing's trial of Gmsh's classification, which can split a surface for ever); a stop
+    // asked by the Progress it wraps is not one.
+    const auto t0 = std::chrono::steady_clock::now();
+    DeadlineProgress deadline(0.3);
+    EXPECT_THROW(run_in_child([](std::vector<char>&) { ::pause(); }, &deadline), Cancelled);
+    EXPECT_TRUE(deadline.expired());
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_GE(waited, 0.3);
+    EXPECT_LT(waited, 5.0);
+    struct Stop : Progress {
+        void report(std::string_view, double) override {}
+        bool cancelled() const override { return true; }
+    } stop;
+    DeadlineProgress later(100.0, &stop);
+    EXPECT_THROW(run_in_child([](std::vector<char>&) { ::pause(); }, &later), Cancelled);
+    EXPECT_FALSE(later.expired());
+    DeadlineProgress ample(100.0);
+    EXPECT_TRUE(run_in_child([](std::vector<char>& out) { out = {'o', 'k'}; }, &ample).forked);
+    EXPECT_FALSE(ample.expired());
 }
 
 #ifdef _OPENMP

@@ -8,6 +8,7 @@
 /// interrupted: the check comes when it returns. TetGen runs in a child process, killed
 /// within 0.1 s of cancelled().)
 
+#include <chrono>
 #include <string_view>
 
 namespace strata {
@@ -19,6 +20,29 @@ public:
     virtual void report(std::string_view stage, double fraction) = 0;
     /// Polled by stages between steps; true makes the stage throw strata::Cancelled.
     virtual bool cancelled() const { return false; }
+};
+
+/// A Progress that asks to stop once \p seconds have passed from its making (or when \p inner
+/// does), for work that may run for ever (Gmsh's reparametrization, tried in a child process:
+/// gmsh_probe); expired() tells the two apart. Reports go to \p inner.
+class DeadlineProgress : public Progress {
+public:
+    DeadlineProgress(double seconds, const Progress* inner = nullptr)
+        : inner_(inner),
+          end_(std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                      std::chrono::duration<double>(seconds))) {}
+    void report(std::string_view, double) override {}
+    bool cancelled() const override {
+        if (inner_ && inner_->cancelled()) return true;
+        if (std::chrono::steady_clock::now() >= end_) expired_ = true;
+        return expired_;
+    }
+    bool expired() const { return expired_; }
+
+private:
+    const Progress* inner_;
+    std::chrono::steady_clock::time_point end_;
+    mutable bool expired_ = false;
 };
 
 /// Thrown by a stage that saw Progress::cancelled().
