@@ -114,6 +114,11 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<
 constexpr double kClassifySeconds = 20.0;
 constexpr double kClassifySecondsPerTriangle = 2e-3;
 
+/// An attempt whose classification ran out of its time budget (RemeshParams::classify_seconds).
+struct ClassifyTimeout : BackendError {
+    using BackendError::BackendError;
+};
+
 /// One attempt's result: the new mesh and its faults.
 struct Attempt {
     SurfaceMesh mesh;
@@ -198,7 +203,9 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
         // the fused propeller STL ran 12 minutes in one attempt. So it is tried first in a child
         // process with a time budget; past it, this attempt fails and the next angle or size is
         // tried. It costs the classification's time once more (0.2 s on that propeller).
-        const double budget = kClassifySeconds + kClassifySecondsPerTriangle * static_cast<double>(tris.tri.size());
+        const double budget = p.classify_seconds > 0.0 ? p.classify_seconds
+                                                       : kClassifySeconds + kClassifySecondsPerTriangle *
+                                                                                static_cast<double>(tris.tri.size());
         const auto classify = [angle_deg] {
             gmsh::model::mesh::classifySurfaces(angle_deg * kPi / 180.0, true, true, kPi);
             gmsh::model::mesh::createGeometry();
@@ -209,9 +216,9 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             trial = gmsh_probe(classify, &deadline);
         } catch (const Cancelled&) {
             if (!deadline.expired()) throw;
-            throw BackendError(ctx + ": Gmsh's split of the surface for its parametrization did not end within " +
-                               format_number(budget, 3) +
-                               " s (it splits again and again where the triangles are poor: slivers, needles)");
+            throw ClassifyTimeout(ctx + ": Gmsh's split of the surface for its parametrization did not end within " +
+                                  format_number(budget, 3) +
+                                  " s (it splits again and again where the triangles are poor: slivers, needles)");
         }
         if (trial.ran && !trial.returned && !trial.threw)
             throw BackendError(ctx + ": Gmsh's split of the surface for its parametrization " +
@@ -364,6 +371,7 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
     std::vector<double> sizes{size};
     if (!(params.size > 0.0)) sizes.push_back(0.5 * size);
     std::string failures;
+    int out_of_time = 0;  // attempts in a row whose classification ran out of its budget
     for (const double h : sizes)
         for (double angle : angles) {
             ++rep.attempts;
@@ -372,8 +380,15 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
                                    (sizes.size() > 1 ? " and size " + format_number(h) : std::string());
             try {
                 a = remesh_once(mesh, tris, seams, params, h, angle, source);
+                out_of_time = 0;
             } catch (const BackendError& e) {
                 failures += std::string(failures.empty() ? "" : "; ") + at + " Gmsh failed (" + e.what() + ")";
+                out_of_time = dynamic_cast<const ClassifyTimeout*>(&e) ? out_of_time + 1 : 0;
+                if (out_of_time == 2)
+                    throw BackendError(source + ": remeshing failed: " + failures +
+                                       ". Two attempts in a row ran out of time in Gmsh's parametrization, so no more "
+                                       "were made: the surface's triangles are too poor for it (slivers, needles); "
+                                       "export the surface finer, or mesh the CAD model itself");
                 continue;
             }
             if (a->bad > 0) {

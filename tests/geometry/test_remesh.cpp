@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "test_support.h"
 
 #include <algorithm>
@@ -86,6 +88,30 @@ TEST(Remesh, NeedleBoxComesBackWellShapedOnTheSamePlanes) {
     EXPECT_NEAR((bb.min - Vec3::Zero()).norm(), 0.0, 1e-12);
     EXPECT_NEAR((bb.max - Vec3::Ones()).norm(), 0.0, 1e-12);
     EXPECT_NEAR(median_edge_length(m), 0.1, 0.03);
+}
+
+TEST(Remesh, AttemptsOutOfTimeInGmshsParametrizationEndTheRun) {
+    // Gmsh's split of a surface for its parametrization can go on for ever on poor triangles (the
+    // fused propeller STL: 12 minutes in one attempt). Each attempt tries it in a child process
+    // under RemeshParams::classify_seconds; two attempts in a row out of time end the run (here
+    // a budget no classification meets), with the reason, instead of eight more.
+    const SurfaceMesh box = lattice_box(1, 6, 1);
+    RemeshParams p;
+    p.classify_seconds = 1e-6;
+    RemeshReport rep;
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+        remesh_surface(box, p, "box.stl", &rep);
+        FAIL() << "remeshed within a budget no classification meets";
+    } catch (const BackendError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("did not end within 1e-06 s"), std::string::npos) << m;
+        EXPECT_NE(m.find("Two attempts in a row ran out of time in Gmsh's parametrization"), std::string::npos) << m;
+        EXPECT_EQ(m.find("at 22.5 degrees"), std::string::npos) << m;  // the third attempt was not made
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
+    p.classify_seconds = 0.0;  // the default budget: it remeshes
+    EXPECT_GT(remesh_surface(box, p, "box.stl").num_faces(), 0);
 }
 
 TEST(Remesh, SizeDefaultsToTheInputsMedianEdgeAndQuadsOnRequest) {

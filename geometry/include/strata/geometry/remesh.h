@@ -45,6 +45,11 @@ struct RemeshParams {
     double max_aspect_ratio = 1000.0;
     double fan_angle_deg = 0.0;
     double wall_faces_budget = 200000;
+    /// The time budget, seconds, of Gmsh's split of the surface for its parametrization in each
+    /// attempt (tried in a child process first: on poor triangles it can go on for ever); 0: 20 s
+    /// and 2 ms per triangle. Where two attempts in a row run out of it, no more are made: the
+    /// input's triangles, not the angle, are at fault.
+    double classify_seconds = 0.0;
 };
 
 /// What remesh_surface did, for the summary.
