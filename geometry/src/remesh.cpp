@@ -221,9 +221,7 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
                                   " s (it splits again and again where the triangles are poor: slivers, needles)");
         }
         if (trial.ran && !trial.returned && !trial.threw)
-            throw BackendError(ctx + ": Gmsh's split of the surface for its parametrization " +
-                               (trial.signal != 0 ? "crashed (signal " + std::to_string(trial.signal) + ")"
-                                                  : "aborted (" + trial.message + ")"));
+            throw BackendError(ctx + ": Gmsh's split of the surface for its parametrization " + how_it_failed(trial));
         classify();
         gmsh::vectorpair surfaces;
         gmsh::model::getEntities(surfaces, 2);

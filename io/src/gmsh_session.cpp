@@ -219,17 +219,11 @@ GmshProbe gmsh_probe(const std::function<void()>& f, const Progress* progress) {
     return probe;
 }
 
-namespace {
-
-/// How a trial that did not return ended, for a message: "crashes (signal 11)", "aborts
-/// (<its text>)", "fails (<its text>)".
 std::string how_it_failed(const GmshProbe& p) {
     return p.signal != 0 ? "crashes (signal " + std::to_string(p.signal) + ")"
            : p.aborted   ? "aborts (" + p.message + ")"
                          : "fails (" + p.message + ")";
 }
-
-}  // namespace
 
 std::string try_generate_in_child(const std::string& context, bool quads_asked, bool isolate, GmshOptionScope& options,
                                   const std::function<void()>& generate, const Progress* progress) {

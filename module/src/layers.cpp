@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 namespace strata {
@@ -585,6 +586,27 @@ std::vector<Index> skewed_fan_nodes(const LayerMesh& lm, int threads) {
     return out;
 }
 
+/// The layers marched again with no fan at \p nodes (of the input surface) either, those of them
+/// that had one listed in \p list of the result (ascending); nothing if none had one.
+std::optional<LayerMesh> without_fans(const SurfaceMesh& surface, const LayerParams& params,
+                                      const std::vector<Index>& nodes, std::vector<Index> LayerMesh::*list,
+                                      Progress* progress) {
+    LayerParams again = params;
+    if (again.no_fan_nodes.empty()) again.no_fan_nodes.assign(surface.points.size(), 0);
+    std::vector<Index> dropped;
+    for (const Index v : nodes) {
+        char& no = again.no_fan_nodes[static_cast<std::size_t>(v)];
+        if (!no) dropped.push_back(v);
+        no = 1;
+    }
+    if (dropped.empty()) return std::nullopt;
+    LayerMesh retry = extrude_layers(surface, again, progress);
+    std::vector<Index>& into = retry.*list;
+    into.insert(into.end(), dropped.begin(), dropped.end());
+    std::sort(into.begin(), into.end());
+    return retry;
+}
+
 /// The fans (fans_on). \p w gets the fans' columns and strip faces; the result keeps
 /// their directions and bases (its mesh moved into \p w).
 FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, Wall& w) {
@@ -1008,20 +1030,12 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         if (k == 0 && std::find(col.pinned.begin(), col.pinned.end(), 2) != col.pinned.end()) {
             // A fan whose first cells would be unusable (a needle face beside it, a gap
             // narrower than the first layer): no fan at those wall nodes, and march again.
-            LayerParams again = params;
-            if (again.no_fan_nodes.empty()) again.no_fan_nodes.assign(surface.points.size(), 0);
-            std::vector<Index> dropped;
+            std::vector<Index> unusable;
             for (Index i = 0; i < nw; ++i)
-                if (col.pinned[static_cast<std::size_t>(i)] == 2) {
-                    const Index v = w.input_node[static_cast<std::size_t>(i)];
-                    char& no = again.no_fan_nodes[static_cast<std::size_t>(v)];
-                    if (!no) dropped.push_back(v);
-                    no = 1;
-                }
-            LayerMesh retry = extrude_layers(surface, again, progress);
-            retry.fans_dropped.insert(retry.fans_dropped.end(), dropped.begin(), dropped.end());
-            std::sort(retry.fans_dropped.begin(), retry.fans_dropped.end());
-            return retry;
+                if (col.pinned[static_cast<std::size_t>(i)] == 2)
+                    unusable.push_back(w.input_node[static_cast<std::size_t>(i)]);
+            if (auto retry = without_fans(surface, params, unusable, &LayerMesh::fans_dropped, progress))
+                return std::move(*retry);
         }
         col.pinned.clear();
         for (Index i = 0; i < nw; ++i) {
@@ -1054,20 +1068,9 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     if (!fans.empty() && rules.quality) {
         // Fans whose cells have faces checkMesh would fail as skewed: no fan at those wall
         // nodes, and march again (each round marks new nodes, so this ends).
-        std::vector<Index> dropped;
-        LayerParams again = params;
-        if (again.no_fan_nodes.empty()) again.no_fan_nodes.assign(surface.points.size(), 0);
-        for (const Index v : skewed_fan_nodes(out, mc.threads)) {
-            char& no = again.no_fan_nodes[static_cast<std::size_t>(v)];
-            if (!no) dropped.push_back(v);
-            no = 1;
-        }
-        if (!dropped.empty()) {
-            LayerMesh retry = extrude_layers(surface, again, progress);
-            retry.fans_skewed.insert(retry.fans_skewed.end(), dropped.begin(), dropped.end());
-            std::sort(retry.fans_skewed.begin(), retry.fans_skewed.end());
-            return retry;
-        }
+        if (auto retry =
+                without_fans(surface, params, skewed_fan_nodes(out, mc.threads), &LayerMesh::fans_skewed, progress))
+            return std::move(*retry);
     }
     return out;
 }

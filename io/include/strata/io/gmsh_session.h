@@ -123,6 +123,10 @@ struct GmshProbe {
 /// The caller holds Gmsh (GmshSession or GmshLock) and is not inside an OpenMP parallel region.
 GmshProbe gmsh_probe(const std::function<void()>& f, const Progress* progress = nullptr);
 
+/// How a trial that did not return ended, for a message: "crashes (signal 11)", "aborts
+/// (<its text>)", "fails (<its text>)".
+std::string how_it_failed(const GmshProbe& p);
+
 /// \p generate (the caller's generate(2), with its size callback) tried first in a child
 /// (gmsh_probe) where it may end the process, before the caller runs it here:
 ///
