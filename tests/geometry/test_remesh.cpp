@@ -12,8 +12,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
-
 #include "test_support.h"
 
 #include <algorithm>
@@ -99,7 +97,6 @@ TEST(Remesh, AttemptsOutOfTimeInGmshsParametrizationEndTheRun) {
     RemeshParams p;
     p.classify_seconds = 1e-6;
     RemeshReport rep;
-    const auto t0 = std::chrono::steady_clock::now();
     try {
         remesh_surface(box, p, "box.stl", &rep);
         FAIL() << "remeshed within a budget no classification meets";
@@ -109,7 +106,6 @@ TEST(Remesh, AttemptsOutOfTimeInGmshsParametrizationEndTheRun) {
         EXPECT_NE(m.find("Two attempts in a row ran out of time in Gmsh's parametrization"), std::string::npos) << m;
         EXPECT_EQ(m.find("at 22.5 degrees"), std::string::npos) << m;  // the third attempt was not made
     }
-    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
     p.classify_seconds = 0.0;  // the default budget: it remeshes
     EXPECT_GT(remesh_surface(box, p, "box.stl").num_faces(), 0);
 }
