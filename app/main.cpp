@@ -533,10 +533,14 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
     if (rep.remeshed) {
         const strata::RemeshReport& r = rep.remesh;
         std::printf(
-            "remeshed: %d faces -> %d on %d Gmsh surfaces, size %s%s, feature angle %s degrees%s; needle faces %d -> "
+            "remeshed: %d faces%s -> %d on %d Gmsh surfaces, size %s%s, feature angle %s degrees%s; needle faces %d -> "
             "%d (sharpest corner %.3g -> %.3g degrees)\n",
-            static_cast<int>(r.faces_before), static_cast<int>(r.faces_after), static_cast<int>(r.surfaces),
-            strata::format_number(r.size).c_str(),
+            static_cast<int>(r.faces_before),
+            r.split_edges > 0 ? (" (bisected to edges no longer than the size, " + std::to_string(r.split_edges) +
+                                 " splits: as they were, every feature angle and size failed)")
+                                    .c_str()
+                              : "",
+            static_cast<int>(r.faces_after), static_cast<int>(r.surfaces), strata::format_number(r.size).c_str(),
             r.size_halved ? " (half the input's median edge: at the median every feature angle failed)" : "",
             strata::format_number(r.feature_angle_deg).c_str(),
             r.feature_angle_deg < r.asked_feature_angle_deg ? " (lowered: larger angles left folded faces)"

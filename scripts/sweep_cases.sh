@@ -33,6 +33,7 @@ cases=(
   "airliner with nacelles (10)|$s/airliner.geo --fuse $L --first-height 1e-3"
   "three-bladed propeller (2)|$s/propeller.geo --fuse $L --first-height 2e-4"
   "car on its wheels in a wind tunnel (4.2)|$s/car_ground.geo $L --first-height 4.2e-4"
+  "sounding rocket with a nozzle cavity (2.65)|$s/rocket.geo --fuse $L --first-height 2.65e-4"
   "half body STL, open along its symmetry plane (2)|$s/halfbody.stl $L --first-height 2e-4"
   "car STL|$s/car_brepmesh.stl --fuse $L --first-height 4.2e-3"
   "car STL --remesh|$s/car_brepmesh.stl --fuse --remesh $L --first-height 4.2e-4"
@@ -44,6 +45,8 @@ cases=(
   "plate STL --remesh|$s/holes_brepmesh.stl --fuse --remesh $L --first-height 2e-4"
   "three cones STL|$s/spiky_brepmesh.stl --fuse $L --first-height 1.6e-3"
   "three cones STL --remesh|$s/spiky_brepmesh.stl --fuse --remesh $L --first-height 1.6e-4"
+  "rocket STL|$s/rocket_brepmesh.stl --fuse $L --first-height 2.65e-3"
+  "rocket STL --remesh|$s/rocket_brepmesh.stl --fuse --remesh $L --first-height 2.65e-4"
 )
 
 # shellcheck source=case_table.sh

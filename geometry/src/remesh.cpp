@@ -7,6 +7,7 @@
 #include <strata/geometry/feature_cuts.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/remesh.h>
+#include <strata/geometry/topology.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
 
@@ -24,6 +25,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace strata {
@@ -114,6 +116,10 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<
 constexpr double kClassifySeconds = 20.0;
 constexpr double kClassifySecondsPerTriangle = 2e-3;
 
+/// split_long_edges' cap on the triangles given to Gmsh: this many, or this many per input triangle.
+constexpr Index kSplitFacesMin = 200000;
+constexpr Index kSplitFacesPerFace = 4;
+
 /// An attempt whose classification ran out of its time budget (RemeshParams::classify_seconds).
 struct ClassifyTimeout : BackendError {
     using BackendError::BackendError;
@@ -129,9 +135,10 @@ struct Attempt {
     std::string blossom_failure;  ///< RecombinationReport::blossom_failure
 };
 
-/// One run of Gmsh's route at feature angle \p angle_deg, the result checked against \p in.
+/// One run of Gmsh's route at feature angle \p angle_deg, the result checked against \p in; \p budget:
+/// the seconds its classification may take (RemeshParams::classify_seconds).
 Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vector<std::array<Index, 2>>& seams,
-                    const RemeshParams& p, double size, double angle_deg, const std::string& source,
+                    const RemeshParams& p, double size, double angle_deg, double budget, const std::string& source,
                     const WallCaps* caps = nullptr) {
     const std::string ctx = source + ": remeshing with Gmsh (feature angle " + format_number(angle_deg) + " degrees)";
     // Gmsh scales its tolerances by the model's bounding box, which it computes when it reads a
@@ -203,9 +210,6 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
         // the fused propeller STL ran 12 minutes in one attempt. So it is tried first in a child
         // process with a time budget; past it, this attempt fails and the next angle or size is
         // tried. It costs the classification's time once more (0.2 s on that propeller).
-        const double budget = p.classify_seconds > 0.0 ? p.classify_seconds
-                                                       : kClassifySeconds + kClassifySecondsPerTriangle *
-                                                                                static_cast<double>(tris.tri.size());
         const auto classify = [angle_deg] {
             gmsh::model::mesh::classifySurfaces(angle_deg * kPi / 180.0, true, true, kPi);
             gmsh::model::mesh::createGeometry();
@@ -340,8 +344,15 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
                            RemeshReport* report) {
     validate(params, source);
     if (mesh.num_faces() == 0) throw InputError(source + ": remeshing: the surface has no faces");
-    const Triangles tris = triangles_of(mesh);
-    const std::vector<std::array<Index, 2>> seams = patch_seams(mesh);
+    // The input as triangles, each on its face's patch: what Gmsh is given.
+    SurfaceMesh triangles;
+    triangles.points = mesh.points;
+    triangles.patches = mesh.patches;
+    {
+        const Triangles t = triangles_of(mesh);
+        for (std::size_t i = 0; i < t.tri.size(); ++i)
+            triangles.add_face(t.tri[i].data(), 3, mesh.face_patch[t.face[i]]);
+    }
     const double size = params.size > 0.0 ? params.size : median_edge_length(mesh);
     if (!(size > 0.0)) throw InputError(source + ": remeshing: the surface's edges have no length");
 
@@ -370,62 +381,106 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
     if (!(params.size > 0.0)) sizes.push_back(0.5 * size);
     std::string failures;
     int out_of_time = 0;  // attempts in a row whose classification ran out of its budget
-    for (const double h : sizes)
-        for (double angle : angles) {
-            ++rep.attempts;
-            std::optional<Attempt> a;
-            const std::string at = "at " + format_number(angle) + " degrees" +
-                                   (sizes.size() > 1 ? " and size " + format_number(h) : std::string());
-            try {
-                a = remesh_once(mesh, tris, seams, params, h, angle, source);
-                out_of_time = 0;
-            } catch (const BackendError& e) {
-                failures += std::string(failures.empty() ? "" : "; ") + at + " Gmsh failed (" + e.what() + ")";
-                out_of_time = dynamic_cast<const ClassifyTimeout*>(&e) ? out_of_time + 1 : 0;
-                if (out_of_time == 2)
-                    throw BackendError(source + ": remeshing failed: " + failures +
-                                       ". Two attempts in a row ran out of time in Gmsh's parametrization, so no more "
-                                       "were made: the surface's triangles are too poor for it (slivers, needles); "
-                                       "export the surface finer, or mesh the CAD model itself");
-                continue;
+    // The input's own triangles at every angle and size, then, where all of them failed, the
+    // same triangles bisected to edges no longer than the size (split_long_edges: the same
+    // surface). Gmsh classifies and parametrizes the triangles it is given and can fold the new
+    // mesh where they are far longer than it: a CAD export's facets along a whole cylinder, cut
+    // into needles at a fin's root (a rocket's STL folded 411 faces at every angle and size;
+    // bisected, the first angle works). A last resort only, for what it gives is often worse
+    // where the input's own triangles work: bisected from the start, the car STL's remeshing
+    // took 2.7 times as long and the winglet STL's wall sizing lost its finer walls; as a retry
+    // at each angle, the three cones' STL took needles of 0.4 degrees where 60 degrees on its own
+    // triangles left 3 degrees; and before the half size, the glider STL took 120 needles and
+    // a tetrahedron of 1.6e-5 where the half size on its own triangles leaves 4 and 0.030.
+    struct Input {
+        const SurfaceMesh* mesh;
+        Triangles tris;
+        std::vector<std::array<Index, 2>> seams;
+        Index split = 0;
+    };
+    const Input whole{&triangles, triangles_of(triangles), patch_seams(triangles), 0};
+    // The classification's time budget by the input's triangles, bisected or not: it is there to
+    // end Gmsh's endless splitting, not to wait longer for more triangles.
+    const double budget =
+        params.classify_seconds > 0.0
+            ? params.classify_seconds
+            : kClassifySeconds + kClassifySecondsPerTriangle * static_cast<double>(whole.tris.tri.size());
+    for (int pass = 0; pass < 2; ++pass) {
+        for (const double h : sizes) {
+            SurfaceMesh fine;
+            Input bisected{&fine, {}, {}, 0};
+            if (pass == 1) {
+                fine = split_long_edges(triangles, h,
+                                        std::max<Index>(kSplitFacesMin, kSplitFacesPerFace * triangles.num_faces()),
+                                        &bisected.split);
+                if (bisected.split == 0) continue;  // nothing longer than the size: the attempts made
+                bisected.tris = triangles_of(fine);
+                bisected.seams = patch_seams(fine);
             }
-            if (a->bad > 0) {
-                failures += std::string(failures.empty() ? "" : "; ") + at + " " + std::to_string(a->bad) +
-                            " faces came out folded or without area, the first " + describe_face(a->mesh, a->first_bad);
-                continue;
-            }
-            rep.size_halved = h != size;
-            rep.size = h;
-            rep.faces_after = a->mesh.num_faces();
-            rep.surfaces = a->surfaces;
-            rep.feature_angle_deg = angle;
-            if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0) {
-                // RemeshParams::max_aspect_ratio: the route again with the walls' sizes, as long as
-                // it succeeds; the last good mesh stands.
-                const WallLimits limits{params.first_height, params.max_aspect_ratio, params.fan_angle_deg,
-                                        params.wall_faces_budget};
-                refine_walls(limits, a->aspect, rep.walls, [&](const WallCaps& caps, WallAspect& measured) {
-                    std::optional<Attempt> b;
-                    try {
-                        b = remesh_once(mesh, tris, seams, params, h, angle, source, &caps);
-                    } catch (const BackendError&) {
-                        return false;
-                    }
-                    if (b->bad > 0) return false;
-                    measured = b->aspect;
-                    a = std::move(b);
-                    return true;
-                });
+            const Input& in = pass == 0 ? whole : bisected;
+            for (double angle : angles) {
+                ++rep.attempts;
+                std::optional<Attempt> a;
+                const std::string at =
+                    "at " + format_number(angle) + " degrees" +
+                    (sizes.size() > 1 ? " and size " + format_number(h) : std::string()) +
+                    (pass == 1 ? " on the input's edges bisected to the size (" + std::to_string(in.split) + " splits)"
+                               : std::string());
+                try {
+                    a = remesh_once(*in.mesh, in.tris, in.seams, params, h, angle, budget, source);
+                    out_of_time = 0;
+                } catch (const BackendError& e) {
+                    failures += std::string(failures.empty() ? "" : "; ") + at + " Gmsh failed (" + e.what() + ")";
+                    out_of_time = dynamic_cast<const ClassifyTimeout*>(&e) ? out_of_time + 1 : 0;
+                    if (out_of_time == 2)
+                        throw BackendError(
+                            source + ": remeshing failed: " + failures +
+                            ". Two attempts in a row ran out of time in Gmsh's parametrization, so no more "
+                            "were made: the surface's triangles are too poor for it (slivers, needles); "
+                            "export the surface finer, or mesh the CAD model itself");
+                    continue;
+                }
+                if (a->bad > 0) {
+                    failures += std::string(failures.empty() ? "" : "; ") + at + " " + std::to_string(a->bad) +
+                                " faces came out folded or without area, the first " +
+                                describe_face(a->mesh, a->first_bad);
+                    continue;
+                }
+                rep.size_halved = h != size;
+                rep.split_edges = in.split;
+                rep.size = h;
                 rep.faces_after = a->mesh.num_faces();
                 rep.surfaces = a->surfaces;
+                rep.feature_angle_deg = angle;
+                if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0) {
+                    // RemeshParams::max_aspect_ratio: the route again with the walls' sizes, as long
+                    // as it succeeds; the last good mesh stands.
+                    const WallLimits limits{params.first_height, params.max_aspect_ratio, params.fan_angle_deg,
+                                            params.wall_faces_budget};
+                    refine_walls(limits, a->aspect, rep.walls, [&](const WallCaps& caps, WallAspect& measured) {
+                        std::optional<Attempt> b;
+                        try {
+                            b = remesh_once(*in.mesh, in.tris, in.seams, params, h, angle, budget, source, &caps);
+                        } catch (const BackendError&) {
+                            return false;
+                        }
+                        if (b->bad > 0) return false;
+                        measured = b->aspect;
+                        a = std::move(b);
+                        return true;
+                    });
+                    rep.faces_after = a->mesh.num_faces();
+                    rep.surfaces = a->surfaces;
+                }
+                rep.recombination.blossom_failure = a->blossom_failure;
+                const NeedleReport final_needles = needle_faces(a->mesh, kNeedleCornerDeg);
+                rep.needles_after = final_needles.needles;
+                rep.sharpest_after_deg = final_needles.sharpest_deg;
+                if (report) *report = rep;
+                return std::move(a->mesh);
             }
-            rep.recombination.blossom_failure = a->blossom_failure;
-            const NeedleReport final_needles = needle_faces(a->mesh, kNeedleCornerDeg);
-            rep.needles_after = final_needles.needles;
-            rep.sharpest_after_deg = final_needles.sharpest_deg;
-            if (report) *report = rep;
-            return std::move(a->mesh);
         }
+    }
     throw BackendError(source + ": remeshing failed: " + failures +
                        ". Try another feature angle (--feature-angle) or size, or repair the surface in a CAD tool");
 }

@@ -15,8 +15,10 @@
 #include <map>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 namespace strata {
 namespace {
@@ -402,6 +404,79 @@ SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed) {
         return out;
     }
     drop_unused_nodes(mesh.points, out);
+    return out;
+}
+
+SurfaceMesh split_long_edges(const SurfaceMesh& mesh, double max_length, Index max_faces, Index* splits) {
+    if (!(max_length > 0.0) || !std::isfinite(max_length))
+        throw InputError("split_long_edges: the longest edge kept must be a positive length, got " +
+                         format_number(max_length));
+    SurfaceMesh out = mesh;
+    const double limit2 = max_length * max_length;
+    Index count = 0;
+    // An edge's key: its squared length, then its nodes; the longest of a face is its largest key.
+    using Key = std::tuple<double, Index, Index>;
+    const auto key = [&out](Index a, Index b) {
+        return Key{(out.points[b] - out.points[a]).squaredNorm(), std::min(a, b), std::max(a, b)};
+    };
+    const auto longest = [&](Index f) {
+        int best = 0;
+        for (int i = 1; i < 3; ++i)
+            if (key(out.face_node(f, i), out.face_node(f, (i + 1) % 3)) >
+                key(out.face_node(f, best), out.face_node(f, (best + 1) % 3)))
+                best = i;
+        return best;
+    };
+    while (out.num_faces() < max_faces) {
+        const EdgeTable et = edge_table(out);
+        // The edges to split this round: too long, and the longest edge of every face on them.
+        std::vector<std::pair<Key, Index>> todo;
+        for (Index e = 0; e < static_cast<Index>(et.nodes.size()); ++e) {
+            const auto [a, b] = et.nodes[static_cast<std::size_t>(e)];
+            const Key k = key(a, b);
+            if (!(std::get<0>(k) > limit2)) continue;
+            bool terminal = true;
+            for (const Index* f = et.faces.row_begin(e); f != et.faces.row_end(e) && terminal; ++f) {
+                if (out.face_size(*f) != 3) {
+                    terminal = false;
+                    break;
+                }
+                const int i = longest(*f);
+                const Index x = out.face_node(*f, i), y = out.face_node(*f, (i + 1) % 3);
+                terminal = std::min(x, y) == a && std::max(x, y) == b;
+            }
+            if (terminal) todo.emplace_back(k, e);
+        }
+        if (todo.empty()) break;
+        std::sort(todo.begin(), todo.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+        std::vector<char> touched(static_cast<std::size_t>(out.num_faces()), 0);
+        Index now = 0;
+        for (const auto& [k, e] : todo) {
+            if (out.num_faces() >= max_faces) break;
+            bool free = true;
+            for (const Index* f = et.faces.row_begin(e); f != et.faces.row_end(e); ++f)
+                free = free && !touched[static_cast<std::size_t>(*f)];
+            if (!free) continue;
+            const auto [a, b] = et.nodes[static_cast<std::size_t>(e)];
+            const Index m = static_cast<Index>(out.points.size());
+            out.points.push_back(0.5 * (out.points[a] + out.points[b]));
+            for (const Index* f = et.faces.row_begin(e); f != et.faces.row_end(e); ++f) {
+                touched[static_cast<std::size_t>(*f)] = 1;
+                // The face's corners (u, v, w) with u → v the split edge in the face's order.
+                int i = 0;
+                while (!(std::minmax(out.face_node(*f, i), out.face_node(*f, (i + 1) % 3)) == std::minmax(a, b))) ++i;
+                const Index u = out.face_node(*f, i), v = out.face_node(*f, (i + 1) % 3),
+                            w = out.face_node(*f, (i + 2) % 3);
+                Index* fn = out.face_nodes.data() + out.face_offsets[static_cast<std::size_t>(*f)];
+                fn[0] = u, fn[1] = m, fn[2] = w;
+                const std::array<Index, 3> half{m, v, w};
+                out.add_face(half.data(), 3, out.face_patch[*f]);
+            }
+            ++now;
+        }
+        count += now;
+    }
+    if (splits) *splits = count;
     return out;
 }
 

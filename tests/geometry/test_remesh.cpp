@@ -7,6 +7,7 @@
 #include <strata/core/face_geometry.h>
 #include <strata/core/solver_checks.h>
 #include <strata/geometry/check.h>
+#include <strata/geometry/prepare.h>
 #include <strata/geometry/primitives.h>
 #include <strata/geometry/remesh.h>
 
@@ -86,6 +87,36 @@ TEST(Remesh, NeedleBoxComesBackWellShapedOnTheSamePlanes) {
     EXPECT_NEAR((bb.min - Vec3::Zero()).norm(), 0.0, 1e-12);
     EXPECT_NEAR((bb.max - Vec3::Ones()).norm(), 0.0, 1e-12);
     EXPECT_NEAR(median_edge_length(m), 0.1, 0.03);
+}
+
+TEST(Remesh, WhereEveryAttemptFoldsTheInputBisectedToTheSizeIsTried) {
+    // A CAD tool's STL of a rocket (examples/sweep/rocket.geo, BRepMesh): each facet of its body
+    // is one triangle pair 2 long and 0.05 wide, and the union with the fins cuts the bottom ones
+    // into needles 0.002 wide along their whole length. On these triangles Gmsh's
+    // parametrization folds the new mesh at every angle; bisected to edges no longer than the
+    // size (the same surface), the first angle works.
+    const std::string path = test::example_data("../sweep/rocket_brepmesh.stl");
+    PrepareParams fused;
+    fused.fuse = true;
+    fused.collapse_ratio = 0.0;  // as remeshing has it
+    const SurfaceMesh in = prepare_surface(path, fused);
+    PrepareParams p = fused;
+    p.remesh = true;
+    p.remeshing.size = 0.0447;
+    p.remeshing.feature_angle_deg = 80.0;  // angles 80, 60 and 45: three attempts on the input's triangles
+    PrepareReport prep;
+    const SurfaceMesh m = prepare_surface(path, p, &prep);
+    ASSERT_TRUE(prep.remeshed);
+    const RemeshReport& rep = prep.remesh;
+    EXPECT_EQ(rep.attempts, 4);
+    EXPECT_DOUBLE_EQ(rep.feature_angle_deg, 80.0);
+    EXPECT_GT(rep.split_edges, 1000);
+    EXPECT_TRUE(test::closed_manifold(m));
+    // The same body, pointing out: its volume within what chords of 0.045 on a radius of 0.1 cut
+    // off the facets (2 %).
+    EXPECT_NEAR(test::enclosed_volume(m), test::enclosed_volume(in), 0.03 * test::enclosed_volume(in));
+    EXPECT_GT(test::enclosed_volume(m), 0.0);
+    EXPECT_LT(needle_faces(m, kNeedleCornerDeg).needles, needle_faces(in, kNeedleCornerDeg).needles / 10);
 }
 
 TEST(Remesh, AttemptsOutOfTimeInGmshsParametrizationEndTheRun) {

@@ -17,6 +17,8 @@
 namespace strata {
 namespace {
 
+using test::closed_manifold;
+using test::enclosed_volume;
 using test::quad_grid;
 
 constexpr double kPi = std::numbers::pi;
@@ -708,6 +710,110 @@ TEST(FaceComponents, SeparatedByEdgesNotVertices) {
     const std::vector<Index> g = face_components(quad_grid(4, 4), &ng);
     EXPECT_EQ(ng, 1);
     EXPECT_EQ(g, std::vector<Index>(16, 0));
+}
+
+// ---------------------------------------------------------------- split_long_edges
+
+/// A closed cylinder as a CAD tool's coarse export writes it: \p n facets round, each one
+/// triangle pair as long as the cylinder (2 long, radius 0.1), the two ends fans to a centre;
+/// side patch 0, ends patch 1, normals out.
+SurfaceMesh strip_cylinder(int n) {
+    SurfaceMesh m;
+    m.patches = {{"side", PatchKind::Wall}, {"ends", PatchKind::Wall}};
+    for (int end = 0; end < 2; ++end)
+        for (int i = 0; i < n; ++i) {
+            const double t = 2.0 * kPi * i / n;
+            m.points.push_back(Vec3(2.0 * end, 0.1 * std::cos(t), 0.1 * std::sin(t)));
+        }
+    m.points.push_back(Vec3(0, 0, 0));
+    m.points.push_back(Vec3(2, 0, 0));
+    for (Index i = 0; i < n; ++i) {
+        const Index j = (i + 1) % n;
+        m.add_face({i, n + j, n + i}, 0);
+        m.add_face({i, j, n + j}, 0);
+        m.add_face({2 * n, j, i}, 1);
+        m.add_face({2 * n + 1, n + i, n + j}, 1);
+    }
+    return m;
+}
+
+double sharpest_corner_deg(const SurfaceMesh& m) {
+    double worst = 180.0;
+    for (Index f = 0; f < m.num_faces(); ++f)
+        for (Index i = 0, k = m.face_size(f); i < k; ++i) {
+            const Vec3 &o = m.points[m.face_node(f, i)], &a = m.points[m.face_node(f, (i + 1) % k)],
+                       &b = m.points[m.face_node(f, (i + k - 1) % k)];
+            const double c = (a - o).normalized().dot((b - o).normalized());
+            worst = std::min(worst, std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / kPi);
+        }
+    return worst;
+}
+
+double longest_edge(const SurfaceMesh& m) {
+    double l = 0.0;
+    for (Index f = 0; f < m.num_faces(); ++f)
+        for (Index i = 0, k = m.face_size(f); i < k; ++i)
+            l = std::max(l, (m.points[m.face_node(f, (i + 1) % k)] - m.points[m.face_node(f, i)]).norm());
+    return l;
+}
+
+TEST(SplitLongEdges, ALongStripExportBecomesShortEdgesOnTheSameSurface) {
+    const SurfaceMesh in = strip_cylinder(12);
+    ASSERT_GT(longest_edge(in), 1.9);
+    Index splits = 0;
+    const SurfaceMesh out = split_long_edges(in, 0.05, 1000000, &splits);
+    EXPECT_GT(splits, 0);
+    EXPECT_LE(longest_edge(out), 0.05);
+    EXPECT_TRUE(closed_manifold(out));
+    // Midpoints only: the same polyhedron, so the same volume; the old nodes first, unmoved.
+    EXPECT_NEAR(enclosed_volume(out), enclosed_volume(in), 1e-12);
+    EXPECT_GT(enclosed_volume(out), 0.0);  // orientation kept
+    for (Index i = 0; i < in.num_points(); ++i) EXPECT_EQ(out.points[i], in.points[i]);
+    EXPECT_EQ(out.num_points(), in.num_points() + splits);
+    // Rivara's bound: no corner sharper than half the sharpest there was.
+    EXPECT_GE(sharpest_corner_deg(out), 0.5 * sharpest_corner_deg(in) - 1e-9);
+    // Each new face on its parent's patch: the side's area stays the side's.
+    const auto area_of = [](const SurfaceMesh& m, Index patch) {
+        double a = 0.0;
+        for (Index f = 0; f < m.num_faces(); ++f)
+            if (m.face_patch[f] == patch) a += face_area_vector(m, f).norm();
+        return a;
+    };
+    EXPECT_NEAR(area_of(out, 0), area_of(in, 0), 1e-12);
+    EXPECT_NEAR(area_of(out, 1), area_of(in, 1), 1e-12);
+    // Deterministic.
+    const SurfaceMesh again = split_long_edges(in, 0.05, 1000000);
+    EXPECT_EQ(again.points, out.points);
+    EXPECT_EQ(again.face_nodes, out.face_nodes);
+}
+
+TEST(SplitLongEdges, ShortEdgesQuadsAndTheFaceCapAreLeft) {
+    const SurfaceMesh in = strip_cylinder(12);
+    Index splits = -1;
+    const SurfaceMesh same = split_long_edges(in, 3.0, 1000000, &splits);
+    EXPECT_EQ(splits, 0);
+    EXPECT_EQ(same.face_nodes, in.face_nodes);
+    EXPECT_EQ(same.points, in.points);
+
+    // A quad keeps its edges, and the triangle beside it cannot split along the shared one.
+    SurfaceMesh q = quad_grid(1, 1, 1.0);
+    q.points.push_back(Vec3(0.5, -3.0, 0.0));
+    q.add_face({0, static_cast<Index>(q.points.size() - 1), 1}, 0);
+    const SurfaceMesh qs = split_long_edges(q, 0.4, 1000000);
+    EXPECT_EQ(qs.face_size(0), 4);
+    EXPECT_EQ(std::vector<Index>(qs.face_begin(0), qs.face_end(0)), std::vector<Index>(q.face_begin(0), q.face_end(0)));
+    for (Index f = 1; f < qs.num_faces(); ++f) EXPECT_EQ(qs.face_size(f), 3);
+    EXPECT_GT(qs.num_faces(), 2);
+
+    // At the cap the faces stop growing, and what was split is still conforming.
+    const SurfaceMesh capped = split_long_edges(in, 0.01, in.num_faces() + 40, &splits);
+    EXPECT_GE(capped.num_faces(), in.num_faces() + 40);
+    EXPECT_LE(capped.num_faces(), in.num_faces() + 42);  // one edge splits at most two faces
+    EXPECT_TRUE(closed_manifold(capped));
+    EXPECT_NEAR(enclosed_volume(capped), enclosed_volume(in), 1e-12);
+
+    EXPECT_THROW(split_long_edges(in, 0.0, 100), InputError);
+    EXPECT_THROW(split_long_edges(in, std::nan(""), 100), InputError);
 }
 
 }  // namespace

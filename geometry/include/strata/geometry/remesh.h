@@ -62,6 +62,7 @@ struct RemeshReport {
     double asked_feature_angle_deg = 0.0;  ///< RemeshParams::feature_angle_deg
     double feature_angle_deg = 0.0;        ///< the feature angle that gave the result
     int attempts = 0;                      ///< feature angles tried (1: the one asked worked)
+    Index split_edges = 0;                 ///< input edges longer than the size, bisected first (split_long_edges)
     Index needles_before = 0;              ///< faces with a corner under kNeedleCornerDeg, before
     Index needles_after = 0;               ///< and after
     double sharpest_before_deg = 180.0;    ///< sharpest corner before

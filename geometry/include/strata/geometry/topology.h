@@ -34,6 +34,18 @@ SurfaceMesh remove_collapsed_faces(const SurfaceMesh& mesh, Index* changed = nul
 /// times. \p flipped: how many flips.
 SurfaceMesh flip_flat_triangles(const SurfaceMesh& mesh, double rel_height = 1e-6, Index* flipped = nullptr);
 
+/// \p mesh with every edge longer than \p max_length bisected, by Rivara's longest-edge
+/// bisection: an edge is split only where it is the longest edge of each triangle on it (ties
+/// broken by node ids), and a triangle splits along its longest edge from the opposite corner,
+/// so the mesh stays conforming and no corner gets sharper than half the sharpest it had. The
+/// new nodes are the edges' midpoints: the surface is the same, its triangles shorter. Rounds
+/// split every such edge whose triangles no split of the round touched yet, longest first, until
+/// no edge is longer or the faces reach \p max_faces (then the mesh is as far as it got). A quad
+/// is kept, and so are its edges. Each new triangle keeps its parent's patch and orientation; new
+/// faces and nodes come after the old ones, in a deterministic order. \p splits: how many edges
+/// were bisected. InputError for a max_length that is not positive.
+SurfaceMesh split_long_edges(const SurfaceMesh& mesh, double max_length, Index max_faces, Index* splits = nullptr);
+
 /// \p mesh without the faces where \p drop (one per face) is nonzero; nodes no face uses any
 /// more are dropped, order kept.
 SurfaceMesh remove_faces(const SurfaceMesh& mesh, const std::vector<char>& drop);
