@@ -233,14 +233,19 @@ std::string try_generate_in_child(const std::string& context, bool quads_asked, 
     if (!blossom && !isolate) return "";
     const GmshProbe first = gmsh_probe(generate, progress);
     if (!first.ran || first.returned) return "";
-    // Blossom's own words (Gmsh 4.8, meshGFaceOptimize.cpp): any other abort is not its, and
-    // the simple algorithm would not help.
-    if (blossom && first.aborted && first.message.find("Perfect Match") != std::string::npos) {
+    // Blossom aborts with its own words on some surfaces (Gmsh 4.8, meshGFaceOptimize.cpp:
+    // "Perfect Match") and crashes on others (a segmentation fault on a body with a mirror on a
+    // thin stalk, and on a drone's rotors, where the simple recombination meshes both): the
+    // simple recombination is tried as well, and used where it works.
+    if (blossom) {
         options.set("Mesh.RecombinationAlgorithm", 0);
         const GmshProbe simple = gmsh_probe(generate, progress);
-        if (!simple.ran || simple.returned) return first.message;
-        throw BackendError(context + ": quads cannot be made here: Gmsh's Blossom recombination fails (" +
-                           first.message + ") and with its simple recombination Gmsh " + how_it_failed(simple) +
+        const bool blossoms_words = first.aborted && first.message.find("Perfect Match") != std::string::npos;
+        const std::string blossom_failure = blossoms_words ? first.message : how_it_failed(first);
+        if (!simple.ran || simple.returned) return blossom_failure;
+        throw BackendError(context + ": quads cannot be made here: Gmsh's Blossom recombination " +
+                           (blossoms_words ? "fails (" + first.message + ")" : how_it_failed(first)) +
+                           " and with its simple recombination Gmsh " + how_it_failed(simple) +
                            "; mesh triangles instead, or with another size");
     }
     if (isolate)

@@ -127,6 +127,25 @@ TEST(TryGenerateInChild, NothingWhereBlossomGoesThrough) {
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
 }
 
+TEST(TryGenerateInChild, ACrashOfBlossomFallsBackToTheSimpleAlgorithm) {
+    // Blossom also crashes without words of its own (a segmentation fault on a body with a
+    // mirror on a thin stalk: test_cad); where the simple recombination goes through, it is used.
+    GmshSession session("blossom_crashes");
+    GmshOptionScope options;
+    options.set("Mesh.RecombinationAlgorithm", 1);
+    const auto crashes_with_blossom = [] {
+        if (option("Mesh.RecombinationAlgorithm") == 1.0) std::raise(SIGSEGV);
+    };
+    EXPECT_EQ(try_generate_in_child("the model", true, false, options, crashes_with_blossom), "crashes (signal 11)");
+    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
+    // Where the simple one crashes too, one error says both, and nothing ends this process.
+    options.set("Mesh.RecombinationAlgorithm", 1);
+    test::expect_error<BackendError>(
+        [&] { try_generate_in_child("the model", true, false, options, [] { std::raise(SIGSEGV); }); },
+        {"the model: quads cannot be made here: Gmsh's Blossom recombination crashes (signal 11) and with its "
+         "simple recombination Gmsh crashes (signal 11)"});
+}
+
 TEST(TryGenerateInChild, IsolatedACrashOrAnAbortIsAnError) {
     // For a host that must live on (Python, FreeCAD): whatever ends the trial's process is a
     // BackendError naming it; without isolation (and without Blossom) nothing is tried.
@@ -137,8 +156,11 @@ TEST(TryGenerateInChild, IsolatedACrashOrAnAbortIsAnError) {
     EXPECT_EQ(try_generate_in_child("ctx", false, false, options, crash), "");
     test::expect_error<BackendError>([&] { try_generate_in_child("the model", false, true, options, crash); },
                                      {"the model: Gmsh crashes (signal 11)", "this session goes on"});
+    // With quads (Blossom, the default algorithm) the simple recombination is tried too, and the
+    // error says both failed.
     test::expect_error<BackendError>([&] { try_generate_in_child("the model", true, true, options, abort); },
-                                     {"the model: Gmsh aborts (out of the loop)"});
+                                     {"the model: quads cannot be made here: Gmsh's Blossom recombination aborts (out "
+                                      "of the loop) and with its simple recombination Gmsh aborts (out of the loop)"});
     EXPECT_EQ(try_generate_in_child("ctx", false, true, options, [] {}), "");
 }
 

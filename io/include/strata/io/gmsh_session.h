@@ -133,11 +133,12 @@ std::string how_it_failed(const GmshProbe& p);
 /// - Gmsh 4.8's Blossom recombination (Mesh.RecombinationAlgorithm 1) throws "Perfect Match
 ///   failed in quadrangulation" out of its OpenMP surface-meshing loop on some surfaces (the
 ///   apex of a cone, a tiny hole in a large face): a std::terminate that ends the process,
-///   which no caller can catch. So where \p quads_asked (Mesh.RecombineAll, or some surfaces'
-///   own recombination) and Blossom is the algorithm, it is tried; where Blossom aborted it,
+///   which no caller can catch; and it crashes on others (a segmentation fault on a body with a
+///   mirror on a thin stalk). So where \p quads_asked (Mesh.RecombineAll, or some surfaces'
+///   own recombination) and Blossom is the algorithm, it is tried; where it did not return,
 ///   Mesh.RecombinationAlgorithm is set to 0 through \p options (Gmsh's simple recombination,
-///   which never needs a perfect matching and leaves more triangles) and Blossom's message is
-///   returned, for the caller's report. Gmsh got no further than Blossom's failure, and the
+///   which never needs a perfect matching and leaves more triangles) and Blossom's message (or
+///   how_it_failed) is returned, for the caller's report. Gmsh got no further than Blossom's failure, and the
 ///   faces after it may crash its mesher (MeshAdapt did on the block with a 1/500 hole), so
 ///   that is tried in a child too: BackendError "<context>: quads cannot be made here: ..." if
 ///   it fails.
