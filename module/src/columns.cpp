@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace strata {
@@ -296,6 +297,51 @@ bool split_keeps_cells(const Columns& col, Index f, int c, int k, const StopRule
     return true;
 }
 
+/// Whether the bottom or top quad of hexahedron \p p (bottom 0-3, top 4-7) is warped by a
+/// quarter of its shortest column segment or more (its diagonals' midpoints that far apart
+/// along its normal): only then can a face's pyramid to the cell's centre invert, so only then
+/// is face_pyramids_inverted worth its cost (it doubled the stopping tests' share of the layer
+/// benchmark's cubed sphere).
+bool warped_against_height(const std::array<Vec3, 8>& p) {
+    double h = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 4; ++c)
+        h = std::min(h, (p[static_cast<std::size_t>(c + 4)] - p[static_cast<std::size_t>(c)]).squaredNorm());
+    h = std::sqrt(h);
+    for (int o : {0, 4}) {
+        const auto at = [&](int i) { return p[static_cast<std::size_t>(o + i)]; };
+        const Vec3 n = (at(2) - at(0)).cross(at(3) - at(1));
+        const double len = n.norm();
+        if (!(len > 0.0)) return true;  // a degenerate quad: let the full test judge it
+        if (std::abs((at(0) + at(2) - at(1) - at(3)).dot(n)) / (2.0 * len) >= 0.25 * h) return true;
+    }
+    return false;
+}
+
+/// Whether splitting full quad \p f through its corner \p c gives two prisms on level \p k (from
+/// the tops to \p next) that are usable and whose faces all see their centres on the inside,
+/// and keeps the cells below usable (split_keeps_cells).
+bool split_mends_hexahedron(const Columns& col, Index f, int c, int k, const std::vector<Vec3>& next,
+                            const StopRules& rules) {
+    if (!split_keeps_cells(col, f, c, k, rules)) return false;
+    const auto& q = col.faces.nodes[static_cast<std::size_t>(f)];
+    auto at = [&](int i) { return q[static_cast<std::size_t>((c + i) % 4)]; };
+    auto lo = [&](Index i) { return col.top[static_cast<std::size_t>(i)]; };
+    auto hi = [&](Index i) { return next[static_cast<std::size_t>(i)]; };
+    static constexpr bool kMoving[3] = {true, true, true};
+    for (const std::array<Index, 4>& t :
+         {std::array<Index, 4>{at(0), at(1), at(2), kNone}, std::array<Index, 4>{at(0), at(2), at(3), kNone}}) {
+        CellType type{};
+        std::array<Vec3, 8> p{};
+        if (!closing_cell(t, 3, kMoving, lo, hi, type, p)) return false;
+        const std::array<double, 4> w{col.reach[static_cast<std::size_t>(t[0])],
+                                      col.reach[static_cast<std::size_t>(t[1])],
+                                      col.reach[static_cast<std::size_t>(t[2])], 1.0};
+        const double fq = corner_sines({lo(t[0]), lo(t[1]), lo(t[2]), Vec3::Zero()}, 3, &w);
+        if (!usable(type, true, p, fq, rules) || face_pyramids_inverted(p.data(), type)) return false;
+    }
+    return true;
+}
+
 /// Whether each corner of column face \p f moves on, by \p moving per wall node.
 std::array<bool, 4> moving_corners(const ColumnFaces& faces, Index f, const std::vector<char>& moving) {
     std::array<bool, 4> m{false, false, false, false};
@@ -451,13 +497,29 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
                     top[static_cast<std::size_t>(c)] = p[static_cast<std::size_t>(c + n)];
                 }
                 if (twists_more_than(bottom, top, n, rules.max_twist_deg, tan_twist)) poor[u] = 2;
+                // A hexahedron over a quad warped more than the layer is thin (Gmsh's coarse
+                // quads round a slender body) can have every corner fair and a face whose
+                // pyramid to its centre is inverted, which checkMesh fails: split below.
+                else if (n == 4 && warped_against_height(p) && face_pyramids_inverted(p.data(), CellType::Hex))
+                    poor[u] = 3;
             }
         }
-        for (Index f = 0; f < nf; ++f)
+        for (Index f = 0; f < nf; ++f) {
+            if (poor[static_cast<std::size_t>(f)] == 3) {
+                // Split along the diagonal that gives two sound prisms (here and below); with
+                // neither, the hexahedron stays as it was (the summary's checkMesh line names it).
+                for (int c = 0; c < 2; ++c)
+                    if (split_mends_hexahedron(col, f, c, k, next, rules)) {
+                        col.faces.split(f, c);
+                        break;
+                    }
+                continue;
+            }
             if (poor[static_cast<std::size_t>(f)])
                 for (int c = 0; c < col.faces.size[static_cast<std::size_t>(f)]; ++c)
                     stop(col, go, col.faces.nodes[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)],
                          poor[static_cast<std::size_t>(f)] == 2 ? Shortfall::Twist : Shortfall::Quality);
+        }
     }
     close_steps(col, rules, k, next, go);
     Index stopped = 0, materialised = 0;  // the caller appends next[i] of the moving nodes in order

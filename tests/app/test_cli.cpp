@@ -683,6 +683,19 @@ double wall_coverage(const std::string& out) {
     return nodes > 0.0 ? 100.0 * with_all / nodes : -1.0;
 }
 
+TEST(Cli, HexahedraOverWarpedQuadsAreSplitIntoPrisms) {
+    // The sweep's rocket in quads (20 layers from 2.5e-4): at the default size Gmsh's quads span
+    // 72 degrees of its 0.1 radius, and hexahedra over them had every corner fair but 35 faces
+    // whose pyramid to the cell's centre was inverted, which checkMesh fails. Such a quad is now
+    // split into two prisms' triangles where they are sound.
+    test::ScratchDir dir("cli_warped_quads");
+    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/rocket.geo") +
+                                            "' --fuse --quads --layers 20 --growth 1.2 --first-height 2.5e-4 -o r.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("pyramid to a cell centre is inverted"), std::string::npos) << r.out;
+}
+
 TEST(Cli, FrontRoundsLowerTheLayersLocallyFirst) {
     // Where the layer top meets itself, the columns under it are lowered and the layers marched
     // again; each lowering spreads along the wall at 1 per unit of distance, halved where the
