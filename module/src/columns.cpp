@@ -271,20 +271,24 @@ bool usable(CellType type, bool full, const std::array<Vec3, 8>& p, double face_
 }
 
 /// Whether splitting quad \p f through its corner \p c keeps every cell below level \p k usable
-/// (they were judged as the quad's; two prisms of a warped hexahedron can invert).
-bool split_keeps_cells(const Columns& col, Index f, int c, int k, const StopRules& rules) {
+/// (they were judged as the quad's; two prisms of a warped hexahedron can invert), and with
+/// \p next (every corner moving on to it) the two prisms of level \p k too.
+bool split_keeps_cells(const Columns& col, Index f, int c, int k, const StopRules& rules,
+                       const std::vector<Vec3>* next = nullptr) {
     const auto& q = col.faces.nodes[static_cast<std::size_t>(f)];
     auto at = [&](int i) { return q[static_cast<std::size_t>((c + i) % 4)]; };
     const std::array<std::array<Index, 4>, 2> tris{{{at(0), at(1), at(2), kNone}, {at(0), at(2), at(3), kNone}}};
-    for (int j = 0; j < k; ++j)
+    for (int j = 0; j < (next ? k + 1 : k); ++j)
         for (const auto& t : tris) {
             bool moving[3];
             int m = 0;
             for (int i = 0; i < 3; ++i)
-                m += (moving[i] = col.levels[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])] > j) ? 1 : 0;
+                m += (moving[i] = j == k || col.levels[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])] > j)
+                         ? 1
+                         : 0;
             if (m == 0) continue;
             auto lo = [&](Index i) { return col.at_level(i, j); };
-            auto hi = [&](Index i) { return col.at_level(i, j + 1); };
+            auto hi = [&](Index i) { return j == k ? (*next)[static_cast<std::size_t>(i)] : col.at_level(i, j + 1); };
             CellType type{};
             std::array<Vec3, 8> p{};
             if (!closing_cell(t, 3, moving, lo, hi, type, p)) return false;
@@ -315,31 +319,6 @@ bool warped_against_height(const std::array<Vec3, 8>& p) {
         if (std::abs((at(0) + at(2) - at(1) - at(3)).dot(n)) / (2.0 * len) >= 0.25 * h) return true;
     }
     return false;
-}
-
-/// Whether splitting full quad \p f through its corner \p c gives two prisms on level \p k (from
-/// the tops to \p next) that are usable and whose faces all see their centres on the inside,
-/// and keeps the cells below usable (split_keeps_cells).
-bool split_mends_hexahedron(const Columns& col, Index f, int c, int k, const std::vector<Vec3>& next,
-                            const StopRules& rules) {
-    if (!split_keeps_cells(col, f, c, k, rules)) return false;
-    const auto& q = col.faces.nodes[static_cast<std::size_t>(f)];
-    auto at = [&](int i) { return q[static_cast<std::size_t>((c + i) % 4)]; };
-    auto lo = [&](Index i) { return col.top[static_cast<std::size_t>(i)]; };
-    auto hi = [&](Index i) { return next[static_cast<std::size_t>(i)]; };
-    static constexpr bool kMoving[3] = {true, true, true};
-    for (const std::array<Index, 4>& t :
-         {std::array<Index, 4>{at(0), at(1), at(2), kNone}, std::array<Index, 4>{at(0), at(2), at(3), kNone}}) {
-        CellType type{};
-        std::array<Vec3, 8> p{};
-        if (!closing_cell(t, 3, kMoving, lo, hi, type, p)) return false;
-        const std::array<double, 4> w{col.reach[static_cast<std::size_t>(t[0])],
-                                      col.reach[static_cast<std::size_t>(t[1])],
-                                      col.reach[static_cast<std::size_t>(t[2])], 1.0};
-        const double fq = corner_sines({lo(t[0]), lo(t[1]), lo(t[2]), Vec3::Zero()}, 3, &w);
-        if (!usable(type, true, p, fq, rules) || face_pyramids_inverted(p.data(), type)) return false;
-    }
-    return true;
 }
 
 /// Whether each corner of column face \p f moves on, by \p moving per wall node.
@@ -509,7 +488,7 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
                 // Split along the diagonal that gives two sound prisms (here and below); with
                 // neither, the hexahedron stays as it was (the summary's checkMesh line names it).
                 for (int c = 0; c < 2; ++c)
-                    if (split_mends_hexahedron(col, f, c, k, next, rules)) {
+                    if (split_keeps_cells(col, f, c, k, rules, &next)) {
                         col.faces.split(f, c);
                         break;
                     }
