@@ -683,19 +683,6 @@ double wall_coverage(const std::string& out) {
     return nodes > 0.0 ? 100.0 * with_all / nodes : -1.0;
 }
 
-TEST(Cli, HexahedraOverWarpedQuadsAreSplitIntoPrisms) {
-    // The sweep's rocket in quads (20 layers from 2.5e-4): at the default size Gmsh's quads span
-    // 72 degrees of its 0.1 radius, and hexahedra over them had every corner fair but 35 faces
-    // whose pyramid to the cell's centre was inverted, which checkMesh fails. Such a quad is now
-    // split into two prisms' triangles where they are sound.
-    test::ScratchDir dir("cli_warped_quads");
-    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/rocket.geo") +
-                                            "' --fuse --quads --layers 20 --growth 1.2 --first-height 2.5e-4 -o r.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
-    EXPECT_EQ(r.out.find("pyramid to a cell centre is inverted"), std::string::npos) << r.out;
-}
-
 TEST(Cli, FrontRoundsLowerTheLayersLocallyFirst) {
     // Where the layer top meets itself, the columns under it are lowered and the layers marched
     // again; each lowering spreads along the wall at 1 per unit of distance, halved where the
@@ -743,6 +730,17 @@ TEST(Cli, AWallQuadNoPyramidCanCapIsSplitIntoTwoTriangles) {
     EXPECT_TRUE(fs::exists(dir.path() / "p.msh"));
 }
 
+/// The sweep's \p shape meshed with \p options in quads: no face whose pyramid to a cell's centre
+/// is inverted, and checkMesh's "Mesh OK".
+void expect_quads_pass_checkmesh(const std::string& scratch, const std::string& shape, const std::string& options) {
+    test::ScratchDir dir(scratch);
+    const CliResult r =
+        strata_cli(dir, "mesh '" + example_data("../sweep/" + shape) + "' --quads " + options + " -o q.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out.find("pyramid to a cell centre is inverted"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
 TEST(Cli, AStepOverAQuadBentRoundALeadingEdgeIsSplitNotInverted) {
     // The slotted two-element wing of the sweep in quads, 15 layers from 7.5e-4: where two
     // adjacent columns of a quad bent round the main element's leading edge stop at the wall,
@@ -750,12 +748,16 @@ TEST(Cli, AStepOverAQuadBentRoundALeadingEdgeIsSplitNotInverted) {
     // centre outside the wall quad's side, and checkMesh failed the mesh on 5 "incorrectly
     // oriented" faces. Such a quad is split through a stopped corner (a pyramid and a
     // tetrahedron over planar triangles) and the mesh passes.
-    test::ScratchDir dir("cli_bent_quad_step");
-    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/slot.geo") +
-                                            "' --quads --layers 15 --growth 1.2 --first-height 7.5e-4 -o s.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_EQ(r.out.find("pyramid to a cell centre is inverted"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    expect_quads_pass_checkmesh("cli_bent_quad_step", "slot.geo", "--layers 15 --growth 1.2 --first-height 7.5e-4");
+}
+
+TEST(Cli, HexahedraOverWarpedQuadsAreSplitIntoPrisms) {
+    // The sweep's rocket in quads (20 layers from 2.5e-4): at the default size Gmsh's quads span
+    // 72 degrees of its 0.1 radius, and hexahedra over them had every corner fair but 35 faces
+    // whose pyramid to the cell's centre was inverted, which checkMesh fails. Such a quad is now
+    // split into two prisms' triangles where they are sound.
+    expect_quads_pass_checkmesh("cli_warped_quads", "rocket.geo",
+                                "--fuse --layers 20 --growth 1.2 --first-height 2.5e-4");
 }
 
 TEST(Cli, AFanWhoseCellsCheckMeshFindsSkewedIsDropped) {
