@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -24,6 +25,14 @@ constexpr double kWedgeDeg = 90.0;    ///< widest wedge between two columns of a
 /// edge there that turns least is dropped. A box corner spans 1, a wing's trailing edge at
 /// its root 0.66.
 constexpr double kCornerSpan = 0.25;
+/// A node with two fan edges whose outward bisectors (the edges' own middle directions) differ
+/// by more than this (a delta wing's apex, where its two sharp leading edges meet at 62°: 112°)
+/// gets each edge's columns between its two sides and a corner polygon closing them, as a
+/// corner does. Shared columns there would twist the wedges on both edges by half that angle,
+/// more than half the widest wedge (kWedgeDeg). Measured: from 45° on, the airliner of the
+/// sweep split 13 nodes (46-68°: its wing tips, tails, tail cone), lost the fans of 34 nodes as
+/// unusable and kept 7,431 prisms instead of 71,041.
+constexpr double kChainTurnDeg = 90.0;
 
 Vec3 unit(const Vec3& v) {
     const double l = v.norm();
@@ -44,6 +53,24 @@ Vec3 slerp(const Vec3& a, const Vec3& b, double t) {
 double convex_turn_deg(const Vec3& nf, const Vec3& cf, const Vec3& ng, const Vec3& cg, const Vec3& a) {
     if (!((cg - a).dot(nf) < 0.0 && (cf - a).dot(ng) < 0.0)) return -1.0;
     return std::acos(std::clamp(nf.dot(ng), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+/// The fan of triangles closing a polygon of column directions \p dirs (as a corner's cells
+/// on the wall are: a tetrahedron per triangle) whose worst triangle spans most, det(a, b, c):
+/// that worst span, and in \p from the polygon corner the fan starts at.
+double best_corner_fan(const std::vector<Vec3>& dirs, std::size_t& from) {
+    const std::size_t p = dirs.size();
+    auto span = [&](std::size_t a, std::size_t b, std::size_t c) {
+        return dirs[a % p].dot(dirs[b % p].cross(dirs[c % p]));
+    };
+    double best = -2.0;
+    from = 0;
+    for (std::size_t s = 0; s < p; ++s) {
+        double worst = 2.0;
+        for (std::size_t t = 1; t + 1 < p; ++t) worst = std::min(worst, span(s, s + t, s + t + 1));
+        if (worst > best) best = worst, from = s;
+    }
+    return best;
 }
 
 /// Whether face \p f goes from \p a to \p b.
@@ -209,12 +236,17 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
         const Index f = et.faces.row_begin(e)[0], g = et.faces.row_begin(e)[1];
         return unit(na + nb - into_face(wall, f, a, b) - into_face(wall, g, a, b));
     };
-    auto between = [&](Index i, const Vec3& na, const Vec3& nb, const Vec3& ref, int w) {
-        std::vector<Index> ids;
+    auto mid_directions = [](const Vec3& na, const Vec3& nb, const Vec3& ref, int w) {
+        std::vector<Vec3> dirs;
         for (int q = 1; q < w; ++q) {
             const double t = static_cast<double>(q) / w;
-            ids.push_back(add_node(i, t <= 0.5 ? slerp(na, ref, 2.0 * t) : slerp(ref, nb, 2.0 * t - 1.0)));
+            dirs.push_back(t <= 0.5 ? slerp(na, ref, 2.0 * t) : slerp(ref, nb, 2.0 * t - 1.0));
         }
+        return dirs;
+    };
+    auto between = [&](Index i, const Vec3& na, const Vec3& nb, const Vec3& ref, int w) {
+        std::vector<Index> ids;
+        for (const Vec3& d : mid_directions(na, nb, ref, w)) ids.push_back(add_node(i, d));
         return ids;
     };
     auto sides = [&](Index e, Index& f, Index& g) {
@@ -222,6 +254,39 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
         f = et.faces.row_begin(e)[0], g = et.faces.row_begin(e)[1];
         if (!goes(wall, f, a, b)) std::swap(f, g);
     };
+    // A node with two fan edges where the chain turns sharply (kChainTurnDeg) is split like a
+    // corner: each edge gets its own columns, and a polygon closes them, where that polygon's
+    // cells span well (kCornerSpan; else the shared columns stay). Both edges are of one run,
+    // so of one wedge count; with one wedge there are no columns between to share.
+    std::vector<char> split(un, 0);
+    for (std::size_t i = 0; i < un; ++i) {
+        if (at[i].size() != 2 || wedges[static_cast<std::size_t>(at[i][0])] < 2) continue;
+        const Index ii = static_cast<Index>(i);
+        Index lo = kNone, hi = kNone;
+        for (auto it = sector_node.lower_bound({ii, std::numeric_limits<Index>::min()});
+             it != sector_node.end() && it->first.first == ii; ++it)
+            lo = lo == kNone ? it->second : std::min(lo, it->second), hi = std::max(hi, it->second);
+        if (lo == hi) continue;
+        const Vec3& nl = out.direction[static_cast<std::size_t>(lo)];
+        const Vec3& nh = out.direction[static_cast<std::size_t>(hi)];
+        const Vec3 r0 = reference(at[i][0], nl, nh), r1 = reference(at[i][1], nl, nh);
+        if (std::acos(std::clamp(r0.dot(r1), -1.0, 1.0)) * 180.0 / std::numbers::pi <= kChainTurnDeg) continue;
+        std::vector<Vec3> poly{nl};
+        const int w = wedges[static_cast<std::size_t>(at[i][0])];
+        for (const Vec3& d : mid_directions(nl, nh, r0, w)) poly.push_back(d);
+        poly.push_back(nh);
+        const std::vector<Vec3> back = mid_directions(nl, nh, r1, w);
+        poly.insert(poly.end(), back.rbegin(), back.rend());
+        std::size_t from = 0;
+        const double fwd = best_corner_fan(poly, from);
+        std::reverse(poly.begin(), poly.end());
+        split[i] = std::max(fwd, best_corner_fan(poly, from)) >= kCornerSpan;
+    }
+    auto cornered = [&](Index i) {
+        return at[static_cast<std::size_t>(i)].size() > 2 || split[static_cast<std::size_t>(i)];
+    };
+    for (std::size_t i = 0; i < un; ++i) out.corners += split[i];
+
     auto column_run = [&](Index i, Index e) {
         Index f = kNone, g = kNone;
         sides(e, f, g);
@@ -230,7 +295,7 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
                    &ng = out.direction[static_cast<std::size_t>(sg)];
         const int w = wedges[static_cast<std::size_t>(e)];
         std::vector<Index> run{sf};
-        if (at[static_cast<std::size_t>(i)].size() == 2) {
+        if (!cornered(i)) {
             const Index lo = std::min(sf, sg), hi = std::max(sf, sg);
             auto it = shared.find(i);
             if (it == shared.end()) {
@@ -267,8 +332,8 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
         for (std::size_t q = 0; q + 1 < ra.size(); ++q) {
             out.mesh.add_face({rb[q], ra[q], ra[q + 1], rb[q + 1]}, wall.face_patch[f]);
             out.fan_face.push_back(1);
-            if (at[static_cast<std::size_t>(a)].size() > 2) corner_edges[a].push_back({ra[q], ra[q + 1]});
-            if (at[static_cast<std::size_t>(b)].size() > 2) corner_edges[b].push_back({rb[q + 1], rb[q]});
+            if (cornered(a)) corner_edges[a].push_back({ra[q], ra[q + 1]});
+            if (cornered(b)) corner_edges[b].push_back({rb[q + 1], rb[q]});
         }
     }
     // At a corner the fans' quads leave a polygon of the node's columns open: close it (as
@@ -292,19 +357,13 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
         // directions it spans, det(a, b, c). A quad whose every corner spans well stays one;
         // otherwise the fan of triangles whose worst triangle spans most.
         const std::size_t p = poly.size();
+        std::vector<Vec3> dirs;
+        for (const Index c : poly) dirs.push_back(out.direction[static_cast<std::size_t>(c)]);
         auto span = [&](std::size_t a, std::size_t b, std::size_t c) {
-            const Vec3& x = out.direction[static_cast<std::size_t>(poly[a % p])];
-            const Vec3& y = out.direction[static_cast<std::size_t>(poly[b % p])];
-            const Vec3& z = out.direction[static_cast<std::size_t>(poly[c % p])];
-            return x.dot(y.cross(z));
+            return dirs[a % p].dot(dirs[b % p].cross(dirs[c % p]));
         };
-        double best = -2.0;
         std::size_t from = 0;
-        for (std::size_t s = 0; s < p; ++s) {
-            double worst = 2.0;
-            for (std::size_t t = 1; t + 1 < p; ++t) worst = std::min(worst, span(s, s + t, s + t + 1));
-            if (worst > best) best = worst, from = s;
-        }
+        const double best = best_corner_fan(dirs, from);
         if (best < kCornerSpan) {
             // Too flat: drop the corner's fan edge that turns least, and try again.
             Index weakest = kNone;

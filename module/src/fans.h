@@ -5,10 +5,10 @@
 // node instead gets a column per side of its sharp edges (along that side's normal) and
 // columns between them; the wall given to the marching gets, along each sharp edge, a strip
 // of quads of zero area between those columns, and at a corner where three or more such
-// edges meet a polygon closing them. On the wall (level 0) all of a node's columns start at
-// the node itself, so the cells there collapse to standard ones (collapse_cell): wedges
-// (prisms) along the edges, a tetrahedron or pyramid at a corner; above, they are ordinary
-// prisms and hexahedra.
+// edges meet (or two, where their chain turns sharply) a polygon closing them. On the wall
+// (level 0) all of a node's columns start at the node itself, so the cells there collapse to
+// standard ones (collapse_cell): wedges (prisms) along the edges, a tetrahedron or pyramid at
+// a corner; above, they are ordinary prisms and hexahedra.
 
 #include <strata/core/cell_quality.h>
 #include <strata/core/surface_mesh.h>
@@ -26,7 +26,7 @@ struct FanWall {
     std::vector<char> fan_face;   ///< per face of mesh: 1 for a face of a fan (zero area on the wall)
     Index fan_edges = 0;          ///< wall edges with a fan
     Index fan_nodes = 0;          ///< wall nodes split into fans
-    Index corners = 0;            ///< of those, corners (three or more fan edges)
+    Index corners = 0;            ///< of those, corners (three or more fan edges, or two turning sharply)
     Index columns = 0;            ///< columns added (mesh nodes beyond the wall's)
     bool empty() const { return fan_edges == 0; }
 };
@@ -37,7 +37,9 @@ struct FanWall {
 /// end without closing (a node with a single fan edge cannot be split) and nodes on the
 /// wall's open boundary \p loops and the nodes \p excluded marks (empty or one per wall node),
 /// and the fan edges of corners whose sides' normals lie nearly in one plane. Each edge gets
-/// ceil(turn / 90°) wedges. Empty (fan_edges 0) if no edge qualifies or \p fan_angle_deg is 0.
+/// ceil(turn / 90°) wedges. A node with two fan edges whose outward bisectors are more than 90°
+/// apart (a delta wing's apex) is closed like a corner, each edge with its own columns.
+/// Empty (fan_edges 0) if no edge qualifies or \p fan_angle_deg is 0.
 FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_deg, const std::vector<char>& excluded);
 
 /// The nodes of \p wall (a fan wall: FanWall::mesh, or the wall itself) on a convex edge whose

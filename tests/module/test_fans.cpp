@@ -225,6 +225,92 @@ TEST(Fans, SharpEdgesWithoutAFanStopAtTheWall) {
     EXPECT_THROW(extrude_layers(wall, p), InputError);
 }
 
+/// A delta wing 1 long and 1.2 wide (apex at the origin, base at x = 1) with sharp leading
+/// edges, each bevelled by about 7° on both sides (a 166° turn), \p n segments along each
+/// leading edge, and a blunt base 0.02 thick: a convex solid, each triangle oriented away from
+/// an inner point.
+SurfaceMesh delta_wing(int n) {
+    SurfaceMesh m;
+    m.patches = {{"delta", PatchKind::Wall}};
+    const double t = 0.01;
+    const Vec3 apex(0, 0, 0), left(1, -0.6, 0), right(1, 0.6, 0);
+    // Per level z = +t (upper) and -t (lower): the inset triangle's apex and base corners.
+    auto inset = [&](double z, double y) {
+        return std::array<Vec3, 3>{Vec3(0.16, 0, z), Vec3(1, -y, z), Vec3(1, y, z)};
+    };
+    auto add = [&](const Vec3& x) {
+        m.points.push_back(x);
+        return static_cast<Index>(m.points.size() - 1);
+    };
+    const Vec3 inner(0.6, 0, 0);
+    auto tri = [&](Index a, Index b, Index c) {
+        const Vec3 nrm = (m.points[b] - m.points[a]).cross(m.points[c] - m.points[a]);
+        if (nrm.dot(m.points[a] - inner) > 0.0)
+            m.add_face({a, b, c}, 0);
+        else
+            m.add_face({a, c, b}, 0);
+    };
+    std::vector<Index> le_left, le_right;  // apex first
+    le_left.push_back(add(apex));
+    le_right.push_back(le_left[0]);
+    for (int k = 1; k <= n; ++k) {
+        le_left.push_back(add(apex + (left - apex) * (static_cast<double>(k) / n)));
+        le_right.push_back(add(apex + (right - apex) * (static_cast<double>(k) / n)));
+    }
+    for (const double z : {t, -t}) {
+        const auto in = inset(z, 0.48);
+        std::vector<Index> il, ir;  // the inset's sides, from its apex
+        il.push_back(add(in[0]));
+        ir.push_back(il[0]);
+        for (int k = 1; k <= n; ++k) {
+            il.push_back(add(in[0] + (in[1] - in[0]) * (static_cast<double>(k) / n)));
+            ir.push_back(add(in[0] + (in[2] - in[0]) * (static_cast<double>(k) / n)));
+        }
+        for (int k = 0; k < n; ++k) {
+            // Bevels: between the leading edge and the inset's side.
+            for (const auto* side : {&le_left, &le_right}) {
+                const auto& le = *side;
+                const auto& is = side == &le_left ? il : ir;
+                tri(le[k], le[k + 1], is[k + 1]);
+                tri(le[k], is[k + 1], is[k]);
+            }
+            // The flat face between the inset's sides (a triangle at the apex).
+            tri(il[k], il[k + 1], ir[k + 1]);
+            if (k > 0) tri(il[k], ir[k + 1], ir[k]);
+        }
+        // The base: the leading edges' ends and the inset's corners.
+        tri(le_left[n], il[n], ir[n]);
+        tri(le_left[n], ir[n], le_right[n]);
+    }
+    return m;
+}
+
+TEST(Fans, ALeadingEdgeChainTurningAtTheApexIsSplitThereLikeACorner) {
+    // A delta wing's two sharp leading edges meet at its apex at 62°. The chain through the
+    // apex shared its columns between there: the wedges on both edges twisted by half the
+    // 118° the chain turns, their faces skewed beyond checkMesh's 4, the apex's fan went, and
+    // with it (a chain cannot end) the fans of both leading edges, whose columns then stopped
+    // at the wall. The apex now gets each edge's columns and a polygon closing them.
+    const SurfaceMesh wall = delta_wing(12);
+    ASSERT_EQ(boundary_loops(wall).rows(), 0);
+    const FanWall fw = build_fans(wall, boundary_loops(wall), 150.0, {});
+    Index at_apex = 0;
+    for (Index i = 0; i < fw.mesh.num_points(); ++i) at_apex += fw.base[static_cast<std::size_t>(i)] == 0 ? 1 : 0;
+    EXPECT_EQ(at_apex, 4);  // its upper and lower sides, and one column between per leading edge
+    LayerParams p;
+    p.distribution.layers = 10;
+    p.distribution.first_height = 1e-4;
+    p.distribution.growth = 1.2;
+    const LayerMesh lm = extrude_layers(wall, p);
+    EXPECT_TRUE(lm.fans_skewed.empty());
+    EXPECT_TRUE(lm.fans_dropped.empty());
+    EXPECT_EQ(lm.fan_edges, fw.fan_edges);
+    for (Index i = 0; i < lm.wall_nodes(); ++i)
+        EXPECT_EQ(lm.node_layers(i), 10) << wall.points[static_cast<std::size_t>(i)];
+    EXPECT_GT(layer_cell_quality(lm, CellType::Hex), 0.3);
+    EXPECT_GT(layer_cell_quality(lm), 0.8 * best_prism(wall));
+}
+
 TEST(Fans, NoFanWhereTheNodesAreExcluded) {
     const SurfaceMesh wall = blade(8, 10.0);
     std::vector<char> excluded(static_cast<std::size_t>(wall.num_points()), 0);

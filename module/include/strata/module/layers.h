@@ -150,7 +150,7 @@ public:
     std::vector<char> held_back;          ///< per wall node, 1 if some layer held it back (hold_back)
     Index fan_edges = 0;                  ///< edges of the input wall with a fan (LayerParams::fan_angle_deg)
     Index fan_nodes = 0;                  ///< nodes of the input wall split into a fan's columns
-    Index fan_corners = 0;                ///< of those, corners where three or more fan edges meet
+    Index fan_corners = 0;                ///< of those, corners: three or more fan edges, or two turning sharply
     std::vector<char> fan_column;         ///< empty, or per wall node 1 for a column of a fan
     /// Nodes of the input surface with no fan because its first cells would have been unusable
     /// (ascending; layer_report lists them with their positions).
