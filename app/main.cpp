@@ -403,41 +403,65 @@ void print_wall_sizing(const strata::WallSizeReport& w) {
             strata::format_number(w.cap, 3).c_str());
 }
 
-/// What --step-quality did to the CAD walls (nothing to say when no step asked for it).
+/// What --step-quality and the fans' first wedges (--max-aspect-ratio) did to the CAD walls
+/// (nothing to say when neither asked for finer walls).
 void print_step_sizing(const strata::StepSizeReport& st) {
+    // What asked for finer walls: the steps, the fans' first wedges, or both.
+    const bool steps = st.points > 0, fans = st.fan_points > 0;
+    std::string at, why;
+    if (steps) at = "the layers step low at " + std::to_string(st.points) + " wall nodes";
+    if (fans)
+        at += std::string(steps ? "; and " : "") + "the fans' first wedges at " + std::to_string(st.fan_points) +
+              " wall nodes would exceed --max-aspect-ratio";
+    why = steps ? "the layers step low at " + std::to_string(st.points) +
+                      " wall nodes, where the cells closing the steps would be nearly flat" +
+                      (fans ? at.substr(at.find(';')) : std::string())
+                : at;
+    const std::string knob = steps ? "--step-quality " + strata::format_number(st.quality) : "their wedges";
     if (!st.failure.empty())
-        std::printf(
-            "warning: the layers step low at %d wall nodes, where the cells closing the steps would be nearly flat; "
-            "meshing the walls finer there for --step-quality %s failed, so the first surface is kept: %s\n",
-            static_cast<int>(st.points), strata::format_number(st.quality).c_str(), st.failure.c_str());
+        std::printf("warning: %s; meshing the walls finer there for %s failed, so the first surface is kept: %s\n",
+                    why.c_str(), knob.c_str(), st.failure.c_str());
     else if (st.over_budget)
         std::printf(
-            "warning: the layers step low at %d wall nodes, where the cells closing the steps would be nearly flat; "
-            "walls fine enough for --step-quality %s there would take about %.3g faces, more than Strata makes "
-            "unasked (%s times the surface's %d, at most %s): give a smaller --size there, or --step-quality 0 to "
+            "warning: %s; walls fine enough for %s there would take about %.3g faces, more than Strata makes "
+            "unasked (%s times the surface's %d, at most %s): give a smaller --size there, or %s 0 to "
             "silence this\n",
-            static_cast<int>(st.points), strata::format_number(st.quality).c_str(), st.faces_estimate,
-            strata::format_number(strata::kStepFacesGrowth).c_str(), static_cast<int>(st.faces_before),
-            strata::format_number(strata::CadParams{}.wall_faces_budget).c_str());
+            why.c_str(), knob.c_str(), st.faces_estimate, strata::format_number(strata::kStepFacesGrowth).c_str(),
+            static_cast<int>(st.faces_before), strata::format_number(strata::CadParams{}.wall_faces_budget).c_str(),
+            steps ? "--step-quality" : "--max-aspect-ratio");
     else if (st.kept)
         std::printf(
-            "steps: the layers step low at %d wall nodes; walls meshed finer there for --step-quality %s were "
-            "dropped, as their layers would reach %.1f %% of the thickness asked instead of %.1f %% (the gap, "
-            "better resolved, limits the layers round it more)\n",
-            static_cast<int>(st.points), strata::format_number(st.quality).c_str(), 100.0 * st.thickness_after,
-            100.0 * st.thickness_before);
-    else if (st.points > 0)
+            "steps: %s; walls meshed finer there for %s were dropped, as their layers would reach %.1f %% of the "
+            "thickness asked instead of %.1f %% (the gap, better resolved, limits the layers round it more)\n",
+            at.c_str(), knob.c_str(), 100.0 * st.thickness_after, 100.0 * st.thickness_before);
+    else if (steps || fans) {
+        std::string around, aim;
+        if (steps) {
+            around = std::to_string(st.points) + " wall nodes where the layers step low";
+            aim = "a step's layer height is at least --step-quality " + strata::format_number(st.quality) +
+                  " of the wall spacing";
+        }
+        if (fans) {
+            around += std::string(steps ? " and " : "") + std::to_string(st.fan_points) + (steps ? "" : " wall nodes") +
+                      " at the ends of fan edges";
+            aim += std::string(steps ? ", and " : "") + "the fans' first wedges stay under --max-aspect-ratio";
+        }
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.2f s", st.seconds);
+        const std::string note = (steps ? std::string(fans ? "the cells closing a step" : "the cells closing it") +
+                                              " reach about half of that; "
+                                        : std::string()) +
+                                 seconds;
         std::printf(
-            "steps: walls meshed again finer around %d wall nodes where the layers step low (sizes down to %s%s), "
-            "%d -> %d faces, so that a step's layer height is at least --step-quality %s of the wall spacing (the "
-            "cells closing it reach about half of that; %.2f s)\n",
-            static_cast<int>(st.points), strata::format_number(st.smallest, 3).c_str(),
+            "steps: walls meshed again finer around %s (sizes down to %s%s), %d -> %d faces, so that %s "
+            "(%s)\n",
+            around.c_str(), strata::format_number(st.smallest, 3).c_str(),
             st.raised > 1.0 ? (", raised " + strata::format_number(st.raised, 3) + "-fold to stay within " +
                                strata::format_number(strata::kStepFacesGrowth) + " times the faces")
                                   .c_str()
                             : "",
-            static_cast<int>(st.faces_before), static_cast<int>(st.faces_after),
-            strata::format_number(st.quality).c_str(), st.seconds);
+            static_cast<int>(st.faces_before), static_cast<int>(st.faces_after), aim.c_str(), note.c_str());
+    }
 }
 
 /// A surface mesh kept as it is (neither CAD nor --remesh, whose walls --max-aspect-ratio sizes):

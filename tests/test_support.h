@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -142,6 +143,35 @@ inline SurfaceMesh quad_grid(int nx, int ny, double h = 1.0) {
     auto id = [nx](int i, int j) { return static_cast<Index>(j * (nx + 1) + i); };
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) m.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}, 0);
+    return m;
+}
+
+/// A blade along y (0..1, \p ny segments): its section a triangle of apex angle \p apex_deg
+/// with the sharp edge at x = 1 and the blunt base at x = 0, closed by triangular end caps;
+/// triangles, normals out of the blade.
+inline SurfaceMesh blade(int ny, double apex_deg) {
+    const double t = std::tan(0.5 * apex_deg * std::numbers::pi / 180.0);
+    SurfaceMesh m;
+    m.patches = {{"blade", PatchKind::Wall}};
+    for (int j = 0; j <= ny; ++j) {
+        const double y = static_cast<double>(j) / ny;
+        m.points.push_back(Vec3(0.0, y, -t));   // 3j: base, lower
+        m.points.push_back(Vec3(0.0, y, t));    // 3j + 1: base, upper
+        m.points.push_back(Vec3(1.0, y, 0.0));  // 3j + 2: the sharp edge
+    }
+    auto quad = [&](Index a, Index b, Index c, Index d) {
+        m.add_face({a, b, c}, 0);
+        m.add_face({a, c, d}, 0);
+    };
+    for (Index j = 0; j < ny; ++j) {
+        const Index bl = 3 * j, bu = bl + 1, a = bl + 2, n = 3;
+        quad(bu, a, a + n, bu + n);    // upper
+        quad(bl, bl + n, a + n, a);    // lower
+        quad(bl, bu, bu + n, bl + n);  // base
+    }
+    const Index e = 3 * static_cast<Index>(ny);
+    m.add_face({0, 2, 1}, 0);
+    m.add_face({e, e + 1, e + 2}, 0);
     return m;
 }
 

@@ -47,29 +47,31 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
     }
     StepSizeReport steps;
     const auto t0 = std::chrono::steady_clock::now();
+    const bool planned = (params.cad.step_quality > 0.0 || params.cad.max_aspect_ratio > 0.0) && any_cad_input(inputs);
     const auto done = [&](SurfaceMesh result, const PrepareReport& r) {
-        if (steps.quality > 0.0)
-            steps.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (planned) steps.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (report) {
             *report = r;
             report->steps = steps;
         }
         return result;
     };
-    if (!(params.cad.step_quality > 0.0) || !any_cad_input(inputs)) return done(std::move(surface), first_report);
+    if (!planned) return done(std::move(surface), first_report);
     steps.quality = params.cad.step_quality;
     steps.faces_before = steps.faces_after = surface.num_faces();
 
     std::vector<SizePoint> points;
     double share_before = 1.0;
     try {
-        StepPlan plan = step_plan(surface, mesh, params.cad.step_quality);
+        StepPlan plan = step_plan(surface, mesh, params.cad.step_quality, params.cad.max_aspect_ratio);
         points = std::move(plan.points);
+        steps.points = static_cast<Index>(points.size());
+        steps.fan_points = static_cast<Index>(plan.fan_points.size());
+        points.insert(points.end(), plan.fan_points.begin(), plan.fan_points.end());
         share_before = plan.thickness_share;
     } catch (const Error&) {  // the layers cannot be planned (an open surface): build_hybrid_mesh says why
         return done(std::move(surface), first_report);
     }
-    steps.points = static_cast<Index>(points.size());
     if (points.empty()) return done(std::move(surface), first_report);
 
     // Within the faces budget, and at most kStepFacesGrowth times the faces the surface has:

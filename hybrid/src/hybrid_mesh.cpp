@@ -612,7 +612,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     return mesh;
 }
 
-StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double quality) {
+StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double quality, double max_aspect_ratio) {
     bool has_outer = false, half = false, internal = false;
     SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, half, internal);
     if (has_outer) split_into_planes(surface);  // as build_hybrid_mesh marches them
@@ -621,7 +621,8 @@ StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double 
     const ProximityPlan plan = proximity_plan(surface, layer_params);
     const std::vector<double> heights = layer_heights(params.layers.distribution);
     StepPlan out;
-    out.points = step_sizes(surface, plan, heights, quality);
+    if (quality > 0.0) out.points = step_sizes(surface, plan, heights, quality);
+    if (!heights.empty()) out.fan_points = fan_wedge_sizes(surface, plan, heights.front(), max_aspect_ratio);
     // Thickness per level, and each wall face's area shared among its nodes.
     std::vector<double> reached(heights.size() + 1, 0.0);
     for (std::size_t k = 0; k < heights.size(); ++k) reached[k + 1] = reached[k] + heights[k];

@@ -920,6 +920,17 @@ ProximityPlan proximity_plan(const SurfaceMesh& surface, const LayerParams& para
         plan.levels[v] = std::min(plan.levels[v], max_levels[i]);
         if (max_levels[i] < params.distribution.layers && reason[i] == Shortfall::Proximity) plan.proximity[v] = 1;
     }
+    // A strip quad of a fan is (b's column, a's column, a's next column, b's next column)
+    // (fans.cpp); a corner's polygon has one wall node and no wedge along an edge.
+    for (Index f = 0; f < w.mesh.num_faces(); ++f) {
+        if (fans.fan_face.empty() || !fans.fan_face[static_cast<std::size_t>(f)] || w.mesh.face_size(f) != 4) continue;
+        const Index* c = w.mesh.face_begin(f);
+        const auto base = [&](int k) { return fans.base[static_cast<std::size_t>(c[k])]; };
+        if (base(0) == base(1) || base(1) != base(2) || base(0) != base(3)) continue;
+        plan.fan_wedges.push_back(
+            {w.input_node[static_cast<std::size_t>(base(1))], w.input_node[static_cast<std::size_t>(base(0))],
+             fans.direction[static_cast<std::size_t>(c[1])], fans.direction[static_cast<std::size_t>(c[2])]});
+    }
     return plan;
 }
 

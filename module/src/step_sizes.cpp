@@ -1,9 +1,12 @@
 #include <strata/core/error.h>
 #include <strata/core/format.h>
+#include <strata/core/solver_checks.h>
 #include <strata/module/step_sizes.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace strata {
 
@@ -34,6 +37,31 @@ std::vector<SizePoint> step_sizes(const SurfaceMesh& wall, const ProximityPlan& 
         }
     }
     std::vector<SizePoint> points;
+    for (std::size_t i = 0; i < n; ++i)
+        if (std::isfinite(size[i]) && size[i] > 0.0) points.push_back({wall.points[i], size[i]});
+    return points;
+}
+
+std::vector<SizePoint> fan_wedge_sizes(const SurfaceMesh& wall, const ProximityPlan& plan, double first_height,
+                                       double max_aspect_ratio) {
+    std::vector<SizePoint> points;
+    if (!(first_height > 0.0) || !(max_aspect_ratio > 0.0)) return points;
+    const auto n = static_cast<std::size_t>(wall.num_points());
+    std::vector<double> size(n, std::numeric_limits<double>::infinity());
+    for (const ProximityPlan::FanWedge& e : plan.fan_wedges) {
+        if (e.a < 0 || e.b < 0 || static_cast<std::size_t>(e.a) >= n || static_cast<std::size_t>(e.b) >= n)
+            throw InputError("fan_wedge_sizes: a wedge on nodes " + std::to_string(e.a) + " and " +
+                             std::to_string(e.b) + " of a surface of " + std::to_string(n));
+        // A wedge narrower than kFanWedgeMinDeg is flat whatever its edge (its figure grows as
+        // 1 / sin of its angle): no wall spacing mends it, and asking one did harm.
+        if (e.d1.dot(e.d2) > std::cos(kFanWedgeMinDeg * std::numbers::pi / 180.0)) continue;
+        const Vec3 &pa = wall.points[static_cast<std::size_t>(e.a)], &pb = wall.points[static_cast<std::size_t>(e.b)];
+        const double ar = fan_wedge_aspect_ratio(pa, pb, e.d1, e.d2, first_height);
+        if (!(ar > max_aspect_ratio) || !std::isfinite(ar)) continue;
+        const double want = (pb - pa).norm() * kStepSizeShare * max_aspect_ratio / ar;
+        for (const Index v : {e.a, e.b})
+            size[static_cast<std::size_t>(v)] = std::min(size[static_cast<std::size_t>(v)], want);
+    }
     for (std::size_t i = 0; i < n; ++i)
         if (std::isfinite(size[i]) && size[i] > 0.0) points.push_back({wall.points[i], size[i]});
     return points;

@@ -396,10 +396,10 @@ py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double sec
                      "moved"_a = r.sew.moved, "rejected"_a = r.sew.rejected, "gap_before"_a = r.sew.gap_before,
                      "first_tolerance"_a = r.sew.first_tolerance),
         "steps"_a =
-            py::dict("quality"_a = r.steps.quality, "points"_a = r.steps.points, "smallest"_a = r.steps.smallest,
-                     "faces_before"_a = r.steps.faces_before, "faces_after"_a = r.steps.faces_after,
-                     "faces_estimate"_a = r.steps.faces_estimate, "raised"_a = r.steps.raised,
-                     "over_budget"_a = r.steps.over_budget, "failure"_a = r.steps.failure,
+            py::dict("quality"_a = r.steps.quality, "points"_a = r.steps.points, "fan_points"_a = r.steps.fan_points,
+                     "smallest"_a = r.steps.smallest, "faces_before"_a = r.steps.faces_before,
+                     "faces_after"_a = r.steps.faces_after, "faces_estimate"_a = r.steps.faces_estimate,
+                     "raised"_a = r.steps.raised, "over_budget"_a = r.steps.over_budget, "failure"_a = r.steps.failure,
                      "thickness_before"_a = r.steps.thickness_before, "thickness_after"_a = r.steps.thickness_after,
                      "kept"_a = r.steps.kept, "seconds"_a = r.steps.seconds));
 }

@@ -760,6 +760,26 @@ TEST(Cli, HexahedraOverWarpedQuadsAreSplitIntoPrisms) {
                                 "--fuse --layers 20 --growth 1.2 --first-height 2.5e-4");
 }
 
+TEST(Cli, ADeltaWingKeepsItsLeadingEdgeFansAndTheirWedgesPassCheckMesh) {
+    // The sweep's delta wing, 30 layers from 1e-4: its sharp leading edges' fan chain turns 118
+    // degrees at the apex, where shared columns twisted the wedges until checkMesh found them
+    // skewed; that fan went and with it every leading-edge fan (their columns stopped at the
+    // wall). The apex is now closed like a corner. The chain closes through the blunt base's 90
+    // degree edges, whose wedges (edges of 0.074 under 1e-4) reached aspect ratio 2089: the
+    // walls there are meshed again finer for them from the fans the layers build.
+    test::ScratchDir dir("cli_delta");
+    const CliResult r = strata_cli(
+        dir, "mesh '" + example_data("../sweep/delta.geo") + "' --layers 30 --growth 1.2 --first-height 1e-4 -o d.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out.find("no fan at"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("at the ends of fan edges"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    const std::string rep = slurp(dir.file("d.msh.report.json"));
+    EXPECT_NE(rep.find("\"short_nodes\": []"), std::string::npos) << "every column has every layer";
+    EXPECT_GT(report_min_quality(rep, "pyramid"), 0.1) << r.out;
+    EXPECT_GT(report_min_quality(rep, "tetrahedron"), 0.02) << r.out;
+}
+
 TEST(Cli, AFanWhoseCellsCheckMeshFindsSkewedIsDropped) {
     // The wing-fuselage at its default size (426 wall faces), 10 layers from 1e-3 of its length:
     // the wing's leading edge (151 degrees on so coarse a wall) seeds a fan chain that closes

@@ -13,6 +13,7 @@
 
 #include "fans.h"
 #include "same_bytes.h"
+#include "test_support.h"
 
 #include <cmath>
 #include <limits>
@@ -20,35 +21,6 @@
 
 namespace strata {
 namespace {
-
-/// A blade along y (0..1, \p ny segments): its section a triangle of apex angle \p apex_deg
-/// with the sharp edge at x = 1 and the blunt base at x = 0, closed by triangular end caps;
-/// triangles, normals out of the blade.
-SurfaceMesh blade(int ny, double apex_deg) {
-    const double t = std::tan(0.5 * apex_deg * std::numbers::pi / 180.0);
-    SurfaceMesh m;
-    m.patches = {{"blade", PatchKind::Wall}};
-    for (int j = 0; j <= ny; ++j) {
-        const double y = static_cast<double>(j) / ny;
-        m.points.push_back(Vec3(0.0, y, -t));   // 3j: base, lower
-        m.points.push_back(Vec3(0.0, y, t));    // 3j + 1: base, upper
-        m.points.push_back(Vec3(1.0, y, 0.0));  // 3j + 2: the sharp edge
-    }
-    auto quad = [&](Index a, Index b, Index c, Index d) {
-        m.add_face({a, b, c}, 0);
-        m.add_face({a, c, d}, 0);
-    };
-    for (Index j = 0; j < ny; ++j) {
-        const Index bl = 3 * j, bu = bl + 1, a = bl + 2, n = 3;
-        quad(bu, a, a + n, bu + n);    // upper
-        quad(bl, bl + n, a + n, a);    // lower
-        quad(bl, bu, bu + n, bl + n);  // base
-    }
-    const Index e = 3 * static_cast<Index>(ny);
-    m.add_face({0, 2, 1}, 0);
-    m.add_face({e, e + 1, e + 2}, 0);
-    return m;
-}
 
 LayerParams blade_layers(double fan_angle) {
     LayerParams p;
@@ -74,7 +46,7 @@ double best_prism(const SurfaceMesh& wall) {
 }
 
 TEST(Fans, TheBladesEdgeAndTheLoopsClosingItGetFansAndItsCornersGetPolygons) {
-    const SurfaceMesh wall = blade(8, 10.0);
+    const SurfaceMesh wall = test::blade(8, 10.0);
     const FanWall fw = build_fans(wall, boundary_loops(wall), 120.0, {});
     // The sharp edge (8 edges), the base's two edges (16) and the caps' three (6).
     EXPECT_EQ(fw.fan_edges, 30);
@@ -107,7 +79,7 @@ TEST(Fans, TheBladesEdgeAndTheLoopsClosingItGetFansAndItsCornersGetPolygons) {
 }
 
 TEST(Fans, LiftTheQualityCapOfOneDirectionAtASharpEdge) {
-    const SurfaceMesh wall = blade(8, 10.0);
+    const SurfaceMesh wall = test::blade(8, 10.0);
     const LayerMesh with = extrude_layers(wall, blade_layers(120.0));
     EXPECT_EQ(with.fan_edges, 30);
     // With fans every column has every layer and every cell is near-orthogonal. With one
@@ -120,7 +92,7 @@ TEST(Fans, LiftTheQualityCapOfOneDirectionAtASharpEdge) {
     EXPECT_GT(layer_cell_quality(with), 0.8 * best_prism(wall));
     EXPECT_THROW(extrude_layers(wall, blade_layers(0.0)), TopologyError);
     // A blunter blade (40°) without fans grows, its sharp edge's cells poor or its columns short.
-    const SurfaceMesh blunt = blade(8, 40.0);
+    const SurfaceMesh blunt = test::blade(8, 40.0);
     LayerParams single = blade_layers(0.0);
     single.sharp_edge_stop_deg = 0.0;  // one direction at the sharp edge (else it stops at the wall, below)
     const LayerMesh without = extrude_layers(blunt, single);
@@ -146,14 +118,14 @@ TEST(Fans, LiftTheQualityCapOfOneDirectionAtASharpEdge) {
 }
 
 TEST(Fans, TheSameBytesForAnyThreadCount) {
-    test::expect_same_bytes_for_any_thread_count(blade(8, 10.0), blade_layers(120.0));
+    test::expect_same_bytes_for_any_thread_count(test::blade(8, 10.0), blade_layers(120.0));
 }
 
 TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
     // The sharp edge's middle node may not have a single layer (its limit is below the first
     // height): a fan there would have coincident columns on the front, so none is built there,
     // the chain through it goes too, and the run says how many nodes lost their fan.
-    const SurfaceMesh wall = blade(8, 40.0);  // grows without fans too
+    const SurfaceMesh wall = test::blade(8, 40.0);  // grows without fans too
     LayerParams p = blade_layers(120.0);
     p.sharp_edge_stop_deg = 0.0;  // the edges whose fans go keep one direction, and grow
     p.node_thickness_limit.assign(static_cast<std::size_t>(wall.num_points()), std::numeric_limits<double>::infinity());
@@ -188,7 +160,7 @@ TEST(Fans, SharpEdgesWithoutAFanStopAtTheWall) {
     // A 40° blade without fans: its sharp edge turns 140°, its base's edges 110°. From
     // sharp_edge_stop_deg on, the nodes of such an edge stop at the wall (the faces between
     // the two sides' cells would be skewed), the others grow, and the report says why.
-    const SurfaceMesh wall = blade(8, 40.0);
+    const SurfaceMesh wall = test::blade(8, 40.0);
     LayerParams p = blade_layers(0.0);
     p.sharp_edge_stop_deg = 120.0;
     const LayerMesh lm = extrude_layers(wall, p);
@@ -312,7 +284,7 @@ TEST(Fans, ALeadingEdgeChainTurningAtTheApexIsSplitThereLikeACorner) {
 }
 
 TEST(Fans, NoFanWhereTheNodesAreExcluded) {
-    const SurfaceMesh wall = blade(8, 10.0);
+    const SurfaceMesh wall = test::blade(8, 10.0);
     std::vector<char> excluded(static_cast<std::size_t>(wall.num_points()), 0);
     excluded[2] = 1;  // a corner of the sharp edge: its chain cannot close there, nor anything through it
     const FanWall fw = build_fans(wall, boundary_loops(wall), 120.0, excluded);

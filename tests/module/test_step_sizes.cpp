@@ -3,11 +3,15 @@
 // so the columns there have fewer layers, one less per node towards the narrow end.
 
 #include <strata/core/error.h>
+#include <strata/core/solver_checks.h>
 #include <strata/module/distribution.h>
 #include <strata/module/layers.h>
 #include <strata/module/step_sizes.h>
 
 #include <gtest/gtest.h>
+
+#include <map>
+#include <numbers>
 
 #include "test_support.h"
 
@@ -107,6 +111,61 @@ TEST(StepSizes, BadQualityOrPlanIsAnInputError) {
     ProximityPlan short_plan = plan;
     short_plan.levels.pop_back();
     EXPECT_THROW(step_sizes(m, short_plan, heights, 0.1), InputError);
+}
+
+TEST(StepSizes, FanWedgesFlatterThanTheLimitAskForShorterEdges) {
+    // A blade whose sharp edge turns 170 degrees (fans at 150), closed by its base (95) and end
+    // caps (90), in segments of 0.125 along y: under a first layer of 1e-4 a fan's first wedge
+    // along y is about 2L / (h sin w), near 2500, where checkMesh fails above 1000. Each end of
+    // such an edge asks the length that brings its wedge to 0.7 of the limit.
+    const SurfaceMesh wall = test::blade(8, 10.0);
+    LayerParams p = ten_layers();
+    p.distribution.first_height = 1e-4;
+    p.fan_angle_deg = 150.0;
+    const ProximityPlan plan = proximity_plan(wall, p);
+    ASSERT_FALSE(plan.fan_wedges.empty());
+    const std::vector<SizePoint> points = fan_wedge_sizes(wall, plan, 1e-4, 1000.0);
+    ASSERT_FALSE(points.empty());
+    std::map<Index, double> asked;  // node → the smallest length its wedges ask
+    int along_y = 0;
+    for (const ProximityPlan::FanWedge& e : plan.fan_wedges) {
+        const Vec3 &a = wall.points[static_cast<std::size_t>(e.a)], &b = wall.points[static_cast<std::size_t>(e.b)];
+        const double ar = fan_wedge_aspect_ratio(a, b, e.d1, e.d2, 1e-4);
+        if (!(ar > 1000.0)) continue;  // the caps' edges, across the axes, sum to far less
+        const double want = (b - a).norm() * 700.0 / ar;
+        if (std::abs((b - a).normalized().y()) > 0.999) {
+            // Along an axis the figure grows with the edge: at the length asked, 0.7 of the limit.
+            ++along_y;
+            EXPECT_NEAR(fan_wedge_aspect_ratio(a, a + want * (b - a).normalized(), e.d1, e.d2, 1e-4), 700.0, 1.0);
+        }
+        for (const Index v : {e.a, e.b}) {
+            auto [it, fresh] = asked.emplace(v, want);
+            if (!fresh) it->second = std::min(it->second, want);
+        }
+    }
+    EXPECT_GE(along_y, 8 * 2 + 16 * 2);  // the sharp edge's two wedges and the base's, per segment
+    ASSERT_EQ(points.size(), asked.size());
+    std::size_t k = 0;
+    for (const auto& [v, want] : asked) {  // in node order, one per node
+        EXPECT_EQ(points[k].at, wall.points[static_cast<std::size_t>(v)]);
+        EXPECT_NEAR(points[k].size, want, 1e-12);
+        ++k;
+    }
+    // A wedge narrower than kFanWedgeMinDeg asks nothing: it is flat whatever its edge (here
+    // 5 degrees along y, about 14 times the figure of the 85-degree one) and no spacing mends it.
+    ProximityPlan narrow;
+    const Vec3 d1(0, 0, 1), d2(std::sin(5.0 * std::numbers::pi / 180.0), 0, std::cos(5.0 * std::numbers::pi / 180.0));
+    narrow.fan_wedges.push_back({2, 5, d1, d2});  // along the sharp edge, 0.125 long
+    ASSERT_GT(fan_wedge_aspect_ratio(wall.points[2], wall.points[5], d1, d2, 1e-4), 1000.0);
+    EXPECT_TRUE(fan_wedge_sizes(wall, narrow, 1e-4, 1000.0).empty());
+    const Vec3 d3(std::sin(20.0 * std::numbers::pi / 180.0), 0, std::cos(20.0 * std::numbers::pi / 180.0));
+    narrow.fan_wedges.front().d2 = d3;  // 20 degrees: sized
+    EXPECT_EQ(fan_wedge_sizes(wall, narrow, 1e-4, 1000.0).size(), 2u);
+    // A first layer thick enough, or no limit: nothing asked; no fans: no wedge.
+    EXPECT_TRUE(fan_wedge_sizes(wall, plan, 1e-2, 1000.0).empty());
+    EXPECT_TRUE(fan_wedge_sizes(wall, plan, 1e-4, 0.0).empty());
+    p.fan_angle_deg = 0.0;
+    EXPECT_TRUE(proximity_plan(wall, p).fan_wedges.empty());
 }
 
 }  // namespace

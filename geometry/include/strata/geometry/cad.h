@@ -129,8 +129,12 @@ struct CadParams {
 
 /// What the front-ends' prepare_for_layers did for CadParams::step_quality.
 struct StepSizeReport {
-    double quality = 0.0;       ///< asked (0: off, or no CAD input or no layers)
-    Index points = 0;           ///< wall nodes whose steps asked a finer wall (0: none, nothing meshed again)
+    double quality = 0.0;  ///< asked (0: off, or no CAD input or no layers)
+    Index points = 0;      ///< wall nodes whose steps asked a finer wall (0: none)
+    /// Wall nodes at the ends of fan edges whose first wedges would exceed
+    /// CadParams::max_aspect_ratio (fan_wedge_sizes), also meshed finer; with \p points 0 and
+    /// this 0, nothing is meshed again.
+    Index fan_points = 0;
     double smallest = 0.0;      ///< the smallest size asked, in the result's unit
     Index faces_before = 0;     ///< wall and other faces of the surface before
     Index faces_after = 0;      ///< and after meshing again

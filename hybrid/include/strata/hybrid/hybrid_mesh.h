@@ -87,7 +87,11 @@ struct StepPlan {
     /// The thickness the plan gives the walls, a share of the thickness asked, weighted by the
     /// wall area round each node (1: every column full).
     double thickness_share = 1.0;
+    /// The sizes that keep the fans' first wedges under \p max_aspect_ratio (fan_wedge_sizes);
+    /// empty where none exceeds it, or \p max_aspect_ratio is 0.
+    std::vector<SizePoint> fan_points;
 };
-StepPlan step_plan(const SurfaceMesh& surface, const HybridParams& params, double quality);
+StepPlan step_plan(const SurfaceMesh& surface, const HybridParams& params, double quality,
+                   double max_aspect_ratio = 0.0);
 
 }  // namespace strata

@@ -216,10 +216,18 @@ LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, Pro
 /// alone (LayerParams::proximity Stop; every column full otherwise): per node of \p wall, the
 /// layers that fit its limit (neighbours within one layer; LayerParams::node_thickness_limit
 /// included), and whether the proximity limit set them. Nothing is marched: the normals, the
-/// rays and the envelope only. Nodes off the walls keep every layer.
+/// rays and the envelope only. Nodes off the walls keep every layer. And the first wedge of
+/// every fan the layers would build (fans.h; before any is dropped for unusable or skewed cells).
 struct ProximityPlan {
     std::vector<int> levels;
     std::vector<char> proximity;  ///< 1: fewer layers than asked, for the proximity limit
+    /// A fan's wedge along wall edge (a, b) (nodes of the surface), between the columns of
+    /// directions d1 and d2 at a.
+    struct FanWedge {
+        Index a = kNone, b = kNone;
+        Vec3 d1 = Vec3::Zero(), d2 = Vec3::Zero();
+    };
+    std::vector<FanWedge> fan_wedges;
 };
 ProximityPlan proximity_plan(const SurfaceMesh& wall, const LayerParams& params);
 
