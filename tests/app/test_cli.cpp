@@ -880,7 +880,10 @@ TEST(Cli, QuadsRoundATinyHoleWhereBlossomWouldAbort) {
     EXPECT_NE(r.out.find("meshing the walls finer there for --step-quality 0.1 failed, so the first surface is kept"),
               std::string::npos)
         << r.out;
-    EXPECT_NE(r.out.find("Gmsh crashes (signal 11)"), std::string::npos) << r.out;
+    // A crash inside Gmsh (undefined behaviour there) need not be the same signal every run:
+    // with address-space randomisation it may abort instead (this test failed twice in
+    // hundreds of runs, its output lost); any signal is the crash this is about.
+    EXPECT_NE(r.out.find("Gmsh crashes (signal "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("were split into two triangles"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
 }
