@@ -408,15 +408,16 @@ void print_wall_sizing(const strata::WallSizeReport& w) {
 void print_step_sizing(const strata::StepSizeReport& st) {
     // What asked for finer walls: the steps, the fans' first wedges, or both.
     const bool steps = st.points > 0, fans = st.fan_points > 0;
-    std::string at, why;
-    if (steps) at = "the layers step low at " + std::to_string(st.points) + " wall nodes";
-    if (fans)
-        at += std::string(steps ? "; and " : "") + "the fans' first wedges at " + std::to_string(st.fan_points) +
-              " wall nodes would exceed --max-aspect-ratio";
-    why = steps ? "the layers step low at " + std::to_string(st.points) +
-                      " wall nodes, where the cells closing the steps would be nearly flat" +
-                      (fans ? at.substr(at.find(';')) : std::string())
-                : at;
+    const std::string step_part = steps ? "the layers step low at " + std::to_string(st.points) + " wall nodes" : "",
+                      fan_part = fans ? "the fans' first wedges at " + std::to_string(st.fan_points) +
+                                            " wall nodes would exceed --max-aspect-ratio"
+                                      : "";
+    const auto joined = [](const std::string& a, const std::string& b) {
+        return a.empty() ? b : b.empty() ? a : a + "; and " + b;
+    };
+    const std::string at = joined(step_part, fan_part),
+                      why = joined(steps ? step_part + ", where the cells closing the steps would be nearly flat" : "",
+                                   fan_part);
     const std::string knob = steps ? "--step-quality " + strata::format_number(st.quality) : "their wedges";
     if (!st.failure.empty())
         std::printf("warning: %s; meshing the walls finer there for %s failed, so the first surface is kept: %s\n",

@@ -9,6 +9,17 @@
 #include <numbers>
 
 namespace strata {
+namespace {
+
+/// A point at each node of \p wall with a finite, positive size, in node order.
+std::vector<SizePoint> points_at(const SurfaceMesh& wall, const std::vector<double>& size) {
+    std::vector<SizePoint> points;
+    for (std::size_t i = 0; i < size.size(); ++i)
+        if (std::isfinite(size[i]) && size[i] > 0.0) points.push_back({wall.points[i], size[i]});
+    return points;
+}
+
+}  // namespace
 
 std::vector<SizePoint> step_sizes(const SurfaceMesh& wall, const ProximityPlan& plan,
                                   const std::vector<double>& heights, double quality) {
@@ -36,16 +47,12 @@ std::vector<SizePoint> step_sizes(const SurfaceMesh& wall, const ProximityPlan& 
             }
         }
     }
-    std::vector<SizePoint> points;
-    for (std::size_t i = 0; i < n; ++i)
-        if (std::isfinite(size[i]) && size[i] > 0.0) points.push_back({wall.points[i], size[i]});
-    return points;
+    return points_at(wall, size);
 }
 
 std::vector<SizePoint> fan_wedge_sizes(const SurfaceMesh& wall, const ProximityPlan& plan, double first_height,
                                        double max_aspect_ratio) {
-    std::vector<SizePoint> points;
-    if (!(first_height > 0.0) || !(max_aspect_ratio > 0.0)) return points;
+    if (!(first_height > 0.0) || !(max_aspect_ratio > 0.0)) return {};
     const auto n = static_cast<std::size_t>(wall.num_points());
     std::vector<double> size(n, std::numeric_limits<double>::infinity());
     for (const ProximityPlan::FanWedge& e : plan.fan_wedges) {
@@ -62,9 +69,7 @@ std::vector<SizePoint> fan_wedge_sizes(const SurfaceMesh& wall, const ProximityP
         for (const Index v : {e.a, e.b})
             size[static_cast<std::size_t>(v)] = std::min(size[static_cast<std::size_t>(v)], want);
     }
-    for (std::size_t i = 0; i < n; ++i)
-        if (std::isfinite(size[i]) && size[i] > 0.0) points.push_back({wall.points[i], size[i]});
-    return points;
+    return points_at(wall, size);
 }
 
 }  // namespace strata
