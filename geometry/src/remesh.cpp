@@ -120,8 +120,21 @@ constexpr double kClassifySecondsPerTriangle = 2e-3;
 constexpr Index kSplitFacesMin = 200000;
 constexpr Index kSplitFacesPerFace = 4;
 
-/// An attempt whose classification ran out of its time budget (RemeshParams::classify_seconds).
-struct ClassifyTimeout : BackendError {
+/// The time budget of Gmsh's meshing of the new surfaces in one attempt (in a child process:
+/// remesh_once), seconds: a fixed part and a part per face expected (four per size squared of
+/// the input's area, twice the faces of equilateral triangles), far above what it takes where
+/// it ends (the needle M6: 0.2 s for 6,000 faces).
+constexpr double kMeshSeconds = 60.0;
+constexpr double kMeshSecondsPerFace = 1e-3;
+
+/// The seconds one attempt's two stages in Gmsh may take.
+struct Budget {
+    double classify = 0.0;
+    double mesh = 0.0;
+};
+
+/// An attempt whose classification or meshing ran out of its time budget.
+struct GmshTimeout : BackendError {
     using BackendError::BackendError;
 };
 
@@ -136,10 +149,10 @@ struct Attempt {
 };
 
 /// One run of Gmsh's route at feature angle \p angle_deg, the result checked against \p in; \p budget:
-/// the seconds its classification may take (RemeshParams::classify_seconds).
+/// the seconds its classification (RemeshParams::classify_seconds) and its meshing may take.
 Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vector<std::array<Index, 2>>& seams,
-                    const RemeshParams& p, double size, double angle_deg, double budget, const std::string& source,
-                    const WallCaps* caps = nullptr) {
+                    const RemeshParams& p, double size, double angle_deg, const Budget& budget,
+                    const std::string& source, const WallCaps* caps = nullptr) {
     const std::string ctx = source + ": remeshing with Gmsh (feature angle " + format_number(angle_deg) + " degrees)";
     // Gmsh scales its tolerances by the model's bounding box, which it computes when it reads a
     // file but not for entities made through the API (it then takes 1): the surface goes in
@@ -214,15 +227,15 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             gmsh::model::mesh::classifySurfaces(angle_deg * kPi / 180.0, true, true, kPi);
             gmsh::model::mesh::createGeometry();
         };
-        DeadlineProgress deadline(budget);
+        DeadlineProgress deadline(budget.classify);
         GmshProbe trial;
         try {
             trial = gmsh_probe(classify, &deadline);
         } catch (const Cancelled&) {
             if (!deadline.expired()) throw;
-            throw ClassifyTimeout(ctx + ": Gmsh's split of the surface for its parametrization did not end within " +
-                                  format_number(budget, 3) +
-                                  " s (it splits again and again where the triangles are poor: slivers, needles)");
+            throw GmshTimeout(ctx + ": Gmsh's split of the surface for its parametrization did not end within " +
+                              format_number(budget.classify, 3) +
+                              " s (it splits again and again where the triangles are poor: slivers, needles)");
         }
         if (trial.ran && !trial.returned && !trial.threw)
             throw BackendError(ctx + ": Gmsh's split of the surface for its parametrization " + how_it_failed(trial));
@@ -244,10 +257,23 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             for (auto& [tag, s] : scaled.curve) s /= frame.scale;
             callback.emplace(entity_sizes(scaled), 1.0);
         }
-        // Blossom may abort the process on this surface: then Gmsh's simple recombination.
+        // Blossom may abort the process on this surface: then Gmsh's simple recombination. No
+        // trial for a host's isolation: the meshing below is in a child in every case.
         out.blossom_failure =
-            try_generate_in_child(ctx, p.quads, p.isolate_gmsh, options, [] { gmsh::model::mesh::generate(2); });
-        gmsh::model::mesh::generate(2);
+            try_generate_in_child(ctx, p.quads, false, options, [] { gmsh::model::mesh::generate(2); });
+        // The meshing itself in a child too, its mesh brought back: on a surface it cannot
+        // parametrize well Gmsh can refine for ever (a helicopter's BRepMesh STL: MeshAdapt's
+        // refinement past 20 minutes and 2 GB at every angle) or abort the process ("Unable to
+        // recover the edge", thrown out of its OpenMP loop). Either is this attempt's failure.
+        DeadlineProgress mesh_deadline(budget.mesh);
+        try {
+            generate_in_child(
+                ctx, [] { gmsh::model::mesh::generate(2); }, &mesh_deadline);
+        } catch (const Cancelled&) {
+            if (!mesh_deadline.expired()) throw;
+            throw GmshTimeout(ctx + ": Gmsh's meshing of the surfaces did not end within " +
+                              format_number(budget.mesh, 3) + " s");
+        }
     });
     out.mesh = surface_from_gmsh_model("the remeshed " + source, NodeOrder::FirstUse, &face_surface);
     if (p.first_height > 0.0 && p.max_aspect_ratio > 0.0) {
@@ -380,7 +406,7 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
     std::vector<double> sizes{size};
     if (!(params.size > 0.0)) sizes.push_back(0.5 * size);
     std::string failures;
-    int out_of_time = 0;  // attempts in a row whose classification ran out of its budget
+    int out_of_time = 0;  // attempts in a row whose classification or meshing ran out of its budget
     // The input's own triangles at every angle and size, then, where all of them failed, the
     // same triangles bisected to edges no longer than the size (split_long_edges: the same
     // surface). Gmsh classifies and parametrizes the triangles it is given and can fold the new
@@ -401,10 +427,24 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
     const Input whole{&triangles, triangles_of(triangles), patch_seams(triangles), 0};
     // The classification's time budget by the input's triangles, bisected or not: it is there to
     // end Gmsh's endless splitting, not to wait longer for more triangles.
-    const double budget =
+    const double classify_budget =
         params.classify_seconds > 0.0
             ? params.classify_seconds
             : kClassifySeconds + kClassifySecondsPerTriangle * static_cast<double>(whole.tris.tri.size());
+    double area = 0.0;
+    for (const auto& t : whole.tris.tri) {
+        const Vec3 &a = triangles.points[static_cast<std::size_t>(t[0])],
+                   &b = triangles.points[static_cast<std::size_t>(t[1])],
+                   &c = triangles.points[static_cast<std::size_t>(t[2])];
+        area += 0.5 * (b - a).cross(c - a).norm();
+    }
+    // The meshing's budget by the faces expected at size h, and with the walls' sizes
+    // (refine_walls) by those the walls may take on top.
+    const auto budget_at = [&](double h, bool walls_capped) {
+        const double faces = 4.0 * area / (h * h) + (walls_capped ? params.wall_faces_budget : 0.0);
+        return Budget{classify_budget,
+                      params.mesh_seconds > 0.0 ? params.mesh_seconds : kMeshSeconds + kMeshSecondsPerFace * faces};
+    };
     for (int pass = 0; pass < 2; ++pass) {
         for (const double h : sizes) {
             SurfaceMesh fine;
@@ -427,17 +467,17 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
                     (pass == 1 ? " on the input's edges bisected to the size (" + std::to_string(in.split) + " splits)"
                                : std::string());
                 try {
-                    a = remesh_once(*in.mesh, in.tris, in.seams, params, h, angle, budget, source);
+                    a = remesh_once(*in.mesh, in.tris, in.seams, params, h, angle, budget_at(h, false), source);
                     out_of_time = 0;
                 } catch (const BackendError& e) {
                     failures += std::string(failures.empty() ? "" : "; ") + at + " Gmsh failed (" + e.what() + ")";
-                    out_of_time = dynamic_cast<const ClassifyTimeout*>(&e) ? out_of_time + 1 : 0;
+                    out_of_time = dynamic_cast<const GmshTimeout*>(&e) ? out_of_time + 1 : 0;
                     if (out_of_time == 2)
-                        throw BackendError(
-                            source + ": remeshing failed: " + failures +
-                            ". Two attempts in a row ran out of time in Gmsh's parametrization, so no more "
-                            "were made: the surface's triangles are too poor for it (slivers, needles); "
-                            "export the surface finer, or mesh the CAD model itself");
+                        throw BackendError(source + ": remeshing failed: " + failures +
+                                           ". Two attempts in a row ran out of time in Gmsh (its parametrization or "
+                                           "its meshing), so no more "
+                                           "were made: the surface's triangles are too poor for it (slivers, needles); "
+                                           "export the surface finer, or mesh the CAD model itself");
                     continue;
                 }
                 if (a->bad > 0) {
@@ -460,7 +500,8 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
                     refine_walls(limits, a->aspect, rep.walls, [&](const WallCaps& caps, WallAspect& measured) {
                         std::optional<Attempt> b;
                         try {
-                            b = remesh_once(*in.mesh, in.tris, in.seams, params, h, angle, budget, source, &caps);
+                            b = remesh_once(*in.mesh, in.tris, in.seams, params, h, angle, budget_at(h, true), source,
+                                            &caps);
                         } catch (const BackendError&) {
                             return false;
                         }

@@ -39,6 +39,7 @@
 
 #include "tetgen_library.h"
 
+#include <strata/core/bytes.h>
 #include <strata/core/child_process.h>
 #include <strata/core/error.h>
 
@@ -354,51 +355,20 @@ const Library& library() {
 /// The outcome of a run, as the child sends it.
 enum class Outcome : char { Done = 0, Code = 1, Assert = 2, NoMemory = 3, Other = 4 };
 
-/// Bytes out (child) and back in (parent).
-struct Bytes {
-    std::vector<char> data;
-    std::size_t at = 0;
-    template <class T>
-    void put(const T& v) {
-        const char* p = reinterpret_cast<const char*>(&v);
-        data.insert(data.end(), p, p + sizeof(T));
-    }
-    template <class T>
-    void put_array(const T* p, std::size_t n) {  // a presence flag, then n items if present
-        put<char>(p != nullptr);
-        if (p == nullptr) return;
-        const char* c = reinterpret_cast<const char*>(p);
-        data.insert(data.end(), c, c + n * sizeof(T));
-    }
-    void put_string(const std::string& text) {
-        put<std::uint64_t>(text.size());
-        data.insert(data.end(), text.begin(), text.end());
-    }
-    template <class T>
-    T get() {
-        T v{};
-        if (at + sizeof(T) > data.size()) throw BackendError("TetGen's child process sent a truncated result");
-        std::memcpy(&v, data.data() + at, sizeof(T));
-        at += sizeof(T);
-        return v;
-    }
-    template <class T>
-    T* get_array(std::size_t n) {  // new[]ed, as tetgenio::deinitialize delete[]s it
-        if (!get<char>()) return nullptr;
-        if (at + n * sizeof(T) > data.size()) throw BackendError("TetGen's child process sent a truncated result");
-        T* p = new T[n > 0 ? n : 1];
-        std::memcpy(p, data.data() + at, n * sizeof(T));
-        at += n * sizeof(T);
-        return p;
-    }
-    std::string get_string() {
-        const auto n = static_cast<std::size_t>(get<std::uint64_t>());
-        if (at + n > data.size()) throw BackendError("TetGen's child process sent a truncated result");
-        std::string text(data.data() + at, n);
-        at += n;
-        return text;
-    }
-};
+/// TetGen's arrays through Bytes (core/bytes.h): a presence flag, then n items if present.
+template <class T>
+void put_array(Bytes& b, const T* p, std::size_t n) {
+    b.put<char>(p != nullptr);
+    if (p != nullptr) b.append(p, n * sizeof(T));
+}
+template <class T>
+T* get_array(Bytes& b, std::size_t n) {  // new[]ed, as tetgenio::deinitialize delete[]s it
+    if (!b.get<char>()) return nullptr;
+    if (n > (b.data.size() - b.at) / sizeof(T)) b.truncated();
+    T* p = new T[n > 0 ? n : 1];
+    b.take(p, n * sizeof(T));
+    return p;
+}
 
 /// TetGen's output arrays (those its switches here can produce; the Voronoi ones are not used).
 void put_output(Bytes& b, const tetgenio& o) {
@@ -410,23 +380,23 @@ void put_output(Bytes& b, const tetgenio& o) {
                         o.numberoftetrahedra, o.numberofcorners, o.numberoftetrahedronattributes, o.numberoftrifaces,
                         o.numberofedges})
         b.put<int>(v);
-    b.put_array(o.pointlist, 3 * n);
-    b.put_array(o.pointattributelist, n * static_cast<std::size_t>(std::max(o.numberofpointattributes, 0)));
-    b.put_array(o.pointmtrlist, n * static_cast<std::size_t>(std::max(o.numberofpointmtrs, 0)));
-    b.put_array(o.pointmarkerlist, n);
-    b.put_array(o.tetrahedronlist, nt * static_cast<std::size_t>(std::max(o.numberofcorners, 0)));
-    b.put_array(o.tetrahedronattributelist,
-                nt * static_cast<std::size_t>(std::max(o.numberoftetrahedronattributes, 0)));
-    b.put_array(o.tetrahedronvolumelist, nt);
-    b.put_array(o.neighborlist, 4 * nt);
-    b.put_array(o.trifacelist, 3 * nf);
-    b.put_array(o.trifacemarkerlist, nf);
-    b.put_array(o.o2facelist, 3 * nf);
-    b.put_array(o.adjtetlist, 2 * nf);
-    b.put_array(o.edgelist, 2 * ne);
-    b.put_array(o.edgemarkerlist, ne);
-    b.put_array(o.o2edgelist, ne);
-    b.put_array(o.edgeadjtetlist, ne);
+    put_array(b, o.pointlist, 3 * n);
+    put_array(b, o.pointattributelist, n * static_cast<std::size_t>(std::max(o.numberofpointattributes, 0)));
+    put_array(b, o.pointmtrlist, n * static_cast<std::size_t>(std::max(o.numberofpointmtrs, 0)));
+    put_array(b, o.pointmarkerlist, n);
+    put_array(b, o.tetrahedronlist, nt * static_cast<std::size_t>(std::max(o.numberofcorners, 0)));
+    put_array(b, o.tetrahedronattributelist,
+              nt * static_cast<std::size_t>(std::max(o.numberoftetrahedronattributes, 0)));
+    put_array(b, o.tetrahedronvolumelist, nt);
+    put_array(b, o.neighborlist, 4 * nt);
+    put_array(b, o.trifacelist, 3 * nf);
+    put_array(b, o.trifacemarkerlist, nf);
+    put_array(b, o.o2facelist, 3 * nf);
+    put_array(b, o.adjtetlist, 2 * nf);
+    put_array(b, o.edgelist, 2 * ne);
+    put_array(b, o.edgemarkerlist, ne);
+    put_array(b, o.o2edgelist, ne);
+    put_array(b, o.edgeadjtetlist, ne);
 }
 
 void get_output(Bytes& b, tetgenio& o) {
@@ -444,23 +414,23 @@ void get_output(Bytes& b, tetgenio& o) {
     const auto nt = static_cast<std::size_t>(std::max(o.numberoftetrahedra, 0));
     const auto nf = static_cast<std::size_t>(std::max(o.numberoftrifaces, 0));
     const auto ne = static_cast<std::size_t>(std::max(o.numberofedges, 0));
-    o.pointlist = b.get_array<REAL>(3 * n);
-    o.pointattributelist = b.get_array<REAL>(n * static_cast<std::size_t>(std::max(o.numberofpointattributes, 0)));
-    o.pointmtrlist = b.get_array<REAL>(n * static_cast<std::size_t>(std::max(o.numberofpointmtrs, 0)));
-    o.pointmarkerlist = b.get_array<int>(n);
-    o.tetrahedronlist = b.get_array<int>(nt * static_cast<std::size_t>(std::max(o.numberofcorners, 0)));
+    o.pointlist = get_array<REAL>(b, 3 * n);
+    o.pointattributelist = get_array<REAL>(b, n * static_cast<std::size_t>(std::max(o.numberofpointattributes, 0)));
+    o.pointmtrlist = get_array<REAL>(b, n * static_cast<std::size_t>(std::max(o.numberofpointmtrs, 0)));
+    o.pointmarkerlist = get_array<int>(b, n);
+    o.tetrahedronlist = get_array<int>(b, nt * static_cast<std::size_t>(std::max(o.numberofcorners, 0)));
     o.tetrahedronattributelist =
-        b.get_array<REAL>(nt * static_cast<std::size_t>(std::max(o.numberoftetrahedronattributes, 0)));
-    o.tetrahedronvolumelist = b.get_array<REAL>(nt);
-    o.neighborlist = b.get_array<int>(4 * nt);
-    o.trifacelist = b.get_array<int>(3 * nf);
-    o.trifacemarkerlist = b.get_array<int>(nf);
-    o.o2facelist = b.get_array<int>(3 * nf);
-    o.adjtetlist = b.get_array<int>(2 * nf);
-    o.edgelist = b.get_array<int>(2 * ne);
-    o.edgemarkerlist = b.get_array<int>(ne);
-    o.o2edgelist = b.get_array<int>(ne);
-    o.edgeadjtetlist = b.get_array<int>(ne);
+        get_array<REAL>(b, nt * static_cast<std::size_t>(std::max(o.numberoftetrahedronattributes, 0)));
+    o.tetrahedronvolumelist = get_array<REAL>(b, nt);
+    o.neighborlist = get_array<int>(b, 4 * nt);
+    o.trifacelist = get_array<int>(b, 3 * nf);
+    o.trifacemarkerlist = get_array<int>(b, nf);
+    o.o2facelist = get_array<int>(b, 3 * nf);
+    o.adjtetlist = get_array<int>(b, 2 * nf);
+    o.edgelist = get_array<int>(b, 2 * ne);
+    o.edgemarkerlist = get_array<int>(b, ne);
+    o.o2edgelist = get_array<int>(b, ne);
+    o.edgeadjtetlist = get_array<int>(b, ne);
 }
 
 /// tetrahedralize here, its outcome into \p b; true if it succeeded.
@@ -530,6 +500,7 @@ bool in_child(const std::function<void(Bytes&)>& body, Bytes& result, const Prog
     if (!child.forked) return false;
     result.data = child.sent;
     result.at = 0;
+    result.what = "TetGen's child process";
     if (child.signal == SIGKILL)  // not its own doing: the system's
         throw BackendError("TetGen was killed (signal 9), most likely by the system for want of memory: " +
                            failure_message(1));

@@ -1,5 +1,6 @@
 #include <strata/io/gmsh_session.h>
 
+#include <strata/core/bytes.h>
 #include <strata/core/child_process.h>
 
 #include <algorithm>
@@ -187,7 +188,7 @@ namespace {
 
 }  // namespace
 
-GmshProbe gmsh_probe(const std::function<void()>& f, const Progress* progress) {
+GmshProbe gmsh_probe_result(const std::function<void(std::vector<char>&)>& f, const Progress* progress) {
     ChildOptions options;
     options.free_openmp_threads = true;
     const ChildResult child = run_in_child(
@@ -197,13 +198,16 @@ GmshProbe gmsh_probe(const std::function<void()>& f, const Progress* progress) {
                 gmsh::option::setNumber("General.Terminal", 0);
             } catch (...) {
             }
+            std::vector<char> result;
             std::string outcome = "R";
             try {
-                f();
+                f(result);
             } catch (...) {
                 outcome = "E" + current_exception_text();
+                result.clear();
             }
             sent.assign(outcome.begin(), outcome.end());
+            sent.insert(sent.end(), result.begin(), result.end());
         },
         progress, options);
     GmshProbe probe;
@@ -214,9 +218,90 @@ GmshProbe gmsh_probe(const std::function<void()>& f, const Progress* progress) {
         probe.returned = child.sent[0] == 'R';
         probe.aborted = child.sent[0] == 'A';
         probe.threw = child.sent[0] == 'E';
-        probe.message.assign(child.sent.begin() + 1, child.sent.end());
+        if (probe.returned)
+            probe.result.assign(child.sent.begin() + 1, child.sent.end());
+        else
+            probe.message.assign(child.sent.begin() + 1, child.sent.end());
     }
     return probe;
+}
+
+GmshProbe gmsh_probe(const std::function<void()>& f, const Progress* progress) {
+    return gmsh_probe_result([&](std::vector<char>&) { f(); }, progress);
+}
+
+std::vector<char> pack_model_mesh() {
+    Bytes b;
+    gmsh::vectorpair entities;
+    gmsh::model::getEntities(entities);
+    for (const auto& [dim, tag] : entities) {
+        std::vector<std::size_t> nodes;  // Gmsh 4.8: output vectors must start empty
+        std::vector<double> xyz, uvw;
+        gmsh::model::mesh::getNodes(nodes, xyz, uvw, dim, tag, false, true);
+        std::vector<int> types;
+        std::vector<std::vector<std::size_t>> elements, element_nodes;
+        gmsh::model::mesh::getElements(types, elements, element_nodes, dim, tag);
+        b.put<int>(dim);
+        b.put<int>(tag);
+        b.put_vector(nodes);
+        b.put_vector(xyz);
+        b.put_vector(uvw.size() == static_cast<std::size_t>(dim) * nodes.size() ? uvw : std::vector<double>{});
+        b.put_vector(types);
+        for (std::size_t t = 0; t < types.size(); ++t) {
+            b.put_vector(elements[t]);
+            b.put_vector(element_nodes[t]);
+        }
+    }
+    return std::move(b.data);
+}
+
+void unpack_model_mesh(const std::vector<char>& bytes) {
+    // The whole model's mesh: Gmsh 4.8's clear of a list of entities leaves some of their
+    // boundaries' nodes, whose tags the child's nodes then meet.
+    gmsh::model::mesh::clear();
+    Bytes b{bytes, 0, "Gmsh's child process"};
+    // Every entity's nodes before any element: an element may use the nodes of its boundary's
+    // entities, which come later in Gmsh's order of entities by tag than some of theirs.
+    struct Elements {
+        int dim, tag;
+        std::vector<int> types;
+        std::vector<std::vector<std::size_t>> tags, nodes;
+    };
+    std::vector<Elements> all;
+    while (b.at < b.data.size()) {
+        Elements e;
+        e.dim = b.get<int>();
+        e.tag = b.get<int>();
+        const auto nodes = b.get_vector<std::size_t>();
+        const auto xyz = b.get_vector<double>();
+        const auto uvw = b.get_vector<double>();
+        e.types = b.get_vector<int>();
+        for (std::size_t t = 0; t < e.types.size(); ++t) {
+            e.tags.push_back(b.get_vector<std::size_t>());
+            e.nodes.push_back(b.get_vector<std::size_t>());
+        }
+        if (!nodes.empty()) gmsh::model::mesh::addNodes(e.dim, e.tag, nodes, xyz, uvw);
+        all.push_back(std::move(e));
+    }
+    for (const Elements& e : all)
+        if (!e.types.empty()) gmsh::model::mesh::addElements(e.dim, e.tag, e.types, e.tags, e.nodes);
+}
+
+void generate_in_child(const std::string& context, const std::function<void()>& generate, const Progress* progress) {
+    const GmshProbe made = gmsh_probe_result(
+        [&](std::vector<char>& result) {
+            generate();
+            result = pack_model_mesh();
+        },
+        progress);
+    if (!made.ran) {
+        generate();
+        return;
+    }
+    if (!made.returned)
+        throw BackendError(context + ": Gmsh " + how_it_failed(made) +
+                           " meshing the surfaces (in a child process, so this one goes on)");
+    unpack_model_mesh(made.result);
 }
 
 std::string how_it_failed(const GmshProbe& p) {

@@ -134,11 +134,31 @@ TEST(Remesh, AttemptsOutOfTimeInGmshsParametrizationEndTheRun) {
     } catch (const BackendError& e) {
         const std::string m = e.what();
         EXPECT_NE(m.find("did not end within 1e-06 s"), std::string::npos) << m;
-        EXPECT_NE(m.find("Two attempts in a row ran out of time in Gmsh's parametrization"), std::string::npos) << m;
+        EXPECT_NE(m.find("Two attempts in a row ran out of time in Gmsh (its parametrization or its meshing)"),
+                  std::string::npos)
+            << m;
         EXPECT_EQ(m.find("at 22.5 degrees"), std::string::npos) << m;  // the third attempt was not made
     }
     p.classify_seconds = 0.0;  // the default budget: it remeshes
     EXPECT_GT(remesh_surface(box, p, "box.stl").num_faces(), 0);
+}
+
+TEST(Remesh, AttemptsOutOfTimeInGmshsMeshingEndTheRunToo) {
+    // Gmsh's meshing of the new surfaces can refine for ever where it parametrizes them badly (a
+    // helicopter's BRepMesh STL: past 20 minutes and 2 GB in one attempt). It runs in a child
+    // process under RemeshParams::mesh_seconds, and runs out of it count as the classification's.
+    const SurfaceMesh box = lattice_box(1, 6, 1);
+    RemeshParams p;
+    p.mesh_seconds = 1e-6;
+    try {
+        remesh_surface(box, p, "box.stl");
+        FAIL() << "remeshed within a budget no meshing meets";
+    } catch (const BackendError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("Gmsh's meshing of the surfaces did not end within 1e-06 s"), std::string::npos) << m;
+        EXPECT_NE(m.find("Two attempts in a row ran out of time in Gmsh"), std::string::npos) << m;
+        EXPECT_EQ(m.find("at 22.5 degrees"), std::string::npos) << m;
+    }
 }
 
 TEST(Remesh, SizeDefaultsToTheInputsMedianEdgeAndQuadsOnRequest) {

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <csignal>
 #include <stdexcept>
 #include <string>
@@ -162,6 +164,88 @@ TEST(TryGenerateInChild, IsolatedACrashOrAnAbortIsAnError) {
                                      {"the model: quads cannot be made here: Gmsh's Blossom recombination aborts (out "
                                       "of the loop) and with its simple recombination Gmsh aborts (out of the loop)"});
     EXPECT_EQ(try_generate_in_child("ctx", false, true, options, [] {}), "");
+}
+
+/// Every entity's nodes (tag, coordinates) and elements (type, tag, nodes) of the current model.
+struct ModelMesh {
+    std::vector<std::size_t> node_tags;
+    std::vector<double> xyz;
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> element_tags, element_nodes;
+};
+ModelMesh model_mesh() {
+    ModelMesh m;
+    std::vector<double> uvw;
+    gmsh::model::mesh::getNodes(m.node_tags, m.xyz, uvw);
+    gmsh::model::mesh::getElements(m.types, m.element_tags, m.element_nodes);
+    return m;
+}
+
+/// A sphere and a box as OCC entities, to mesh.
+void two_solids() {
+    gmsh::model::occ::addSphere(0, 0, 0, 1);
+    gmsh::model::occ::addBox(2, 0, 0, 1, 0.5, 0.25);
+    gmsh::model::occ::synchronize();
+    gmsh::option::setNumber("Mesh.MeshSizeMax", 0.3);
+}
+
+TEST(GenerateInChild, BringsBackTheMeshGmshWouldHaveMadeHere) {
+    ModelMesh here, there;
+    {
+        GmshSession session("generated_here");
+        two_solids();
+        gmsh::model::mesh::generate(2);
+        here = model_mesh();
+    }
+    {
+        GmshSession session("generated_there");
+        two_solids();
+        generate_in_child("two solids", [] { gmsh::model::mesh::generate(2); });
+        there = model_mesh();
+    }
+    ASSERT_GT(here.node_tags.size(), 100u);
+    EXPECT_EQ(there.node_tags, here.node_tags);
+    EXPECT_EQ(there.xyz, here.xyz);
+    EXPECT_EQ(there.types, here.types);
+    EXPECT_EQ(there.element_tags, here.element_tags);
+    EXPECT_EQ(there.element_nodes, here.element_nodes);
+}
+
+TEST(GenerateInChild, ReplacesTheWholeMeshTheModelHad) {
+    // A mesh already there (here a coarser one) is replaced, not added to: no node of it stays.
+    GmshSession session("regenerated");
+    two_solids();
+    gmsh::option::setNumber("Mesh.MeshSizeMax", 0.6);
+    gmsh::model::mesh::generate(2);
+    const std::size_t coarse = model_mesh().node_tags.size();
+    gmsh::option::setNumber("Mesh.MeshSizeMax", 0.2);
+    generate_in_child("two solids", [] { gmsh::model::mesh::generate(2); });
+    const ModelMesh fine = model_mesh();
+    gmsh::model::mesh::generate(2);
+    EXPECT_EQ(fine.node_tags, model_mesh().node_tags);
+    EXPECT_GT(fine.node_tags.size(), coarse);
+}
+
+TEST(GenerateInChild, ACrashAnAbortOrAStopEndsOnlyTheChild) {
+    GmshSession session("generate_fails");
+    two_solids();
+    test::expect_error<BackendError>(
+        [] { generate_in_child("the model", [] { std::raise(SIGSEGV); }); },
+        {"the model: Gmsh crashes (signal 11) meshing the surfaces (in a child process, so this one goes on)"});
+    test::expect_error<BackendError>(
+        [] { generate_in_child("the model", [] { []() noexcept { throw_out_of_the_loop(); }(); }); },
+        {"the model: Gmsh aborts (out of the loop)"});
+    // Meshing that would not end (Gmsh's refinement on a surface it parametrizes badly) is
+    // stopped where the caller's progress says so, and nothing of it reaches this model.
+    DeadlineProgress deadline(0.3);
+    EXPECT_THROW(generate_in_child(
+                     "the model",
+                     [] {
+                         for (;;) pause();
+                     },
+                     &deadline),
+                 Cancelled);
+    EXPECT_TRUE(model_mesh().node_tags.empty());
 }
 
 }  // namespace

@@ -30,9 +30,6 @@ struct RemeshParams {
     bool quads = false;
     /// With quads: Gmsh's simple recombination instead of Blossom (CadParams::simple_recombination).
     bool simple_recombination = false;
-    /// As CadParams::isolate_gmsh: Gmsh's meshing tried in a child process first, so that its
-    /// crash or abort is an error and not the end of this process.
-    bool isolate_gmsh = false;
     /// Gmsh 2D algorithm: 1 MeshAdapt, 2 Automatic, 5 Delaunay, 6 Frontal-Delaunay, 9 packing of
     /// parallelograms (the values CadParams::algorithm accepts).
     int algorithm = 6;
@@ -50,6 +47,12 @@ struct RemeshParams {
     /// and 2 ms per triangle. Where two attempts in a row run out of it, no more are made: the
     /// input's triangles, not the angle, are at fault.
     double classify_seconds = 0.0;
+    /// The time budget, seconds, of Gmsh's meshing of the new surfaces in each attempt (in a
+    /// child process whose mesh is brought back: where the surface is poorly parametrized Gmsh
+    /// can refine for ever, or abort the process); 0: 60 s and 1 ms per face expected (four per
+    /// size squared of the input's area, and the walls' budget where they are meshed finer). Runs
+    /// out of it count with the classification's.
+    double mesh_seconds = 0.0;
 };
 
 /// What remesh_surface did, for the summary.

@@ -106,12 +106,13 @@ private:
 
 /// How gmsh_probe's trial of a Gmsh call ended.
 struct GmshProbe {
-    bool ran = false;       ///< false: no child process could be started; nothing was tried
-    bool returned = false;  ///< the call returned
-    bool aborted = false;   ///< Gmsh ended the process (a std::terminate, GmshAbortScope): \p message is its text
-    bool threw = false;     ///< the call threw: \p message is the exception's text
-    int signal = 0;         ///< the call crashed the process on this signal
-    std::string message;
+    bool ran = false;          ///< false: no child process could be started; nothing was tried
+    bool returned = false;     ///< the call returned
+    bool aborted = false;      ///< Gmsh ended the process (a std::terminate, GmshAbortScope): \p message is its text
+    bool threw = false;        ///< the call threw: \p message is the exception's text
+    int signal = 0;            ///< the call crashed the process on this signal
+    std::string message;       ///< how it aborted or threw
+    std::vector<char> result;  ///< where it returned: what gmsh_probe_result's call put there
 };
 
 /// \p f (calls into gmsh::) tried in a forked child on a copy of Gmsh's state
@@ -122,6 +123,26 @@ struct GmshProbe {
 /// thrown: unlike Gmsh in this process, a trial can be stopped.
 /// The caller holds Gmsh (GmshSession or GmshLock) and is not inside an OpenMP parallel region.
 GmshProbe gmsh_probe(const std::function<void()>& f, const Progress* progress = nullptr);
+
+/// As gmsh_probe, \p f also putting bytes into its argument, which come back in
+/// GmshProbe::result where it returned: what the child made, for the parent to take.
+GmshProbe gmsh_probe_result(const std::function<void(std::vector<char>&)>& f, const Progress* progress = nullptr);
+
+/// The current model's mesh (each entity's nodes with their parametric coordinates, its
+/// elements by type), as bytes; and put back, into the same model (the same entities: a forked
+/// child's copy of it) in place of the whole mesh it has there.
+std::vector<char> pack_model_mesh();
+void unpack_model_mesh(const std::vector<char>& bytes);
+
+/// \p generate (the caller's generate(2)) run in a forked child (gmsh_probe_result), and the
+/// mesh it made put into the current model here (pack_model_mesh): so a Gmsh that aborts,
+/// crashes or runs on for ever (MeshAdapt's refinement on a poorly parametrized discrete
+/// surface) never takes this process with it. Where \p progress asks to stop, the child is
+/// killed and Cancelled thrown; where it aborts, crashes or throws, a BackendError
+/// "<context>: Gmsh <how_it_failed> meshing the surfaces"; where no child can be started,
+/// \p generate runs here. Costs the mesh's copy between the processes, not a second meshing.
+void generate_in_child(const std::string& context, const std::function<void()>& generate,
+                       const Progress* progress = nullptr);
 
 /// How a trial that did not return ended, for a message: "crashes (signal 11)", "aborts
 /// (<its text>)", "fails (<its text>)".
