@@ -15,4 +15,8 @@ int thread_count(int requested) {
 #endif
 }
 
+int thread_count(int requested, long long items) {
+    return items < kParallelItems ? 1 : thread_count(requested);
+}
+
 }  // namespace strata

@@ -99,7 +99,7 @@ std::vector<FacePair> self_intersections(const SurfaceMesh& mesh, std::size_t ma
         kBoxCutoff);
     std::vector<char> hit(candidates.size(), 0);
     const auto n = static_cast<std::ptrdiff_t>(candidates.size());
-#pragma omp parallel for schedule(static) num_threads(thread_count(threads))
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads, n))
     for (std::ptrdiff_t i = 0; i < n; ++i) {
         const auto& [a, b] = candidates[static_cast<std::size_t>(i)];
         hit[static_cast<std::size_t>(i)] = intersect(tris[a], tris[b], p) ? 1 : 0;

@@ -296,7 +296,7 @@ std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>&
                          " nodes; pass one position per mesh node and vertex_faces(mesh)");
     std::vector<Vec3> normals(points.size(), Vec3::Zero());
     // Each node is independent (reads only): the result does not depend on the thread count.
-#pragma omp parallel for schedule(static) num_threads(thread_count(threads))
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads, n))
     for (Index v = 0; v < n; ++v) {
         const Index* begin = vertex_faces.row_begin(v);
         const Index* end = vertex_faces.row_end(v);

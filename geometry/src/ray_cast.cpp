@@ -35,7 +35,7 @@ std::vector<RayHit> first_hits(const SurfaceMesh& surface, const std::vector<Ind
 
     const auto n = static_cast<std::int64_t>(origins.size());
     std::vector<RayHit> hits(origins.size());
-#pragma omp parallel for num_threads(thread_count(threads)) schedule(dynamic, 256)
+#pragma omp parallel for num_threads(thread_count(threads, n)) schedule(dynamic, 256)
     for (std::int64_t i = 0; i < n; ++i) {
         const Vec3& d = directions[static_cast<std::size_t>(i)];
         if (!(d.squaredNorm() > 0.0) || !d.allFinite()) continue;

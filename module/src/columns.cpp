@@ -454,7 +454,7 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
         std::vector<char> poor(static_cast<std::size_t>(nf), 0);
         const double tan_twist = std::tan(rules.max_twist_deg * std::numbers::pi / 180.0);
         for (auto f = static_cast<Index>(col.best.size()); f < nf; ++f) col.best.push_back(face_corner_quality(col, f));
-#pragma omp parallel for schedule(static) num_threads(thread_count(rules.threads))
+#pragma omp parallel for schedule(static) num_threads(thread_count(rules.threads, nf))
         for (Index f = 0; f < nf; ++f) {
             const auto u = static_cast<std::size_t>(f);
             const int n = col.faces.size[u];

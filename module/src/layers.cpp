@@ -756,7 +756,7 @@ int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, doub
         for (Index i = 0; i < nw; ++i) r2[i] = r1[i] + (dk1 * mc.height_scale[i]) * n1[i];  // Eq. 12
         const Levels lv{r0, r1, r2};
         double max_move = 0.0;
-#pragma omp parallel for num_threads(mc.threads) schedule(static) reduction(max : max_move)
+#pragma omp parallel for num_threads(thread_count(mc.threads, nw)) schedule(static) reduction(max : max_move)
         for (Index o = 0; o < nw; ++o) {
             next[o] = jacobi_update(mc, lv, o, theta);
             // A node the sweeps carry away (a concave junction node whose update diverges: 60
