@@ -91,9 +91,9 @@ const char* after_bar() {
 
 // ---------------------------------------------------------------------------------------
 // --timeout: a watchdog thread. At the deadline it asks the running stage to stop, as Ctrl-C
-// does (exit 124, nothing written; TetGen, run in a child process, is killed then). A stage that
-// cannot poll (Gmsh's own meshing,
-// which can run on for hours on a degenerate input) gets kTimeoutGrace seconds more; then the
+// does (exit 124, nothing written; TetGen and Gmsh's surface meshing, run in child processes,
+// are killed then). A stage that cannot poll (Gmsh reading a CAD file, OpenCASCADE's union)
+// gets kTimeoutGrace seconds more; then the
 // program ends there, unless the writers have started (they finish, so no file is left half
 // written under a temporary name).
 
@@ -287,9 +287,10 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
     cmd.add_option("--msh-version", c.msh_version, "MSH file version for .msh output: 4.1 or 2.2")
         ->capture_default_str();
     cmd.add_flag("-q,--quiet", c.quiet, "print nothing but errors");
-    cmd.add_option("--timeout", c.timeout,
-                   "stop a run that takes longer than this many seconds (exit 124, nothing written); a stage "
-                   "that cannot be stopped (Gmsh's own meshing) is ended 5 s later (0: no limit)")
+    cmd.add_option(
+           "--timeout", c.timeout,
+           "stop a run that takes longer than this many seconds (exit 124, nothing written); a stage "
+           "that cannot be stopped (Gmsh reading a CAD file, OpenCASCADE's union) is ended 5 s later (0: no limit)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     add_table_options(cmd, c.o, {strata::OptionStage::Surface, strata::OptionStage::Patches});

@@ -624,20 +624,21 @@ SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces, s
     return mesh;
 }
 
-/// Gmsh's generate(2) for mesh_cad, each time the same way: tried in a child first where it
-/// may end the process (try_generate_in_child: quads with Blossom, CadParams::isolate_gmsh),
-/// the fallback to the simple recombination recorded in \p report, then run here.
+/// Gmsh's generate(2) for mesh_cad, each time the same way: with quads and Blossom, tried in a
+/// child first (try_generate_in_child), the fallback to the simple recombination recorded in
+/// \p report; then run in a child whose mesh is brought back (generate_in_child), so that
+/// Gmsh's abort or crash is an error and not the end of this process, and \p progress (the
+/// program's --timeout, a host's cancel) stops Gmsh's meshing at once.
 struct SurfaceGenerator {
     bool quads = false;
-    bool isolate = false;
     GmshOptionScope& options;
     const Progress* progress = nullptr;
     RecombinationReport& report;
 
     void operator()(const std::string& context, const std::function<void()>& generate) const {
-        const std::string failure = try_generate_in_child(context, quads, isolate, options, generate, progress);
+        const std::string failure = try_generate_in_child(context, quads, options, generate, progress);
         if (!failure.empty()) report.blossom_failure = failure;
-        gmsh_call(context, generate);
+        gmsh_call(context, [&] { generate_in_child(context, generate, progress); });
     }
 };
 
@@ -871,7 +872,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     };
     const bool quads = get_number("Mesh.RecombineAll") > 0.0 || params.elements == SurfaceElements::Mixed;
     RecombinationReport recombined;
-    const SurfaceGenerator generate_surfaces{quads, params.isolate_gmsh, options, progress, recombined};
+    const SurfaceGenerator generate_surfaces{quads, options, progress, recombined};
     generate_surfaces(context, generate);
 
     std::vector<int> face_surface;

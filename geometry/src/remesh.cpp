@@ -260,7 +260,7 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
         // Blossom may abort the process on this surface: then Gmsh's simple recombination. No
         // trial for a host's isolation: the meshing below is in a child in every case.
         out.blossom_failure =
-            try_generate_in_child(ctx, p.quads, false, options, [] { gmsh::model::mesh::generate(2); });
+            try_generate_in_child(ctx, p.quads, options, [] { gmsh::model::mesh::generate(2); });
         // The meshing itself in a child too, its mesh brought back: on a surface it cannot
         // parametrize well Gmsh can refine for ever (a helicopter's BRepMesh STL: MeshAdapt's
         // refinement past 20 minutes and 2 GB at every angle) or abort the process ("Unable to

@@ -300,7 +300,8 @@ void generate_in_child(const std::string& context, const std::function<void()>& 
     }
     if (!made.returned)
         throw BackendError(context + ": Gmsh " + how_it_failed(made) +
-                           " meshing the surfaces (in a child process, so this one goes on)");
+                           " meshing the surfaces (in a child process: nothing else is lost, and a Python or "
+                           "FreeCAD session goes on)");
     unpack_model_mesh(made.result);
 }
 
@@ -310,34 +311,27 @@ std::string how_it_failed(const GmshProbe& p) {
                          : "fails (" + p.message + ")";
 }
 
-std::string try_generate_in_child(const std::string& context, bool quads_asked, bool isolate, GmshOptionScope& options,
+std::string try_generate_in_child(const std::string& context, bool quads_asked, GmshOptionScope& options,
                                   const std::function<void()>& generate, const Progress* progress) {
     double algorithm = 0.0;
     gmsh::option::getNumber("Mesh.RecombinationAlgorithm", algorithm);
     const bool blossom = quads_asked && algorithm == 1.0;
-    if (!blossom && !isolate) return "";
+    if (!blossom) return "";
     const GmshProbe first = gmsh_probe(generate, progress);
     if (!first.ran || first.returned) return "";
     // Blossom aborts with its own words on some surfaces (Gmsh 4.8, meshGFaceOptimize.cpp:
     // "Perfect Match") and crashes on others (a segmentation fault on a body with a mirror on a
     // thin stalk, and on a drone's rotors, where the simple recombination meshes both): the
     // simple recombination is tried as well, and used where it works.
-    if (blossom) {
-        options.set("Mesh.RecombinationAlgorithm", 0);
-        const GmshProbe simple = gmsh_probe(generate, progress);
-        const bool blossoms_words = first.aborted && first.message.find("Perfect Match") != std::string::npos;
-        const std::string blossom_failure = blossoms_words ? first.message : how_it_failed(first);
-        if (!simple.ran || simple.returned) return blossom_failure;
-        throw BackendError(context + ": quads cannot be made here: Gmsh's Blossom recombination " +
-                           (blossoms_words ? "fails (" + first.message + ")" : how_it_failed(first)) +
-                           " and with its simple recombination Gmsh " + how_it_failed(simple) +
-                           "; mesh triangles instead, or with another size");
-    }
-    if (isolate)
-        throw BackendError(context + ": Gmsh " + how_it_failed(first) +
-                           " meshing the surfaces (tried in a child process, so this session goes on); try another "
-                           "size or algorithm, or repair the CAD");
-    return "";
+    options.set("Mesh.RecombinationAlgorithm", 0);
+    const GmshProbe simple = gmsh_probe(generate, progress);
+    const bool blossoms_words = first.aborted && first.message.find("Perfect Match") != std::string::npos;
+    const std::string blossom_failure = blossoms_words ? first.message : how_it_failed(first);
+    if (!simple.ran || simple.returned) return blossom_failure;
+    throw BackendError(context + ": quads cannot be made here: Gmsh's Blossom recombination " +
+                       (blossoms_words ? "fails (" + first.message + ")" : how_it_failed(first)) +
+                       " and with its simple recombination Gmsh " + how_it_failed(simple) +
+                       "; mesh triangles instead, or with another size");
 }
 
 std::string GmshSession::last_error() {

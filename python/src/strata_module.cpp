@@ -530,9 +530,6 @@ Prepared prepare(const std::vector<std::string>& inputs, Options& o, Progress* p
     o.surface.input = input_name(inputs);
     Prepared p;
     PrepareParams params = prepare_params(o.surface, layers);
-    // A Gmsh crash or abort must not end the Python or FreeCAD session: Gmsh's surface meshing
-    // is tried in a child process first (CadParams::isolate_gmsh).
-    params.cad.isolate_gmsh = true;
     p.surface = mesh ? prepare_for_layers(inputs, params, *mesh, &p.report, progress)
                      : prepare_surfaces(inputs, params, &p.report, progress);
     p.seconds = seconds_since(t0);

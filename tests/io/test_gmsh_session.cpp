@@ -99,9 +99,9 @@ TEST(TryGenerateInChild, FoundInAChildAndTheSimpleAlgorithmMeshesIt) {
     spiky_with_blossom(options);
     const auto generate = [] { gmsh::model::mesh::generate(2); };
     // Not asked for quads: nothing is tried.
-    EXPECT_EQ(try_generate_in_child("spiky", false, false, options, generate), "");
+    EXPECT_EQ(try_generate_in_child("spiky", false, options, generate), "");
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
-    const std::string failure = try_generate_in_child("spiky", true, false, options, generate);
+    const std::string failure = try_generate_in_child("spiky", true, options, generate);
     EXPECT_NE(failure.find("Perfect Match failed"), std::string::npos) << failure;
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
     // This process is untouched (no mesh), and the simple algorithm gives quads.
@@ -109,7 +109,7 @@ TEST(TryGenerateInChild, FoundInAChildAndTheSimpleAlgorithmMeshesIt) {
     std::vector<double> xyz, uvw;
     gmsh::model::mesh::getNodes(nodes, xyz, uvw);
     EXPECT_TRUE(nodes.empty());
-    EXPECT_EQ(try_generate_in_child("spiky", true, false, options, generate),
+    EXPECT_EQ(try_generate_in_child("spiky", true, options, generate),
               "");  // not Blossom any more: nothing tried
     gmsh::model::mesh::generate(2);
     std::vector<std::size_t> quads, quad_nodes;
@@ -125,7 +125,7 @@ TEST(TryGenerateInChild, NothingWhereBlossomGoesThrough) {
     options.set("Mesh.MeshSizeMax", 0.3);
     options.set("Mesh.RecombineAll", 1);
     options.set("Mesh.RecombinationAlgorithm", 1);
-    EXPECT_EQ(try_generate_in_child("box", true, false, options, [] { gmsh::model::mesh::generate(2); }), "");
+    EXPECT_EQ(try_generate_in_child("box", true, options, [] { gmsh::model::mesh::generate(2); }), "");
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
 }
 
@@ -138,32 +138,14 @@ TEST(TryGenerateInChild, ACrashOfBlossomFallsBackToTheSimpleAlgorithm) {
     const auto crashes_with_blossom = [] {
         if (option("Mesh.RecombinationAlgorithm") == 1.0) std::raise(SIGSEGV);
     };
-    EXPECT_EQ(try_generate_in_child("the model", true, false, options, crashes_with_blossom), "crashes (signal 11)");
+    EXPECT_EQ(try_generate_in_child("the model", true, options, crashes_with_blossom), "crashes (signal 11)");
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
     // Where the simple one crashes too, one error says both, and nothing ends this process.
     options.set("Mesh.RecombinationAlgorithm", 1);
     test::expect_error<BackendError>(
-        [&] { try_generate_in_child("the model", true, false, options, [] { std::raise(SIGSEGV); }); },
+        [&] { try_generate_in_child("the model", true, options, [] { std::raise(SIGSEGV); }); },
         {"the model: quads cannot be made here: Gmsh's Blossom recombination crashes (signal 11) and with its "
          "simple recombination Gmsh crashes (signal 11)"});
-}
-
-TEST(TryGenerateInChild, IsolatedACrashOrAnAbortIsAnError) {
-    // For a host that must live on (Python, FreeCAD): whatever ends the trial's process is a
-    // BackendError naming it; without isolation (and without Blossom) nothing is tried.
-    GmshSession session("isolated");
-    GmshOptionScope options;
-    const auto crash = [] { std::raise(SIGSEGV); };
-    const auto abort = [] { []() noexcept { throw_out_of_the_loop(); }(); };
-    EXPECT_EQ(try_generate_in_child("ctx", false, false, options, crash), "");
-    test::expect_error<BackendError>([&] { try_generate_in_child("the model", false, true, options, crash); },
-                                     {"the model: Gmsh crashes (signal 11)", "this session goes on"});
-    // With quads (Blossom, the default algorithm) the simple recombination is tried too, and the
-    // error says both failed.
-    test::expect_error<BackendError>([&] { try_generate_in_child("the model", true, true, options, abort); },
-                                     {"the model: quads cannot be made here: Gmsh's Blossom recombination aborts (out "
-                                      "of the loop) and with its simple recombination Gmsh aborts (out of the loop)"});
-    EXPECT_EQ(try_generate_in_child("ctx", false, true, options, [] {}), "");
 }
 
 /// Every entity's nodes (tag, coordinates) and elements (type, tag, nodes) of the current model.
@@ -231,7 +213,7 @@ TEST(GenerateInChild, ACrashAnAbortOrAStopEndsOnlyTheChild) {
     two_solids();
     test::expect_error<BackendError>(
         [] { generate_in_child("the model", [] { std::raise(SIGSEGV); }); },
-        {"the model: Gmsh crashes (signal 11) meshing the surfaces (in a child process, so this one goes on)"});
+        {"the model: Gmsh crashes (signal 11) meshing the surfaces (in a child process: nothing else is lost"});
     test::expect_error<BackendError>(
         [] { generate_in_child("the model", [] { []() noexcept { throw_out_of_the_loop(); }(); }); },
         {"the model: Gmsh aborts (out of the loop)"});

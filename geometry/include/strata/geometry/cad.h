@@ -50,15 +50,6 @@ struct CadParams {
     /// instead of Blossom (1), over a .geo script's own choice too. prepare_for_layers asks it
     /// where Blossom's quads fold (RecombinationReport::folded).
     bool simple_recombination = false;
-    /// Try Gmsh's surface meshing in a child process before running it here
-    /// (try_generate_in_child, io/gmsh_session.h): a crash of Gmsh's mesher (MeshAdapt has
-    /// crashed on some faces and sizes) or an error it throws out of its OpenMP loop (a
-    /// std::terminate) is then a BackendError naming it, and the process goes on. Twice the
-    /// surface meshing time. For hosts that must live on: the Python package and FreeCAD set
-    /// it; the strata program leaves it off (a crash ends its run with one line anyway). With
-    /// quads and Blossom the trial is made whatever this says (Blossom aborts on some surfaces,
-    /// and the simple recombination then meshes them: RecombinationReport).
-    bool isolate_gmsh = false;
     /// CAD surface tags (as Gmsh numbers them, after fuse if fuse is set) meshed with quads when
     /// elements is Mixed; ignored otherwise. A tag that is not a surface → InputError listing
     /// the valid tags.
@@ -237,8 +228,9 @@ struct CadUnits {
 /// without surfaces (each naming the file); BackendError when Gmsh fails to mesh or leaves a
 /// surface without elements (naming the surface).
 /// \p walls, if given, receives what the wall-size cap did; \p sew what the sewing did;
-/// \p recombination what the recombination into quads did. \p progress may stop Gmsh's meshing
-/// where it is tried in a child process (CadParams::isolate_gmsh, quads): Cancelled.
+/// \p recombination what the recombination into quads did. Gmsh meshes the surfaces in a child
+/// process (generate_in_child, io/gmsh_session.h): its abort or crash is a BackendError naming
+/// it, and \p progress stops it at once: Cancelled.
 SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units = nullptr,
                      WallSizeReport* walls = nullptr, SewReport* sew = nullptr,
                      RecombinationReport* recombination = nullptr, const Progress* progress = nullptr);

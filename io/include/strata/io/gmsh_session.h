@@ -149,33 +149,27 @@ void generate_in_child(const std::string& context, const std::function<void()>& 
 std::string how_it_failed(const GmshProbe& p);
 
 /// \p generate (the caller's generate(2), with its size callback) tried first in a child
-/// (gmsh_probe) where it may end the process, before the caller runs it here:
+/// (gmsh_probe) where Blossom may end the process, before the caller runs it (generate_in_child):
+/// Gmsh 4.8's Blossom recombination (Mesh.RecombinationAlgorithm 1) throws "Perfect Match
+/// failed in quadrangulation" out of its OpenMP surface-meshing loop on some surfaces (the
+/// apex of a cone, a tiny hole in a large face), and crashes on others (a segmentation fault on
+/// a body with a mirror on a thin stalk). So where \p quads_asked (Mesh.RecombineAll, or some
+/// surfaces' own recombination) and Blossom is the algorithm, it is tried; where it did not
+/// return, Mesh.RecombinationAlgorithm is set to 0 through \p options (Gmsh's simple
+/// recombination, which never needs a perfect matching and leaves more triangles) and
+/// Blossom's message (or how_it_failed) is returned, for the caller's report. Gmsh got no
+/// further than Blossom's failure, and the faces after it may crash its mesher (MeshAdapt did
+/// on the block with a 1/500 hole), so that is tried in a child too: BackendError "<context>:
+/// quads cannot be made here: ..." if it fails.
 ///
-/// - Gmsh 4.8's Blossom recombination (Mesh.RecombinationAlgorithm 1) throws "Perfect Match
-///   failed in quadrangulation" out of its OpenMP surface-meshing loop on some surfaces (the
-///   apex of a cone, a tiny hole in a large face): a std::terminate that ends the process,
-///   which no caller can catch; and it crashes on others (a segmentation fault on a body with a
-///   mirror on a thin stalk). So where \p quads_asked (Mesh.RecombineAll, or some surfaces'
-///   own recombination) and Blossom is the algorithm, it is tried; where it did not return,
-///   Mesh.RecombinationAlgorithm is set to 0 through \p options (Gmsh's simple recombination,
-///   which never needs a perfect matching and leaves more triangles) and Blossom's message (or
-///   how_it_failed) is returned, for the caller's report. Gmsh got no further than Blossom's failure, and the
-///   faces after it may crash its mesher (MeshAdapt did on the block with a 1/500 hole), so
-///   that is tried in a child too: BackendError "<context>: quads cannot be made here: ..." if
-///   it fails.
-/// - With \p isolate (a host that must live on: a Python or FreeCAD session), it is tried in
-///   every case, and any abort or crash of Gmsh's is a BackendError "<context>: Gmsh aborted
-///   (its message)" or "crashed (signal)" instead of the end of the process.
-///
-/// "" where nothing needed saying: nothing tried (no quads and no isolation, another
-/// algorithm, no child started), it went through, or without \p isolate it failed some other
-/// way, which the caller's own call reports as before. Each trial costs the call's time once
-/// more, and is stopped (Cancelled) where \p progress asks (gmsh_probe).
-std::string try_generate_in_child(const std::string& context, bool quads_asked, bool isolate, GmshOptionScope& options,
+/// "" where nothing needed saying: nothing tried (no quads, another algorithm, no child
+/// started) or it went through. Each trial costs the call's time once more, and is stopped
+/// (Cancelled) where \p progress asks (gmsh_probe).
+std::string try_generate_in_child(const std::string& context, bool quads_asked, GmshOptionScope& options,
                                   const std::function<void()>& generate, const Progress* progress = nullptr);
 
 /// Run \p f (calls into gmsh::), turning any exception Gmsh throws into a BackendError
-/// "<context>: <Gmsh's message>". strata::Error passes through unchanged. An abort inside it
+/// "<context>: <Gmsh's message>". strata::Error and Cancelled pass through unchanged. An abort inside it
 /// (GmshAbortScope) names \p context.
 template <class F>
 auto gmsh_call(const std::string& context, F&& f) -> decltype(f()) {
@@ -183,6 +177,8 @@ auto gmsh_call(const std::string& context, F&& f) -> decltype(f()) {
     try {
         return std::forward<F>(f)();
     } catch (const Error&) {
+        throw;
+    } catch (const Cancelled&) {  // a stop asked for (generate_in_child), not Gmsh's failure
         throw;
     } catch (const std::exception& e) {
         std::string last = GmshSession::last_error();
