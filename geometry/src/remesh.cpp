@@ -257,18 +257,17 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             for (auto& [tag, s] : scaled.curve) s /= frame.scale;
             callback.emplace(entity_sizes(scaled), 1.0);
         }
-        // Blossom may abort the process on this surface: then Gmsh's simple recombination. No
-        // trial for a host's isolation: the meshing below is in a child in every case.
-        out.blossom_failure =
-            try_generate_in_child(ctx, p.quads, options, [] { gmsh::model::mesh::generate(2); });
+        // Blossom may abort the process on this surface: then Gmsh's simple recombination.
+        const auto generate = [] { gmsh::model::mesh::generate(2); };
+        out.blossom_failure = try_generate_in_child(ctx, p.quads, options, generate);
         // The meshing itself in a child too, its mesh brought back: on a surface it cannot
         // parametrize well Gmsh can refine for ever (a helicopter's BRepMesh STL: MeshAdapt's
-        // refinement past 20 minutes and 2 GB at every angle) or abort the process ("Unable to
-        // recover the edge", thrown out of its OpenMP loop). Either is this attempt's failure.
+        // refinement past 20 minutes and 2 GB in its 60-degree attempt) or abort the process
+        // ("Unable to recover the edge", thrown out of its OpenMP loop). Either is this attempt's
+        // failure.
         DeadlineProgress mesh_deadline(budget.mesh);
         try {
-            generate_in_child(
-                ctx, [] { gmsh::model::mesh::generate(2); }, &mesh_deadline);
+            generate_in_child(ctx, generate, &mesh_deadline);
         } catch (const Cancelled&) {
             if (!mesh_deadline.expired()) throw;
             throw GmshTimeout(ctx + ": Gmsh's meshing of the surfaces did not end within " +
@@ -475,9 +474,9 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
                     if (out_of_time == 2)
                         throw BackendError(source + ": remeshing failed: " + failures +
                                            ". Two attempts in a row ran out of time in Gmsh (its parametrization or "
-                                           "its meshing), so no more "
-                                           "were made: the surface's triangles are too poor for it (slivers, needles); "
-                                           "export the surface finer, or mesh the CAD model itself");
+                                           "its meshing), so no more were made: the surface's triangles are too poor "
+                                           "for it (slivers, needles); export the surface finer, or mesh the CAD "
+                                           "model itself");
                     continue;
                 }
                 if (a->bad > 0) {
