@@ -431,12 +431,7 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
             ? params.classify_seconds
             : kClassifySeconds + kClassifySecondsPerTriangle * static_cast<double>(whole.tris.tri.size());
     double area = 0.0;
-    for (const auto& t : whole.tris.tri) {
-        const Vec3 &a = triangles.points[static_cast<std::size_t>(t[0])],
-                   &b = triangles.points[static_cast<std::size_t>(t[1])],
-                   &c = triangles.points[static_cast<std::size_t>(t[2])];
-        area += 0.5 * (b - a).cross(c - a).norm();
-    }
+    for (Index f = 0; f < triangles.num_faces(); ++f) area += face_area_vector(triangles, f).norm();
     // The meshing's budget by the faces expected at size h, and with the walls' sizes
     // (refine_walls) by those the walls may take on top.
     const auto budget_at = [&](double h, bool walls_capped) {
