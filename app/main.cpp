@@ -445,7 +445,7 @@ void print_step_sizing(const strata::StepSizeReport& st) {
         }
         if (fans) {
             around += std::string(steps ? " and " : "") + std::to_string(st.fan_points) + (steps ? "" : " wall nodes") +
-                      " at the ends of fan edges";
+                      " at the ends of fan edges and along them";
             aim += std::string(steps ? ", and " : "") + "the fans' first wedges stay under --max-aspect-ratio";
         }
         char seconds[32];

@@ -66,8 +66,8 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
         StepPlan plan = step_plan(surface, mesh, params.cad.step_quality, params.cad.max_aspect_ratio);
         points = std::move(plan.points);
         steps.points = static_cast<Index>(points.size());
-        steps.fan_points = static_cast<Index>(plan.fan_points.size());
-        points.insert(points.end(), plan.fan_points.begin(), plan.fan_points.end());
+        steps.fan_points = plan.fans.nodes;
+        points.insert(points.end(), plan.fans.points.begin(), plan.fans.points.end());
         share_before = plan.thickness_share;
     } catch (const Error&) {  // the layers cannot be planned (an open surface): build_hybrid_mesh says why
         return done(std::move(surface), first_report);

@@ -622,7 +622,7 @@ StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double 
     const std::vector<double> heights = layer_heights(params.layers.distribution);
     StepPlan out;
     if (quality > 0.0) out.points = step_sizes(surface, plan, heights, quality);
-    if (!heights.empty()) out.fan_points = fan_wedge_sizes(surface, plan, heights.front(), max_aspect_ratio);
+    if (!heights.empty()) out.fans = fan_wedge_sizes(surface, plan, heights.front(), max_aspect_ratio);
     // Thickness per level, and each wall face's area shared among its nodes.
     std::vector<double> reached(heights.size() + 1, 0.0);
     for (std::size_t k = 0; k < heights.size(); ++k) reached[k + 1] = reached[k] + heights[k];

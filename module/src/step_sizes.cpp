@@ -50,11 +50,12 @@ std::vector<SizePoint> step_sizes(const SurfaceMesh& wall, const ProximityPlan& 
     return points_at(wall, size);
 }
 
-std::vector<SizePoint> fan_wedge_sizes(const SurfaceMesh& wall, const ProximityPlan& plan, double first_height,
-                                       double max_aspect_ratio) {
+FanWedgeSizes fan_wedge_sizes(const SurfaceMesh& wall, const ProximityPlan& plan, double first_height,
+                              double max_aspect_ratio) {
     if (!(first_height > 0.0) || !(max_aspect_ratio > 0.0)) return {};
     const auto n = static_cast<std::size_t>(wall.num_points());
     std::vector<double> size(n, std::numeric_limits<double>::infinity());
+    std::vector<SizePoint> along;
     for (const ProximityPlan::FanWedge& e : plan.fan_wedges) {
         if (e.a < 0 || e.b < 0 || static_cast<std::size_t>(e.a) >= n || static_cast<std::size_t>(e.b) >= n)
             throw InputError("fan_wedge_sizes: a wedge on nodes " + std::to_string(e.a) + " and " +
@@ -65,11 +66,24 @@ std::vector<SizePoint> fan_wedge_sizes(const SurfaceMesh& wall, const ProximityP
         const Vec3 &pa = wall.points[static_cast<std::size_t>(e.a)], &pb = wall.points[static_cast<std::size_t>(e.b)];
         const double ar = fan_wedge_aspect_ratio(pa, pb, e.d1, e.d2, first_height);
         if (!(ar > max_aspect_ratio) || !std::isfinite(ar)) continue;
-        const double want = (pb - pa).norm() * kStepSizeShare * max_aspect_ratio / ar;
+        const double length = (pb - pa).norm(), want = length * kStepSizeShare * max_aspect_ratio / ar;
         for (const Index v : {e.a, e.b})
             size[static_cast<std::size_t>(v)] = std::min(size[static_cast<std::size_t>(v)], want);
+        // Between its ends too: a size asked at the ends alone rises into the edge's middle
+        // (CadParams::size_point_growth), and Gmsh's new edges there came out up to twice as
+        // long (the delta wing's base at 25 layers from 5e-5: wedges at 1147). Points half the
+        // length asked apart keep every point of the edge within a quarter of it of one.
+        const int pieces = static_cast<int>(std::ceil(2.0 * length / want));
+        for (int k = 1; k < pieces; ++k) {
+            const double t = static_cast<double>(k) / static_cast<double>(pieces);
+            along.push_back({pa + t * (pb - pa), want});
+        }
     }
-    return points_at(wall, size);
+    FanWedgeSizes out;
+    out.points = points_at(wall, size);
+    out.nodes = static_cast<Index>(out.points.size());
+    out.points.insert(out.points.end(), along.begin(), along.end());
+    return out;
 }
 
 }  // namespace strata

@@ -124,10 +124,12 @@ TEST(StepSizes, FanWedgesFlatterThanTheLimitAskForShorterEdges) {
     p.fan_angle_deg = 150.0;
     const ProximityPlan plan = proximity_plan(wall, p);
     ASSERT_FALSE(plan.fan_wedges.empty());
-    const std::vector<SizePoint> points = fan_wedge_sizes(wall, plan, 1e-4, 1000.0);
-    ASSERT_FALSE(points.empty());
+    const FanWedgeSizes sized = fan_wedge_sizes(wall, plan, 1e-4, 1000.0);
+    ASSERT_FALSE(sized.points.empty());
     std::map<Index, double> asked;  // node → the smallest length its wedges ask
     int along_y = 0;
+    std::vector<std::pair<Vec3, Vec3>> edges;  // the edges sized, and the length each asks (x)
+    std::vector<double> wants;
     for (const ProximityPlan::FanWedge& e : plan.fan_wedges) {
         const Vec3 &a = wall.points[static_cast<std::size_t>(e.a)], &b = wall.points[static_cast<std::size_t>(e.b)];
         const double ar = fan_wedge_aspect_ratio(a, b, e.d1, e.d2, 1e-4);
@@ -142,28 +144,42 @@ TEST(StepSizes, FanWedgesFlatterThanTheLimitAskForShorterEdges) {
             auto [it, fresh] = asked.emplace(v, want);
             if (!fresh) it->second = std::min(it->second, want);
         }
+        edges.emplace_back(a, b);
+        wants.push_back(want);
     }
     EXPECT_GE(along_y, 8 * 2 + 16 * 2);  // the sharp edge's two wedges and the base's, per segment
-    ASSERT_EQ(points.size(), asked.size());
+    ASSERT_EQ(static_cast<std::size_t>(sized.nodes), asked.size());
+    ASSERT_GT(sized.points.size(), asked.size());
     std::size_t k = 0;
     for (const auto& [v, want] : asked) {  // in node order, one per node
-        EXPECT_EQ(points[k].at, wall.points[static_cast<std::size_t>(v)]);
-        EXPECT_NEAR(points[k].size, want, 1e-12);
+        EXPECT_EQ(sized.points[k].at, wall.points[static_cast<std::size_t>(v)]);
+        EXPECT_NEAR(sized.points[k].size, want, 1e-12);
         ++k;
     }
+    // Every point of a sized edge is within a quarter of its length of a point asking it, so
+    // the size field along the edge stays near the length asked (the ends alone let it rise by
+    // the growth over half the edge: here 0.25 · 0.0625 against lengths of about 0.03).
+    const PointSizes field(sized.points, 0.25);
+    for (std::size_t i = 0; i < edges.size(); ++i)
+        for (int s = 0; s <= 20; ++s) {
+            const Vec3 x = edges[i].first + (s / 20.0) * (edges[i].second - edges[i].first);
+            EXPECT_LE(field(x), wants[i] * (1.0 + 0.25 / 4.0) + 1e-12) << "edge " << i << " at " << s << "/20";
+        }
     // A wedge narrower than kFanWedgeMinDeg asks nothing: it is flat whatever its edge (here
     // 5 degrees along y, about 14 times the figure of the 85-degree one) and no spacing mends it.
     ProximityPlan narrow;
     const Vec3 d1(0, 0, 1), d2(std::sin(5.0 * std::numbers::pi / 180.0), 0, std::cos(5.0 * std::numbers::pi / 180.0));
     narrow.fan_wedges.push_back({2, 5, d1, d2});  // along the sharp edge, 0.125 long
     ASSERT_GT(fan_wedge_aspect_ratio(wall.points[2], wall.points[5], d1, d2, 1e-4), 1000.0);
-    EXPECT_TRUE(fan_wedge_sizes(wall, narrow, 1e-4, 1000.0).empty());
+    EXPECT_TRUE(fan_wedge_sizes(wall, narrow, 1e-4, 1000.0).points.empty());
     const Vec3 d3(std::sin(20.0 * std::numbers::pi / 180.0), 0, std::cos(20.0 * std::numbers::pi / 180.0));
     narrow.fan_wedges.front().d2 = d3;  // 20 degrees: sized
-    EXPECT_EQ(fan_wedge_sizes(wall, narrow, 1e-4, 1000.0).size(), 2u);
+    const FanWedgeSizes one = fan_wedge_sizes(wall, narrow, 1e-4, 1000.0);
+    EXPECT_EQ(one.nodes, 2);
+    EXPECT_GT(one.points.size(), 2u);  // and along it
     // A first layer thick enough, or no limit: nothing asked; no fans: no wedge.
-    EXPECT_TRUE(fan_wedge_sizes(wall, plan, 1e-2, 1000.0).empty());
-    EXPECT_TRUE(fan_wedge_sizes(wall, plan, 1e-4, 0.0).empty());
+    EXPECT_TRUE(fan_wedge_sizes(wall, plan, 1e-2, 1000.0).points.empty());
+    EXPECT_TRUE(fan_wedge_sizes(wall, plan, 1e-4, 0.0).points.empty());
     p.fan_angle_deg = 0.0;
     EXPECT_TRUE(proximity_plan(wall, p).fan_wedges.empty());
 }

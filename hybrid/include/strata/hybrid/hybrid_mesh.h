@@ -11,6 +11,7 @@
 #include <strata/hybrid/pyramids.h>
 #include <strata/hybrid/tetgen_fill.h>
 #include <strata/module/layers.h>
+#include <strata/module/step_sizes.h>
 
 namespace strata {
 
@@ -89,7 +90,7 @@ struct StepPlan {
     double thickness_share = 1.0;
     /// The sizes that keep the fans' first wedges under \p max_aspect_ratio (fan_wedge_sizes);
     /// empty where none exceeds it, or \p max_aspect_ratio is 0.
-    std::vector<SizePoint> fan_points;
+    FanWedgeSizes fans;
 };
 StepPlan step_plan(const SurfaceMesh& surface, const HybridParams& params, double quality,
                    double max_aspect_ratio = 0.0);

@@ -32,19 +32,27 @@ inline constexpr double kStepSizeShare = 0.7;
 std::vector<SizePoint> step_sizes(const SurfaceMesh& wall, const ProximityPlan& plan,
                                   const std::vector<double>& heights, double quality);
 
+/// The sizes fan_wedge_sizes asks.
+struct FanWedgeSizes {
+    /// At the \p nodes wall nodes first (in node order, the smallest a node's wedges ask), then
+    /// along the edges between them.
+    std::vector<SizePoint> points;
+    Index nodes = 0;  ///< wall nodes at the ends of the edges sized
+};
+
 /// A fan's first wedge along a wall edge of length L is a prism whose end triangles are about
 /// h² against sides of L · h, OpenFOAM's aspect ratio about 2L / (h sin w)
 /// (fan_wedge_aspect_ratio): fans want edges four times shorter than faces do. For every wedge
 /// of \p plan (ProximityPlan::fan_wedges, the fans the layers would build on \p wall) whose
-/// aspect ratio under a first layer of \p first_height exceeds \p max_aspect_ratio, a point at
-/// each end of its edge with the length that gives kStepSizeShare of the limit (the smallest
-/// at a node). The CAD wall sizing (CadParams::max_aspect_ratio) forecasts the fan curves
-/// before the surface is meshed; this sees the fans the layers build on it: a chain closed
-/// through a curve that touches no fan curve (a delta wing's blunt base) is sized here, and a
-/// chain the fans drop (one ending at a concave junction) is not. In node order; empty when
-/// \p max_aspect_ratio or \p first_height is 0.
-std::vector<SizePoint> fan_wedge_sizes(const SurfaceMesh& wall, const ProximityPlan& plan, double first_height,
-                                       double max_aspect_ratio);
+/// aspect ratio under a first layer of \p first_height exceeds \p max_aspect_ratio, the length
+/// that gives kStepSizeShare of the limit, asked at each end of its edge (the smallest at a
+/// node) and at points along it half that length apart. The CAD wall sizing
+/// (CadParams::max_aspect_ratio) forecasts the fan curves before the surface is meshed; this
+/// sees the fans the layers build on it: a chain closed through a curve that touches no fan
+/// curve (a delta wing's blunt base) is sized here, and a chain the fans drop (one ending at a
+/// concave junction) is not. Empty when \p max_aspect_ratio or \p first_height is 0.
+FanWedgeSizes fan_wedge_sizes(const SurfaceMesh& wall, const ProximityPlan& plan, double first_height,
+                              double max_aspect_ratio);
 
 /// fan_wedge_sizes skips wedges whose columns are closer than this (degrees): the narrowest a
 /// chain's closing curve of 30 degrees gets in a run of two wedges. The sweep's cylinder with a
