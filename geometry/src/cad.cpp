@@ -624,11 +624,11 @@ SurfaceMesh extract(const std::string& path, const std::vector<int>& surfaces, s
     return mesh;
 }
 
-/// Gmsh's generate(2) for mesh_cad, each time the same way: with quads and Blossom, tried in a
-/// child first (try_generate_in_child), the fallback to the simple recombination recorded in
-/// \p report; then run in a child whose mesh is brought back (generate_in_child), so that
-/// Gmsh's abort or crash is an error and not the end of this process, and \p progress (the
-/// program's --timeout, a host's cancel) stops Gmsh's meshing at once.
+/// Gmsh's generate(2) for mesh_cad, each time the same way: run in a child whose mesh is
+/// brought back (generate_surfaces_in_child), so that Gmsh's abort or crash is an error and not
+/// the end of this process, and \p progress (the program's --timeout, a host's cancel) stops
+/// Gmsh's meshing at once; with quads, where Blossom fails, by the simple recombination, the
+/// fallback recorded in \p report.
 struct SurfaceGenerator {
     bool quads = false;
     GmshOptionScope& options;
@@ -636,9 +636,9 @@ struct SurfaceGenerator {
     RecombinationReport& report;
 
     void operator()(const std::string& context, const std::function<void()>& generate) const {
-        const std::string failure = try_generate_in_child(context, quads, options, generate, progress);
+        const std::string failure =
+            gmsh_call(context, [&] { return generate_surfaces_in_child(context, quads, options, generate, progress); });
         if (!failure.empty()) report.blossom_failure = failure;
-        gmsh_call(context, [&] { generate_in_child(context, generate, progress); });
     }
 };
 

@@ -257,17 +257,16 @@ Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vec
             for (auto& [tag, s] : scaled.curve) s /= frame.scale;
             callback.emplace(entity_sizes(scaled), 1.0);
         }
-        // Blossom may abort the process on this surface: then Gmsh's simple recombination.
+        // The meshing in a child, its mesh brought back: on a surface it cannot parametrize
+        // well Gmsh can refine for ever (a helicopter's BRepMesh STL: MeshAdapt's refinement
+        // past 20 minutes and 2 GB in its 60-degree attempt) or abort the process ("Unable to
+        // recover the edge", thrown out of its OpenMP loop). Either is this attempt's failure.
+        // Blossom may abort the process on this surface: then Gmsh's simple recombination,
+        // within the same budget.
         const auto generate = [] { gmsh::model::mesh::generate(2); };
-        out.blossom_failure = try_generate_in_child(ctx, p.quads, options, generate);
-        // The meshing itself in a child too, its mesh brought back: on a surface it cannot
-        // parametrize well Gmsh can refine for ever (a helicopter's BRepMesh STL: MeshAdapt's
-        // refinement past 20 minutes and 2 GB in its 60-degree attempt) or abort the process
-        // ("Unable to recover the edge", thrown out of its OpenMP loop). Either is this attempt's
-        // failure.
         DeadlineProgress mesh_deadline(budget.mesh);
         try {
-            generate_in_child(ctx, generate, &mesh_deadline);
+            out.blossom_failure = generate_surfaces_in_child(ctx, p.quads, options, generate, &mesh_deadline);
         } catch (const Cancelled&) {
             if (!mesh_deadline.expired()) throw;
             throw GmshTimeout(ctx + ": Gmsh's meshing of the surfaces did not end within " +

@@ -311,23 +311,47 @@ std::string how_it_failed(const GmshProbe& p) {
                          : "fails (" + p.message + ")";
 }
 
-std::string try_generate_in_child(const std::string& context, bool quads_asked, GmshOptionScope& options,
-                                  const std::function<void()>& generate, const Progress* progress) {
+std::string generate_surfaces_in_child(const std::string& context, bool quads_asked, GmshOptionScope& options,
+                                       const std::function<void()>& generate, const Progress* progress) {
     double algorithm = 0.0;
     gmsh::option::getNumber("Mesh.RecombinationAlgorithm", algorithm);
-    const bool blossom = quads_asked && algorithm == 1.0;
-    if (!blossom) return "";
-    const GmshProbe first = gmsh_probe(generate, progress);
-    if (!first.ran || first.returned) return "";
+    if (!(quads_asked && algorithm == 1.0)) {
+        generate_in_child(context, generate, progress);
+        return "";
+    }
+    const auto made = [&] {
+        return gmsh_probe_result(
+            [&](std::vector<char>& result) {
+                generate();
+                result = pack_model_mesh();
+            },
+            progress);
+    };
+    const GmshProbe first = made();
+    if (!first.ran) {  // no child: as generate_in_child, here
+        generate();
+        return "";
+    }
+    if (first.returned) {
+        unpack_model_mesh(first.result);
+        return "";
+    }
     // Blossom aborts with its own words on some surfaces (Gmsh 4.8, meshGFaceOptimize.cpp:
     // "Perfect Match") and crashes on others (a segmentation fault on a body with a mirror on a
     // thin stalk, and on a drone's rotors, where the simple recombination meshes both): the
     // simple recombination is tried as well, and used where it works.
     options.set("Mesh.RecombinationAlgorithm", 0);
-    const GmshProbe simple = gmsh_probe(generate, progress);
+    const GmshProbe simple = made();
     const bool blossoms_words = first.aborted && first.message.find("Perfect Match") != std::string::npos;
     const std::string blossom_failure = blossoms_words ? first.message : how_it_failed(first);
-    if (!simple.ran || simple.returned) return blossom_failure;
+    if (!simple.ran) {
+        generate();
+        return blossom_failure;
+    }
+    if (simple.returned) {
+        unpack_model_mesh(simple.result);
+        return blossom_failure;
+    }
     throw BackendError(context + ": quads cannot be made here: Gmsh's Blossom recombination " +
                        (blossoms_words ? "fails (" + first.message + ")" : how_it_failed(first)) +
                        " and with its simple recombination Gmsh " + how_it_failed(simple) +

@@ -1,5 +1,5 @@
 // The Gmsh adapter's trial runs (gmsh_session.h): gmsh_probe's outcomes, and
-// try_generate_in_child on a model whose Blossom recombination ends the process
+// generate_surfaces_in_child on a model whose Blossom recombination ends the process
 // (examples/sweep/spiky.geo fused) and on calls that crash or abort.
 #include <strata/core/error.h>
 #include <strata/io/gmsh_session.h>
@@ -93,31 +93,31 @@ double option(const std::string& name) {
     return v;
 }
 
-TEST(TryGenerateInChild, FoundInAChildAndTheSimpleAlgorithmMeshesIt) {
+/// The quadrilaterals of the current model's mesh.
+std::size_t quads_here() {
+    std::vector<std::size_t> quads, quad_nodes;
+    gmsh::model::mesh::getElementsByType(3, quads, quad_nodes);
+    return quads.size();
+}
+
+TEST(GenerateSurfacesInChild, BlossomsAbortFoundInAChildAndTheSimpleAlgorithmMeshesIt) {
     GmshSession session("blossom_aborts");
     GmshOptionScope options;
     spiky_with_blossom(options);
     const auto generate = [] { gmsh::model::mesh::generate(2); };
-    // Not asked for quads: nothing is tried.
-    EXPECT_EQ(try_generate_in_child("spiky", false, options, generate), "");
+    // Not asked for quads: the surfaces are meshed as they are, and Blossom's abort is an error
+    // of this process, not its end.
+    test::expect_error<BackendError>([&] { generate_surfaces_in_child("spiky", false, options, generate); },
+                                     {"spiky: Gmsh aborts (", "Perfect Match"});
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
-    const std::string failure = try_generate_in_child("spiky", true, options, generate);
+    const std::string failure = generate_surfaces_in_child("spiky", true, options, generate);
     EXPECT_NE(failure.find("Perfect Match failed"), std::string::npos) << failure;
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
-    // This process is untouched (no mesh), and the simple algorithm gives quads.
-    std::vector<std::size_t> nodes;
-    std::vector<double> xyz, uvw;
-    gmsh::model::mesh::getNodes(nodes, xyz, uvw);
-    EXPECT_TRUE(nodes.empty());
-    EXPECT_EQ(try_generate_in_child("spiky", true, options, generate),
-              "");  // not Blossom any more: nothing tried
-    gmsh::model::mesh::generate(2);
-    std::vector<std::size_t> quads, quad_nodes;
-    gmsh::model::mesh::getElementsByType(3, quads, quad_nodes);
-    EXPECT_GT(quads.size(), 100u);
+    // The simple algorithm's quads are brought back here.
+    EXPECT_GT(quads_here(), 100u);
 }
 
-TEST(TryGenerateInChild, NothingWhereBlossomGoesThrough) {
+TEST(GenerateSurfacesInChild, BlossomsMeshIsBroughtBackMadeOnce) {
     GmshSession session("blossom_ok");
     GmshOptionScope options;
     gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
@@ -125,25 +125,40 @@ TEST(TryGenerateInChild, NothingWhereBlossomGoesThrough) {
     options.set("Mesh.MeshSizeMax", 0.3);
     options.set("Mesh.RecombineAll", 1);
     options.set("Mesh.RecombinationAlgorithm", 1);
-    EXPECT_EQ(try_generate_in_child("box", true, options, [] { gmsh::model::mesh::generate(2); }), "");
+    int here = 0;  // calls of generate in this process: none, the child's mesh is taken
+    const pid_t parent = getpid();
+    EXPECT_EQ(generate_surfaces_in_child("box", true, options,
+                                         [&] {
+                                             if (getpid() == parent) ++here;
+                                             gmsh::model::mesh::generate(2);
+                                         }),
+              "");
+    EXPECT_EQ(here, 0);
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
+    EXPECT_GT(quads_here(), 20u);
 }
 
-TEST(TryGenerateInChild, ACrashOfBlossomFallsBackToTheSimpleAlgorithm) {
+TEST(GenerateSurfacesInChild, ACrashOfBlossomFallsBackToTheSimpleAlgorithm) {
     // Blossom also crashes without words of its own (a segmentation fault on a body with a
     // mirror on a thin stalk: test_cad); where the simple recombination goes through, it is used.
     GmshSession session("blossom_crashes");
     GmshOptionScope options;
+    gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
+    gmsh::model::occ::synchronize();
+    options.set("Mesh.MeshSizeMax", 0.3);
+    options.set("Mesh.RecombineAll", 1);
     options.set("Mesh.RecombinationAlgorithm", 1);
     const auto crashes_with_blossom = [] {
         if (option("Mesh.RecombinationAlgorithm") == 1.0) std::raise(SIGSEGV);
+        gmsh::model::mesh::generate(2);
     };
-    EXPECT_EQ(try_generate_in_child("the model", true, options, crashes_with_blossom), "crashes (signal 11)");
+    EXPECT_EQ(generate_surfaces_in_child("the model", true, options, crashes_with_blossom), "crashes (signal 11)");
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
+    EXPECT_GT(quads_here(), 20u);
     // Where the simple one crashes too, one error says both, and nothing ends this process.
     options.set("Mesh.RecombinationAlgorithm", 1);
     test::expect_error<BackendError>(
-        [&] { try_generate_in_child("the model", true, options, [] { std::raise(SIGSEGV); }); },
+        [&] { generate_surfaces_in_child("the model", true, options, [] { std::raise(SIGSEGV); }); },
         {"the model: quads cannot be made here: Gmsh's Blossom recombination crashes (signal 11) and with its "
          "simple recombination Gmsh crashes (signal 11)"});
 }

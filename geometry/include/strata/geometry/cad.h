@@ -195,7 +195,7 @@ struct WallSizeReport {
 /// (CadParams::elements, RemeshParams::quads).
 struct RecombinationReport {
     /// Gmsh's Blossom algorithm would have ended the process on this model (a std::terminate
-    /// out of Gmsh 4.8's meshing loop; gmsh_session.h, try_generate_in_child): its message. The surfaces
+    /// out of Gmsh 4.8's meshing loop; gmsh_session.h, generate_surfaces_in_child): its message. The surfaces
     /// were then recombined with Gmsh's simple algorithm, which leaves more triangles. Empty:
     /// Blossom did it (or no quads were asked).
     std::string blossom_failure;

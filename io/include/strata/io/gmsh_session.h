@@ -89,8 +89,8 @@ private:
 /// <context>: Gmsh aborted the process (<its message>) ...", and status 1, instead of
 /// "terminate called after throwing an instance of std::string" and SIGABRT: Gmsh 4.8 throws
 /// its error text out of its OpenMP meshing loops when it cannot mesh a face, and no caller can
-/// catch that. The process cannot go on; this says why. (Hosts that must live on try Gmsh's
-/// meshing in a child first: try_generate_in_child.)
+/// catch that. The process cannot go on; this says why. (Hosts that must live on have Gmsh mesh
+/// in a child: generate_in_child.)
 /// Nested scopes stack; the handler before the outermost is put back at its end.
 class GmshAbortScope {
 public:
@@ -148,25 +148,21 @@ void generate_in_child(const std::string& context, const std::function<void()>& 
 /// (<its text>)", "fails (<its text>)".
 std::string how_it_failed(const GmshProbe& p);
 
-/// \p generate (the caller's generate(2), with its size callback) tried first in a child
-/// (gmsh_probe) where Blossom may end the process, before the caller runs it (generate_in_child):
-/// Gmsh 4.8's Blossom recombination (Mesh.RecombinationAlgorithm 1) throws "Perfect Match
-/// failed in quadrangulation" out of its OpenMP surface-meshing loop on some surfaces (the
-/// apex of a cone, a tiny hole in a large face), and crashes on others (a segmentation fault on
-/// a body with a mirror on a thin stalk). So where \p quads_asked (Mesh.RecombineAll, or some
-/// surfaces' own recombination) and Blossom is the algorithm, it is tried; where it did not
-/// return, Mesh.RecombinationAlgorithm is set to 0 through \p options (Gmsh's simple
-/// recombination, which never needs a perfect matching and leaves more triangles) and
-/// Blossom's message (or how_it_failed) is returned, for the caller's report. Gmsh got no
-/// further than Blossom's failure, and the faces after it may crash its mesher (MeshAdapt did
-/// on the block with a 1/500 hole), so that is tried in a child too: BackendError "<context>:
-/// quads cannot be made here: ..." if it fails.
-///
-/// "" where nothing needed saying: nothing tried (no quads, another algorithm, no child
-/// started) or it went through. Each trial costs the call's time once more, and is stopped
-/// (Cancelled) where \p progress asks (gmsh_probe).
-std::string try_generate_in_child(const std::string& context, bool quads_asked, GmshOptionScope& options,
-                                  const std::function<void()>& generate, const Progress* progress = nullptr);
+/// generate_in_child where Gmsh's Blossom recombination may fail: Gmsh 4.8's Blossom
+/// (Mesh.RecombinationAlgorithm 1) throws "Perfect Match failed in quadrangulation" out of its
+/// OpenMP surface-meshing loop on some surfaces (the apex of a cone, a tiny hole in a large
+/// face), and crashes on others (a segmentation fault on a body with a mirror on a thin stalk).
+/// So where \p quads_asked (Mesh.RecombineAll, or some surfaces' own recombination) and Blossom
+/// is the algorithm and its child does not return, Mesh.RecombinationAlgorithm is set to 0
+/// through \p options (Gmsh's simple recombination, which never needs a perfect matching and
+/// leaves more triangles), the surfaces are meshed by it in another child, and Blossom's
+/// message (or how_it_failed) is returned, for the caller's report; "" where nothing needed
+/// saying. Either way the mesh made is brought back into the current model, made once where
+/// Blossom goes through. Where the simple recombination fails too: BackendError "<context>:
+/// quads cannot be made here: ...". Otherwise as generate_in_child (\p progress's stop, no
+/// child: here); without quads, or with another algorithm, generate_in_child itself.
+std::string generate_surfaces_in_child(const std::string& context, bool quads_asked, GmshOptionScope& options,
+                                       const std::function<void()>& generate, const Progress* progress = nullptr);
 
 /// Run \p f (calls into gmsh::), turning any exception Gmsh throws into a BackendError
 /// "<context>: <Gmsh's message>". strata::Error and Cancelled pass through unchanged. An abort inside it
