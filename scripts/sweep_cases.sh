@@ -35,6 +35,7 @@ cases=(
   "car on its wheels in a wind tunnel (4.2)|$s/car_ground.geo $L --first-height 4.2e-4"
   "sounding rocket with a nozzle cavity (2.65)|$s/rocket.geo --fuse $L --first-height 2.65e-4"
   "delta wing with sharp leading edges (1)|$s/delta.geo $L --first-height 1e-4"
+  "half wing on a symmetry plane (2)|$s/halfwing.geo $L --first-height 2e-4"
   "half body STL, open along its symmetry plane (2)|$s/halfbody.stl $L --first-height 2e-4"
   "car STL|$s/car_brepmesh.stl --fuse $L --first-height 4.2e-3"
   "car STL --remesh|$s/car_brepmesh.stl --fuse --remesh $L --first-height 4.2e-4"
