@@ -616,12 +616,14 @@ void print_held_back(const std::vector<strata::LayerStats>& stats) {
 
 /// The fans at sharp convex edges, if any, and the wall nodes where none could be built (\p
 /// no_fan: its first cells would have been unusable, its face on the layer top could not take a
-/// pyramid, or its cells had skewed faces), each reason with the first such node's position.
+/// pyramid, its cells had skewed faces, or its sharp edge's chain could not close into a loop),
+/// each reason with the first such node's position.
 void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners, const strata::LayerReport& no_fan) {
     if (edges > 0)
         std::printf("fans: %d sharp convex edges, %d wall nodes with a column per side and between (%d corners)\n",
                     static_cast<int>(edges), static_cast<int>(nodes), static_cast<int>(corners));
-    for (const strata::NoFan reason : {strata::NoFan::Unusable, strata::NoFan::Uncapped, strata::NoFan::Skewed}) {
+    for (const strata::NoFan reason : {strata::NoFan::Unusable, strata::NoFan::Uncapped, strata::NoFan::Skewed,
+                                       strata::NoFan::Open, strata::NoFan::Unclosed}) {
         const strata::Index n = no_fan.no_fan_nodes(reason);
         if (n == 0) continue;
         const auto first = std::find_if(no_fan.no_fan.begin(), no_fan.no_fan.end(),
@@ -633,8 +635,16 @@ void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners,
                     : reason == strata::NoFan::Uncapped
                         ? "a fan's face on the layer top could not be capped with a pyramid (its columns twist: the "
                           "wall there is small against the layers' thickness)"
-                        : "a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (a fan over a coarsely "
-                          "faceted wall; a finer wall keeps it)",
+                    : reason == strata::NoFan::Skewed
+                        ? "a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (a fan over a coarsely "
+                          "faceted wall; a finer wall keeps it)"
+                    : reason == strata::NoFan::Open
+                        ? "their sharp edge's chain reaches the wall's open boundary (a symmetry plane), where no "
+                          "fan is built, and a fan's chain must close into a loop: one column each, stopped at the "
+                          "wall on an edge sharper than --sharp-edge-stop (sharp)"
+                        : "their sharp edge's chain ends without closing into a loop (at a concave junction, or "
+                          "where a fan was dropped): one column each, stopped at the wall on an edge sharper than "
+                          "--sharp-edge-stop (sharp)",
                     n > 1 ? "the first," : "", static_cast<int>(first->node),
                     strata::format_point(first->position).c_str());
     }

@@ -11,7 +11,7 @@ std::string_view to_string(Shortfall reason) {
 }
 
 std::string_view to_string(NoFan reason) {
-    static constexpr EnumNames<NoFan, kNoFanReasons> kNames{{"unusable", "uncapped", "skewed"}};
+    static constexpr EnumNames<NoFan, kNoFanReasons> kNames{{"unusable", "uncapped", "skewed", "open", "unclosed"}};
     return kNames.name(reason);
 }
 

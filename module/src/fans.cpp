@@ -398,9 +398,11 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_d
     const auto un = static_cast<std::size_t>(nn);
     const EdgeTable et = edge_table(wall);
     const auto ne = et.nodes.size();
-    std::vector<char> open(un, 0);
+    std::vector<char> open(un, 0), boundary(un, 0);
     for (Index l = 0; l < loops.rows(); ++l)
-        for (const Index* v = loops.row_begin(l); v != loops.row_end(l); ++v) open[static_cast<std::size_t>(*v)] = 1;
+        for (const Index* v = loops.row_begin(l); v != loops.row_end(l); ++v)
+            boundary[static_cast<std::size_t>(*v)] = 1;
+    open = boundary;
     for (std::size_t i = 0; i < excluded.size() && i < un; ++i) open[i] |= excluded[i];
     std::vector<Vec3> normal(static_cast<std::size_t>(nf));
     for (Index f = 0; f < nf; ++f) normal[static_cast<std::size_t>(f)] = unit(face_area_vector(wall, f));
@@ -411,23 +413,50 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_d
     std::vector<char> keep(ne, 0);
     bool any_seed = false;
     UnionFind chains(un);
+    std::vector<Index> at_boundary;  // nodes with an edge of 30° or more to the open boundary
     for (std::size_t e = 0; e < ne; ++e) {
         const Index a = et.nodes[e][0], b = et.nodes[e][1];
-        if (et.faces.row_size(static_cast<Index>(e)) != 2 || open[static_cast<std::size_t>(a)] ||
-            open[static_cast<std::size_t>(b)])
-            continue;
+        if (et.faces.row_size(static_cast<Index>(e)) != 2) continue;
         const Index f = et.faces.row_begin(static_cast<Index>(e))[0], g = et.faces.row_begin(static_cast<Index>(e))[1];
         const Vec3 &nf_ = normal[static_cast<std::size_t>(f)], &ng = normal[static_cast<std::size_t>(g)];
         if (nf_ == Vec3::Zero() || ng == Vec3::Zero()) continue;
         const double t = convex_turn_deg(nf_, face_centroid(wall, wall.points, f), ng,
                                          face_centroid(wall, wall.points, g), wall.points[a]);
         if (t < kFeatureDeg) continue;
-        turn[e] = t;
+        turn[e] = t;  // kept or not: the edges without a fan are said why (unfanned)
+        if (open[static_cast<std::size_t>(a)] || open[static_cast<std::size_t>(b)]) {
+            if (boundary[static_cast<std::size_t>(a)] || boundary[static_cast<std::size_t>(b)])
+                at_boundary.insert(at_boundary.end(), {a, b});
+            continue;
+        }
         keep[e] = 1;
         chains.unite(a, b);
         any_seed |= t >= fan_angle_deg;
     }
-    if (!any_seed) return out;
+    // Why each edge of fan_angle_deg or more that ends without a fan has none: its chain (the
+    // convex edges of 30° or more joined to it) reaches the open boundary, or ends otherwise.
+    std::vector<char> reaches_boundary(un, 0);
+    for (const Index v : at_boundary) reaches_boundary[static_cast<std::size_t>(chains.find(v))] = 1;
+    auto explain = [&](FanWall& fw) {
+        std::vector<char> fanned(un, 0);
+        for (std::size_t e = 0; e < ne; ++e)
+            if (keep[e])
+                for (const Index v : et.nodes[e]) fanned[static_cast<std::size_t>(v)] = 1;
+        std::map<Index, NoFan> why;
+        for (std::size_t e = 0; e < ne; ++e) {
+            if (keep[e] || turn[e] < fan_angle_deg) continue;
+            for (const Index v : et.nodes[e]) {
+                const auto u = static_cast<std::size_t>(v);
+                if (fanned[u] || (u < excluded.size() && excluded[u])) continue;
+                const bool to_boundary = boundary[u] || reaches_boundary[static_cast<std::size_t>(chains.find(v))];
+                auto [it, fresh] = why.emplace(v, to_boundary ? NoFan::Open : NoFan::Unclosed);
+                if (!fresh && to_boundary) it->second = NoFan::Open;
+            }
+        }
+        fw.unfanned.assign(why.begin(), why.end());
+        return std::move(fw);
+    };
+    if (!any_seed) return explain(out);
     std::vector<char> seeded(un, 0);
     for (std::size_t e = 0; e < ne; ++e)
         if (keep[e] && turn[e] >= fan_angle_deg) seeded[static_cast<std::size_t>(chains.find(et.nodes[e][0]))] = 1;
@@ -437,10 +466,10 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_d
     // Each round drops one fan edge, so this ends.
     for (;;) {
         const std::vector<std::vector<Index>> at = prune(et, un, keep);
-        if (std::none_of(keep.begin(), keep.end(), [](char k) { return k != 0; })) return out;
+        if (std::none_of(keep.begin(), keep.end(), [](char k) { return k != 0; })) return explain(out);
         std::vector<Index> bad;
         FanWall fw = assemble(wall, et, keep, at, turn, bad);
-        if (bad.empty()) return fw;
+        if (bad.empty()) return explain(fw);
         for (const Index e : bad) keep[static_cast<std::size_t>(e)] = 0;
     }
 }

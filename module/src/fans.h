@@ -11,6 +11,7 @@
 // a corner; above, they are ordinary prisms and hexahedra.
 
 #include <strata/core/cell_quality.h>
+#include <strata/core/layer_report.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/core/types.h>
 
@@ -28,6 +29,12 @@ struct FanWall {
     Index fan_nodes = 0;          ///< wall nodes split into fans
     Index corners = 0;            ///< of those, corners (three or more fan edges, or two turning sharply)
     Index columns = 0;            ///< columns added (mesh nodes beyond the wall's)
+    /// The wall's nodes on an edge turning fan_angle_deg or more that got no fan, ascending, and
+    /// why: NoFan::Open where its chain reaches the open boundary (a symmetry plane: no node
+    /// there gets a fan), NoFan::Unclosed where it ends without closing otherwise (at a concave
+    /// junction, on a smooth wall, at a node \p excluded, or where a corner's edge was dropped).
+    /// Nodes \p excluded are not listed (their caller says why).
+    std::vector<std::pair<Index, NoFan>> unfanned;
     bool empty() const { return fan_edges == 0; }
 };
 

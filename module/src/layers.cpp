@@ -984,6 +984,9 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         out.fan_edges = fans.fan_edges, out.fan_nodes = fans.fan_nodes, out.fan_corners = fans.corners;
         out.fan_column = col.pinned;
     }
+    for (const auto& [i, why] : fans.unfanned)
+        out.fans_unclosed.push_back(
+            {w.input_node[static_cast<std::size_t>(i)], w.mesh.points[static_cast<std::size_t>(i)], why});
     out.input_node = w.input_node;
     for (Index i = 0; i < nw; ++i) out.unsmoothed_nodes += mc.st.valid[i] ? 0 : 1;
     out.asked_thickness = thickness;
@@ -1140,6 +1143,7 @@ LayerReport layer_report(const LayerMesh& lm) {
         for (std::size_t j = 0; j < wall_of.size(); ++j)
             if (wall_of[j] != kNone) r.no_fan.push_back({(*dropped)[j], lm.mesh.points[base(wall_of[j])], reason});
     }
+    r.no_fan.insert(r.no_fan.end(), lm.fans_unclosed.begin(), lm.fans_unclosed.end());
     std::stable_sort(r.no_fan.begin(), r.no_fan.end(),
                      [](const NoFanNode& a, const NoFanNode& b) { return a.node < b.node; });
     // Per patch of the wall: its faces, and its nodes once each.

@@ -136,12 +136,20 @@ TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
     EXPECT_EQ(std::adjacent_find(lm.fans_dropped.begin(), lm.fans_dropped.end()), lm.fans_dropped.end());
     EXPECT_NE(std::find(lm.fans_dropped.begin(), lm.fans_dropped.end(), 3 * 4 + 2), lm.fans_dropped.end());
     // The report says where: each such node once, at its place on the wall, by node id (with
-    // those whose fan went for skewed cells where the dropped one's chain was cut).
+    // those whose fan went for skewed cells, and those of the sharp edge whose chain no longer
+    // closes through the dropped node).
     const LayerReport r = layer_report(lm);
-    ASSERT_EQ(r.no_fan.size(), lm.fans_dropped.size() + lm.fans_skewed.size());
+    ASSERT_EQ(r.no_fan.size(), lm.fans_dropped.size() + lm.fans_skewed.size() + lm.fans_unclosed.size());
     EXPECT_EQ(r.no_fan_nodes(NoFan::Unusable), static_cast<Index>(lm.fans_dropped.size()));
     EXPECT_EQ(r.no_fan_nodes(NoFan::Skewed), static_cast<Index>(lm.fans_skewed.size()));
+    EXPECT_EQ(r.no_fan_nodes(NoFan::Unclosed), static_cast<Index>(lm.fans_unclosed.size()));
+    EXPECT_FALSE(lm.fans_unclosed.empty());
     for (std::size_t j = 0; j < r.no_fan.size(); ++j) {
+        if (r.no_fan[j].reason == NoFan::Unclosed) {
+            EXPECT_EQ(r.no_fan[j].node % 3, 2) << "a node of the sharp edge";
+            EXPECT_EQ(r.no_fan[j].position, wall.points[static_cast<std::size_t>(r.no_fan[j].node)]);
+            continue;
+        }
         const std::vector<Index>& list = r.no_fan[j].reason == NoFan::Unusable ? lm.fans_dropped : lm.fans_skewed;
         EXPECT_NE(std::find(list.begin(), list.end(), r.no_fan[j].node), list.end());
         EXPECT_EQ(r.no_fan[j].position, wall.points[static_cast<std::size_t>(r.no_fan[j].node)]);
@@ -290,6 +298,40 @@ TEST(Fans, NoFanWhereTheNodesAreExcluded) {
     const FanWall fw = build_fans(wall, boundary_loops(wall), 120.0, excluded);
     for (Index i = 0; i < fw.mesh.num_points(); ++i) EXPECT_FALSE(fw.base[static_cast<std::size_t>(i)] == 2 && i != 2);
     EXPECT_LT(fw.fan_edges, 30);
+}
+
+TEST(Fans, SharpEdgesLeftWithoutAFanAreSaidWhy) {
+    // A chain must close into a loop. Closed by both caps, the blade's sharp edge has its fan.
+    const SurfaceMesh wall = test::blade(8, 10.0);
+    EXPECT_TRUE(build_fans(wall, boundary_loops(wall), 120.0, {}).unfanned.empty());
+    const std::vector<Index> edge{5, 8, 11, 14, 17, 20, 23, 26};  // the sharp edge's nodes j = 1..8
+    // Open at y = 1 (its cap gone, as a half model's wall is open along its symmetry plane):
+    // the edge's chain reaches the open boundary, where no node gets a fan, and only the loop of
+    // the cap at y = 0 keeps one; the edge's other nodes are said to reach the boundary.
+    SurfaceMesh open = wall;
+    open.face_offsets.pop_back();
+    open.face_nodes.resize(static_cast<std::size_t>(open.face_offsets.back()));
+    open.face_patch.pop_back();
+    ASSERT_EQ(boundary_loops(open).rows(), 1);
+    const FanWall half = build_fans(open, boundary_loops(open), 120.0, {});
+    EXPECT_EQ(half.fan_edges, 3);  // the cap's loop
+    ASSERT_EQ(half.unfanned.size(), edge.size());
+    for (std::size_t j = 0; j < edge.size(); ++j) {
+        EXPECT_EQ(half.unfanned[j].first, edge[j]);
+        EXPECT_EQ(half.unfanned[j].second, NoFan::Open);
+    }
+    // Closed, but a node of the edge excluded (its fan dropped by the caller): the two halves of
+    // the edge end there without closing; the excluded node is its caller's to explain.
+    std::vector<char> excluded(static_cast<std::size_t>(wall.num_points()), 0);
+    excluded[14] = 1;
+    const FanWall cut = build_fans(wall, boundary_loops(wall), 120.0, excluded);
+    EXPECT_EQ(cut.fan_edges, 6 + 16);  // the caps and the base's two edges still close
+    const std::vector<Index> ends{5, 8, 11, 17, 20, 23};
+    ASSERT_EQ(cut.unfanned.size(), ends.size());
+    for (std::size_t j = 0; j < ends.size(); ++j) {
+        EXPECT_EQ(cut.unfanned[j].first, ends[j]);
+        EXPECT_EQ(cut.unfanned[j].second, NoFan::Unclosed);
+    }
 }
 
 /// A cell of \p type whose ids are \p id, over the unit cube's corners (Gmsh's hexahedron order).

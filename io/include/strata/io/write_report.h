@@ -23,7 +23,8 @@ std::string report_path(const std::string& mesh_path);
 ///  "patches": [{"name", "faces", "nodes", "full_nodes", "mean_share", "min_share",
 ///               "short": {"proximity", "front", "held_back"}}],
 ///  "short_nodes": [{"node", "position": [x, y, z], "share", "layers", "reason"}],
-///  "no_fan_nodes": [{"node", "position": [x, y, z], "reason": "unusable" | "uncapped"}]}.
+///  "no_fan_nodes": [{"node", "position": [x, y, z], "reason": "unusable" | "uncapped" | "skewed" |
+///   "open" | "unclosed"}]}.
 /// Atomic (temporary name, then rename); InputError naming the path if it cannot be written.
 void write_layer_report(const LayerReport& report, const std::string& path);
 
