@@ -287,22 +287,38 @@ void unpack_model_mesh(const std::vector<char>& bytes) {
         if (!e.types.empty()) gmsh::model::mesh::addElements(e.dim, e.tag, e.types, e.tags, e.nodes);
 }
 
-void generate_in_child(const std::string& context, const std::function<void()>& generate, const Progress* progress) {
-    const GmshProbe made = gmsh_probe_result(
+namespace {
+
+/// \p generate run in a forked child (gmsh_probe_result), the mesh it made packed as its result.
+GmshProbe generate_and_pack(const std::function<void()>& generate, const Progress* progress) {
+    return gmsh_probe_result(
         [&](std::vector<char>& result) {
             generate();
             result = pack_model_mesh();
         },
         progress);
+}
+
+/// The mesh \p made brought into the current model, or \p generate run here where no child
+/// could be started; false where the child did not return (nothing changed here).
+bool take_mesh(const GmshProbe& made, const std::function<void()>& generate) {
     if (!made.ran) {
         generate();
-        return;
+        return true;
     }
-    if (!made.returned)
+    if (!made.returned) return false;
+    unpack_model_mesh(made.result);
+    return true;
+}
+
+}  // namespace
+
+void generate_in_child(const std::string& context, const std::function<void()>& generate, const Progress* progress) {
+    const GmshProbe made = generate_and_pack(generate, progress);
+    if (!take_mesh(made, generate))
         throw BackendError(context + ": Gmsh " + how_it_failed(made) +
                            " meshing the surfaces (in a child process: nothing else is lost, and a Python or "
                            "FreeCAD session goes on)");
-    unpack_model_mesh(made.result);
 }
 
 std::string how_it_failed(const GmshProbe& p) {
@@ -319,39 +335,17 @@ std::string generate_surfaces_in_child(const std::string& context, bool quads_as
         generate_in_child(context, generate, progress);
         return "";
     }
-    const auto made = [&] {
-        return gmsh_probe_result(
-            [&](std::vector<char>& result) {
-                generate();
-                result = pack_model_mesh();
-            },
-            progress);
-    };
-    const GmshProbe first = made();
-    if (!first.ran) {  // no child: as generate_in_child, here
-        generate();
-        return "";
-    }
-    if (first.returned) {
-        unpack_model_mesh(first.result);
-        return "";
-    }
+    const GmshProbe first = generate_and_pack(generate, progress);
+    if (take_mesh(first, generate)) return "";
     // Blossom aborts with its own words on some surfaces (Gmsh 4.8, meshGFaceOptimize.cpp:
     // "Perfect Match") and crashes on others (a segmentation fault on a body with a mirror on a
     // thin stalk, and on a drone's rotors, where the simple recombination meshes both): the
     // simple recombination is tried as well, and used where it works.
     options.set("Mesh.RecombinationAlgorithm", 0);
-    const GmshProbe simple = made();
+    const GmshProbe simple = generate_and_pack(generate, progress);
     const bool blossoms_words = first.aborted && first.message.find("Perfect Match") != std::string::npos;
     const std::string blossom_failure = blossoms_words ? first.message : how_it_failed(first);
-    if (!simple.ran) {
-        generate();
-        return blossom_failure;
-    }
-    if (simple.returned) {
-        unpack_model_mesh(simple.result);
-        return blossom_failure;
-    }
+    if (take_mesh(simple, generate)) return blossom_failure;
     throw BackendError(context + ": quads cannot be made here: Gmsh's Blossom recombination " +
                        (blossoms_words ? "fails (" + first.message + ")" : how_it_failed(first)) +
                        " and with its simple recombination Gmsh " + how_it_failed(simple) +

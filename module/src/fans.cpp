@@ -398,11 +398,11 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_d
     const auto un = static_cast<std::size_t>(nn);
     const EdgeTable et = edge_table(wall);
     const auto ne = et.nodes.size();
-    std::vector<char> open(un, 0), boundary(un, 0);
+    std::vector<char> boundary(un, 0);
     for (Index l = 0; l < loops.rows(); ++l)
         for (const Index* v = loops.row_begin(l); v != loops.row_end(l); ++v)
             boundary[static_cast<std::size_t>(*v)] = 1;
-    open = boundary;
+    std::vector<char> open = boundary;
     for (std::size_t i = 0; i < excluded.size() && i < un; ++i) open[i] |= excluded[i];
     std::vector<Vec3> normal(static_cast<std::size_t>(nf));
     for (Index f = 0; f < nf; ++f) normal[static_cast<std::size_t>(f)] = unit(face_area_vector(wall, f));
