@@ -628,7 +628,7 @@ void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners,
         if (n == 0) continue;
         const auto first = std::find_if(no_fan.no_fan.begin(), no_fan.no_fan.end(),
                                         [&](const strata::NoFanNode& v) { return v.reason == reason; });
-        std::printf("note: no fan at %d wall nodes where %s; %s node %d at %s (in OUT.report.json with positions)\n",
+        std::printf("note: no fan at %d wall nodes where %s;%s node %d at %s (in OUT.report.json with positions)\n",
                     static_cast<int>(n),
                     reason == strata::NoFan::Unusable
                         ? "its first cells would have been unusable (a needle face or a narrow gap beside it)"
@@ -645,7 +645,7 @@ void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners,
                         : "their sharp edge's chain ends without closing into a loop (at a concave junction, or "
                           "where a fan was dropped): one column each, stopped at the wall on an edge sharper than "
                           "--sharp-edge-stop (sharp)",
-                    n > 1 ? "the first," : "", static_cast<int>(first->node),
+                    n > 1 ? " the first," : "", static_cast<int>(first->node),
                     strata::format_point(first->position).c_str());
     }
 }

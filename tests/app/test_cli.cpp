@@ -782,6 +782,24 @@ TEST(Cli, ADeltaWingKeepsItsLeadingEdgeFansAndTheirWedgesPassCheckMesh) {
     EXPECT_GT(report_min_quality(rep, "tetrahedron"), 0.02) << r.out;
 }
 
+TEST(Cli, ASharpEdgeWhoseChainReachesASymmetryPlaneIsSaidToHaveNoFan) {
+    // The sweep's half wing: its sharp trailing edge runs from the symmetry plane to its flat
+    // tip. A fan's chain must close into a loop and no node on the plane gets one, so the edge
+    // has none and its columns stop at the wall; the summary says why and the report where.
+    test::ScratchDir dir("cli_half_wing");
+    const CliResult r =
+        strata_cli(dir, "mesh '" + example_data("../sweep/halfwing.geo") + "' --layers 5 --first-height 1e-3 -o w.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("note: no fan at 69 wall nodes where their sharp edge's chain reaches the wall's open "
+                         "boundary (a symmetry plane)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("; the first, node 219 at (1, 0, 0)"), std::string::npos) << r.out;
+    const std::string rep = slurp(dir.file("w.msh.report.json"));
+    EXPECT_NE(rep.find("{\"node\": 219, \"position\": [1, 0, 0], \"reason\": \"open\"}"), std::string::npos);
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
 TEST(Cli, AFanWhoseCellsCheckMeshFindsSkewedIsDropped) {
     // The wing-fuselage at its default size (426 wall faces), 10 layers from 1e-3 of its length:
     // the wing's leading edge (151 degrees on so coarse a wall) seeds a fan chain that closes
