@@ -60,11 +60,23 @@ struct Builder {
     std::vector<std::vector<Index>> chains;     ///< input nodes of each cut patch edge, from its start
     std::vector<std::vector<Index>> chain_pts;  ///< outer points replacing it, from its start
     std::unordered_map<std::uint64_t, Index> chain_of;  ///< input edge → chain
+    /// A fan's plane node (an input node on the walls' open boundary with several columns: a
+    /// sharp trailing edge on a symmetry plane): its columns in the order the layer top's
+    /// boundary passes them, and the input nodes before and after them there.
+    struct Fan {
+        Index before = kNone, after = kNone;
+        std::vector<Index> columns;
+    };
+    std::unordered_map<Index, Fan> fans;
 
     Builder(const SurfaceMesh& s, const LayerMesh& l) : surface(s), layers(l) {
         wall_of.assign(static_cast<std::size_t>(s.num_points()), kNone);
-        for (std::size_t i = 0; i < l.input_node.size(); ++i)
-            wall_of[static_cast<std::size_t>(l.input_node[i])] = static_cast<Index>(i);
+        bool split = false;  // an input node with several columns (a fan)
+        for (std::size_t i = 0; i < l.input_node.size(); ++i) {
+            Index& w = wall_of[static_cast<std::size_t>(l.input_node[i])];
+            split |= w != kNone;
+            w = static_cast<Index>(i);
+        }
         input_map.assign(static_cast<std::size_t>(s.num_points()), kNone);
         top_map.assign(static_cast<std::size_t>(l.wall_nodes()), kNone);
         std::vector<int> count(static_cast<std::size_t>(l.wall_nodes()), 0);
@@ -81,6 +93,57 @@ struct Builder {
             }
         for (std::size_t i = 0; i < count.size(); ++i)
             if (count[i] > 0) top_size[i] /= count[i];
+        if (split) find_fans();
+    }
+
+    /// fans: the runs of one input node's columns along the layer top's boundary loops.
+    void find_fans() {
+        const Csr loops = boundary_loops(layers.top);
+        auto input = [&](Index w) { return layers.input_node[static_cast<std::size_t>(w)]; };
+        for (Index l = 0; l < loops.rows(); ++l) {
+            const Index* lv = loops.row_begin(l);
+            const Index m = loops.row_size(l);
+            // Start where the input node changes, so that no run is split.
+            Index s0 = 0;
+            while (s0 < m && input(lv[s0]) == input(lv[(s0 + m - 1) % m])) ++s0;
+            if (s0 == m) continue;
+            for (Index i = 0; i < m;) {
+                const Index v = input(lv[(s0 + i) % m]);
+                Index j = i + 1;
+                while (j < m && input(lv[(s0 + j) % m]) == v) ++j;
+                if (j - i > 1) {
+                    Fan& f = fans[v];
+                    if (!f.columns.empty())
+                        throw TopologyError("the walls' open boundary passes the fan at " +
+                                            format_point(surface.points[v]) + " twice");
+                    f.before = input(lv[(s0 + i + m - 1) % m]);
+                    f.after = input(lv[(s0 + j) % m]);
+                    for (Index k = i; k < j; ++k) f.columns.push_back(lv[(s0 + k) % m]);
+                }
+                i = j;
+            }
+        }
+    }
+
+    /// The outer points of input node \p v on a patch's boundary loop coming from input node
+    /// \p prev: point_of(v), or a fan's columns' top points, from prev's side.
+    void append_points(Index v, Index prev, std::vector<Index>& pts) {
+        const auto it = fans.find(v);
+        if (it == fans.end()) {
+            pts.push_back(point_of(v));
+            return;
+        }
+        const Fan& f = it->second;
+        if (prev != f.before && prev != f.after)
+            throw TopologyError("the fan at " + format_point(surface.points[v]) +
+                                " does not end on the plane's boundary it lies on");
+        const std::size_t n = f.columns.size();
+        for (std::size_t k = 0; k < n; ++k) {
+            const Index w = f.columns[prev == f.before ? k : n - 1 - k];
+            Index& t = top_map[static_cast<std::size_t>(w)];
+            if (t == kNone) t = add_point(layers.top.points[w], w);
+            pts.push_back(t);
+        }
     }
 
     bool is_wall_face(Index f) const {
@@ -270,7 +333,7 @@ struct Builder {
                 const Index a = loop[i], b = loop[(i + 1) % m];
                 const auto it = chain_of.find(edge_key(a, b));
                 if (it == chain_of.end()) {
-                    pts.push_back(point_of(a));
+                    append_points(a, loop[(i + m - 1) % m], pts);
                     ++i;
                     continue;
                 }

@@ -628,8 +628,10 @@ void build_layer_cells(const Columns& col, const SurfaceMesh& wall, const Csr& l
                 const bool ma = out.node_layers(a) > k, mb = out.node_layers(b) > k;
                 const Index a0 = out.level_node(k, a), b0 = out.level_node(k, b);
                 const Index a1 = out.level_node(k + 1, a), b1 = out.level_node(k + 1, b);
+                // Between two columns of a plane node's fan, collapsed on the wall: a triangle.
+                Index q[4] = {a0, b0, b1, a1};
                 if (ma && mb)
-                    bnd.add_face({a0, b0, b1, a1}, patch);
+                    add_distinct(q, 4, patch);
                 else if (ma)
                     bnd.add_face({a0, b0, a1}, patch);
                 else if (mb)

@@ -93,8 +93,11 @@ Vec3 into_face(const SurfaceMesh& m, Index f, Index a, Index b) {
 namespace {
 
 /// Drop the fan edges at nodes with only one (such a node cannot be split) until none is left:
-/// the graph's 2-core. Returns the fan edges per node.
-std::vector<std::vector<Index>> prune(const EdgeTable& et, std::size_t un, std::vector<char>& keep) {
+/// the graph's 2-core, but for the plane nodes (\p anchor non-zero), which may end a chain.
+/// Returns the fan edges per node.
+std::vector<std::vector<Index>> prune(const EdgeTable& et, std::size_t un, const std::vector<Vec3>& anchor,
+                                      std::vector<char>& keep) {
+    auto loose = [&](std::size_t i) { return i >= anchor.size() || anchor[i] == Vec3::Zero(); };
     const auto ne = et.nodes.size();
     std::vector<std::vector<Index>> at(un);
     for (std::size_t e = 0; e < ne; ++e)
@@ -103,7 +106,7 @@ std::vector<std::vector<Index>> prune(const EdgeTable& et, std::size_t un, std::
     std::vector<int> degree(un, 0);
     std::vector<Index> queue;
     for (std::size_t i = 0; i < un; ++i)
-        if ((degree[i] = static_cast<int>(at[i].size())) == 1) queue.push_back(static_cast<Index>(i));
+        if ((degree[i] = static_cast<int>(at[i].size())) == 1 && loose(i)) queue.push_back(static_cast<Index>(i));
     while (!queue.empty()) {
         const Index i = queue.back();
         queue.pop_back();
@@ -111,7 +114,8 @@ std::vector<std::vector<Index>> prune(const EdgeTable& et, std::size_t un, std::
             if (!keep[static_cast<std::size_t>(e)]) continue;
             keep[static_cast<std::size_t>(e)] = 0;
             for (const Index v : et.nodes[static_cast<std::size_t>(e)])
-                if (--degree[static_cast<std::size_t>(v)] == 1) queue.push_back(v);
+                if (--degree[static_cast<std::size_t>(v)] == 1 && loose(static_cast<std::size_t>(v)))
+                    queue.push_back(v);
         }
     }
     for (std::size_t i = 0; i < un; ++i) {
@@ -126,7 +130,8 @@ std::vector<std::vector<Index>> prune(const EdgeTable& et, std::size_t un, std::
 /// before trying again (\p bad, empty if none): where a corner's columns span too little
 /// (nearly in one plane: its cells would be flat), the corner's fan edge that turns least.
 FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector<char>& keep,
-                 const std::vector<std::vector<Index>>& at, const std::vector<double>& turn, std::vector<Index>& bad) {
+                 const std::vector<std::vector<Index>>& at, const std::vector<double>& turn,
+                 const std::vector<Vec3>& anchor, double plane_reach, std::vector<Index>& bad) {
     FanWall out;
     bad.clear();
     const Index nn = wall.num_points(), nf = wall.num_faces();
@@ -153,8 +158,35 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
                            worst[static_cast<std::size_t>(runs.find(static_cast<Index>(e)))] / kWedgeDeg - 1e-9)));
     }
 
-    // Sectors: the faces round a fan node between two of its fan edges. The sector of the
-    // node's lowest face keeps the node's id, the others get new nodes.
+    // A plane node's columns lie in its plane; along the chain from it, the columns lean into
+    // that plane the more the nearer they are to it (weight 1 - distance / plane_reach). Fixed
+    // and unsmoothed, a swept trailing edge's columns beside the plane would otherwise cross it
+    // within the layers' thickness, and those of the plane node's strip would twist.
+    std::vector<Vec3> lean(un, Vec3::Zero());
+    std::vector<double> lean_weight(un, 0.0);
+    for (std::size_t a = 0; a < un; ++a) {
+        if (anchor[a] == Vec3::Zero() || at[a].size() != 1) continue;
+        const Vec3& p = anchor[a];
+        lean[a] = p, lean_weight[a] = 1.0;
+        Index prev = static_cast<Index>(a), e = at[a][0];
+        for (;;) {
+            const auto& ab = et.nodes[static_cast<std::size_t>(e)];
+            const Index cur = ab[0] == prev ? ab[1] : ab[0];
+            const auto uc = static_cast<std::size_t>(cur);
+            const double w = 1.0 - std::abs((wall.points[cur] - wall.points[a]).dot(p)) / plane_reach;
+            if (!(w > 0.0) || anchor[uc] != Vec3::Zero()) break;
+            if (w > lean_weight[uc]) lean[uc] = p, lean_weight[uc] = w;
+            if (at[uc].size() != 2) break;  // a corner
+            e = at[uc][0] == e ? at[uc][1] : at[uc][0];
+            prev = cur;
+        }
+    }
+    auto in_plane = [&](std::size_t i, const Vec3& d) {
+        return lean_weight[i] > 0.0 ? unit(d - lean_weight[i] * d.dot(lean[i]) * lean[i]) : d;
+    };
+    // Sectors: the faces round a fan node between two of its fan edges (or, at a plane node,
+    // between its fan edge and the open boundary). The sector of the node's lowest face keeps
+    // the node's id, the others get new nodes.
     const Csr vf = vertex_faces(wall);
     std::vector<std::array<Index, 4>> corner_node(static_cast<std::size_t>(nf));  // per face corner: its column
     for (Index f = 0; f < nf; ++f) {
@@ -175,7 +207,7 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
     };
     std::map<std::pair<Index, Index>, Index> sector_node;  // (node, a face of the sector) → column
     for (Index i = 0; i < nn; ++i) {
-        if (at[static_cast<std::size_t>(i)].size() < 2) continue;
+        if (at[static_cast<std::size_t>(i)].empty()) continue;
         ++out.fan_nodes;
         out.corners += at[static_cast<std::size_t>(i)].size() > 2 ? 1 : 0;
         const Index* f0 = vf.row_begin(i);
@@ -210,7 +242,7 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
         }
         bool first = true;
         for (const auto& [root, corners] : corners_of) {
-            const Vec3 dir = unit(max_min_dot_direction(corners));
+            const Vec3 dir = in_plane(static_cast<std::size_t>(i), unit(max_min_dot_direction(corners)));
             const Index id = first ? i : add_node(i, dir);
             if (first) out.direction[static_cast<std::size_t>(i)] = dir;
             first = false;
@@ -302,7 +334,9 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
                 const auto& es = at[static_cast<std::size_t>(i)];
                 const Vec3& nl = out.direction[static_cast<std::size_t>(lo)];
                 const Vec3& nh = out.direction[static_cast<std::size_t>(hi)];
-                const Vec3 ref = unit(reference(es[0], nl, nh) + reference(es[1], nl, nh));
+                const Vec3 ref = in_plane(static_cast<std::size_t>(i),
+                                          es.size() == 1 ? reference(es[0], nl, nh)
+                                                         : unit(reference(es[0], nl, nh) + reference(es[1], nl, nh)));
                 it = shared.emplace(i, between(i, nl, nh, ref, w)).first;
             }
             std::vector<Index> mid = it->second;
@@ -311,7 +345,9 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
         } else {
             auto it = own.find({i, e});
             if (it == own.end())
-                it = own.emplace(std::make_pair(i, e), between(i, nf_, ng, reference(e, nf_, ng), w)).first;
+                it = own.emplace(std::make_pair(i, e),
+                                 between(i, nf_, ng, in_plane(static_cast<std::size_t>(i), reference(e, nf_, ng)), w))
+                         .first;
             run.insert(run.end(), it->second.begin(), it->second.end());
         }
         run.push_back(sg);
@@ -391,7 +427,8 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
 
 }  // namespace
 
-FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_deg, const std::vector<char>& excluded) {
+FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, const std::vector<Vec3>& plane_normal, double plane_reach,
+                   double fan_angle_deg, const std::vector<char>& excluded) {
     FanWall out;
     if (!(fan_angle_deg > 0.0)) return out;
     const Index nn = wall.num_points(), nf = wall.num_faces();
@@ -404,6 +441,14 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_d
             boundary[static_cast<std::size_t>(*v)] = 1;
     std::vector<char> open = boundary;
     for (std::size_t i = 0; i < excluded.size() && i < un; ++i) open[i] |= excluded[i];
+    // Plane nodes: on the open boundary, held in one plane (a symmetry plane), not excluded.
+    // A chain may end at one, with one fan edge.
+    std::vector<Vec3> anchor(un, Vec3::Zero());
+    for (std::size_t i = 0; i < un && i < plane_normal.size(); ++i)
+        if (boundary[i] && !(i < excluded.size() && excluded[i])) anchor[i] = plane_normal[i];
+    auto blocked = [&](Index v) {
+        return open[static_cast<std::size_t>(v)] && anchor[static_cast<std::size_t>(v)] == Vec3::Zero();
+    };
     std::vector<Vec3> normal(static_cast<std::size_t>(nf));
     for (Index f = 0; f < nf; ++f) normal[static_cast<std::size_t>(f)] = unit(face_area_vector(wall, f));
 
@@ -424,7 +469,8 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_d
                                          face_centroid(wall, wall.points, g), wall.points[a]);
         if (t < kFeatureDeg) continue;
         turn[e] = t;  // kept or not: the edges without a fan are said why (unfanned)
-        if (open[static_cast<std::size_t>(a)] || open[static_cast<std::size_t>(b)]) {
+        if (blocked(a) || blocked(b) ||
+            (boundary[static_cast<std::size_t>(a)] && boundary[static_cast<std::size_t>(b)])) {
             if (boundary[static_cast<std::size_t>(a)] || boundary[static_cast<std::size_t>(b)])
                 at_boundary.insert(at_boundary.end(), {a, b});
             continue;
@@ -432,6 +478,19 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_d
         keep[e] = 1;
         chains.unite(a, b);
         any_seed |= t >= fan_angle_deg;
+    }
+    // A plane node's open ring splits into two sectors by one fan edge; with more, none.
+    {
+        std::vector<int> degree(un, 0);
+        for (std::size_t e = 0; e < ne; ++e)
+            if (keep[e])
+                for (const Index v : et.nodes[e]) ++degree[static_cast<std::size_t>(v)];
+        for (std::size_t e = 0; e < ne; ++e)
+            for (const Index v : et.nodes[e])
+                if (keep[e] && boundary[static_cast<std::size_t>(v)] && degree[static_cast<std::size_t>(v)] > 1) {
+                    keep[e] = 0;
+                    at_boundary.push_back(v);
+                }
     }
     // Why each edge of fan_angle_deg or more that ends without a fan has none: its chain (the
     // convex edges of 30° or more joined to it) reaches the open boundary, or ends otherwise.
@@ -465,10 +524,10 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_d
 
     // Each round drops one fan edge, so this ends.
     for (;;) {
-        const std::vector<std::vector<Index>> at = prune(et, un, keep);
+        const std::vector<std::vector<Index>> at = prune(et, un, anchor, keep);
         if (std::none_of(keep.begin(), keep.end(), [](char k) { return k != 0; })) return explain(out);
         std::vector<Index> bad;
-        FanWall fw = assemble(wall, et, keep, at, turn, bad);
+        FanWall fw = assemble(wall, et, keep, at, turn, anchor, plane_reach, bad);
         if (bad.empty()) return explain(fw);
         for (const Index e : bad) keep[static_cast<std::size_t>(e)] = 0;
     }

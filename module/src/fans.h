@@ -30,8 +30,8 @@ struct FanWall {
     Index corners = 0;            ///< of those, corners (three or more fan edges, or two turning sharply)
     Index columns = 0;            ///< columns added (mesh nodes beyond the wall's)
     /// The wall's nodes on an edge turning fan_angle_deg or more that got no fan, ascending, and
-    /// why: NoFan::Open where its chain reaches the open boundary (a symmetry plane: no node
-    /// there gets a fan), NoFan::Unclosed where it ends without closing otherwise (at a concave
+    /// why: NoFan::Open where its chain reaches the open boundary other than at a plane node
+    /// with one fan edge, NoFan::Unclosed where it ends without closing otherwise (at a concave
     /// junction, on a smooth wall, at a node \p excluded, or where a corner's edge was dropped).
     /// Nodes \p excluded are not listed (their caller says why).
     std::vector<std::pair<Index, NoFan>> unfanned;
@@ -43,11 +43,17 @@ struct FanWall {
 /// to one (so a trailing edge's fan closes into the tip's and root's edges), minus chains that
 /// end without closing (a node with a single fan edge cannot be split) and nodes on the
 /// wall's open boundary \p loops and the nodes \p excluded marks (empty or one per wall node),
-/// and the fan edges of corners whose sides' normals lie nearly in one plane. Each edge gets
+/// and the fan edges of corners whose sides' normals lie nearly in one plane. A chain may end
+/// at a node of the open boundary held in one plane (\p plane_normal, unit, zero where none or
+/// empty: a half model's symmetry plane) by one fan edge: its open ring splits into two
+/// sectors, and its columns lie in the plane; with more fan edges it gets none. Along the
+/// chain from it, the columns lean into the plane by 1 - (their node's distance from it) /
+/// \p plane_reach (twice the layers' thickness: none then cross it). Each edge gets
 /// ceil(turn / 90°) wedges. A node with two fan edges whose outward bisectors are more than 90°
 /// apart (a delta wing's apex) is closed like a corner, each edge with its own columns.
 /// Empty (fan_edges 0) if no edge qualifies or \p fan_angle_deg is 0.
-FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, double fan_angle_deg, const std::vector<char>& excluded);
+FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, const std::vector<Vec3>& plane_normal, double plane_reach,
+                   double fan_angle_deg, const std::vector<char>& excluded);
 
 /// The nodes of \p wall (a fan wall: FanWall::mesh, or the wall itself) on a convex edge whose
 /// faces turn by \p min_turn_deg or more and that has no fan (ALGORITHM.md, "Sharp edges

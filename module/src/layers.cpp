@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <string>
 
@@ -111,8 +112,9 @@ void boundary_planes(const SurfaceMesh& wall, const Csr& loops, const std::vecto
         for (Index i = 0; i < m; ++i) {
             if (fixed[static_cast<std::size_t>(lv[i])]) continue;
             const Vec3& p = wall.points[lv[i]];
-            const Vec3 t0 = (p - wall.points[lv[(i + m - 1) % m]]).normalized();
-            const Vec3 t1 = (wall.points[lv[(i + 1) % m]] - p).normalized();
+            const Vec3 d0 = p - wall.points[lv[(i + m - 1) % m]], d1 = wall.points[lv[(i + 1) % m]] - p;
+            if (d0 == Vec3::Zero() || d1 == Vec3::Zero()) continue;  // a fan's column
+            const Vec3 t0 = d0.normalized(), t1 = d1.normalized();
             if (t0.dot(t1) < std::cos(30.0 * std::numbers::pi / 180.0)) continue;  // a corner of the loop
             const Vec3 pn = (t0 + t1).cross(normals[lv[i]]);
             if (pn.norm() < 1e-12) continue;
@@ -248,16 +250,17 @@ struct Marcher {
 
     std::vector<Vec3> normals(const std::vector<Vec3>& r) const {
         std::vector<Vec3> n = node_normals(wall, r, vf, params.normals, threads);
-        // Nodes on a plane march in it: their normal is the mirror-symmetric one.
+        // A fan's columns march along their fixed directions (in the plane, at a plane node);
+        // other nodes on a plane march in it: their normal is the mirror-symmetric one.
         for (std::size_t i = 0; i < n.size(); ++i)
-            if (node_plane[i] != kNone) {
+            if (!fixed.empty() && fixed[i] != Vec3::Zero()) {
+                n[i] = fixed[i];
+            } else if (node_plane[i] != kNone) {
                 const Vec3& pn = planes[node_plane[i]].normal;
                 const Vec3 t = n[i] - n[i].dot(pn) * pn;
                 if (t.norm() > 1e-12) n[i] = t.normalized();
             } else if (node_line[i] != Vec3::Zero()) {
                 n[i] = node_line[i];
-            } else if (!fixed.empty() && fixed[i] != Vec3::Zero()) {
-                n[i] = fixed[i];
             }
         return n;
     }
@@ -607,6 +610,39 @@ std::optional<LayerMesh> without_fans(const SurfaceMesh& surface, const LayerPar
     return retry;
 }
 
+/// Per wall node, the normal of the plane a chain of fans may end in (fans.h): that of the one
+/// non-wall patch the node is on, if it is planar (a symmetry plane); zero elsewhere. A plane
+/// node on two patches would need its fan's columns shared between their re-meshings. Empty
+/// for a closed wall.
+std::vector<Vec3> fan_planes(const SurfaceMesh& surface, const Wall& w, const LayerParams& params) {
+    std::vector<Vec3> plane_normal;
+    if (w.loops.rows() == 0) return plane_normal;
+    const auto nn = static_cast<std::size_t>(w.mesh.num_points());
+    const std::vector<Vec3> n =
+        node_normals(w.mesh, w.mesh.points, vertex_faces(w.mesh), params.normals, thread_count(params.threads));
+    std::vector<MirrorPlane> planes;
+    std::vector<Index> node_plane(nn, kNone);
+    std::vector<Vec3> node_line(nn, Vec3::Zero());
+    std::vector<char> fixed(nn, 0);
+    patch_constraints(surface, w, w.loops, n, planes, node_plane, node_line, fixed);
+    const Csr in_vf = vertex_faces(surface);
+    plane_normal.assign(nn, Vec3::Zero());
+    for (std::size_t i = 0; i < nn; ++i) {
+        if (node_plane[i] == kNone) continue;
+        const Index in = w.input_node[i];
+        Index patch = kNone;
+        bool one = true;
+        for (const Index* f = in_vf.row_begin(in); f != in_vf.row_end(in); ++f) {
+            const Index p = surface.face_patch[*f];
+            if (surface.patches[static_cast<std::size_t>(p)].kind == PatchKind::Wall) continue;
+            one &= patch == kNone || patch == p;
+            patch = p;
+        }
+        if (one) plane_normal[i] = planes[static_cast<std::size_t>(node_plane[i])].normal;
+    }
+    return plane_normal;
+}
+
 /// The fans (fans_on). \p w gets the fans' columns and strip faces; the result keeps
 /// their directions and bases (its mesh moved into \p w).
 FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, Wall& w) {
@@ -620,13 +656,17 @@ FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, Wall& w)
                                  " values for a surface of " + std::to_string(surface.points.size()) + " nodes");
             for (const Index i : w.input_node) excluded.push_back(params.no_fan_nodes[static_cast<std::size_t>(i)]);
         }
-        fans = build_fans(w.mesh, w.loops, params.fan_angle_deg, excluded);
+        const std::vector<Vec3> plane_normal = fan_planes(surface, w, params);
+        const std::vector<double> heights = layer_heights(params.distribution);  // and the next layer's
+        const double thickness = std::accumulate(heights.begin(), heights.begin() + params.distribution.layers, 0.0);
+        fans = build_fans(w.mesh, w.loops, plane_normal, 2.0 * thickness, params.fan_angle_deg, excluded);
     }
     if (!fans.empty()) {
         for (Index i = nwall; i < fans.mesh.num_points(); ++i)
             w.input_node.push_back(w.input_node[static_cast<std::size_t>(fans.base[static_cast<std::size_t>(i)])]);
         w.input_face.resize(static_cast<std::size_t>(fans.mesh.num_faces()), kNone);
         w.mesh = std::move(fans.mesh);
+        w.loops = boundary_loops(w.mesh);  // through a plane node's columns, where it has a fan
     }
     return fans;
 }
@@ -890,6 +930,15 @@ std::vector<Index> side_patches(const SurfaceMesh& surface, const Wall& w) {
                         patch = surface.face_patch[*f];
             }
             out.push_back(patch);
+        }
+        // An edge between two columns of a plane node's fan (one input node) lies in the plane
+        // of the loop's edges on either side: the next edge's patch.
+        const std::size_t first = out.size() - static_cast<std::size_t>(m);
+        const Index* lv = w.loops.row_begin(l);
+        for (Index i = m; i-- > 0;) {
+            const Index ia = w.input_node[static_cast<std::size_t>(lv[i])];
+            if (ia == w.input_node[static_cast<std::size_t>(lv[(i + 1) % m])])
+                out[first + static_cast<std::size_t>(i)] = out[first + static_cast<std::size_t>((i + 1) % m)];
         }
     }
     return out;

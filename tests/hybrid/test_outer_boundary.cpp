@@ -132,6 +132,56 @@ TEST(OuterBoundary, PatchEdgesAreCutAtTheTopOfTheLayersTheSameWayOnBothSides) {
         }
 }
 
+TEST(OuterBoundary, AFanEndingOnTheSymmetryPlaneIsMeshedRoundInThePlane) {
+    // A wedge standing on the symmetry plane (y = 0), swept, its sharp edge (169 degrees) and
+    // its base's two edges (95) running from the plane to a flat tip: the three edges' fans end
+    // on the plane, each node there split into columns in the plane, and the plane is re-meshed
+    // round the layers' sides through those columns' tops.
+    test::ScratchDir dir("outer_fan");
+    const std::string geo = dir.file("wedge.geo");
+    std::ofstream(geo) << "SetFactory(\"OpenCASCADE\");\nBox(1) = {-2, 0, -2, 5, 3, 4};\n"
+                       << "Point(101) = {0, 0, -0.1};\nPoint(102) = {0, 0, 0.1};\nPoint(103) = {1, 0, 0};\n"
+                       << "Line(101) = {101, 103};\nLine(102) = {103, 102};\nLine(103) = {102, 101};\n"
+                       << "Curve Loop(101) = {101, 102, 103};\nPlane Surface(101) = {101};\n"
+                       << "e[] = Extrude {0.3, 1, 0} { Surface{101}; };\n"
+                       << "BooleanDifference{ Volume{1}; Delete; }{ Volume{e[1]}; Delete; }\n"
+                       << "sym[] = Surface In BoundingBox{-2.1, -1e-6, -2.1, 3.1, 1e-6, 2.1};\n"
+                       << "wall[] = Surface In BoundingBox{-1e-3, -1e-3, -0.11, 1.301, 1.001, 0.11};\n"
+                       << "all[] = Surface{:};\nPhysical Surface(\"wall\") = {wall[]};\n"
+                       << "Physical Surface(\"symmetry\") = {sym[]};\nPhysical Surface(\"farfield\") = {all[]};\n"
+                       << "Physical Surface(\"farfield\") -= {wall[], sym[]};\nMesh.MeshSizeMax = 0.5;\n";
+    const SurfaceMesh s = prepare_surface(geo, {});
+    HybridParams p;
+    p.layers.distribution.layers = 6;
+    p.layers.distribution.first_height = 0.005;  // 0.05 in all
+    HybridReport rep;
+    const VolumeMesh m = build_hybrid_mesh(s, p, nullptr, &rep);
+    ASSERT_TRUE(rep.validation.ok());
+    EXPECT_GT(rep.validation.min_scaled_jacobian, 0.05);
+    EXPECT_NEAR(rep.validation.cell_volume, 60.0 - 0.1, 1e-9);  // the box less the wedge
+    EXPECT_TRUE(rep.coverage.no_fan.empty());                   // no edge left without a fan
+    EXPECT_EQ(rep.remeshed_patches, std::vector<Index>{patch_named(s, "symmetry")});
+    // The three plane nodes' columns: the sharp edge's (at (1, 0, 0)) three, in the plane.
+    int columns = 0;
+    for (std::size_t i = 0; i < m.points.size(); ++i) {
+        const Vec3 d = m.points[i] - Vec3(1.0, 0.0, 0.0);
+        if (std::abs(d.y()) < 1e-12 && d.norm() > 0.04 && d.norm() < 0.06 && d.x() > -0.02) ++columns;
+    }
+    EXPECT_EQ(columns, 3);
+    // Every face of the symmetry patch lies in its plane, the fans' end faces among them.
+    const SurfaceMesh& b = m.boundary;
+    Index on_plane = 0;
+    for (Index f = 0; f < b.num_faces(); ++f) {
+        const std::string& name = b.patches[static_cast<std::size_t>(b.face_patch[f])].name;
+        EXPECT_NE(name, "layer_side");  // the fans' end faces are the plane's
+        if (name != "symmetry") continue;
+        ++on_plane;
+        for (const Index* v = b.face_begin(f); v != b.face_end(f); ++v) EXPECT_NEAR(m.points[*v].y(), 0.0, 1e-12);
+    }
+    EXPECT_GT(on_plane, 0);
+    test::expect_rereads_valid(m, dir, "wedge");
+}
+
 TEST(OuterBoundary, CurvedPatchMeetingTheWallsIsRefusedByName) {
     test::ScratchDir dir("outer_curved");
     const std::string geo = dir.file("cyl.geo");

@@ -47,7 +47,7 @@ double best_prism(const SurfaceMesh& wall) {
 
 TEST(Fans, TheBladesEdgeAndTheLoopsClosingItGetFansAndItsCornersGetPolygons) {
     const SurfaceMesh wall = test::blade(8, 10.0);
-    const FanWall fw = build_fans(wall, boundary_loops(wall), 120.0, {});
+    const FanWall fw = build_fans(wall, boundary_loops(wall), {}, 1.0, 120.0, {});
     // The sharp edge (8 edges), the base's two edges (16) and the caps' three (6).
     EXPECT_EQ(fw.fan_edges, 30);
     EXPECT_EQ(fw.fan_nodes, wall.num_points());
@@ -74,8 +74,8 @@ TEST(Fans, TheBladesEdgeAndTheLoopsClosingItGetFansAndItsCornersGetPolygons) {
     EXPECT_GE(fan_faces, 8 * 2 + 16 * 2 + 6 + 6);
     EXPECT_LE(fan_faces, 8 * 2 + 16 * 2 + 6 + 12);
     // Nothing to fan below the angle, or with the angle 0.
-    EXPECT_TRUE(build_fans(wall, boundary_loops(wall), 175.0, {}).empty());
-    EXPECT_TRUE(build_fans(wall, boundary_loops(wall), 0.0, {}).empty());
+    EXPECT_TRUE(build_fans(wall, boundary_loops(wall), {}, 1.0, 175.0, {}).empty());
+    EXPECT_TRUE(build_fans(wall, boundary_loops(wall), {}, 1.0, 0.0, {}).empty());
 }
 
 TEST(Fans, LiftTheQualityCapOfOneDirectionAtASharpEdge) {
@@ -273,7 +273,7 @@ TEST(Fans, ALeadingEdgeChainTurningAtTheApexIsSplitThereLikeACorner) {
     // at the wall. The apex now gets each edge's columns and a polygon closing them.
     const SurfaceMesh wall = delta_wing(12);
     ASSERT_EQ(boundary_loops(wall).rows(), 0);
-    const FanWall fw = build_fans(wall, boundary_loops(wall), 150.0, {});
+    const FanWall fw = build_fans(wall, boundary_loops(wall), {}, 1.0, 150.0, {});
     Index at_apex = 0;
     for (Index i = 0; i < fw.mesh.num_points(); ++i) at_apex += fw.base[static_cast<std::size_t>(i)] == 0 ? 1 : 0;
     EXPECT_EQ(at_apex, 4);  // its upper and lower sides, and one column between per leading edge
@@ -295,7 +295,7 @@ TEST(Fans, NoFanWhereTheNodesAreExcluded) {
     const SurfaceMesh wall = test::blade(8, 10.0);
     std::vector<char> excluded(static_cast<std::size_t>(wall.num_points()), 0);
     excluded[2] = 1;  // a corner of the sharp edge: its chain cannot close there, nor anything through it
-    const FanWall fw = build_fans(wall, boundary_loops(wall), 120.0, excluded);
+    const FanWall fw = build_fans(wall, boundary_loops(wall), {}, 1.0, 120.0, excluded);
     for (Index i = 0; i < fw.mesh.num_points(); ++i) EXPECT_FALSE(fw.base[static_cast<std::size_t>(i)] == 2 && i != 2);
     EXPECT_LT(fw.fan_edges, 30);
 }
@@ -303,7 +303,7 @@ TEST(Fans, NoFanWhereTheNodesAreExcluded) {
 TEST(Fans, SharpEdgesLeftWithoutAFanAreSaidWhy) {
     // A chain must close into a loop. Closed by both caps, the blade's sharp edge has its fan.
     const SurfaceMesh wall = test::blade(8, 10.0);
-    EXPECT_TRUE(build_fans(wall, boundary_loops(wall), 120.0, {}).unfanned.empty());
+    EXPECT_TRUE(build_fans(wall, boundary_loops(wall), {}, 1.0, 120.0, {}).unfanned.empty());
     const std::vector<Index> edge{5, 8, 11, 14, 17, 20, 23, 26};  // the sharp edge's nodes j = 1..8
     // Open at y = 1 (its cap gone, as a half model's wall is open along its symmetry plane):
     // the edge's chain reaches the open boundary, where no node gets a fan, and only the loop of
@@ -313,7 +313,7 @@ TEST(Fans, SharpEdgesLeftWithoutAFanAreSaidWhy) {
     open.face_nodes.resize(static_cast<std::size_t>(open.face_offsets.back()));
     open.face_patch.pop_back();
     ASSERT_EQ(boundary_loops(open).rows(), 1);
-    const FanWall half = build_fans(open, boundary_loops(open), 120.0, {});
+    const FanWall half = build_fans(open, boundary_loops(open), {}, 1.0, 120.0, {});
     EXPECT_EQ(half.fan_edges, 3);  // the cap's loop
     ASSERT_EQ(half.unfanned.size(), edge.size());
     for (std::size_t j = 0; j < edge.size(); ++j) {
@@ -324,7 +324,7 @@ TEST(Fans, SharpEdgesLeftWithoutAFanAreSaidWhy) {
     // the edge end there without closing; the excluded node is its caller's to explain.
     std::vector<char> excluded(static_cast<std::size_t>(wall.num_points()), 0);
     excluded[14] = 1;
-    const FanWall cut = build_fans(wall, boundary_loops(wall), 120.0, excluded);
+    const FanWall cut = build_fans(wall, boundary_loops(wall), {}, 1.0, 120.0, excluded);
     EXPECT_EQ(cut.fan_edges, 6 + 16);  // the caps and the base's two edges still close
     const std::vector<Index> ends{5, 8, 11, 17, 20, 23};
     ASSERT_EQ(cut.unfanned.size(), ends.size());
@@ -332,6 +332,51 @@ TEST(Fans, SharpEdgesLeftWithoutAFanAreSaidWhy) {
         EXPECT_EQ(cut.unfanned[j].first, ends[j]);
         EXPECT_EQ(cut.unfanned[j].second, NoFan::Unclosed);
     }
+}
+
+TEST(Fans, AChainMayEndOnAPlaneNodeWhoseColumnsLieInThePlane) {
+    // The blade open at y = 1 on a plane (a half model's wall on its symmetry plane), swept so
+    // that its sharp edge meets the plane at 73 degrees. Its chain ends on the plane: the node
+    // there splits into two sectors by its one fan edge, and its columns lie in the plane.
+    SurfaceMesh open = test::blade(8, 10.0);
+    open.face_offsets.pop_back();
+    open.face_nodes.resize(static_cast<std::size_t>(open.face_offsets.back()));
+    open.face_patch.pop_back();
+    for (Vec3& p : open.points) p.x() += 0.3 * p.y();
+    const Csr loops = boundary_loops(open);
+    std::vector<Vec3> plane(open.points.size(), Vec3::Zero());
+    for (const Index* v = loops.row_begin(0); v != loops.row_end(0); ++v)
+        plane[static_cast<std::size_t>(*v)] = Vec3(0.0, 1.0, 0.0);
+    const FanWall fw = build_fans(open, loops, plane, 1.0, 120.0, {});
+    EXPECT_TRUE(fw.unfanned.empty());
+    EXPECT_EQ(fw.fan_edges, 3 + 3 * 8);  // the cap's loop at y = 0, the sharp edge and the base's two
+    EXPECT_EQ(fw.fan_nodes, 3 + 3 * 8);
+    int on_plane = 0;
+    for (Index i = 0; i < fw.mesh.num_points(); ++i)
+        if (fw.base[static_cast<std::size_t>(i)] == 26) {
+            ++on_plane;
+            EXPECT_NEAR(fw.direction[static_cast<std::size_t>(i)].y(), 0.0, 1e-12);
+        }
+    EXPECT_EQ(on_plane, 3);  // 170 degrees: two wedges
+    // The wall's open boundary now passes through them (the base's edges turn 95 degrees: two
+    // wedges each too).
+    const Csr after = boundary_loops(fw.mesh);
+    ASSERT_EQ(after.rows(), 1);
+    EXPECT_EQ(after.row_size(0), 3 + 3 * 2);
+    // Along the edge the columns lean into the plane the nearer they are: an eighth from it
+    // (node 23), the middle column's pull across the plane is a small part of the swept edge's.
+    auto across = [](const FanWall& f, Index node) {
+        double most = 0.0;
+        for (Index i = 0; i < f.mesh.num_points(); ++i)
+            if (f.base[static_cast<std::size_t>(i)] == node)
+                most = std::max(most, std::abs(f.direction[static_cast<std::size_t>(i)].y()));
+        return most;
+    };
+    const double unleaned = across(build_fans(open, loops, plane, 1e-9, 120.0, {}), 23);
+    EXPECT_GT(unleaned, 0.2);
+    EXPECT_LT(across(fw, 23), 0.25 * unleaned);
+    // Without the plane the chains cannot end there: no fan along the edges.
+    EXPECT_EQ(build_fans(open, loops, {}, 1.0, 120.0, {}).fan_edges, 3);
 }
 
 /// A cell of \p type whose ids are \p id, over the unit cube's corners (Gmsh's hexahedron order).
