@@ -1,7 +1,9 @@
 // The pyramid transition (pyramids.h).
 //
 // Each quad q of the layer top gets an apex a = c + h n (c the corner mean, n the unit
-// vector area, h = height × mean edge length L). h is taken from a descending list of
+// vector area, h = height × mean edge length L; where q has an edge on a plane the top's open
+// boundary lies in, standing on it at 30° or more and leaning towards it, n without its part
+// towards the plane). h is taken from a descending list of
 // candidates, h0, h0/2, h0/4, ... and finally min_height × (shortest edge) itself, and a candidate is
 // accepted only if the pyramid passes every rule below. Rules depend on one pyramid alone
 // ("static": the pyramid and the fixed top surface) or on a pair of pyramids.
@@ -16,7 +18,11 @@
 //      the apex above P's face. g's own pyramid or triangle lies in the other half, so the two
 //      never cross near the edge and keep an angle of at least kFoldMargin φ between them.
 //      An edge with no face across (an open boundary of the top) counts as flat (φ = π): the
-//      apex stays clear of the plane normal to the quad through that edge.
+//      apex stays clear of the plane normal to the quad through that edge. On a plane (its
+//      loop is planar: the layers' sides on a symmetry plane) that the quad stands on at 30° or
+//      more and leans towards, the
+//      quad's mirror image in the plane counts as the face across (φ < π), so the side keeps
+//      off the plane itself.
 //  S3  apex clearance: the apex is at least kFaceClearance × h from every top face other
 //      than P's own quad (quads as two triangles).
 //  S4  no crossing: no side triangle of P meets a nearby top face except at shared corners.
@@ -62,6 +68,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -346,6 +353,9 @@ private:
     // Faces across each base edge: row 4k + i lists the faces other than pyramid k's quad on
     // the edge (v[i], v[i+1]).
     Csr across_;
+    // Per row of across_ with no face across (an open edge of the top): the unit normal of the
+    // plane its open boundary loop lies in (a symmetry plane), zero where that loop is not planar.
+    std::vector<Vec3> open_plane_;
     Csr near_faces_;  // pyramid → top faces (other than its quad) whose boxes meet its reach
     Csr near_pyrs_;   // pyramid → other pyramids whose boxes meet its reach; symmetric
 };
@@ -415,6 +425,40 @@ void Builder::build_neighbours() {
             }
             across_.offsets.push_back(static_cast<Index>(across_.values.size()));
         }
+    // The planes of the top's planar open boundary loops (the layers' sides on a symmetry plane).
+    open_plane_.assign(across_.offsets.size() - 1, Vec3::Zero());
+    const Csr loops = boundary_loops(top_);
+    std::map<std::pair<Index, Index>, Vec3> plane_of_edge;
+    for (Index l = 0; l < loops.rows(); ++l) {
+        std::vector<Vec3> pts;
+        for (const Index* v = loops.row_begin(l); v != loops.row_end(l); ++v) pts.push_back(top_.points[*v]);
+        if (const PatchPlane pl = fit_plane(pts); pl.planar())
+            for (Index i = 0, m = loops.row_size(l); i < m; ++i) {
+                const Index a = loops.row_begin(l)[i], b = loops.row_begin(l)[(i + 1) % m];
+                plane_of_edge[{std::min(a, b), std::max(a, b)}] = pl.normal;
+            }
+    }
+    if (!plane_of_edge.empty())
+        for (std::size_t k = 0; k < pyr_.size(); ++k)
+            for (int i = 0; i < 4; ++i) {
+                Pyr& p = pyr_[k];
+                const Index a = p.v[i], b = p.v[(i + 1) % 4];
+                const auto it = plane_of_edge.find({std::min(a, b), std::max(a, b)});
+                if (it == plane_of_edge.end()) continue;
+                // Only a quad standing on the plane at 30° or more (the layers' top beside their
+                // sides on a symmetry plane; not a flat wall's top lying in its own outline's
+                // plane).
+                Vec3 m = it->second;
+                const Vec3 e = (p.x[(i + 1) % 4] - p.x[i]).normalized();
+                const Vec3 d1 = (p.c - p.x[i]) - (p.c - p.x[i]).dot(e) * e;
+                if (!(std::abs(d1.dot(m)) >= 0.5 * d1.norm())) continue;
+                open_plane_[4 * k + static_cast<std::size_t>(i)] = m;
+                // A quad leaning towards the plane (the layer top meeting a symmetry plane
+                // obliquely, beside a swept edge) raises its apex parallel to the plane: along
+                // its normal, the apex would come down onto the plane.
+                if (d1.dot(m) < 0.0) m = -m;  // into the quad's side
+                if (const double towards = p.n.dot(m); towards < 0.0) p.n = (p.n - towards * m).normalized();
+            }
 
     // Reach of each pyramid: its box at the first candidate height, grown by the largest
     // clearance any rule asks of it (heights only decrease, so the box only shrinks).
@@ -526,8 +570,18 @@ Failure Builder::check_static(Index k, double h) const {
         const double psi = std::atan2(w.dot(up), w.dot(d1));
         const Index row = 4 * k + i;
         auto limit_ok = [&](double phi) { return psi > 0.0 && psi < (1.0 - kFoldMargin) * 0.5 * phi; };
-        if (across_.row_size(row) == 0 && !limit_ok(std::numbers::pi))
-            return {Failure::Fold, kNone, p.v[i], p.v[(i + 1) % 4]};
+        if (across_.row_size(row) == 0) {
+            // Counted as flat; on a plane that the quad leans towards, as the quad's mirror
+            // image in it (where a symmetric flow's would be), so that the side over the edge
+            // keeps off the plane by the margin too.
+            double phi = std::numbers::pi;
+            const Vec3& m = open_plane_[static_cast<std::size_t>(row)];
+            if (const Vec3 d2 = across(p.c - 2.0 * (p.c - q0).dot(m) * m - q0); m != Vec3::Zero() && d2.norm() > 0.0) {
+                const double mirror = std::atan2(d2.dot(up), d2.dot(d1));
+                if (mirror > 0.0) phi = std::min(phi, mirror);
+            }
+            if (!limit_ok(phi)) return {Failure::Fold, kNone, p.v[i], p.v[(i + 1) % 4]};
+        }
         for (const Index* g = across_.row_begin(row); g != across_.row_end(row); ++g) {
             const Vec3 d2 = across(face_centroid_[static_cast<std::size_t>(*g)] - q0);
             if (!(d2.norm() > 0.0)) continue;  // a degenerate face across: nothing to fold onto

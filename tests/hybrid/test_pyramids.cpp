@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <string>
 #include <utility>
 
@@ -354,6 +355,43 @@ TEST(Pyramids, NarrowGapShortensBothSides) {
         EXPECT_LT(highest_lower, lowest_upper);
         EXPECT_EQ(count_crossings(top, l), 0) << "shift " << shift;
     }
+}
+
+TEST(Pyramids, AQuadLeaningTowardsTheSymmetryPlaneRaisesItsApexAlongIt) {
+    // A half box open on the plane y = 0 (a half model's layer top, its open boundary on the
+    // symmetry plane), sheared so that its end y = 1 is 0.5 further in x: the side x = 1 + y/2
+    // stands on the plane at 63° and leans towards it (its normal (2, -1, 0) / √5 points 27°
+    // down to the plane). Along that normal its apex would come down towards the plane; it
+    // rises parallel to it instead, and its side over the plane edge stands off the plane.
+    SurfaceMesh top;
+    top.patches = {{"top", PatchKind::Other}};
+    for (const double y : {0.0, 1.0})
+        for (const double z : {0.0, 1.0})
+            for (const double x : {0.0, 1.0}) top.points.push_back(Vec3(x + 0.5 * y, y, z));
+    auto at = [](int x, int y, int z) { return static_cast<Index>(4 * y + 2 * z + x); };
+    top.add_face({at(1, 0, 0), at(1, 1, 0), at(1, 1, 1), at(1, 0, 1)}, 0);  // x = 1 + y/2
+    top.add_face({at(0, 0, 0), at(0, 0, 1), at(0, 1, 1), at(0, 1, 0)}, 0);  // x = y/2
+    top.add_face({at(0, 0, 0), at(0, 1, 0), at(1, 1, 0), at(1, 0, 0)}, 0);  // z = 0
+    top.add_face({at(0, 0, 1), at(1, 0, 1), at(1, 1, 1), at(0, 1, 1)}, 0);  // z = 1
+    top.add_face({at(0, 1, 0), at(0, 1, 1), at(1, 1, 1), at(1, 1, 0)}, 0);  // y = 1
+    ASSERT_EQ(boundary_loops(top).rows(), 1);
+    for (Index f = 0; f < top.num_faces(); ++f)  // out of the half box
+        ASSERT_GT(face_area_vector(top, f).dot(face_centroid(top, top.points, f) - Vec3(0.75, 0.5, 0.5)), 0.0);
+    const PyramidLayer l = build_pyramids(top, {});
+    ASSERT_EQ(l.pyramids.size(), 5u);
+    const Vec3& leaning = l.apexes[0];
+    EXPECT_NEAR(leaning.y(), 0.5, 1e-12);  // the centroid's
+    EXPECT_GT(leaning.x(), 1.25);
+    // Its side over the edge on the plane stands off the plane by a tenth of the half-wedge
+    // between the quad and its mirror image at least.
+    const Vec3 q0 = top.points[at(1, 0, 0)];
+    const Vec3 w = leaning - q0 - (leaning - q0).dot(Vec3::UnitZ()) * Vec3::UnitZ();
+    const double off_plane = std::atan2(w.y(), w.x()) * 180.0 / std::numbers::pi;
+    EXPECT_GT(off_plane, 0.1 * 63.4);
+    // The side x = y/2 leans away from the plane: along its normal, as ever.
+    const Vec3 n = Vec3(-2.0, 1.0, 0.0).normalized();
+    const Vec3 c(0.25, 0.5, 0.5);
+    EXPECT_LT((l.apexes[1] - c).cross(n).norm(), 1e-12);
 }
 
 TEST(Pyramids, GapTooNarrowForTwoButNotForOneShortensBoth) {
