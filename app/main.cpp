@@ -639,9 +639,11 @@ void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners,
                         ? "a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (a fan over a coarsely "
                           "faceted wall; a finer wall keeps it)"
                     : reason == strata::NoFan::Open
-                        ? "their sharp edge's chain reaches the wall's open boundary (a symmetry plane), where no "
-                          "fan is built, and a fan's chain must close into a loop: one column each, stopped at the "
-                          "wall on an edge sharper than --sharp-edge-stop (sharp)"
+                        ? "their sharp edge's chain reaches the wall's open boundary where it cannot end (an open "
+                          "edge in no plane of a symmetry, outflow or box patch, a node where two such planes meet, or "
+                          "one with two sharp edges), and a fan's chain must close into a loop or end on such a "
+                          "plane: one column each, stopped at the wall on an edge sharper than --sharp-edge-stop "
+                          "(sharp)"
                         : "their sharp edge's chain ends without closing into a loop (at a concave junction, or "
                           "where a fan was dropped): one column each, stopped at the wall on an edge sharper than "
                           "--sharp-edge-stop (sharp)",

@@ -666,7 +666,14 @@ FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, Wall& w)
             w.input_node.push_back(w.input_node[static_cast<std::size_t>(fans.base[static_cast<std::size_t>(i)])]);
         w.input_face.resize(static_cast<std::size_t>(fans.mesh.num_faces()), kNone);
         w.mesh = std::move(fans.mesh);
-        w.loops = boundary_loops(w.mesh);  // through a plane node's columns, where it has a fan
+        // Through a plane node's columns, where one has a fan.
+        std::vector<char> open(static_cast<std::size_t>(nwall), 0);
+        for (const Index v : w.loops.values) open[static_cast<std::size_t>(v)] = 1;
+        for (Index i = nwall; i < w.mesh.num_points(); ++i)
+            if (open[static_cast<std::size_t>(fans.base[static_cast<std::size_t>(i)])]) {
+                w.loops = boundary_loops(w.mesh);
+                break;
+            }
     }
     return fans;
 }

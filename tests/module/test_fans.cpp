@@ -305,9 +305,10 @@ TEST(Fans, SharpEdgesLeftWithoutAFanAreSaidWhy) {
     const SurfaceMesh wall = test::blade(8, 10.0);
     EXPECT_TRUE(build_fans(wall, boundary_loops(wall), {}, 1.0, 120.0, {}).unfanned.empty());
     const std::vector<Index> edge{5, 8, 11, 14, 17, 20, 23, 26};  // the sharp edge's nodes j = 1..8
-    // Open at y = 1 (its cap gone, as a half model's wall is open along its symmetry plane):
-    // the edge's chain reaches the open boundary, where no node gets a fan, and only the loop of
-    // the cap at y = 0 keeps one; the edge's other nodes are said to reach the boundary.
+    // Open at y = 1 (its cap gone) in no plane that holds its nodes (an open edge of a wall,
+    // not a half model's on its symmetry plane: AChainMayEndOnAPlaneNode...): the edge's chain
+    // reaches the open boundary, where no node gets a fan, and only the loop of the cap at y = 0
+    // keeps one; the edge's other nodes are said to reach the boundary.
     SurfaceMesh open = wall;
     open.face_offsets.pop_back();
     open.face_nodes.resize(static_cast<std::size_t>(open.face_offsets.back()));

@@ -64,7 +64,7 @@ enum class NoFan : std::uint8_t {
     Unusable,  ///< the fan's first cells would have been unusable (a needle face or a narrow gap beside it)
     Uncapped,  ///< a fan's face on the layer top could not be capped with a pyramid (its columns twist)
     Skewed,    ///< a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (kFoamSkewness)
-    Open,      ///< its edge's chain of sharp edges reaches the wall's open boundary (a symmetry plane)
+    Open,      ///< its edge's chain of sharp edges reaches the wall's open boundary where it cannot end
     Unclosed,  ///< its edge's chain ends without closing into a loop (a concave junction, a dropped fan)
 };
 inline constexpr std::size_t kNoFanReasons = 5;
