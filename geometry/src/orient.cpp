@@ -195,6 +195,35 @@ double enclosed_volume(const SurfaceMesh& mesh, const Components& comps, Index c
     return volume;
 }
 
+/// For open component \p c whose open boundary lies in one plane (a half model cut along its
+/// symmetry plane): the signed volume it encloses with that cut closed by a flat cap (as
+/// enclosed_volume, plus the cap's term: its vector area, traversing every open edge against
+/// the faces, from a point of the plane). 0 where the boundary is not planar.
+double capped_volume(const SurfaceMesh& mesh, const EdgeTable& edges, const Components& comps, Index c) {
+    std::vector<Vec3> cut;
+    Vec3 cap = Vec3::Zero();  // vector area of the cap, times 2
+    std::vector<std::pair<Vec3, Vec3>> open;
+    for (Index e = 0; e < edges.faces.rows(); ++e) {
+        if (edges.faces.row_size(e) != 1) continue;
+        const Index f = edges.faces.row_begin(e)[0];
+        if (comps.of_face[static_cast<std::size_t>(f)] != c) continue;
+        const Index lo = edges.nodes[static_cast<std::size_t>(e)][0], hi = edges.nodes[static_cast<std::size_t>(e)][1];
+        const bool forward = (direction(mesh, f, lo, hi) > 0) != static_cast<bool>(comps.flip[f]);
+        open.emplace_back(mesh.points[forward ? lo : hi], mesh.points[forward ? hi : lo]);  // as the faces go
+        cut.push_back(mesh.points[lo]);
+        cut.push_back(mesh.points[hi]);
+    }
+    const PatchPlane plane = fit_plane(cut);
+    if (!plane.planar()) return 0.0;
+    const Vec3& o = plane.point;
+    for (const auto& [a, b] : open) cap += (b - o).cross(a - o);  // the cap goes b → a
+    Vec3 ref = Vec3::Zero();
+    for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f)
+        ref += face_centroid(mesh, mesh.points, *f);
+    ref /= static_cast<double>(comps.faces.row_size(c));
+    return enclosed_volume(mesh, comps, c) + (o - ref).dot(0.5 * cap) / 3.0;
+}
+
 }  // namespace
 
 SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report, bool internal_flow) {
@@ -209,12 +238,22 @@ SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report, bool i
             "the surface without it");
 
     // Open components: the BFS root's orientation is arbitrary, the majority is what the user
-    // meant (an already consistent surface stays untouched). A tie keeps the root's.
+    // meant (an already consistent surface stays untouched). A tie keeps the root's. But a half
+    // model (its open boundary in one plane: the symmetry plane) is a body whose cut is closed
+    // by that plane: it points outward into the flow, whatever its file said (a CAD tool's
+    // export of the fluid's boundary points into the body, and the layers would grow inside).
     for (Index c = 0; c < comps.count; ++c) {
         if (comps.closed[c]) continue;
         Index flipped = 0;
         for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f) flipped += comps.flip[*f];
         if (2 * flipped > comps.faces.row_size(c)) comps.invert(c);
+        if (internal_flow) continue;
+        double size = 0.0;  // the component's extent, for a volume that is round-off (a flat sheet)
+        for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f)
+            for (const Index* v = mesh.face_begin(*f); v != mesh.face_end(*f); ++v)
+                size = std::max(size, (mesh.points[*v] - mesh.points[mesh.face_begin(comps.faces.row_begin(c)[0])[0]])
+                                          .lpNorm<Eigen::Infinity>());
+        if (capped_volume(mesh, edges, comps, c) < -1e-9 * size * size * size) comps.invert(c);
     }
 
     // Closed components: outer surfaces point into the domain they enclose (negative volume),

@@ -16,7 +16,9 @@
 #include <unistd.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -801,6 +803,28 @@ TEST(Cli, ASharpTrailingEdgeOnASymmetryPlaneKeepsItsFan) {
     const auto at = r.out.find(valid);
     ASSERT_NE(at, std::string::npos) << r.out;
     EXPECT_GE(std::stod(r.out.substr(at + valid.size())), 0.1) << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
+TEST(Cli, AHalfModelStlFacingIntoTheBodyIsTurnedOutward) {
+    // The sweep's half body STL with every triangle reversed, as a CAD tool writes the fluid's
+    // boundary (normals into the body). Open along its symmetry plane, it kept the file's
+    // orientation, grew its layers inside the body and stopped in TetGen ("points into the
+    // region to fill"). Its cut closed by the plane, it is a body: turned outward, meshed.
+    test::ScratchDir dir("cli_flipped_half_body");
+    std::string stl = slurp(example_data("../sweep/halfbody.stl"));
+    ASSERT_GT(stl.size(), 84u);
+    std::uint32_t n = 0;
+    std::memcpy(&n, stl.data() + 80, 4);
+    ASSERT_EQ(stl.size(), 84u + 50u * n);
+    for (std::uint32_t t = 0; t < n; ++t)  // swap each triangle's second and third vertices
+        std::swap_ranges(stl.begin() + 84 + 50 * t + 24, stl.begin() + 84 + 50 * t + 36,
+                         stl.begin() + 84 + 50 * t + 36);
+    std::ofstream(dir.file("inward.stl"), std::ios::binary) << stl;
+    const CliResult r = strata_cli(dir, "mesh inward.stl --layers 5 --first-height 1e-3 -o w.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find(std::to_string(n) + " faces re-oriented"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("domain: a half model"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
 }
 

@@ -412,5 +412,34 @@ TEST(OrientSurface, OpenGridKeepsTheMajorityOrientation) {
     EXPECT_EQ(rep.flipped_faces, 0);
 }
 
+TEST(OrientSurface, AHalfModelPointsOutOfTheBodyItsCutCloses) {
+    // The inward unit cube of quads without its face y = 0: a half model open on its symmetry
+    // plane, as a CAD tool exports the fluid's boundary (into the body). Its cut is closed by the
+    // plane, so it is a body, and it is turned outward, off the file's consistent orientation.
+    SurfaceMesh m;
+    m.patches.push_back({"wall", PatchKind::Wall});
+    for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 2; ++x) m.points.emplace_back(x + 5.0, y, z - 3.0);
+    m.add_face({0, 1, 3, 2}, 0);
+    m.add_face({4, 6, 7, 5}, 0);
+    m.add_face({2, 3, 7, 6}, 0);  // y = 1
+    m.add_face({0, 2, 6, 4}, 0);
+    m.add_face({1, 5, 7, 3}, 0);
+    OrientReport rep;
+    const SurfaceMesh o = orient_surface(m, &rep);
+    EXPECT_EQ(rep.flipped_faces, 5);
+    EXPECT_EQ(rep.closed_components, 0);
+    for (Index f = 0; f < 5; ++f) EXPECT_GT(outwardness(o, f, Vec3(5.5, 0.5, -2.5)), 0.0) << "face " << f;
+    // Outward already: untouched. With its cut not in one plane (a corner of the rim moved off
+    // it), no body is closed by a plane: the file's orientation stays.
+    EXPECT_EQ(orient_surface(o, &rep).face_nodes, o.face_nodes);
+    EXPECT_EQ(rep.flipped_faces, 0);
+    SurfaceMesh bent = m;
+    bent.points[0].y() = -0.3;
+    EXPECT_EQ(orient_surface(bent, &rep).face_nodes, bent.face_nodes);
+    EXPECT_EQ(rep.flipped_faces, 0);
+}
+
 }  // namespace
 }  // namespace strata
