@@ -507,7 +507,9 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, const std::vector<
             for (const Index v : et.nodes[e]) {
                 const auto u = static_cast<std::size_t>(v);
                 if (fanned[u] || (u < excluded.size() && excluded[u])) continue;
-                const bool to_boundary = boundary[u] || reaches_boundary[static_cast<std::size_t>(chains.find(v))];
+                // A plane node whose chain failed to close at its other end is unclosed.
+                const bool to_boundary = (boundary[u] && anchor[u] == Vec3::Zero()) ||
+                                         reaches_boundary[static_cast<std::size_t>(chains.find(v))];
                 auto [it, fresh] = why.emplace(v, to_boundary ? NoFan::Open : NoFan::Unclosed);
                 if (!fresh && to_boundary) it->second = NoFan::Open;
             }

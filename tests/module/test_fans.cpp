@@ -378,6 +378,18 @@ TEST(Fans, AChainMayEndOnAPlaneNodeWhoseColumnsLieInThePlane) {
     EXPECT_LT(across(fw, 23), 0.25 * unleaned);
     // Without the plane the chains cannot end there: no fan along the edges.
     EXPECT_EQ(build_fans(open, loops, {}, 1.0, 120.0, {}).fan_edges, 3);
+    // A node of the sharp edge excluded (its fan dropped by the caller): the edge's two halves
+    // end there without closing, the plane node's among them, all said to be unclosed.
+    std::vector<char> excluded(open.points.size(), 0);
+    excluded[14] = 1;
+    const FanWall cut = build_fans(open, loops, plane, 1.0, 120.0, excluded);
+    EXPECT_EQ(cut.fan_edges, 3 + 2 * 8);  // the cap and the base's edges still end on the plane
+    const std::vector<Index> ends{5, 8, 11, 17, 20, 23, 26};
+    ASSERT_EQ(cut.unfanned.size(), ends.size());
+    for (std::size_t j = 0; j < ends.size(); ++j) {
+        EXPECT_EQ(cut.unfanned[j].first, ends[j]);
+        EXPECT_EQ(cut.unfanned[j].second, NoFan::Unclosed);
+    }
 }
 
 /// A cell of \p type whose ids are \p id, over the unit cube's corners (Gmsh's hexahedron order).
