@@ -3,8 +3,8 @@
 // Each quad q of the layer top gets an apex a = c + h n (c the corner mean, n the unit
 // vector area, h = height × mean edge length L; where q has an edge on a plane the top's open
 // boundary lies in, standing on it at 30° or more and leaning towards it, n without its part
-// towards the plane). h is taken from a descending list of
-// candidates, h0, h0/2, h0/4, ... and finally min_height × (shortest edge) itself, and a candidate is
+// towards the plane). h is taken from a descending list of candidates, h0, h0/2, h0/4, ... and
+// finally min_height × (shortest edge) itself, and a candidate is
 // accepted only if the pyramid passes every rule below. Rules depend on one pyramid alone
 // ("static": the pyramid and the fixed top surface) or on a pair of pyramids.
 //
@@ -19,10 +19,9 @@
 //      never cross near the edge and keep an angle of at least kFoldMargin φ between them.
 //      An edge with no face across (an open boundary of the top) counts as flat (φ = π): the
 //      apex stays clear of the plane normal to the quad through that edge. On a plane (its
-//      loop is planar: the layers' sides on a symmetry plane) that the quad stands on at 30° or
-//      more and leans towards, the
-//      quad's mirror image in the plane counts as the face across (φ < π), so the side keeps
-//      off the plane itself.
+//      loop is planar: the layers' sides on a symmetry plane) that the quad stands on at 30°
+//      or more and leans towards, the quad's mirror image in the plane counts as the face
+//      across (φ < π), so the side keeps off the plane itself.
 //  S3  apex clearance: the apex is at least kFaceClearance × h from every top face other
 //      than P's own quad (quads as two triangles).
 //  S4  no crossing: no side triangle of P meets a nearby top face except at shared corners.

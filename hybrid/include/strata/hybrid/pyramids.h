@@ -28,7 +28,9 @@ struct PyramidLayer {
 };
 
 /// Cap every quad of \p top (oriented with normals pointing away from the layers, into the
-/// region still to mesh) with a pyramid. Apex at centroid + h × unit normal, with h shortened
+/// region still to mesh) with a pyramid. Apex at centroid + h × unit normal (beside a plane the
+/// top's open boundary lies in, a symmetry plane, that the quad leans towards: the normal
+/// without its part towards the plane, and the side over the plane keeps off it), with h shortened
 /// (down to min_height) where the pyramid would intersect another pyramid or the surface
 /// nearby or invert its side faces; throws TopologyError naming the quad if it cannot be
 /// placed (a LocalTopologyError carrying the quad's nodes, and after them four nodes for each
