@@ -154,6 +154,7 @@ TEST(OuterBoundary, AFanEndingOnTheSymmetryPlaneIsMeshedRoundInThePlane) {
     HybridParams p;
     p.layers.distribution.layers = 6;
     p.layers.distribution.first_height = 0.005;  // 0.05 in all
+    p.threads = 2;
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, p, nullptr, &rep);
     ASSERT_TRUE(rep.validation.ok());
@@ -180,6 +181,14 @@ TEST(OuterBoundary, AFanEndingOnTheSymmetryPlaneIsMeshedRoundInThePlane) {
     }
     EXPECT_GT(on_plane, 0);
     test::expect_rereads_valid(m, dir, "wedge");
+    // The same mesh on one thread.
+    p.threads = 1;
+    const VolumeMesh one = build_hybrid_mesh(s, p);
+    EXPECT_EQ(one.points, m.points);
+    EXPECT_EQ(one.hexes, m.hexes);
+    EXPECT_EQ(one.prisms, m.prisms);
+    EXPECT_EQ(one.pyramids, m.pyramids);
+    EXPECT_EQ(one.tets, m.tets);
 }
 
 TEST(OuterBoundary, CurvedPatchMeetingTheWallsIsRefusedByName) {
