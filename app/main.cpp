@@ -618,10 +618,13 @@ void print_held_back(const std::vector<strata::LayerStats>& stats) {
 /// no_fan: its first cells would have been unusable, its face on the layer top could not take a
 /// pyramid, its cells had skewed faces, or its sharp edge's chain could not close into a loop),
 /// each reason with the first such node's position.
-void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners, const strata::LayerReport& no_fan) {
+void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners, strata::Index on_plane,
+                const strata::LayerReport& no_fan) {
     if (edges > 0)
-        std::printf("fans: %d sharp convex edges, %d wall nodes with a column per side and between (%d corners)\n",
-                    static_cast<int>(edges), static_cast<int>(nodes), static_cast<int>(corners));
+        std::printf(
+            "fans: %d sharp convex edges, %d wall nodes with a column per side and between (%d corners%s)\n",
+            static_cast<int>(edges), static_cast<int>(nodes), static_cast<int>(corners),
+            on_plane > 0 ? (", " + std::to_string(on_plane) + " ending on a symmetry or other plane").c_str() : "");
     for (const strata::NoFan reason : {strata::NoFan::Unusable, strata::NoFan::Uncapped, strata::NoFan::Skewed,
                                        strata::NoFan::Open, strata::NoFan::Unclosed}) {
         const strata::Index n = no_fan.no_fan_nodes(reason);
@@ -665,7 +668,7 @@ void print_layer_table(const strata::LayerMesh& lm, const strata::LayerReport& c
         "  (columns: wall nodes with the layer; stopped: columns ending below it; steps: cells closing the steps "
         "where they end, pyramids, side-on prisms, tetrahedra; their apex at a stopped column sees the step's thin "
         "side edge-on, hence step SJ about layer height / edge length)\n");
-    print_fans(lm.fan_edges, lm.fan_nodes, lm.fan_corners, coverage);
+    print_fans(lm.fan_edges, lm.fan_nodes, lm.fan_corners, lm.fan_plane_nodes, coverage);
     if (lm.unsmoothed_nodes > 0)
         std::printf(
             "note: %d nodes (sharp convex edges, corners of open edges, ends of needle triangles) were extruded along "
@@ -755,7 +758,7 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
     if (hr.internal_flow) std::printf("domain: inside the walls (internal flow), no farfield generated\n");
     if (hr.closed_half_model)
         std::printf("domain: a half model, closed by a generated half farfield and a symmetry plane\n");
-    print_fans(hr.fan_edges, hr.fan_nodes, hr.fan_corners, hr.coverage);
+    print_fans(hr.fan_edges, hr.fan_nodes, hr.fan_corners, hr.fan_plane_nodes, hr.coverage);
     print_held_back(hr.layer_stats);
     print_thinned(hr.thinned_nodes, hr.min_thickness_share);
     print_coverage(hr.coverage);

@@ -210,6 +210,7 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
         if (at[static_cast<std::size_t>(i)].empty()) continue;
         ++out.fan_nodes;
         out.corners += at[static_cast<std::size_t>(i)].size() > 2 ? 1 : 0;
+        out.plane_nodes += anchor[static_cast<std::size_t>(i)] != Vec3::Zero() ? 1 : 0;
         const Index* f0 = vf.row_begin(i);
         const auto m = static_cast<std::size_t>(vf.row_size(i));
         UnionFind sec(m);

@@ -28,6 +28,7 @@ struct FanWall {
     Index fan_edges = 0;          ///< wall edges with a fan
     Index fan_nodes = 0;          ///< wall nodes split into fans
     Index corners = 0;            ///< of those, corners (three or more fan edges, or two turning sharply)
+    Index plane_nodes = 0;        ///< of those, on a plane the chain ends on (one fan edge, columns in the plane)
     Index columns = 0;            ///< columns added (mesh nodes beyond the wall's)
     /// The wall's nodes on an edge turning fan_angle_deg or more that got no fan, ascending, and
     /// why: NoFan::Open where its chain reaches the open boundary other than at a plane node

@@ -1038,6 +1038,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         for (Index i = 0; i < nw; ++i)
             col.pinned[static_cast<std::size_t>(i)] = fans.direction[static_cast<std::size_t>(i)] != Vec3::Zero();
         out.fan_edges = fans.fan_edges, out.fan_nodes = fans.fan_nodes, out.fan_corners = fans.corners;
+        out.fan_plane_nodes = fans.plane_nodes;
         out.fan_column = col.pinned;
     }
     for (const auto& [i, why] : fans.unfanned)

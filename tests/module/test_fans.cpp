@@ -352,6 +352,7 @@ TEST(Fans, AChainMayEndOnAPlaneNodeWhoseColumnsLieInThePlane) {
     EXPECT_TRUE(fw.unfanned.empty());
     EXPECT_EQ(fw.fan_edges, 3 + 3 * 8);  // the cap's loop at y = 0, the sharp edge and the base's two
     EXPECT_EQ(fw.fan_nodes, 3 + 3 * 8);
+    EXPECT_EQ(fw.plane_nodes, 3);  // the three edges' ends on the plane
     int on_plane = 0;
     for (Index i = 0; i < fw.mesh.num_points(); ++i)
         if (fw.base[static_cast<std::size_t>(i)] == 26) {

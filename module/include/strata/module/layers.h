@@ -151,6 +151,7 @@ public:
     Index fan_edges = 0;                  ///< edges of the input wall with a fan (LayerParams::fan_angle_deg)
     Index fan_nodes = 0;                  ///< nodes of the input wall split into a fan's columns
     Index fan_corners = 0;                ///< of those, corners: three or more fan edges, or two turning sharply
+    Index fan_plane_nodes = 0;            ///< of those, on a plane the chain ends on (a symmetry plane)
     std::vector<char> fan_column;         ///< empty, or per wall node 1 for a column of a fan
     /// Nodes of the input surface with no fan because its first cells would have been unusable
     /// (ascending; layer_report lists them with their positions).
