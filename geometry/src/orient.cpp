@@ -179,14 +179,18 @@ std::vector<char> outer_components(const SurfaceMesh& mesh, const Components& co
     return outer;
 }
 
-/// Signed volume closed component \p c encloses with its current orientation (divergence
-/// theorem), measured from its centroid so that a body far from the origin does not lose the
-/// volume in cancellation.
-double enclosed_volume(const SurfaceMesh& mesh, const Components& comps, Index c) {
+/// The mean of component \p c's face centroids: the point volumes are measured from, so that a
+/// body far from the origin does not lose its volume in cancellation.
+Vec3 centroid_of(const SurfaceMesh& mesh, const Components& comps, Index c) {
     Vec3 ref = Vec3::Zero();
     for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f)
         ref += face_centroid(mesh, mesh.points, *f);
-    ref /= static_cast<double>(comps.faces.row_size(c));
+    return ref / static_cast<double>(comps.faces.row_size(c));
+}
+
+/// Signed volume component \p c's faces enclose from \p ref with their current orientation
+/// (divergence theorem; a closed component's whole volume).
+double volume_from(const SurfaceMesh& mesh, const Components& comps, Index c, const Vec3& ref) {
     double volume = 0.0;
     for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f) {
         const double v = (face_centroid(mesh, mesh.points, *f) - ref).dot(face_area_vector(mesh, *f)) / 3.0;
@@ -195,33 +199,48 @@ double enclosed_volume(const SurfaceMesh& mesh, const Components& comps, Index c
     return volume;
 }
 
-/// For open component \p c whose open boundary lies in one plane (a half model cut along its
-/// symmetry plane): the signed volume it encloses with that cut closed by a flat cap (as
-/// enclosed_volume, plus the cap's term: its vector area, traversing every open edge against
-/// the faces, from a point of the plane). 0 where the boundary is not planar.
-double capped_volume(const SurfaceMesh& mesh, const EdgeTable& edges, const Components& comps, Index c) {
-    std::vector<Vec3> cut;
-    Vec3 cap = Vec3::Zero();  // vector area of the cap, times 2
-    std::vector<std::pair<Vec3, Vec3>> open;
+/// Signed volume closed component \p c encloses with its current orientation.
+double enclosed_volume(const SurfaceMesh& mesh, const Components& comps, Index c) {
+    return volume_from(mesh, comps, c, centroid_of(mesh, comps, c));
+}
+
+/// Per component: for an open one whose open boundary lies in one plane (a half model cut along
+/// its symmetry plane), the signed volume it encloses with that cut closed by a flat cap (the
+/// faces' term plus the cap's: its vector area, traversing every open edge against the faces,
+/// from a point of the plane); 0 for any other component, and where that volume is round-off
+/// (below 1e-9 of the cube of the component's extent: a flat sheet lying in its own rim's plane).
+std::vector<double> capped_volumes(const SurfaceMesh& mesh, const EdgeTable& edges, const Components& comps) {
+    const auto nc = static_cast<std::size_t>(comps.count);
+    std::vector<std::vector<Vec3>> cut(nc);
+    std::vector<std::vector<std::pair<Vec3, Vec3>>> open(nc);  // the open edges as the faces go
     for (Index e = 0; e < edges.faces.rows(); ++e) {
         if (edges.faces.row_size(e) != 1) continue;
         const Index f = edges.faces.row_begin(e)[0];
-        if (comps.of_face[static_cast<std::size_t>(f)] != c) continue;
+        const auto c = static_cast<std::size_t>(comps.of_face[static_cast<std::size_t>(f)]);
         const Index lo = edges.nodes[static_cast<std::size_t>(e)][0], hi = edges.nodes[static_cast<std::size_t>(e)][1];
         const bool forward = (direction(mesh, f, lo, hi) > 0) != static_cast<bool>(comps.flip[f]);
-        open.emplace_back(mesh.points[forward ? lo : hi], mesh.points[forward ? hi : lo]);  // as the faces go
-        cut.push_back(mesh.points[lo]);
-        cut.push_back(mesh.points[hi]);
+        open[c].emplace_back(mesh.points[forward ? lo : hi], mesh.points[forward ? hi : lo]);
+        cut[c].push_back(mesh.points[lo]);
+        cut[c].push_back(mesh.points[hi]);
     }
-    const PatchPlane plane = fit_plane(cut);
-    if (!plane.planar()) return 0.0;
-    const Vec3& o = plane.point;
-    for (const auto& [a, b] : open) cap += (b - o).cross(a - o);  // the cap goes b → a
-    Vec3 ref = Vec3::Zero();
-    for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f)
-        ref += face_centroid(mesh, mesh.points, *f);
-    ref /= static_cast<double>(comps.faces.row_size(c));
-    return enclosed_volume(mesh, comps, c) + (o - ref).dot(0.5 * cap) / 3.0;
+    std::vector<double> volume(nc, 0.0);
+    for (Index c = 0; c < comps.count; ++c) {
+        const auto u = static_cast<std::size_t>(c);
+        if (cut[u].empty()) continue;
+        const PatchPlane plane = fit_plane(cut[u]);
+        if (!plane.planar()) continue;
+        const Vec3& o = plane.point;
+        Vec3 cap = Vec3::Zero();                                         // the cap's vector area, times 2
+        for (const auto& [a, b] : open[u]) cap += (b - o).cross(a - o);  // the cap goes b → a
+        const Vec3 ref = centroid_of(mesh, comps, c);
+        std::vector<Vec3> nodes;
+        for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f)
+            for (const Index* v = mesh.face_begin(*f); v != mesh.face_end(*f); ++v) nodes.push_back(mesh.points[*v]);
+        const double size = bounding_box(nodes).diagonal();
+        const double v = volume_from(mesh, comps, c, ref) + (o - ref).dot(0.5 * cap) / 3.0;
+        if (std::abs(v) > 1e-9 * size * size * size) volume[u] = v;
+    }
+    return volume;
 }
 
 }  // namespace
@@ -247,13 +266,11 @@ SurfaceMesh orient_surface(const SurfaceMesh& mesh, OrientReport* report, bool i
         Index flipped = 0;
         for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f) flipped += comps.flip[*f];
         if (2 * flipped > comps.faces.row_size(c)) comps.invert(c);
-        if (internal_flow) continue;
-        double size = 0.0;  // the component's extent, for a volume that is round-off (a flat sheet)
-        for (const Index* f = comps.faces.row_begin(c); f != comps.faces.row_end(c); ++f)
-            for (const Index* v = mesh.face_begin(*f); v != mesh.face_end(*f); ++v)
-                size = std::max(size, (mesh.points[*v] - mesh.points[mesh.face_begin(comps.faces.row_begin(c)[0])[0]])
-                                          .lpNorm<Eigen::Infinity>());
-        if (capped_volume(mesh, edges, comps, c) < -1e-9 * size * size * size) comps.invert(c);
+    }
+    if (!internal_flow && std::any_of(comps.closed.begin(), comps.closed.end(), [](char c) { return c == 0; })) {
+        const std::vector<double> capped = capped_volumes(mesh, edges, comps);
+        for (Index c = 0; c < comps.count; ++c)
+            if (capped[static_cast<std::size_t>(c)] < 0.0) comps.invert(c);
     }
 
     // Closed components: outer surfaces point into the domain they enclose (negative volume),

@@ -67,7 +67,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
-#include <map>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -415,49 +414,42 @@ void Builder::setup() {
 void Builder::build_neighbours() {
     // Faces across each base edge.
     const EdgeTable et = edge_table(top_);
-    across_.offsets.assign(1, 0);
-    for (const Pyr& p : pyr_)
-        for (int i = 0; i < 4; ++i) {
-            if (const Index ei = find_edge(et, p.v[i], p.v[(i + 1) % 4]); ei != kNone) {
-                for (const Index* g = et.faces.row_begin(ei); g != et.faces.row_end(ei); ++g)
-                    if (*g != p.face) across_.values.push_back(*g);
-            }
-            across_.offsets.push_back(static_cast<Index>(across_.values.size()));
-        }
-    // The planes of the top's planar open boundary loops (the layers' sides on a symmetry plane).
-    open_plane_.assign(across_.offsets.size() - 1, Vec3::Zero());
+    // The planes of the top's planar open boundary loops (the layers' sides on a symmetry
+    // plane), per edge.
+    std::vector<Vec3> edge_plane(et.nodes.size(), Vec3::Zero());
     const Csr loops = boundary_loops(top_);
-    std::map<std::pair<Index, Index>, Vec3> plane_of_edge;
     for (Index l = 0; l < loops.rows(); ++l) {
         std::vector<Vec3> pts;
         for (const Index* v = loops.row_begin(l); v != loops.row_end(l); ++v) pts.push_back(top_.points[*v]);
         if (const PatchPlane pl = fit_plane(pts); pl.planar())
-            for (Index i = 0, m = loops.row_size(l); i < m; ++i) {
-                const Index a = loops.row_begin(l)[i], b = loops.row_begin(l)[(i + 1) % m];
-                plane_of_edge[{std::min(a, b), std::max(a, b)}] = pl.normal;
-            }
+            for (Index i = 0, m = loops.row_size(l); i < m; ++i)
+                edge_plane[static_cast<std::size_t>(
+                    find_edge(et, loops.row_begin(l)[i], loops.row_begin(l)[(i + 1) % m]))] = pl.normal;
     }
-    if (!plane_of_edge.empty())
-        for (std::size_t k = 0; k < pyr_.size(); ++k)
-            for (int i = 0; i < 4; ++i) {
-                Pyr& p = pyr_[k];
-                const Index a = p.v[i], b = p.v[(i + 1) % 4];
-                const auto it = plane_of_edge.find({std::min(a, b), std::max(a, b)});
-                if (it == plane_of_edge.end()) continue;
-                // Only a quad standing on the plane at 30° or more (the layers' top beside their
-                // sides on a symmetry plane; not a flat wall's top lying in its own outline's
-                // plane).
-                Vec3 m = it->second;
-                const Vec3 e = (p.x[(i + 1) % 4] - p.x[i]).normalized();
-                const Vec3 d1 = (p.c - p.x[i]) - (p.c - p.x[i]).dot(e) * e;
-                if (!(std::abs(d1.dot(m)) >= 0.5 * d1.norm())) continue;
-                open_plane_[4 * k + static_cast<std::size_t>(i)] = m;
-                // A quad leaning towards the plane (the layer top meeting a symmetry plane
-                // obliquely, beside a swept edge) raises its apex parallel to the plane: along
-                // its normal, the apex would come down onto the plane.
-                if (d1.dot(m) < 0.0) m = -m;  // into the quad's side
-                if (const double towards = p.n.dot(m); towards < 0.0) p.n = (p.n - towards * m).normalized();
+    across_.offsets.assign(1, 0);
+    open_plane_.clear();
+    for (Pyr& p : pyr_)
+        for (int i = 0; i < 4; ++i) {
+            Vec3 m = Vec3::Zero();
+            if (const Index ei = find_edge(et, p.v[i], p.v[(i + 1) % 4]); ei != kNone) {
+                for (const Index* g = et.faces.row_begin(ei); g != et.faces.row_end(ei); ++g)
+                    if (*g != p.face) across_.values.push_back(*g);
+                m = edge_plane[static_cast<std::size_t>(ei)];
             }
+            across_.offsets.push_back(static_cast<Index>(across_.values.size()));
+            // Only a quad standing on the plane at 30° or more (the layers' top beside their
+            // sides on a symmetry plane; not a flat wall's top lying in its own outline's plane).
+            const Vec3 e = (p.x[(i + 1) % 4] - p.x[i]).normalized();
+            const Vec3 d1 = (p.c - p.x[i]) - (p.c - p.x[i]).dot(e) * e;
+            if (!(std::abs(d1.dot(m)) >= 0.5 * d1.norm())) m = Vec3::Zero();
+            open_plane_.push_back(m);
+            if (m == Vec3::Zero()) continue;
+            // A quad leaning towards the plane (the layer top meeting a symmetry plane
+            // obliquely, beside a swept edge) raises its apex parallel to the plane: along
+            // its normal, the apex would come down onto the plane.
+            if (d1.dot(m) < 0.0) m = -m;  // into the quad's side
+            if (const double towards = p.n.dot(m); towards < 0.0) p.n = (p.n - towards * m).normalized();
+        }
 
     // Reach of each pyramid: its box at the first candidate height, grown by the largest
     // clearance any rule asks of it (heights only decrease, so the box only shrinks).

@@ -129,10 +129,10 @@ void boundary_planes(const SurfaceMesh& wall, const Csr& loops, const std::vecto
 /// plane (the mirror plane of its ring), on two it marches along their line of intersection
 /// (\p node_line, unit, pointing into the flow) without smoothing, so the layers' side faces
 /// lie exactly in the planes and the planes can be re-meshed around them. Marks the nodes it
-/// constrains in \p fixed.
+/// constrains in \p fixed, and in \p one_patch (if given) those on a single non-wall patch.
 void patch_constraints(const SurfaceMesh& surface, const Wall& w, const Csr& loops, const std::vector<Vec3>& normals,
                        std::vector<MirrorPlane>& planes, std::vector<Index>& node_plane, std::vector<Vec3>& node_line,
-                       std::vector<char>& fixed) {
+                       std::vector<char>& fixed, std::vector<char>* one_patch = nullptr) {
     const Csr in_vf = vertex_faces(surface);
     std::vector<Index> plane_of_patch(surface.patches.size(), -2);  // -2: not fitted yet
     auto plane_of = [&](Index patch) {
@@ -151,9 +151,13 @@ void patch_constraints(const SurfaceMesh& surface, const Wall& w, const Csr& loo
         for (const Index* v = loops.row_begin(l); v != loops.row_end(l); ++v) {
             const Index in = w.input_node[static_cast<std::size_t>(*v)];
             std::vector<Index> on;  // planes of the non-wall patches at the node
+            Index first_patch = kNone;
+            bool one = true;
             for (const Index* f = in_vf.row_begin(in); f != in_vf.row_end(in); ++f) {
                 const Index patch = surface.face_patch[*f];
                 if (surface.patches[static_cast<std::size_t>(patch)].kind == PatchKind::Wall) continue;
+                one &= first_patch == kNone || first_patch == patch;
+                first_patch = patch;
                 const Index p = plane_of(patch);
                 if (p == kNone || std::find(on.begin(), on.end(), p) != on.end()) continue;
                 // Planes within ~6° of one another hold the node as one plane.
@@ -164,6 +168,7 @@ void patch_constraints(const SurfaceMesh& surface, const Wall& w, const Csr& loo
             }
             if (on.empty()) continue;
             fixed[static_cast<std::size_t>(*v)] = 1;
+            if (one_patch) (*one_patch)[static_cast<std::size_t>(*v)] = one;
             if (on.size() == 1) {
                 node_plane[static_cast<std::size_t>(*v)] = on[0];
                 continue;
@@ -623,23 +628,12 @@ std::vector<Vec3> fan_planes(const SurfaceMesh& surface, const Wall& w, const La
     std::vector<MirrorPlane> planes;
     std::vector<Index> node_plane(nn, kNone);
     std::vector<Vec3> node_line(nn, Vec3::Zero());
-    std::vector<char> fixed(nn, 0);
-    patch_constraints(surface, w, w.loops, n, planes, node_plane, node_line, fixed);
-    const Csr in_vf = vertex_faces(surface);
+    std::vector<char> fixed(nn, 0), one_patch(nn, 0);
+    patch_constraints(surface, w, w.loops, n, planes, node_plane, node_line, fixed, &one_patch);
     plane_normal.assign(nn, Vec3::Zero());
-    for (std::size_t i = 0; i < nn; ++i) {
-        if (node_plane[i] == kNone) continue;
-        const Index in = w.input_node[i];
-        Index patch = kNone;
-        bool one = true;
-        for (const Index* f = in_vf.row_begin(in); f != in_vf.row_end(in); ++f) {
-            const Index p = surface.face_patch[*f];
-            if (surface.patches[static_cast<std::size_t>(p)].kind == PatchKind::Wall) continue;
-            one &= patch == kNone || patch == p;
-            patch = p;
-        }
-        if (one) plane_normal[i] = planes[static_cast<std::size_t>(node_plane[i])].normal;
-    }
+    for (std::size_t i = 0; i < nn; ++i)
+        if (node_plane[i] != kNone && one_patch[i])
+            plane_normal[i] = planes[static_cast<std::size_t>(node_plane[i])].normal;
     return plane_normal;
 }
 
