@@ -66,6 +66,31 @@ Vec3 cell_centre(const std::array<FaceGeometry, 6>& fg, int count, Vec3& mag, do
     return std::abs(vol3) > kRootVSmall ? Vec3(sum_c / vol3) : est;
 }
 
+/// checkMesh's skewness of face \p f (corners \p v of \p p) between the cells centred at \p co
+/// and \p cn (faceSkewness), or of a boundary face of the cell at \p co (\p cn null:
+/// boundaryFaceSkewness, the neighbour's centre taken as the owner's mirror in the face).
+double skewness_of(const Vec3* p, const Index* v, int n, const FaceGeometry& f, const Vec3& co, const Vec3* cn) {
+    auto extent = [&](const Vec3& dir) {
+        double e = 0.0;
+        for (int i = 0; i < n; ++i) e = std::max(e, std::abs(dir.dot(p[static_cast<std::size_t>(v[i])] - f.centre)));
+        return e;
+    };
+    const Vec3 cpf = f.centre - co;
+    Vec3 d;
+    double near;  // the distance under which the centres count as close: checkMesh's 0.2 |d|, 0.4 |d| at the boundary
+    if (cn) {
+        d = *cn - co;
+        near = 0.2 * d.norm();
+    } else {
+        const Vec3 nrm = f.area / (f.area.norm() + kRootVSmall);
+        d = nrm * nrm.dot(cpf);
+        near = 0.4 * d.norm();
+    }
+    const Vec3 sv = cpf - (f.area.dot(cpf) / (f.area.dot(d) + kRootVSmall)) * d;
+    const double m = sv.norm();
+    return m / std::max(near + kRootVSmall, extent(sv / (m + kRootVSmall)));
+}
+
 /// The pyramid from a face (outward area \p area, centre \p fc) to a cell centre \p cc is
 /// inverted: below checkMesh's -1e-15.
 bool inverted_pyramid(const Vec3& area, const Vec3& fc, const Vec3& cc) {
@@ -199,6 +224,10 @@ bool face_pyramids_inverted(const Vec3* corners, CellType type) {
     return false;
 }
 
+double face_skewness(const Vec3* p, const Index* v, int n, const Vec3& owner, const Vec3* neighbour) {
+    return skewness_of(p, v, n, face_geometry(p, v, n), owner, neighbour);
+}
+
 SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads,
                            std::vector<std::uint64_t>* skewed) {
     SolverChecks r;
@@ -268,13 +297,6 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
             const FaceGeometry f = face_geometry(p.data(), v, n);  // outward from the owner, cell(s)
             const Vec3& co = centre[static_cast<std::size_t>(slots.cell(s))];
             double skew = 0.0;
-            auto extent = [&](const Vec3& dir) {
-                double e = 0.0;
-                for (int i = 0; i < n; ++i)
-                    e = std::max(e, std::abs(dir.dot(p[static_cast<std::size_t>(v[i])] - f.centre)));
-                return e;
-            };
-            const Vec3 cpf = f.centre - co;
             if (interior) {
                 const Vec3& cn = centre[static_cast<std::size_t>(slots.cell(static_cast<std::uint64_t>(other)))];
                 const Vec3 d = cn - co;
@@ -283,16 +305,10 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
                 q.sum_cos += cos;
                 if (cos < severe_cos) ++(cos > 1e-15 ? q.severe : q.errors);
                 if (cos < q.min_cos) q.min_cos = cos, q.worst_ortho = s, q.has_ortho = true;
-                const Vec3 sv = cpf - (f.area.dot(cpf) / (f.area.dot(d) + kRootVSmall)) * d;
-                const double m = sv.norm();
-                skew = m / std::max(0.2 * d.norm() + kRootVSmall, extent(sv / (m + kRootVSmall)));
+                skew = skewness_of(p.data(), v, n, f, co, &cn);
                 pyramid(-f.area, f.centre, cn, s);  // the neighbour's: its outward area is -area
             } else {
-                const Vec3 nrm = f.area / (f.area.norm() + kRootVSmall);
-                const Vec3 d = nrm * nrm.dot(cpf);
-                const Vec3 sv = cpf - (f.area.dot(cpf) / (f.area.dot(d) + kRootVSmall)) * d;
-                const double m = sv.norm();
-                skew = m / std::max(0.4 * d.norm() + kRootVSmall, extent(sv / (m + kRootVSmall)));
+                skew = skewness_of(p.data(), v, n, f, co, nullptr);
             }
             if (skew > kFoamSkewness) {
                 ++q.skew;

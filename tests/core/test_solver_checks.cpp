@@ -64,6 +64,21 @@ TEST(SolverChecks, LeaningCellHasTheFiguresWorkedOutByHand) {
     EXPECT_TRUE(s.ok());
 }
 
+TEST(SolverChecks, OneFacesSkewnessIsTheFigureWorkedOutByHand) {
+    // The shared face and the far face of LeaningCellHasTheFiguresWorkedOutByHand, alone:
+    // skewness 1 between the two centres, 2 as the leaning cell's boundary face.
+    const std::vector<Vec3> p = {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1},
+                                 {2, 2, 0}, {2, 3, 0}, {2, 3, 1}, {2, 2, 1}};
+    const Index shared[4] = {0, 1, 2, 3}, far[4] = {4, 5, 6, 7};
+    const Vec3 owner(0.5, 0.5, 0.5), neighbour(1.5, 1.5, 0.5);
+    EXPECT_NEAR(face_skewness(p.data(), shared, 4, owner, &neighbour), 1.0, 1e-12);
+    EXPECT_NEAR(face_skewness(p.data(), shared, 4, neighbour, &owner), 1.0, 1e-12);  // either side
+    EXPECT_NEAR(face_skewness(p.data(), far, 4, neighbour, nullptr), 2.0, 1e-12);
+    // Centres on the face's normal through its centre: none.
+    const Vec3 square(1.5, 0.5, 0.5);
+    EXPECT_NEAR(face_skewness(p.data(), shared, 4, owner, &square), 0.0, 1e-12);
+}
+
 TEST(SolverChecks, StrongLeanIsSeverelyNonOrthogonalAndTooSkewForCheckMesh) {
     // Shift 10: d = (1, 5, 0), atan(5) = 78.7° (above 70); the far face's centre lies 5 off,
     // over its half-width 0.5: skewness 10, above checkMesh's 4.

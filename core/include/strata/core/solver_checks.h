@@ -60,6 +60,13 @@ struct SolverChecks {
 SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads = 0,
                            std::vector<std::uint64_t>* skewed = nullptr);
 
+/// checkMesh's skewness of the face with the \p n corners \p v of \p p between the cells whose
+/// centres (OpenFOAM's) are \p owner and \p neighbour, or, \p neighbour null, of a boundary
+/// face of the cell at \p owner: how far the line between the centres (at the boundary, the
+/// face's normal through the owner's centre) passes from the face's centre, over the face's
+/// extent that way. A tetrahedron's centre is the mean of its corners.
+double face_skewness(const Vec3* p, const Index* v, int n, const Vec3& owner, const Vec3* neighbour);
+
 /// checkMesh's aspect ratio of the right prism (hexahedron for a quad) of height \p h standing
 /// on the wall face with corners \p corners (3 or 4, either orientation): what the first layer
 /// over that face will show, before the layers exist (for sizing the surface). A face without
