@@ -786,6 +786,12 @@ void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridRe
             static_cast<long long>(ti.moved_nodes), static_cast<long long>(ti.inserted_nodes), ti.below,
             static_cast<long long>(ti.below_before), static_cast<long long>(ti.below_after), ti.min_before,
             ti.min_after, ti.seconds, ti.budget_reached ? "; stopped at its work budget" : "");
+    if (const strata::TetImproveReport& ti = hr.tet_improve; ti.skewed_before + ti.skew_changes > 0)
+        std::printf(
+            "tetrahedra de-skewed: %lld flips and edge removals for faces above a skewness of %g (checkMesh fails "
+            "above 4); faces between tetrahedra above 4: %lld -> %lld\n",
+            static_cast<long long>(ti.skew_changes), strata::kTetSkewTarget, static_cast<long long>(ti.skewed_before),
+            static_cast<long long>(ti.skewed_after));
     for (const auto& [p, planes] : hr.planes_of_patches)
         std::printf(
             "planes: patch '%s' is %d planes, the layers end on it; each was re-meshed round them as a "

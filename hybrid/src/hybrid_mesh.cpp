@@ -582,7 +582,9 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
             rep.front_rounds = round + 1;
             continue;
         }
-        rep.tet_improve = improve_tets(fill, region.num_points(), params.improve, progress);
+        TetImproveParams improve = params.improve;
+        improve.threads = params.threads;
+        rep.tet_improve = improve_tets(fill, region.num_points(), improve, progress);
         rep.seconds_tets += seconds_since(t0);
         strata::report(progress, "tetrahedra", 1.0);
         break;

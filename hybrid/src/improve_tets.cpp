@@ -2,6 +2,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
+#include <strata/core/parallel.h>
 
 #include <algorithm>
 #include <array>
@@ -133,9 +134,106 @@ public:
         return changed;
     }
 
+    /// A face between two tetrahedra and its checkMesh skewness.
+    struct SkewedFace {
+        double skew;
+        Index t;
+        int i;  // the face of t opposite its node i
+    };
+
+    /// Every face between two tetrahedra, once: those above kTetSkewTarget, worst first (ties
+    /// by tetrahedron and face); \p above_bound counts those above kFoamSkewness, what
+    /// checkMesh fails (the fill's boundary faces are judged with the layers).
+    std::vector<SkewedFace> skewed_faces(Index& above_bound, int threads) const {
+        // Each face's skewness in parallel (reading only), gathered in order: the same for any
+        // thread count. -1: the fill's boundary, or counted from the tetrahedron across.
+        const auto nt = static_cast<std::int64_t>(tets_.size());
+        std::vector<std::array<double, 4>> k(static_cast<std::size_t>(nt));
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads, nt))
+        for (std::int64_t t = 0; t < nt; ++t) {
+            auto& kt = k[static_cast<std::size_t>(t)];
+            kt.fill(-1.0);
+            if (!alive_[static_cast<std::size_t>(t)]) continue;
+            for (int i = 0; i < 4; ++i) {
+                const auto f = face_of(tets_[static_cast<std::size_t>(t)], i);
+                const Index n = across(static_cast<Index>(t), f[0], f[1], f[2]);
+                if (n < static_cast<Index>(t)) continue;
+                kt[static_cast<std::size_t>(i)] =
+                    skewness(tets_[static_cast<std::size_t>(t)], &tets_[static_cast<std::size_t>(n)], f);
+            }
+        }
+        above_bound = 0;
+        std::vector<SkewedFace> faces;
+        for (std::int64_t t = 0; t < nt; ++t)
+            for (int i = 0; i < 4; ++i) {
+                const double v = k[static_cast<std::size_t>(t)][static_cast<std::size_t>(i)];
+                if (v > kFoamSkewness) ++above_bound;
+                if (v > kTetSkewTarget) faces.push_back({v, static_cast<Index>(t), i});
+            }
+        std::sort(faces.begin(), faces.end(), [](const SkewedFace& x, const SkewedFace& y) {
+            return x.skew != y.skew ? x.skew > y.skew : (x.t != y.t ? x.t < y.t : x.i < y.i);
+        });
+        return faces;
+    }
+
+    /// Each of \p faces (skewed_faces) still there and above kTetSkewTarget, in order, replaced
+    /// by the 2-3 flip across it or the removal of one of its edges that leaves the smallest
+    /// skewness on the faces of the tetrahedra made, if that is below the face's and below what
+    /// the faces replaced had, the faces of the fill's boundary among them no worse than they
+    /// were or kTetSkewTarget, and the worst tetrahedron made no worse than the worst replaced;
+    /// true if any was. Skewness is what checkMesh fails a mesh on (above 4) that the scaled
+    /// Jacobian does not see: two tetrahedra side by side whose centres' line passes far from
+    /// their shared face.
+    bool skew_pass(const std::vector<SkewedFace>& faces, TetImproveReport& rep, const Progress* progress) {
+        bool changed = false;
+        std::size_t done = 0;
+        for (const SkewedFace& face : faces) {
+            if ((++done & 255u) == 0) check_cancelled(progress);
+            if (over_budget()) break;
+            if (!alive_[static_cast<std::size_t>(face.t)]) continue;
+            const Tet tet = tets_[static_cast<std::size_t>(face.t)];
+            const auto f = face_of(tet, face.i);
+            const Index n = across(face.t, f[0], f[1], f[2]);
+            if (n < 0) continue;
+            const double now = skew(tet, &tets_[static_cast<std::size_t>(n)], f);
+            if (!(now > kTetSkewTarget)) continue;
+            std::vector<Change> options;
+            options.push_back(flip23(face.t, tet, face.i));
+            for (int e = 0; e < 3; ++e)
+                options.push_back(
+                    remove_edge(f[static_cast<std::size_t>(e)], f[static_cast<std::size_t>((e + 1) % 3)]));
+            const Change* best = nullptr;
+            double best_skew = now;
+            for (const Change& c : options) {
+                if (c.removed.empty()) continue;
+                double replaced = 1.0;
+                std::vector<Tet> old;
+                for (const Index o : c.removed) {
+                    replaced = std::min(replaced, q_[static_cast<std::size_t>(o)]);
+                    old.push_back(tets_[static_cast<std::size_t>(o)]);
+                }
+                if (!(c.made >= replaced)) continue;
+                const SkewOf before = skews(old, c.removed), after = skews(c.tets, c.removed);
+                if (after.interior < best_skew && after.interior < before.interior &&
+                    after.boundary <= std::max(before.boundary, kTetSkewTarget))
+                    best = &c, best_skew = after.interior;
+            }
+            if (!best) continue;
+            for (const Index o : best->removed) kill(o);
+            for (const Tet& t : best->tets) add(t);
+            ++rep.skew_changes;
+            changed = true;
+        }
+        return changed;
+    }
+
     /// The work allowed, in tetrahedron qualities computed.
-    void set_budget(std::uint64_t b) { budget_ = b; }
-    bool over_budget() const { return evaluations_ > budget_; }
+    void set_budget(std::uint64_t b) {
+        budget_ = b;
+    }
+    bool over_budget() const {
+        return evaluations_ > budget_;
+    }
 
 private:
     /// The tetrahedra below the bound (\p fixed_only: whose corners are all boundary nodes),
@@ -186,6 +284,61 @@ private:
         const double largest = std::max(std::max(ab * ac * ad, ab * bc * bd), std::max(ac * bc * cd, ad * bd * cd));
         const double q = (b - a).cross(c - a).dot(d - a) / largest;
         return std::isfinite(q) ? q : kNone;
+    }
+
+    /// The face of \p t opposite its node \p i.
+    static std::array<Index, 3> face_of(const Tet& t, int i) {
+        std::array<Index, 3> f{};
+        int k = 0;
+        for (int j = 0; j < 4; ++j)
+            if (j != i) f[static_cast<std::size_t>(k++)] = t[static_cast<std::size_t>(j)];
+        return f;
+    }
+
+    /// checkMesh's skewness of face \p f of \p t, shared with \p n (null: on the fill's
+    /// boundary), counted in the work done.
+    double skew(const Tet& t, const Tet* n, const std::array<Index, 3>& f) const {
+        ++evaluations_;
+        return skewness(t, n, f);
+    }
+
+    /// skew, not counted (safe to call from several threads).
+    double skewness(const Tet& t, const Tet* n, const std::array<Index, 3>& f) const {
+        auto centre = [&](const Tet& x) {
+            return Vec3(0.25 * (p_[static_cast<std::size_t>(x[0])] + p_[static_cast<std::size_t>(x[1])] +
+                                p_[static_cast<std::size_t>(x[2])] + p_[static_cast<std::size_t>(x[3])]));
+        };
+        const Vec3 co = centre(t);
+        if (!n) return face_skewness(p_.data(), f.data(), 3, co, nullptr);
+        const Vec3 cn = centre(*n);
+        const double k = face_skewness(p_.data(), f.data(), 3, co, &cn);
+        return std::isfinite(k) ? k : std::numeric_limits<double>::infinity();
+    }
+
+    struct SkewOf {
+        double interior = 0.0;  ///< the largest over faces with a tetrahedron on both sides
+        double boundary = 0.0;  ///< the largest over faces of the fill's boundary
+    };
+
+    /// The skewness of the faces of \p set (tetrahedra that need not be in the mesh), a face's
+    /// neighbour another of \p set or a tetrahedron of the mesh not in \p gone.
+    SkewOf skews(const std::vector<Tet>& set, const std::vector<Index>& gone) const {
+        SkewOf r;
+        for (std::size_t s = 0; s < set.size(); ++s)
+            for (int i = 0; i < 4; ++i) {
+                const auto f = face_of(set[s], i);
+                const Tet* n = nullptr;
+                for (std::size_t o = 0; o < set.size() && !n; ++o)
+                    if (o != s && has(set[o], f[0]) && has(set[o], f[1]) && has(set[o], f[2])) n = &set[o];
+                for (const Index o : node_tets_[static_cast<std::size_t>(f[0])]) {
+                    if (n) break;
+                    const Tet& ot = tets_[static_cast<std::size_t>(o)];
+                    if (has(ot, f[1]) && has(ot, f[2]) && std::find(gone.begin(), gone.end(), o) == gone.end()) n = &ot;
+                }
+                double& w = n ? r.interior : r.boundary;
+                w = std::max(w, skew(set[s], n, f));
+            }
+        return r;
     }
 
     Index add(const Tet& t) {
@@ -564,6 +717,14 @@ TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImprovePa
             ++rep.passes;
             if (!im.pass(rep, progress)) break;
         }
+    // One scan of the faces when none is skewed (the usual case), one more after each pass that changed any.
+    std::vector<Improver::SkewedFace> skewed = im.skewed_faces(rep.skewed_before, params.threads);
+    rep.skewed_after = rep.skewed_before;
+    for (int round = 0; round < 3 && !skewed.empty() && !im.over_budget(); ++round) {
+        check_cancelled(progress);
+        if (!im.skew_pass(skewed, rep, progress)) break;
+        skewed = im.skewed_faces(rep.skewed_after, params.threads);
+    }
     im.measure(rep.below_after, rep.min_after);
     rep.budget_reached = im.over_budget();
     fill.tets = im.release();

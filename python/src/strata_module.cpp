@@ -494,7 +494,8 @@ py::dict hybrid_report(const VolumeMesh& mesh, const HybridReport& hr) {
         py::dict("below"_a = ti.below, "flips"_a = ti.flips, "edge_removals"_a = ti.edge_removals,
                  "moved_nodes"_a = ti.moved_nodes, "inserted_nodes"_a = ti.inserted_nodes,
                  "below_before"_a = ti.below_before, "below_after"_a = ti.below_after, "min_before"_a = ti.min_before,
-                 "min_after"_a = ti.min_after, "seconds"_a = ti.seconds, "budget_reached"_a = ti.budget_reached);
+                 "min_after"_a = ti.min_after, "skew_changes"_a = ti.skew_changes, "skewed_before"_a = ti.skewed_before,
+                 "skewed_after"_a = ti.skewed_after, "seconds"_a = ti.seconds, "budget_reached"_a = ti.budget_reached);
     d["thinned_nodes"] = hr.thinned_nodes;
     d["fan_edges"] = hr.fan_edges;
     d["times"] = py::dict("layers"_a = hr.seconds_layers, "pyramids"_a = hr.seconds_pyramids,

@@ -1,10 +1,12 @@
-// improve_tets: the 2-3 flip, edge removal, the moving of interior nodes and point insertion each on a
-// configuration that needs it, and on a TetGen fill the invariants whatever was changed: the same
-// region (volume), the same boundary triangles, conforming faces, every tetrahedron positive,
-// the boundary's nodes where they were, the worst never worse, the same result twice.
+// improve_tets: the 2-3 flip, edge removal, the moving of interior nodes, point insertion and the
+// removal of a face checkMesh finds too skewed each on a configuration that needs it, and on a
+// TetGen fill the invariants whatever was changed: the same region (volume), the same boundary
+// triangles, conforming faces, every tetrahedron positive, the boundary's nodes where they were,
+// the worst never worse, the same result twice.
 
 #include <strata/core/cell_quality.h>
 #include <strata/core/error.h>
+#include <strata/core/solver_checks.h>
 #include <strata/hybrid/improve_tets.h>
 #include <strata/hybrid/tetgen_fill.h>
 
@@ -209,6 +211,68 @@ TEST(ImproveTets, KeepsTheRegionOfATetGenFillAndRaisesItsWorst) {
     expect_same_region(before, brief, b.num_points());
     EXPECT_LT(rb.edge_removals + rb.flips + rb.moved_nodes, r.edge_removals + r.flips + r.moved_nodes);
     EXPECT_GT(rb.below_after, r.below_after);
+}
+
+/// The largest checkMesh skewness over the faces two tetrahedra of \p f share.
+double worst_interior_skewness(const TetFill& f) {
+    static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    auto centre = [&](const Tet& t) {
+        return Vec3(0.25 * (f.points[t[0]] + f.points[t[1]] + f.points[t[2]] + f.points[t[3]]));
+    };
+    double w = 0.0;
+    for (std::size_t i = 0; i < f.tets.size(); ++i)
+        for (std::size_t j = i + 1; j < f.tets.size(); ++j)
+            for (const auto& lf : kFace) {
+                const Index v[3] = {f.tets[i][lf[0]], f.tets[i][lf[1]], f.tets[i][lf[2]]};
+                const Tet& o = f.tets[j];
+                if (std::count_if(std::begin(v), std::end(v),
+                                  [&](Index x) { return std::find(o.begin(), o.end(), x) != o.end(); }) != 3)
+                    continue;
+                const Vec3 cn = centre(o);
+                w = std::max(w, face_skewness(f.points.data(), v, 3, centre(f.tets[i]), &cn));
+            }
+    return w;
+}
+
+TEST(ImproveTets, RemovesAnEdgeWhoseFacesAreTooSkewedForCheckMesh) {
+    // Three tetrahedra round the edge a–b (the z axis from -1 to 1), the ring c = (1, 0, 0) and
+    // d, e twelve units the other way: the face a b c between (a, b, c, d) and (a, b, e, c) has
+    // the line of their centres (parallel to d–e) meet its plane twelve units off, skewness
+    // 4.6; two tetrahedra on c d e have none above 1. The scaled Jacobian bound is set below
+    // all of them (the worst 0.003), so only the skewness pass acts.
+    TetFill before;
+    before.points = {{0, 0, -1}, {0, 0, 1}, {1, 0, 0}, {-12, 3, 0}, {-12, -3, 0}};
+    before.tets = {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 2}};
+    for (Tet& t : before.tets)
+        if (volume(before, t) < 0.0) std::swap(t[0], t[1]);
+    ASSERT_GT(worst_interior_skewness(before), kFoamSkewness);
+    TetFill f = before;
+    const TetImproveReport r = improve_tets(f, 5, {.below = 1e-9});
+    EXPECT_EQ(r.flips + r.edge_removals + r.moved_nodes, 0);
+    EXPECT_EQ(r.skew_changes, 1);
+    EXPECT_EQ(r.skewed_before, 1);
+    EXPECT_EQ(r.skewed_after, 0);
+    ASSERT_EQ(f.tets.size(), 2u);
+    expect_same_region(before, f, 5);
+    EXPECT_LT(worst_interior_skewness(f), 1.0);
+}
+
+TEST(ImproveTets, LeavesASkewedFaceThatNoFlipCanRemove) {
+    // The same without (a, b, d, e): the ring round a–b is open (a–b on the boundary), the
+    // segment d–e passes outside the face a b c (no 2-3 flip), and the rings round a–c and
+    // b–c are open too. The skewed face stays, counted, and the fill is as it was.
+    TetFill before;
+    before.points = {{0, 0, -1}, {0, 0, 1}, {1, 0, 0}, {-12, 3, 0}, {-12, -3, 0}};
+    before.tets = {{0, 1, 2, 3}, {0, 1, 4, 2}};
+    for (Tet& t : before.tets)
+        if (volume(before, t) < 0.0) std::swap(t[0], t[1]);
+    ASSERT_GT(worst_interior_skewness(before), kFoamSkewness);
+    TetFill f = before;
+    const TetImproveReport r = improve_tets(f, 5, {.below = 1e-9});
+    EXPECT_EQ(r.skew_changes, 0);
+    EXPECT_EQ(f.tets, before.tets);
+    EXPECT_EQ(r.skewed_before, 1);
+    EXPECT_EQ(r.skewed_after, 1);
 }
 
 TEST(ImproveTets, OffLeavesTheFillAsItIs) {

@@ -16,6 +16,11 @@
 ///     tetrahedra replaced by the point joined to the cavity's faces, the point placed where
 ///     their worst is best, the cavity grown across the face of the worst, up to 12
 ///     tetrahedra), then up to three more passes.
+/// Then each face between two tetrahedra whose OpenFOAM checkMesh skewness is above
+/// kTetSkewTarget, worst first, is offered the 2-3 flip across it and the removal of each of
+/// its edges; the one whose new faces are least skewed is made if they are less skewed than
+/// the face, the fill's boundary faces among them no worse, and the worst tetrahedron made
+/// no worse than the worst replaced (up to three passes).
 /// A change is made only if the worst of the tetrahedra it creates is better than the worst of
 /// those it replaces, so the mesh's worst value never falls and the passes end. The boundary
 /// (its nodes and faces) is never changed: the result fills the same region with the same
@@ -27,9 +32,14 @@
 /// (those closing a layer step). Only a better front lifts those.
 
 #include <strata/core/progress.h>
+#include <strata/core/solver_checks.h>
 #include <strata/hybrid/tetgen_fill.h>
 
 namespace strata {
+
+/// The skewness pass works on faces between two tetrahedra above this: checkMesh's bound with
+/// a margin for the faces on the fill's boundary, whose cell across (a layer cell) it does not see.
+inline constexpr double kTetSkewTarget = 0.9 * kFoamSkewness;
 
 struct TetImproveParams {
     /// Work on tetrahedra whose scaled Jacobian is below this (0: off). Tetrahedra above it
@@ -45,16 +55,21 @@ struct TetImproveParams {
     double evaluations_per_tet = 200.0;
     double evaluations_floor = 5e7;
     int max_passes = 10;  ///< passes over the tetrahedra below the bound; each pass stops early when nothing changed
+    /// Threads for the scan of the faces' skewness (0: all; the result is the same for any);
+    /// build_hybrid_mesh sets it from HybridParams::threads. The changes are made on one.
+    int threads = 0;
 };
 
 struct TetImproveReport {
-    double below = 0.0;                        ///< the bound worked to (TetImproveParams::below)
-    Index flips = 0;                           ///< 2-3 flips made
-    Index edge_removals = 0;                   ///< edges removed (a ring of n tetrahedra becomes 2n - 4)
-    Index moved_nodes = 0;                     ///< moves of interior nodes (a node may move in several passes)
-    Index inserted_nodes = 0;                  ///< points inserted into a cavity round a tetrahedron
-    Index below_before = 0, below_after = 0;   ///< tetrahedra below TetImproveParams::below
-    double min_before = 1.0, min_after = 1.0;  ///< the smallest scaled Jacobian
+    double below = 0.0;                         ///< the bound worked to (TetImproveParams::below)
+    Index flips = 0;                            ///< 2-3 flips made
+    Index edge_removals = 0;                    ///< edges removed (a ring of n tetrahedra becomes 2n - 4)
+    Index moved_nodes = 0;                      ///< moves of interior nodes (a node may move in several passes)
+    Index inserted_nodes = 0;                   ///< points inserted into a cavity round a tetrahedron
+    Index skew_changes = 0;                     ///< flips and edge removals made for a face's skewness
+    Index skewed_before = 0, skewed_after = 0;  ///< faces between two tetrahedra above checkMesh's skewness bound (4)
+    Index below_before = 0, below_after = 0;    ///< tetrahedra below TetImproveParams::below
+    double min_before = 1.0, min_after = 1.0;   ///< the smallest scaled Jacobian
     int passes = 0;
     bool budget_reached = false;  ///< stopped at TetImproveParams::evaluations_per_tet
     double seconds = 0.0;         ///< wall-clock time taken
@@ -66,8 +81,10 @@ void check_tet_improve_params(const TetImproveParams& params);
 
 /// Improve \p fill in place: its tetrahedra change, its points from \p num_fixed on (the
 /// points TetGen added) may move and points may be added after them; the first \p num_fixed
-/// points (the boundary's) never move, nor does any point on a face of only one tetrahedron. Deterministic (one thread,
-/// a fixed order). Throws InputError as check_tet_improve_params does, and for \p num_fixed outside the points.
+/// points (the boundary's) never move, nor does any point on a face of only one tetrahedron.
+/// Deterministic: the changes are made on one thread in a fixed order, the skewness scan's
+/// threads only read. Throws InputError as check_tet_improve_params does, and for \p num_fixed
+/// outside the points.
 TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImproveParams& params = {},
                               const Progress* progress = nullptr);
 
