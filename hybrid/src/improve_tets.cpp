@@ -228,12 +228,8 @@ public:
     }
 
     /// The work allowed, in tetrahedron qualities computed.
-    void set_budget(std::uint64_t b) {
-        budget_ = b;
-    }
-    bool over_budget() const {
-        return evaluations_ > budget_;
-    }
+    void set_budget(std::uint64_t b) { budget_ = b; }
+    bool over_budget() const { return evaluations_ > budget_; }
 
 private:
     /// The tetrahedra below the bound (\p fixed_only: whose corners are all boundary nodes),
@@ -309,9 +305,8 @@ private:
                                 p_[static_cast<std::size_t>(x[2])] + p_[static_cast<std::size_t>(x[3])]));
         };
         const Vec3 co = centre(t);
-        if (!n) return face_skewness(p_.data(), f.data(), 3, co, nullptr);
-        const Vec3 cn = centre(*n);
-        const double k = face_skewness(p_.data(), f.data(), 3, co, &cn);
+        const Vec3 cn = n ? centre(*n) : co;
+        const double k = face_skewness(p_.data(), f.data(), 3, co, n ? &cn : nullptr);
         return std::isfinite(k) ? k : std::numeric_limits<double>::infinity();
     }
 
@@ -533,10 +528,7 @@ private:
                 const Tet& ct = tets_[static_cast<std::size_t>(c)];
                 replaced = std::min(replaced, q_[static_cast<std::size_t>(c)]);
                 for (int i = 0; i < 4; ++i) {
-                    Index f[3];
-                    int k = 0;
-                    for (int j = 0; j < 4; ++j)
-                        if (j != i) f[k++] = ct[static_cast<std::size_t>(j)];
+                    const auto f = face_of(ct, i);
                     const Index n = across(c, f[0], f[1], f[2]);
                     if (n >= 0 && std::find(cavity.begin(), cavity.end(), n) != cavity.end()) continue;
                     Tet nt = ct;
