@@ -746,11 +746,24 @@ void add_concave_terms(const Marcher& mc, const Levels& lv, Index o, const Deriv
     }
 }
 
+/// How far the iterate's spacing across the layer may exceed the spacing asked there before the
+/// concave terms stop following it (see jacobi_update).
+constexpr double kConcaveSpacingBand = 1.5;
+
 /// The point-Jacobi update of node o's middle-level position: Eq. 3 with the control functions
 /// Φ, Ψ, Θ (\p theta) and the concave terms, written as K r_o + (L − K r_o) = 0 (r_ζζ = r2 − 2 r1 +
 /// r0 carries −2 r_o), projected into the node's plane. Unchanged where the node is extruded
 /// without smoothing or its metrics are degenerate (K ≥ 0).
-Vec3 jacobi_update(const Marcher& mc, const Levels& lv, Index o, double theta) {
+///
+/// The concave terms take the iterate's g33 only up to (kConcaveSpacingBand × \p spacing)², the
+/// spacing asked of the layer at this node (½ (δ_k + δ_{k+1}) × its proximity scale): their
+/// weight grows with g33 (ν_m is capped), so from the iterate alone a node they raised was
+/// pulled up harder at the next sweep. At a concave junction that fed on itself: a node of the
+/// sphere with a fin through it (10 layers from 1e-3) rose 1.3 layer heights a sweep until held
+/// at kMaxSmoothingMove, its first cell 11 times as tall as asked and its layers alternately
+/// about 5 times taller and shorter than the one below. Within the band nothing changes. The
+/// Poisson terms keep the iterate's metrics.
+Vec3 jacobi_update(const Marcher& mc, const Levels& lv, Index o, double theta, double spacing) {
     if (!mc.st.valid[o]) return lv.r1[o];
     const Derivs g = mc.derivatives(lv.r1, o);
     const Vec3 &rx = g.d[Stencils::Xi], &ry = g.d[Stencils::Eta];
@@ -762,7 +775,10 @@ Vec3 jacobi_update(const Marcher& mc, const Levels& lv, Index o, double theta) {
              C * (g.d[Stencils::EtaEta] + mc.psi[o] * ry) + D * (lv.r2[o] - 2.0 * lv.r1[o] + lv.r0[o] + theta * rz);
     double K = A * (c[Stencils::XiXi] + mc.phi[o] * c[Stencils::Xi]) + B * c[Stencils::XiEta] +
                C * (c[Stencils::EtaEta] + mc.psi[o] * c[Stencils::Eta]) - 2.0 * D;
-    if (mc.params.concave) add_concave_terms(mc, lv, o, g, Vec3(g11, g12, g22), g33, L, K);
+    if (mc.params.concave) {
+        const double band = kConcaveSpacingBand * spacing;
+        add_concave_terms(mc, lv, o, g, Vec3(g11, g12, g22), std::min(g33, band * band), L, K);
+    }
     if (!(K < 0.0)) return lv.r1[o];  // degenerate metrics: leave the reference position
     Vec3 p = lv.r1[o] - L / K;
     if (!p.allFinite()) return lv.r1[o];  // K so small (needle stencils) that L / K overflows
@@ -799,7 +815,7 @@ int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, doub
         double max_move = 0.0;
 #pragma omp parallel for num_threads(thread_count(mc.threads, nw)) schedule(static) reduction(max : max_move)
         for (Index o = 0; o < nw; ++o) {
-            next[o] = jacobi_update(mc, lv, o, theta);
+            next[o] = jacobi_update(mc, lv, o, theta, 0.5 * (dk + dk1) * mc.height_scale[o]);
             // A node the sweeps carry away (a concave junction node whose update diverges: 60
             // layer heights in one layer on the body-fin box, 250 beside the wing-fuselage's
             // junction) is held within kMaxSmoothingMove layer heights of its extruded position.

@@ -2,6 +2,7 @@
 // radii on spheres, validity on concave corners, open edges held in their plane.
 
 #include <strata/core/error.h>
+#include <strata/core/format.h>
 #include <strata/core/validate.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/normals.h>
@@ -192,6 +193,38 @@ TEST(Layers, BodyFinJunctionsStayValid) {
             with.mesh.boundary.patches[static_cast<std::size_t>(with.mesh.boundary.face_patch[f])].kind ==
             PatchKind::Farfield;
     EXPECT_TRUE(side_on_farfield);
+}
+
+TEST(Layers, LayersAtConcaveJunctionsGrowAsAsked) {
+    // The body-fin box's junctions, where the concave terms' weight fed on the rise it caused:
+    // they carried nodes there up by ten layer heights for one layer and back for the next (11
+    // times as tall as asked, consecutive layers 6.2 times each other's ratio). Every column's
+    // layers keep within a concave corner's rounding of the heights asked and grow from one to
+    // the next as the distribution does.
+    const SurfaceMesh wall =
+        box_domain("bl3d_5_body_fin_in_box.brep", {"surface_1", "surface_2", "surface_4", "surface_6"});
+    const LayerParams p = concave_case();
+    const LayerMesh lm = extrude_layers(wall, p);
+    const std::vector<double> asked = layer_heights(p.distribution);
+    double tallest = 0.0, jump = 1.0;
+    Vec3 where = Vec3::Zero();
+    for (Index i = 0; i < lm.wall_nodes(); ++i) {
+        double below = 0.0;  // the layer below's height over the height asked
+        for (int k = 0; k < lm.node_layers(i); ++k) {
+            const Vec3& a = lm.mesh.points[static_cast<std::size_t>(lm.level_node(k, i))];
+            const Vec3& b = lm.mesh.points[static_cast<std::size_t>(lm.level_node(k + 1, i))];
+            const double r = (b - a).norm() / asked[static_cast<std::size_t>(k)];
+            if (r > tallest) tallest = r, where = a;
+            if (below > 0.0) jump = std::max(jump, std::max(r / below, below / r));
+            below = r;
+        }
+    }
+    std::printf(
+        "body-fin: layers at most %.2f times as tall as asked (at %s), consecutive layers %.2f times each "
+        "other's ratio to the heights asked\n",
+        tallest, format_point(where).c_str(), jump);
+    EXPECT_LT(tallest, 4.0);
+    EXPECT_LT(jump, 1.5);
 }
 
 TEST(Layers, InvertedCellIsReportedWithItsLocation) {
