@@ -463,7 +463,7 @@ TEST(Cli, TetGenStoppingOnAnInternalCheckLowersTheColumnsThere) {
     // an internal check (tetgen.cxx:7854, scount == 1) recovering a layer-top face near the
     // wing root, though no face of the front crosses another: its run repeated with its trace
     // names the face, the columns around it are lowered and the fill succeeds. (That front is
-    // the one of 20 layers from 1.5e-3, after two rounds of lowerings; which layers give such
+    // the one of 20 layers from 1.5e-3, in one of three rounds of lowerings; which layers give such
     // a front changes with how the columns stop and rise: it was 1e-3 at --front-slope 0.25
     // before cells on fair faces stopped at half of --min-quality, then 10 from 2e-3 until the
     // concave terms kept to the spacing asked.)
