@@ -206,15 +206,24 @@ double leaning_prism_aspect_ratio(const Vec3* corners, const Vec3* directions, i
     return aspect_ratio_of(mag, volume);
 }
 
-bool face_pyramids_inverted(const Vec3* corners, CellType type) {
-    const CellFaceTable& t = cell_faces(type);
-    std::array<FaceGeometry, 6> fg;
+namespace {
+
+/// The faces' geometry of a cell with the corners \p corners and the faces \p t.
+void faces_of(const Vec3* corners, const CellFaceTable& t, std::array<FaceGeometry, 6>& fg) {
     for (int f = 0; f < t.count; ++f) {
         Index v[4];
         for (int c = 0; c < t.size[static_cast<std::size_t>(f)]; ++c)
             v[c] = static_cast<Index>(t.node[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)]);
         fg[static_cast<std::size_t>(f)] = face_geometry(corners, v, t.size[static_cast<std::size_t>(f)]);
     }
+}
+
+}  // namespace
+
+bool face_pyramids_inverted(const Vec3* corners, CellType type) {
+    const CellFaceTable& t = cell_faces(type);
+    std::array<FaceGeometry, 6> fg;
+    faces_of(corners, t, fg);
     Vec3 mag;
     double vol3 = 0.0;
     const Vec3 cc = cell_centre(fg, t.count, mag, vol3);
@@ -222,6 +231,15 @@ bool face_pyramids_inverted(const Vec3* corners, CellType type) {
         if (inverted_pyramid(fg[static_cast<std::size_t>(f)].area, fg[static_cast<std::size_t>(f)].centre, cc))
             return true;
     return false;
+}
+
+Vec3 foam_cell_centre(const Vec3* corners, CellType type) {
+    const CellFaceTable& t = cell_faces(type);
+    std::array<FaceGeometry, 6> fg;
+    faces_of(corners, t, fg);
+    Vec3 mag;
+    double vol3 = 0.0;
+    return cell_centre(fg, t.count, mag, vol3);
 }
 
 double face_skewness(const Vec3* p, const Index* v, int n, const Vec3& owner, const Vec3* neighbour) {

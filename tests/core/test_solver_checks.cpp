@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -77,6 +78,19 @@ TEST(SolverChecks, OneFacesSkewnessIsTheFigureWorkedOutByHand) {
     // Centres on the face's normal through its centre: none.
     const Vec3 square(1.5, 0.5, 0.5);
     EXPECT_NEAR(face_skewness(p.data(), shared, 4, owner, &square), 0.0, 1e-12);
+}
+
+TEST(SolverChecks, ACellsCentreIsItsCentroidAsOpenFoamComputesIt) {
+    // A pyramid's centroid lies a quarter of its height up, not at its corners' mean (a fifth);
+    // a prism's and a leaning hexahedron's at their corners' mean.
+    const std::array<Vec3, 5> pyramid{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(0.5, 0.5, 1)};
+    EXPECT_LT((foam_cell_centre(pyramid.data(), CellType::Pyramid) - Vec3(0.5, 0.5, 0.25)).norm(), 1e-12);
+    const std::array<Vec3, 6> prism{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0),
+                                    Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 1, 1)};
+    EXPECT_LT((foam_cell_centre(prism.data(), CellType::Prism) - Vec3(1.0 / 3, 1.0 / 3, 0.5)).norm(), 1e-12);
+    const std::array<Vec3, 8> hex{Vec3(1, 0, 0), Vec3(2, 2, 0), Vec3(2, 3, 0), Vec3(1, 1, 0),
+                                  Vec3(1, 0, 1), Vec3(2, 2, 1), Vec3(2, 3, 1), Vec3(1, 1, 1)};
+    EXPECT_LT((foam_cell_centre(hex.data(), CellType::Hex) - Vec3(1.5, 1.5, 0.5)).norm(), 1e-12);
 }
 
 TEST(SolverChecks, StrongLeanIsSeverelyNonOrthogonalAndTooSkewForCheckMesh) {

@@ -67,6 +67,11 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
 /// extent that way. A tetrahedron's centre is the mean of its corners.
 double face_skewness(const Vec3* p, const Index* v, int n, const Vec3& owner, const Vec3* neighbour);
 
+/// OpenFOAM's centre of the cell of \p type with the corners \p corners (Gmsh's order): the
+/// volume-weighted centroid of the pyramids from its faces to the mean of their centres, as
+/// solver_checks computes it (a tetrahedron's is the mean of its corners).
+Vec3 foam_cell_centre(const Vec3* corners, CellType type);
+
 /// checkMesh's aspect ratio of the right prism (hexahedron for a quad) of height \p h standing
 /// on the wall face with corners \p corners (3 or 4, either orientation): what the first layer
 /// over that face will show, before the layers exist (for sizing the surface). A face without
