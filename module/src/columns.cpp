@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 namespace strata {
 
@@ -351,6 +352,77 @@ bool stop(Columns& col, std::vector<char>& go, Index i, Shortfall why) {
     return true;
 }
 
+/// The skewness above which two cells of a layer are not kept side by side: checkMesh fails a
+/// mesh above kFoamSkewness (4); the margin is the tetrahedra's (kTetSkewTarget), for the
+/// cells the later layers and the front rounds still change round them.
+constexpr double kLayerSkewTarget = 0.9 * kFoamSkewness;
+
+/// col.side_pairs for the column faces as they are now (found again only once faces are split).
+void find_side_pairs(Columns& col) {
+    const Index nf = col.faces.count();
+    if (col.side_pairs_faces == nf) return;
+    std::vector<std::array<Index, 3>> sides;  // lower node, higher node, face
+    for (Index f = 0; f < nf; ++f) {
+        const auto u = static_cast<std::size_t>(f);
+        const int n = col.faces.size[u];
+        for (int c = 0; c < n; ++c) {
+            const Index a = col.faces.nodes[u][static_cast<std::size_t>(c)];
+            const Index b = col.faces.nodes[u][static_cast<std::size_t>((c + 1) % n)];
+            sides.push_back({std::min(a, b), std::max(a, b), f});
+        }
+    }
+    std::sort(sides.begin(), sides.end());
+    col.side_pairs.clear();
+    for (std::size_t i = 0; i < sides.size();) {
+        std::size_t e = i + 1;
+        while (e < sides.size() && sides[e][0] == sides[i][0] && sides[e][1] == sides[i][1]) ++e;
+        if (e == i + 2) col.side_pairs.push_back({sides[i][0], sides[i][1], sides[i][2], sides[i + 1][2]});
+        i = e;  // an open edge, or a non-manifold one: no pair
+    }
+    col.side_pairs_faces = nf;
+}
+
+/// Whether the faces \p f and \p g, at their columns' tops, turn by more than 90° from each
+/// other: only there do cells over them lie stacked rather than side by side.
+bool folded(const Columns& col, Index f, Index g) {
+    auto normal = [&](Index h) {
+        const auto& v = col.faces.nodes[static_cast<std::size_t>(h)];
+        auto x = [&](int c) { return col.top[static_cast<std::size_t>(v[static_cast<std::size_t>(c)])]; };
+        return col.faces.size[static_cast<std::size_t>(h)] == 3 ? Vec3((x(1) - x(0)).cross(x(2) - x(0)))
+                                                                : Vec3((x(2) - x(0)).cross(x(3) - x(1)));
+    };
+    return normal(f).dot(normal(g)) < 0.0;
+}
+
+/// checkMesh's skewness of the face between the cells of this layer over the faces \p f and
+/// \p g that share the edge \p a, \p b (at least one of whose columns moves), the columns that
+/// stop (\p go 0) collapsed to their tops: a quad where both move, a triangle where one does.
+/// 0 where either face has no cell.
+template <class Lo, class Hi>
+double shared_side_skewness(const Columns& col, Index a, Index b, Index f, Index g, const std::vector<char>& go,
+                            Lo&& lo, Hi&& hi) {
+    Vec3 centre[2];
+    const Index faces[2] = {f, g};
+    for (int s = 0; s < 2; ++s) {
+        const auto u = static_cast<std::size_t>(faces[s]);
+        const int n = col.faces.size[u];
+        bool moving[4] = {false, false, false, false};
+        for (int c = 0; c < n; ++c)
+            moving[c] = go[static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)])] != 0;
+        CellType type{};
+        std::array<Vec3, 8> p{};
+        if (!closing_cell(col.faces.nodes[u], n, moving, lo, hi, type, p)) return 0.0;
+        centre[s] = foam_cell_centre(p.data(), type);
+    }
+    const bool ma = go[static_cast<std::size_t>(a)] != 0, mb = go[static_cast<std::size_t>(b)] != 0;
+    std::array<Vec3, 4> q{lo(a), lo(b), hi(b), hi(a)};
+    int n = 4;
+    if (!ma) q = {lo(a), lo(b), hi(b), Vec3::Zero()}, n = 3;
+    if (!mb) q = {lo(b), lo(a), hi(a), Vec3::Zero()}, n = 3;
+    static constexpr std::array<Index, 4> kFace{0, 1, 2, 3};
+    return face_skewness(q.data(), kFace.data(), n, centre[0], &centre[1]);
+}
+
 /// Close every step the stops so far leave, stopping more columns where it cannot be closed
 /// with usable cells, until nothing changes (only ever stopping: it ends).
 void close_steps(Columns& col, const StopRules& rules, int k, const std::vector<Vec3>& next, std::vector<char>& go) {
@@ -411,7 +483,48 @@ void close_steps(Columns& col, const StopRules& rules, int k, const std::vector<
             for (int c = 0; c < n; ++c)
                 changed |= stop(col, go, col.faces.nodes[u][static_cast<std::size_t>(c)], Shortfall::Neighbours);
         }
+        if (changed) continue;  // every step closable first
+        // Two cells closing steps across a folded edge (stacked, as across an acute concave
+        // junction whose columns stop on one end) whose face between them checkMesh would find
+        // skewed: that edge's moving columns stop too, and the cells no longer share a face.
+        find_side_pairs(col);
+        for (const auto& [a, b, f, g] : col.side_pairs) {
+            const bool ma = go[static_cast<std::size_t>(a)] != 0, mb = go[static_cast<std::size_t>(b)] != 0;
+            if (!ma && !mb) continue;
+            const std::array<bool, 4> mf = moving_corners(col.faces, f, go), mg = moving_corners(col.faces, g, go);
+            const int nf = col.faces.size[static_cast<std::size_t>(f)], ng = col.faces.size[static_cast<std::size_t>(g)];
+            if (std::count(mf.begin(), mf.begin() + nf, true) == nf && std::count(mg.begin(), mg.begin() + ng, true) == ng)
+                continue;  // two whole cells: stop_columns judged them
+            if (!folded(col, f, g) || !(shared_side_skewness(col, a, b, f, g, go, lo, hi) > kLayerSkewTarget)) continue;
+            changed |= stop(col, go, a, Shortfall::Neighbours);
+            changed |= stop(col, go, b, Shortfall::Neighbours);
+        }
     }
+}
+
+/// The faces between two sound cells of this layer (over wall faces sharing an edge, every
+/// column of both moving on) that OpenFOAM's checkMesh would find skewed beyond
+/// kLayerSkewTarget: two cells stacked rather than side by side, as over the two faces of an
+/// acute concave edge (a rod through a plate at 15°: 4.15 between the first prisms on either
+/// side of the junction). Only pairs of faces folded by more than 90° are measured (folded).
+/// Returns their edges (in edge order) and marks their cells poor 4; the caller stops the
+/// edges' two columns, so the cells on either side close the step onto the stopped edge and no
+/// longer share a face.
+std::vector<std::pair<Index, Index>> skewed_sides(Columns& col, const std::vector<Vec3>& next,
+                                                  const std::vector<char>& full, std::vector<char>& poor) {
+    find_side_pairs(col);
+    auto lo = [&](Index i) { return col.top[static_cast<std::size_t>(i)]; };
+    auto hi = [&](Index i) { return next[static_cast<std::size_t>(i)]; };
+    std::vector<std::pair<Index, Index>> edges;
+    for (const auto& [a, b, f, g] : col.side_pairs) {
+        const auto uf = static_cast<std::size_t>(f), ug = static_cast<std::size_t>(g);
+        if (!full[uf] || !full[ug] || poor[uf] || poor[ug] || !folded(col, f, g)) continue;
+        if (!(shared_side_skewness(col, a, b, f, g, col.active, lo, hi) > kLayerSkewTarget)) continue;
+        edges.emplace_back(a, b);
+        poor[uf] = 4;
+        poor[ug] = 4;
+    }
+    return edges;
 }
 
 }  // namespace
@@ -451,7 +564,7 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
     if (rules.quality) {
         // Each face's cell judged alone (in parallel), then its columns stopped in face order.
         const Index nf = col.faces.count();
-        std::vector<char> poor(static_cast<std::size_t>(nf), 0);
+        std::vector<char> poor(static_cast<std::size_t>(nf), 0), full(static_cast<std::size_t>(nf), 0);
         const double tan_twist = std::tan(rules.max_twist_deg * std::numbers::pi / 180.0);
         for (auto f = static_cast<Index>(col.best.size()); f < nf; ++f) col.best.push_back(face_corner_quality(col, f));
 #pragma omp parallel for schedule(static) num_threads(thread_count(rules.threads, nf))
@@ -460,6 +573,7 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
             const int n = col.faces.size[u];
             const std::array<bool, 4> m = moving_corners(col.faces, f, col.active);
             if (std::count(m.begin(), m.begin() + n, true) != n) continue;  // a step: close_steps judges it
+            full[u] = 1;
             bool finite = true;
             for (int c = 0; c < n; ++c)
                 finite &= next[static_cast<std::size_t>(col.faces.nodes[u][static_cast<std::size_t>(c)])].allFinite();
@@ -483,6 +597,7 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
                     poor[u] = 3;
             }
         }
+        const std::vector<std::pair<Index, Index>> skewed = skewed_sides(col, next, full, poor);
         for (Index f = 0; f < nf; ++f) {
             if (poor[static_cast<std::size_t>(f)] == 3) {
                 // Split along the diagonal that gives two sound prisms (here and below); with
@@ -494,10 +609,15 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
                     }
                 continue;
             }
+            if (poor[static_cast<std::size_t>(f)] == 4) continue;  // its skewed side's columns, below
             if (poor[static_cast<std::size_t>(f)])
                 for (int c = 0; c < col.faces.size[static_cast<std::size_t>(f)]; ++c)
                     stop(col, go, col.faces.nodes[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)],
                          poor[static_cast<std::size_t>(f)] == 2 ? Shortfall::Twist : Shortfall::Quality);
+        }
+        for (const auto& [a, b] : skewed) {
+            stop(col, go, a, Shortfall::Quality);
+            stop(col, go, b, Shortfall::Quality);
         }
     }
     close_steps(col, rules, k, next, go);

@@ -44,6 +44,10 @@ struct Columns {
     /// Per column face, face_corner_quality as computed once (it depends on the wall alone);
     /// stop_columns extends it to faces split since.
     std::vector<double> best;
+    /// Pairs of column faces that share an edge (its two nodes, then the two faces), as found
+    /// for side_pairs_faces faces; stop_columns finds them again once faces are split.
+    std::vector<std::array<Index, 4>> side_pairs;
+    Index side_pairs_faces = -1;
     /// Empty, or per wall node 1 where it cannot stop (a fan's column, first layer); stop_columns
     /// sets 2 where it would have stopped.
     std::vector<char> pinned;

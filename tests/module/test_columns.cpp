@@ -141,6 +141,44 @@ TEST(Columns, ATwistedCellStopsItsColumns) {
     }
 }
 
+TEST(Columns, TwoCellsStackedAcrossAnAcuteConcaveEdgeStopTheEdgesColumns) {
+    // Two wall triangles folded about their shared edge AB so that the fluid lies in the wedge
+    // between them, each column along its face's normal and the edge's along their bisector:
+    // at 15 degrees the first two cells lie stacked rather than side by side, and the face
+    // between them is skewed far beyond checkMesh's 4. A and B stop (the cells then close the
+    // step onto the edge and share no face); C and D go on. Opened to 120 degrees, nothing
+    // stops. Quality alone (a bar of 0.01) would let every cell through.
+    for (const double deg : {15.0, 120.0}) {
+        const double t = deg * std::numbers::pi / 180.0;
+        SurfaceMesh wall;
+        wall.patches.push_back({"wall", PatchKind::Wall});
+        wall.points = {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0.5, 0), Vec3(std::cos(t), 0.5, std::sin(t))};
+        wall.add_face({0, 2, 1}, 0);  // normal +z, into the wedge
+        wall.add_face({0, 1, 3}, 0);  // normal (sin t, 0, -cos t), into the wedge
+        const Vec3 n1(0, 0, 1), n2(std::sin(t), 0, -std::cos(t));
+        const Vec3 bisector = (n1 + n2).normalized();
+        const double h = 0.01;
+        std::vector<Vec3> points = wall.points;
+        Columns col(wall, 3, points);
+        const std::vector<Vec3> next{wall.points[0] + h * bisector, wall.points[1] + h * bisector,
+                                     wall.points[2] + h * n1, wall.points[3] + h * n2};
+        StopRules rules;
+        rules.min_quality = 0.01;
+        const Index stopped = stop_columns(col, rules, 0, next);
+        if (deg > 90.0) {
+            EXPECT_EQ(stopped, 0);
+            continue;
+        }
+        EXPECT_EQ(stopped, 2);
+        EXPECT_EQ(col.reason[0], Shortfall::Quality);
+        EXPECT_EQ(col.reason[1], Shortfall::Quality);
+        EXPECT_EQ(col.levels[0], 0);
+        EXPECT_EQ(col.levels[1], 0);
+        EXPECT_EQ(col.levels[2], 1);
+        EXPECT_EQ(col.levels[3], 1);
+    }
+}
+
 TEST(Columns, TheBarIsRelativeToTheFaceAndRaisedToHalfTheBoundWhereTheFaceAllowsIt) {
     // A fair face (best 0.6): 0.2 of it; one whose best is 0.4 (under 0.5): raised to 0.1; a
     // poor face (best 0.1, under min_quality: a needle): 0.2 of it.
