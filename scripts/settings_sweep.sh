@@ -47,6 +47,8 @@ shapes=(
   "delta wing|$s/delta.geo|1"
   "half wing on a symmetry plane|$s/halfwing.geo|2"
   "ONERA M6 half model (mm)|$s/m6half.geo|1200"
+  "rod through a plate at 15 degrees|$s/rodplate.geo --fuse|2"
+  "sphere through a plate|$s/spherecap.geo --fuse|2"
   "two spheres 0.0118 apart|$d/two_spheres_narrow_gap.geo --size 0.05|1"
   "sphere with a fin through it|$d/sphere_fin_through.geo --fuse|1"
   "box with a notch|$d/bl3d_4_box_notch_concave_corner.brep --patch surface_1=farfield --patch surface_2=farfield --patch surface_3=farfield --patch surface_4=farfield --patch surface_6=farfield|1"

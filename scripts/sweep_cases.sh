@@ -37,6 +37,8 @@ cases=(
   "delta wing with sharp leading edges (1)|$s/delta.geo $L --first-height 1e-4"
   "half wing on a symmetry plane (2)|$s/halfwing.geo $L --first-height 2e-4"
   "ONERA M6 half model on a symmetry plane (1200 mm)|$s/m6half.geo $L --first-height 0.12"
+  "rod through a plate at 15 degrees (2)|$s/rodplate.geo --fuse $L --first-height 2e-4"
+  "sphere through a plate, acute beneath it (2)|$s/spherecap.geo --fuse $L --first-height 2e-4"
   "half body STL, open along its symmetry plane (2)|$s/halfbody.stl $L --first-height 2e-4"
   "car STL|$s/car_brepmesh.stl --fuse $L --first-height 4.2e-3"
   "car STL --remesh|$s/car_brepmesh.stl --fuse --remesh $L --first-height 4.2e-4"

@@ -788,6 +788,33 @@ TEST(Cli, ADeltaWingKeepsItsLeadingEdgeFansAndTheirWedgesPassCheckMesh) {
     EXPECT_GT(report_min_quality(rep, "tetrahedron"), 0.02) << r.out;
 }
 
+TEST(Cli, CellsStackedAcrossAnAcuteJunctionAreNotKeptSideBySide) {
+    // The sweep's rod through a plate at 15 degrees (30 layers from 2e-4 of its 2 m): on the
+    // rod's acute side the first prisms of the plate and of the rod lay stacked across the
+    // junction, and the face between them was skewed 4.15, which checkMesh fails. The columns
+    // of such an edge now stop there.
+    test::ScratchDir dir("cli_rodplate");
+    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/rodplate.geo") +
+                                            "' --fuse --layers 30 --growth 1.2 --first-height 2e-4 -o r.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("(0 faces above 4)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
+TEST(Cli, StepCellsStackedAcrossAnAcuteJunctionAreNotKeptSideBySide) {
+    // The sweep's sphere through a plate (30 layers from 2e-4): beneath the plate the sphere
+    // meets it at 37 degrees. Where a junction column stopped and its neighbour on the junction
+    // went on, the two pyramids closing that step on either side lay stacked, their shared
+    // face skewed 5.64 (9 such faces; 43 faces between prisms at 6.74 before the columns of
+    // such edges stopped). Now the neighbour stops too.
+    test::ScratchDir dir("cli_spherecap");
+    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/spherecap.geo") +
+                                            "' --fuse --layers 30 --growth 1.2 --first-height 2e-4 -o s.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("(0 faces above 4)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+}
+
 TEST(Cli, ASharpTrailingEdgeOnASymmetryPlaneKeepsItsFan) {
     // The sweep's half wing: its sharp trailing edge (and its coarse leading edge, in the same
     // chain through the flat tip) runs from the symmetry plane to the tip. The chains end on
