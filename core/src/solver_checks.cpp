@@ -208,14 +208,18 @@ double leaning_prism_aspect_ratio(const Vec3* corners, const Vec3* directions, i
 
 namespace {
 
-/// The faces' geometry of a cell with the corners \p corners and the faces \p t.
-void faces_of(const Vec3* corners, const CellFaceTable& t, std::array<FaceGeometry, 6>& fg) {
+/// The faces' geometry (into \p fg) of a cell with the corners \p corners and the faces \p t,
+/// and its centre as OpenFOAM computes it.
+Vec3 faces_and_centre(const Vec3* corners, const CellFaceTable& t, std::array<FaceGeometry, 6>& fg) {
     for (int f = 0; f < t.count; ++f) {
         Index v[4];
         for (int c = 0; c < t.size[static_cast<std::size_t>(f)]; ++c)
             v[c] = static_cast<Index>(t.node[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)]);
         fg[static_cast<std::size_t>(f)] = face_geometry(corners, v, t.size[static_cast<std::size_t>(f)]);
     }
+    Vec3 mag;
+    double vol3 = 0.0;
+    return cell_centre(fg, t.count, mag, vol3);
 }
 
 }  // namespace
@@ -223,10 +227,7 @@ void faces_of(const Vec3* corners, const CellFaceTable& t, std::array<FaceGeomet
 bool face_pyramids_inverted(const Vec3* corners, CellType type) {
     const CellFaceTable& t = cell_faces(type);
     std::array<FaceGeometry, 6> fg;
-    faces_of(corners, t, fg);
-    Vec3 mag;
-    double vol3 = 0.0;
-    const Vec3 cc = cell_centre(fg, t.count, mag, vol3);
+    const Vec3 cc = faces_and_centre(corners, t, fg);
     for (int f = 0; f < t.count; ++f)
         if (inverted_pyramid(fg[static_cast<std::size_t>(f)].area, fg[static_cast<std::size_t>(f)].centre, cc))
             return true;
@@ -234,12 +235,8 @@ bool face_pyramids_inverted(const Vec3* corners, CellType type) {
 }
 
 Vec3 foam_cell_centre(const Vec3* corners, CellType type) {
-    const CellFaceTable& t = cell_faces(type);
     std::array<FaceGeometry, 6> fg;
-    faces_of(corners, t, fg);
-    Vec3 mag;
-    double vol3 = 0.0;
-    return cell_centre(fg, t.count, mag, vol3);
+    return faces_and_centre(corners, cell_faces(type), fg);
 }
 
 double face_skewness(const Vec3* p, const Index* v, int n, const Vec3& owner, const Vec3* neighbour) {

@@ -789,30 +789,21 @@ TEST(Cli, ADeltaWingKeepsItsLeadingEdgeFansAndTheirWedgesPassCheckMesh) {
 }
 
 TEST(Cli, CellsStackedAcrossAnAcuteJunctionAreNotKeptSideBySide) {
-    // The sweep's rod through a plate at 15 degrees (30 layers from 2e-4 of its 2 m): on the
-    // rod's acute side the first prisms of the plate and of the rod lay stacked across the
-    // junction, and the face between them was skewed 4.15, which checkMesh fails. The columns
-    // of such an edge now stop there.
-    test::ScratchDir dir("cli_rodplate");
-    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/rodplate.geo") +
-                                            "' --fuse --layers 30 --growth 1.2 --first-height 2e-4 -o r.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("(0 faces above 4)"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
-}
-
-TEST(Cli, StepCellsStackedAcrossAnAcuteJunctionAreNotKeptSideBySide) {
-    // The sweep's sphere through a plate (30 layers from 2e-4): beneath the plate the sphere
-    // meets it at 37 degrees. Where a junction column stopped and its neighbour on the junction
-    // went on, the two pyramids closing that step on either side lay stacked, their shared
-    // face skewed 5.64 (9 such faces; 43 faces between prisms at 6.74 before the columns of
-    // such edges stopped). Now the neighbour stops too.
-    test::ScratchDir dir("cli_spherecap");
-    const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/spherecap.geo") +
-                                            "' --fuse --layers 30 --growth 1.2 --first-height 2e-4 -o s.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("(0 faces above 4)"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    // The sweep's acute junctions, 30 layers from 2e-4 (1e-4 of their 2 m). A rod through a
+    // plate at 15 degrees: the first prisms of plate and rod lay stacked across the junction,
+    // the face between them skewed 4.15, which checkMesh fails; the columns of such an edge now
+    // stop there. A sphere through a plate, meeting its underside at 37 degrees: 43 faces
+    // between prisms up to 6.74; with that rule alone, 9 faces at 5.64 between the two pyramids
+    // closing a step where one junction column had stopped and its neighbour went on, which
+    // now stops too.
+    for (const std::string shape : {"rodplate", "spherecap"}) {
+        test::ScratchDir dir("cli_" + shape);
+        const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/" + shape + ".geo") +
+                                                "' --fuse --layers 30 --growth 1.2 --first-height 2e-4 -o j.msh");
+        ASSERT_EQ(r.code, 0) << shape << r.err;
+        EXPECT_NE(r.out.find("(0 faces above 4)"), std::string::npos) << shape << r.out;
+        EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << shape << r.out;
+    }
 }
 
 TEST(Cli, ASharpTrailingEdgeOnASymmetryPlaneKeepsItsFan) {
