@@ -9,6 +9,7 @@
 #include <strata/core/parallel.h>
 #include <strata/core/solver_checks.h>
 #include <strata/geometry/normals.h>
+#include <strata/geometry/topology.h>
 
 #include <algorithm>
 #include <cmath>
@@ -357,27 +358,23 @@ bool stop(Columns& col, std::vector<char>& go, Index i, Shortfall why) {
 /// cells the later layers and the front rounds still change round them.
 constexpr double kLayerSkewTarget = 0.9 * kFoamSkewness;
 
-/// col.side_pairs for the column faces as they are now (found again only once faces are split).
+/// col.side_pairs for the column faces as they are now (found again only once faces are split):
+/// the manifold edges of edge_table over them.
 void find_side_pairs(Columns& col) {
     const Index nf = col.faces.count();
     if (col.side_pairs_faces == nf) return;
-    std::vector<std::array<Index, 3>> sides;  // lower node, higher node, face
-    for (Index f = 0; f < nf; ++f) {
-        const auto u = static_cast<std::size_t>(f);
-        const int n = col.faces.size[u];
-        for (int c = 0; c < n; ++c) {
-            const Index a = col.faces.nodes[u][static_cast<std::size_t>(c)];
-            const Index b = col.faces.nodes[u][static_cast<std::size_t>((c + 1) % n)];
-            sides.push_back({std::min(a, b), std::max(a, b), f});
-        }
-    }
-    std::sort(sides.begin(), sides.end());
+    SurfaceMesh m;
+    m.points = col.top;  // for the node count only
+    m.patches.push_back({"columns", PatchKind::Wall});
+    for (Index f = 0; f < nf; ++f)
+        m.add_face(col.faces.nodes[static_cast<std::size_t>(f)].data(), col.faces.size[static_cast<std::size_t>(f)], 0);
+    const EdgeTable edges = edge_table(m);
     col.side_pairs.clear();
-    for (std::size_t i = 0; i < sides.size();) {
-        std::size_t e = i + 1;
-        while (e < sides.size() && sides[e][0] == sides[i][0] && sides[e][1] == sides[i][1]) ++e;
-        if (e == i + 2) col.side_pairs.push_back({sides[i][0], sides[i][1], sides[i][2], sides[i + 1][2]});
-        i = e;  // an open edge, or a non-manifold one: no pair
+    for (std::size_t e = 0; e < edges.nodes.size(); ++e) {
+        const auto i = static_cast<Index>(e);
+        if (edges.faces.row_end(i) - edges.faces.row_begin(i) != 2) continue;  // open or non-manifold
+        const Index* g = edges.faces.row_begin(i);
+        col.side_pairs.push_back({edges.nodes[e][0], edges.nodes[e][1], g[0], g[1]});
     }
     col.side_pairs_faces = nf;
 }
@@ -492,8 +489,10 @@ void close_steps(Columns& col, const StopRules& rules, int k, const std::vector<
             const bool ma = go[static_cast<std::size_t>(a)] != 0, mb = go[static_cast<std::size_t>(b)] != 0;
             if (!ma && !mb) continue;
             const std::array<bool, 4> mf = moving_corners(col.faces, f, go), mg = moving_corners(col.faces, g, go);
-            const int nf = col.faces.size[static_cast<std::size_t>(f)], ng = col.faces.size[static_cast<std::size_t>(g)];
-            if (std::count(mf.begin(), mf.begin() + nf, true) == nf && std::count(mg.begin(), mg.begin() + ng, true) == ng)
+            const int nf = col.faces.size[static_cast<std::size_t>(f)],
+                      ng = col.faces.size[static_cast<std::size_t>(g)];
+            if (std::count(mf.begin(), mf.begin() + nf, true) == nf &&
+                std::count(mg.begin(), mg.begin() + ng, true) == ng)
                 continue;  // two whole cells: stop_columns judged them
             if (!folded(col, f, g) || !(shared_side_skewness(col, a, b, f, g, go, lo, hi) > kLayerSkewTarget)) continue;
             changed |= stop(col, go, a, Shortfall::Neighbours);
