@@ -330,19 +330,23 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
     // edge ending on a fuselage, whose chain the root's concave curves met there, got walls meshed
     // finer for fans that fans.cpp then did not build: on the body-fin box with --fan-angle 110,
     // wall nodes with every layer 90.0 -> 82.0 %.
-    const CurveKinds kinds = curve_kinds(
-        mesh, faces_of_edge, points_of,
-        [&](int c) {
-            std::vector<std::array<Index, 4>> e;
-            for (const Edge& x : edges_of[c]) e.push_back({x.ia, x.ib, x.f1, x.f2});
-            return e;
-        },
-        kChainDeg);
+    // Without a curve at the fan angle there is no fan and nothing to prune (nor Gmsh to ask).
+    const bool any_fan = std::any_of(sharpest.begin(), sharpest.end(),
+                                     [&](const auto& ct) { return ct.second >= params.fan_angle_deg; });
+    const CurveKinds kinds = !any_fan ? CurveKinds{}
+                                      : curve_kinds(
+                                            mesh, faces_of_edge, points_of,
+                                            [&](int c) {
+                                                std::vector<std::array<Index, 4>> e;
+                                                for (const Edge& x : edges_of[c]) e.push_back({x.ia, x.ib, x.f1, x.f2});
+                                                return e;
+                                            },
+                                            kChainDeg);
     auto kind_at = [&](int c, int q) {
         const auto it = kinds.kind.find({c, q});
         return it == kinds.kind.end() ? 0 : it->second;
     };
-    {
+    if (any_fan) {
         // (point, kind) → curve ends there, and the sharp facets a chain may go on through
         std::map<std::pair<int, int>, int> degree = kinds.facets;
         for (const auto& [c, pts] : points_of)
