@@ -836,32 +836,6 @@ TEST(MeshCadWalls, FanEdgesAreMeshedFinerAlongTheirCurve) {
     EXPECT_LT(r.cap, 0.1);
 }
 
-TEST(MeshCadWalls, AFanEdgeEndingOnAConcaveJunctionIsNotMeshedFinerForAFan) {
-    // The blade of the test above standing on a plate (fused), its 20-degree edge now vertical:
-    // at its foot it meets only the blade's root, concave, and a fan's chain cannot end there
-    // (the layers build none: fans.cpp), so its curve is not meshed finer for one. Its chain
-    // met the root's curves at that point and counted as closed (r.curves was 1).
-    const ScratchDir dir("mesh_cad_fan_on_plate");
-    const std::string geo = write_file(dir, "blade_on_plate.geo",
-                                       "SetFactory(\"OpenCASCADE\");\n"
-                                       "Box(1) = {-1, -1.5, -0.2, 3, 3, 0.2};\n"
-                                       "Point(101) = {0, 0, 0};\nPoint(102) = {1, 0.1763, 0};\n"
-                                       "Point(103) = {1, -0.1763, 0};\n"
-                                       "Line(101) = {101, 102};\nLine(102) = {102, 103};\nLine(103) = {103, 101};\n"
-                                       "Curve Loop(101) = {101, 102, 103};\nPlane Surface(101) = {101};\n"
-                                       "v() = Extrude {0, 0, 1} { Surface{101}; };\n"
-                                       "BooleanUnion{ Volume{1}; Delete; }{ Volume{v(1)}; Delete; }\n");
-    CadParams p;
-    p.size = 0.15;
-    p.first_height = 1.5e-4;
-    p.fan_angle_deg = 150.0;
-    WallSizeReport r;
-    const SurfaceMesh m = mesh_cad(geo, p, nullptr, &r);
-    expect_well_formed(m);
-    EXPECT_TRUE(closed(m));
-    EXPECT_EQ(r.curves, 0);
-}
-
 TEST(MeshCadWalls, StepCellsAtASharpEdgeWithoutAFanAreMeshedFinerToo) {
     // The blade of the test above without fans: the columns on its 20-degree edge lean 80
     // degrees off each face and stop at the wall, so the first-layer cells beside the edge are
@@ -886,6 +860,32 @@ TEST(MeshCadWalls, StepCellsAtASharpEdgeWithoutAFanAreMeshedFinerToo) {
     (void)mesh_cad(geo, p, nullptr, &r);
     EXPECT_LT(r.worst_before, 1000.0);
     EXPECT_EQ(r.surfaces + r.curves, 0);
+}
+
+TEST(MeshCadWalls, AFanEdgeEndingOnAConcaveJunctionIsNotMeshedFinerForAFan) {
+    // The blade of FanEdgesAreMeshedFinerAlongTheirCurve standing on a plate (fused), its 20-degree edge now vertical:
+    // at its foot it meets only the blade's root, concave, and a fan's chain cannot end there
+    // (the layers build none: fans.cpp), so its curve is not meshed finer for one. Its chain
+    // met the root's curves at that point and counted as closed (r.curves was 1).
+    const ScratchDir dir("mesh_cad_fan_on_plate");
+    const std::string geo = write_file(dir, "blade_on_plate.geo",
+                                       "SetFactory(\"OpenCASCADE\");\n"
+                                       "Box(1) = {-1, -1.5, -0.2, 3, 3, 0.2};\n"
+                                       "Point(101) = {0, 0, 0};\nPoint(102) = {1, 0.1763, 0};\n"
+                                       "Point(103) = {1, -0.1763, 0};\n"
+                                       "Line(101) = {101, 102};\nLine(102) = {102, 103};\nLine(103) = {103, 101};\n"
+                                       "Curve Loop(101) = {101, 102, 103};\nPlane Surface(101) = {101};\n"
+                                       "v() = Extrude {0, 0, 1} { Surface{101}; };\n"
+                                       "BooleanUnion{ Volume{1}; Delete; }{ Volume{v(1)}; Delete; }\n");
+    CadParams p;
+    p.size = 0.15;
+    p.first_height = 1.5e-4;
+    p.fan_angle_deg = 150.0;
+    WallSizeReport r;
+    const SurfaceMesh m = mesh_cad(geo, p, nullptr, &r);
+    expect_well_formed(m);
+    EXPECT_TRUE(closed(m));
+    EXPECT_EQ(r.curves, 0);
 }
 
 TEST(MeshCadWalls, BadLimitsAreInputErrors) {
