@@ -83,6 +83,54 @@ std::map<std::array<double, 3>, Index> node_at(const SurfaceMesh& mesh) {
 /// default; module/ is above geometry/, so it is not shared) and the face gets no cell.
 constexpr double kStopLeanDeg = 55.0;
 
+/// The nodes before and after \p v in each face of \p fs (faces round \p v).
+void corner_neighbours(const SurfaceMesh& mesh, Index v, const std::vector<Index>& fs, std::vector<Index>& before,
+                       std::vector<Index>& after) {
+    before.assign(fs.size(), kNone);
+    after.assign(fs.size(), kNone);
+    for (std::size_t i = 0; i < fs.size(); ++i) {
+        const Index f = fs[i], n = mesh.face_size(f);
+        for (Index c = 0; c < n; ++c)
+            if (mesh.face_node(f, c) == v) {
+                before[i] = mesh.face_node(f, (c + n - 1) % n);
+                after[i] = mesh.face_node(f, (c + 1) % n);
+            }
+    }
+}
+
+/// The faces round a node, given by their nodes \p before and \p after it (corner_neighbours),
+/// oriented alike across the edges they share (Gmsh orients each surface by its own
+/// parametrization, so the mesh's faces need not agree): +1 per face oriented as the first, -1
+/// turned round; empty where they cannot be (a non-manifold node, or faces not all joined).
+std::vector<int> orient_round(const std::vector<Index>& before, const std::vector<Index>& after) {
+    const std::size_t k = before.size();
+    if (k == 0) return {};
+    // Breadth-first from the first face: a neighbour across edge v-w runs it the other way
+    // when the two agree.
+    std::vector<int> sign(k, 0);
+    sign[0] = 1;
+    for (std::vector<std::size_t> queue{0}; !queue.empty();) {
+        const std::size_t i = queue.back();
+        queue.pop_back();
+        for (std::size_t j = 0; j < k; ++j) {
+            if (j == i) continue;
+            int relation = 0;  // +1: the same orientation, -1: opposite
+            if (after[i] == before[j] || before[i] == after[j]) relation = 1;
+            if (after[i] == after[j] || before[i] == before[j]) relation = relation == 0 ? -1 : 2;
+            if (relation == 0) continue;
+            if (relation == 2) return {};
+            if (sign[j] == 0) {
+                sign[j] = sign[i] * relation;
+                queue.push_back(j);
+            } else if (sign[j] != sign[i] * relation) {
+                return {};
+            }
+        }
+    }
+    if (std::find(sign.begin(), sign.end(), 0) != sign.end()) return {};
+    return sign;
+}
+
 /// The direction a column starts along at each node of \p faces_at (node → its wall faces): the
 /// corner-angle weighted mean of those faces' normals, oriented consistently round the node
 /// across the edges they share (Gmsh orients each surface by its own parametrization, so the
@@ -93,52 +141,22 @@ std::map<Index, Vec3> start_directions(const SurfaceMesh& mesh, const std::map<I
     for (const auto& [v, fs] : faces_at) {
         const std::size_t k = fs.size();
         // Each face's nodes before and after v, its normal and its corner angle at v.
-        std::vector<Index> before(k), after(k);
+        std::vector<Index> before, after;
+        corner_neighbours(mesh, v, fs, before, after);
         std::vector<Vec3> normal(k);
         std::vector<double> angle(k);
         for (std::size_t i = 0; i < k; ++i) {
-            const Index f = fs[i], n = mesh.face_size(f);
-            for (Index c = 0; c < n; ++c)
-                if (mesh.face_node(f, c) == v) {
-                    before[i] = mesh.face_node(f, (c + n - 1) % n);
-                    after[i] = mesh.face_node(f, (c + 1) % n);
-                }
             const Vec3& x = mesh.points[static_cast<std::size_t>(v)];
             const Vec3 a = mesh.points[static_cast<std::size_t>(after[i])] - x,
                        b = mesh.points[static_cast<std::size_t>(before[i])] - x;
-            normal[i] = face_area_vector(mesh, f).normalized();
+            normal[i] = face_area_vector(mesh, fs[i]).normalized();
             angle[i] = std::atan2(a.cross(b).norm(), a.dot(b));
         }
-        // Breadth-first from the first face: a neighbour across edge v-w runs it the other way
-        // when the two agree.
-        std::vector<int> sign(k, 0);
-        sign[0] = 1;
-        bool consistent = true;
-        for (std::vector<std::size_t> queue{0}; !queue.empty();) {
-            const std::size_t i = queue.back();
-            queue.pop_back();
-            for (std::size_t j = 0; j < k; ++j) {
-                if (j == i) continue;
-                int relation = 0;  // +1: the same orientation, -1: opposite
-                if (after[i] == before[j] || before[i] == after[j]) relation = 1;
-                if (after[i] == after[j] || before[i] == before[j]) relation = relation == 0 ? -1 : 2;
-                if (relation == 0) continue;
-                if (relation == 2) {
-                    consistent = false;
-                    continue;
-                }
-                if (sign[j] == 0) {
-                    sign[j] = sign[i] * relation;
-                    queue.push_back(j);
-                } else if (sign[j] != sign[i] * relation) {
-                    consistent = false;
-                }
-            }
-        }
+        const std::vector<int> sign = orient_round(before, after);
+        const bool consistent = !sign.empty();
         Vec3 d = Vec3::Zero();
         double total = 0.0;
-        for (std::size_t i = 0; i < k; ++i) {
-            if (sign[i] == 0) consistent = false;
+        for (std::size_t i = 0; i < k && consistent; ++i) {
             d += static_cast<double>(sign[i]) * angle[i] * normal[i];
             total += angle[i];
         }
@@ -165,15 +183,14 @@ struct CurveKinds {
 /// CurveKinds for the sharp curves \p points_of (curve → its end points); \p edges_of gives a
 /// curve's sharp edges as (node, node, face, face), \p chain_deg the turn that makes an edge sharp.
 template <class EdgesOf>
-CurveKinds curve_kinds(const SurfaceMesh& mesh, const std::map<std::array<Index, 2>, std::vector<Index>>& faces_of_edge,
+CurveKinds curve_kinds(const SurfaceMesh& mesh, const std::map<std::array<double, 3>, Index>& at,
+                       const std::map<std::array<Index, 2>, std::vector<Index>>& faces_of_edge,
+                       const std::map<Index, std::vector<Index>>& faces_at,
                        const std::map<int, std::vector<int>>& points_of, EdgesOf&& edges_of, double chain_deg) {
     CurveKinds out;
-    const auto at = node_at(mesh);
     std::map<int, std::vector<int>> curves_at;  // point → its sharp curves
     for (const auto& [c, pts] : points_of)
         for (const int q : pts) curves_at[q].push_back(c);
-    std::map<int, Index> node_of;                                // point → its mesh node
-    std::map<Index, std::map<Index, std::vector<Index>>> round;  // node p → other end x of edge (p, x) → faces
     for (const auto& [q, cs] : curves_at) {
         std::vector<std::size_t> tags;
         std::vector<double> xyz, uvw;
@@ -181,65 +198,41 @@ CurveKinds curve_kinds(const SurfaceMesh& mesh, const std::map<std::array<Index,
         if (xyz.size() < 3) continue;
         const auto node = at.find({xyz[0], xyz[1], xyz[2]});
         if (node == at.end()) continue;
-        node_of[q] = node->second;
-        round[node->second];
-    }
-    for (const auto& [e, fs] : faces_of_edge)
-        for (int i = 0; i < 2; ++i)
-            if (const auto it = round.find(e[static_cast<std::size_t>(i)]); it != round.end())
-                it->second[e[static_cast<std::size_t>(1 - i)]] = fs;
-    auto runs_forward = [&](Index f, Index a, Index b) {
-        for (Index i = 0, n = mesh.face_size(f); i < n; ++i)
-            if (mesh.face_node(f, i) == a) return mesh.face_node(f, (i + 1) % n) == b;
-        return false;
-    };
-    for (const auto& [q, p] : node_of) {
-        const std::map<Index, std::vector<Index>>& faces_by_edge = round[p];
-        // The faces round p oriented alike (orient ±1) from the first.
-        std::map<Index, int> orient;
-        bool consistent = true;
-        if (!faces_by_edge.empty() && !faces_by_edge.begin()->second.empty()) {
-            std::vector<Index> queue{faces_by_edge.begin()->second.front()};
-            orient[queue.front()] = 1;
-            while (!queue.empty() && consistent) {
-                const Index f = queue.back();
-                queue.pop_back();
-                for (const auto& [x, fs] : faces_by_edge) {
-                    if (fs.size() != 2 || (fs[0] != f && fs[1] != f)) continue;
-                    const Index g = fs[0] == f ? fs[1] : fs[0];
-                    // Alike where the two run their shared edge in opposite directions.
-                    const int want = orient[f] * (runs_forward(f, p, x) == runs_forward(g, p, x) ? -1 : 1);
-                    const auto [it, fresh] = orient.emplace(g, want);
-                    if (fresh)
-                        queue.push_back(g);
-                    else
-                        consistent = consistent && it->second == want;
-                }
-            }
-        }
-        if (!consistent) continue;
+        const Index p = node->second;
+        const auto round = faces_at.find(p);
+        if (round == faces_at.end()) continue;
+        const std::vector<Index>& fs = round->second;
+        std::vector<Index> before, after;
+        corner_neighbours(mesh, p, fs, before, after);
+        const std::vector<int> sign = orient_round(before, after);  // the faces round p oriented alike
+        if (sign.empty()) continue;
         // The kind of edge (p, x) between faces f and g, and its turn in degrees.
         auto kind_of = [&](Index f, Index g, double* turn) {
-            const auto o1 = orient.find(f), o2 = orient.find(g);
-            if (o1 == orient.end() || o2 == orient.end()) return 0;
-            const Vec3 n1 = static_cast<double>(o1->second) * face_area_vector(mesh, f).normalized();
-            const Vec3 n2 = static_cast<double>(o2->second) * face_area_vector(mesh, g).normalized();
+            const auto i = std::find(fs.begin(), fs.end(), f), j = std::find(fs.begin(), fs.end(), g);
+            if (i == fs.end() || j == fs.end()) return 0;
+            const Vec3 n1 = static_cast<double>(sign[static_cast<std::size_t>(i - fs.begin())]) *
+                            face_area_vector(mesh, f).normalized();
+            const Vec3 n2 = static_cast<double>(sign[static_cast<std::size_t>(j - fs.begin())]) *
+                            face_area_vector(mesh, g).normalized();
             if (turn) *turn = std::acos(std::clamp(n1.dot(n2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
             const Vec3 to2 = face_centroid(mesh, mesh.points, g) - mesh.points[static_cast<std::size_t>(p)];
             return n1.dot(to2) < 0.0 ? 1 : -1;  // the other face below the first: convex
         };
         std::set<Index> on_curves;  // other ends of p's edges on sharp curves
-        for (const int c : curves_at[q])
+        for (const int c : cs)
             for (const auto& e : edges_of(c)) {
                 if (e[0] != p && e[1] != p) continue;
                 on_curves.insert(e[0] == p ? e[1] : e[0]);
                 if (const int k = kind_of(e[2], e[3], nullptr)) out.kind[{c, q}] = k;
                 break;
             }
-        for (const auto& [x, fs] : faces_by_edge) {
-            if (fs.size() != 2 || on_curves.count(x)) continue;
+        std::set<Index> others(after.begin(), after.end());  // p's neighbours
+        others.insert(before.begin(), before.end());
+        for (const Index x : others) {
+            const auto e = faces_of_edge.find({std::min(p, x), std::max(p, x)});
+            if (on_curves.count(x) || e == faces_of_edge.end() || e->second.size() != 2) continue;
             double turn = 0.0;
-            const int k = kind_of(fs[0], fs[1], &turn);
+            const int k = kind_of(e->second[0], e->second[1], &turn);
             if (k != 0 && turn >= chain_deg) ++out.facets[{q, k}];
         }
     }
@@ -250,8 +243,8 @@ CurveKinds curve_kinds(const SurfaceMesh& mesh, const std::map<std::array<Index,
 /// into \p out (worst, curve_need), the nodes on every fan curve into \p fan_nodes (their
 /// columns start along each side's normal).
 void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallLimits& params,
-                const std::map<std::array<Index, 2>, std::vector<Index>>& faces_of_edge, WallAspect& out,
-                std::set<Index>& fan_nodes) {
+                const std::map<std::array<Index, 2>, std::vector<Index>>& faces_of_edge,
+                const std::map<Index, std::vector<Index>>& faces_at, WallAspect& out, std::set<Index>& fan_nodes) {
     const double h = params.first_height, limit = params.max_aspect_ratio;
     // Fans: the first cell of a fan on a wall edge whose faces turn by the fan angle or more, and
     // on the convex edges of 30 degrees or more that close its chain (fans.cpp: a wing's tip and
@@ -335,7 +328,7 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
                                      [&](const auto& ct) { return ct.second >= params.fan_angle_deg; });
     const CurveKinds kinds = !any_fan ? CurveKinds{}
                                       : curve_kinds(
-                                            mesh, faces_of_edge, points_of,
+                                            mesh, at, faces_of_edge, faces_at, points_of,
                                             [&](int c) {
                                                 std::vector<std::array<Index, 4>> e;
                                                 for (const Edge& x : edges_of[c]) e.push_back({x.ia, x.ib, x.f1, x.f2});
@@ -527,7 +520,7 @@ WallAspect wall_aspect(const SurfaceMesh& mesh, const std::vector<int>& face_sur
         }
     }
     std::set<Index> fan_nodes;
-    if (params.fan_angle_deg > 0.0) fan_curves(mesh, walls, params, faces_of_edge, out, fan_nodes);
+    if (params.fan_angle_deg > 0.0) fan_curves(mesh, walls, params, faces_of_edge, faces_at, out, fan_nodes);
 
     // Each wall face's first cell: its columns along their start directions (a fan's, and one
     // beside another patch, along the face's normal), leaning off the face on its edges; a
