@@ -74,6 +74,7 @@ ChildResult run_in_child(const std::function<void(std::vector<char>&)>& body, co
     }
     result.forked = true;
     ::close(fds[1]);
+    if (progress != nullptr) progress->watch_child(static_cast<int>(pid));
     // Read until the child closes its end, asking \p progress every 0.1 s whether to stop:
     // then the child is killed (the work in it cannot be asked).
     char chunk[1 << 16];

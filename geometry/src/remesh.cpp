@@ -127,7 +127,7 @@ constexpr Index kSplitFacesPerFace = 4;
 constexpr double kMeshSeconds = 60.0;
 constexpr double kMeshSecondsPerFace = 1e-3;
 
-/// The seconds one attempt's two stages in Gmsh may take.
+/// The CPU seconds one attempt's two stages in Gmsh may take (each in a child process).
 struct Budget {
     double classify = 0.0;
     double mesh = 0.0;
@@ -149,7 +149,7 @@ struct Attempt {
 };
 
 /// One run of Gmsh's route at feature angle \p angle_deg, the result checked against \p in; \p budget:
-/// the seconds its classification (RemeshParams::classify_seconds) and its meshing may take.
+/// the CPU seconds its classification (RemeshParams::classify_seconds) and its meshing may take.
 Attempt remesh_once(const SurfaceMesh& in, const Triangles& tris, const std::vector<std::array<Index, 2>>& seams,
                     const RemeshParams& p, double size, double angle_deg, const Budget& budget,
                     const std::string& source, const WallCaps* caps = nullptr) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <ctime>
 
 #include <unistd.h>
 
@@ -95,10 +96,17 @@ TEST(ChildProcess, ADeadlineKillsAChildThatRunsOn) {
     // asked by the Progress it wraps is not one.
     const auto t0 = std::chrono::steady_clock::now();
     DeadlineProgress deadline(0.3);
-    EXPECT_THROW(run_in_child([](std::vector<char>&) { ::pause(); }, &deadline), Cancelled);
+    EXPECT_THROW(run_in_child(
+                     [](std::vector<char>&) {
+                         for (volatile unsigned long i = 0;; i = i + 1) {
+                         }
+                     },
+                     &deadline),
+                 Cancelled);
     EXPECT_TRUE(deadline.expired());
+    EXPECT_GE(deadline.spent(), 0.3);  // the child's CPU seconds, not before its time
     const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    EXPECT_GE(waited, 0.3);  // not before its time (a child that never ends: a deadline that never came hangs)
+    EXPECT_GE(waited, 0.3);
     struct Stop : Progress {
         void report(std::string_view, double) override {}
         bool cancelled() const override { return true; }
@@ -109,6 +117,56 @@ TEST(ChildProcess, ADeadlineKillsAChildThatRunsOn) {
     DeadlineProgress ample(100.0);
     EXPECT_TRUE(run_in_child([](std::vector<char>& out) { out = {'o', 'k'}; }, &ample).forked);
     EXPECT_FALSE(ample.expired());
+}
+
+TEST(ChildProcess, ADeadlineCountsTheChildsWorkNotTheClock) {
+    // A child that waits (for a CPU other jobs hold, here asleep) has not used its seconds: on a
+    // loaded machine the work gets the same budget as on an idle one, so an attempt's outcome
+    // (remeshing's, which picks the mesh) does not depend on the load. With the clock's seconds
+    // this child would be killed after 0.2 of its 0.6.
+    DeadlineProgress deadline(0.2);
+    const ChildResult r = run_in_child(
+        [](std::vector<char>& out) {
+            ::usleep(600000);
+            out = {'o', 'k'};
+        },
+        &deadline);
+    EXPECT_FALSE(deadline.expired());
+    EXPECT_EQ(r.sent, (std::vector<char>{'o', 'k'}));
+    EXPECT_LT(deadline.spent(), 0.2);
+    // The children given in turn share the budget (Blossom's attempt, then the simple
+    // recombination's): after one that used 0.15 of 0.3, the next is stopped with less than 0.3.
+    DeadlineProgress shared(0.3);
+    run_in_child(
+        [](std::vector<char>& out) {
+            while (std::clock() < CLOCKS_PER_SEC * 15 / 100) {
+            }
+            out = {'a'};
+        },
+        &shared);
+    const double first = shared.spent();
+    EXPECT_GE(first, 0.15);
+    EXPECT_FALSE(shared.expired());
+    EXPECT_THROW(run_in_child(
+                     [](std::vector<char>&) {
+                         for (;;) {
+                             while (std::clock() < 0) {
+                             }
+                         }
+                     },
+                     &shared),
+                 Cancelled);
+    EXPECT_TRUE(shared.expired());
+    EXPECT_GE(shared.spent(), 0.3);
+    EXPECT_LT(shared.spent() - first, 0.3);
+    // One that never computes (a deadlock) is stopped after DeadlineProgress::kWallFactor times
+    // the seconds on the clock: it must not hang the run.
+    const auto t0 = std::chrono::steady_clock::now();
+    DeadlineProgress idle(0.1);
+    EXPECT_THROW(run_in_child([](std::vector<char>&) { ::pause(); }, &idle), Cancelled);
+    EXPECT_TRUE(idle.expired());
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_GE(waited, DeadlineProgress::kWallFactor * 0.1);
 }
 
 #ifdef _OPENMP

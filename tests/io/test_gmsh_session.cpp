@@ -233,8 +233,9 @@ TEST(GenerateInChild, ACrashAnAbortOrAStopEndsOnlyTheChild) {
         [] { generate_in_child("the model", [] { []() noexcept { throw_out_of_the_loop(); }(); }); },
         {"the model: Gmsh aborts (out of the loop)"});
     // Meshing that would not end (Gmsh's refinement on a surface it parametrizes badly) is
-    // stopped where the caller's progress says so, and nothing of it reaches this model.
-    DeadlineProgress deadline(0.3);
+    // stopped where the caller's progress says so, and nothing of it reaches this model (this
+    // child computes nothing: it is stopped after DeadlineProgress::kWallFactor times 0.1 s).
+    DeadlineProgress deadline(0.1);
     EXPECT_THROW(generate_in_child(
                      "the model",
                      [] {

@@ -20,28 +20,42 @@ public:
     virtual void report(std::string_view stage, double fraction) = 0;
     /// Polled by stages between steps; true makes the stage throw strata::Cancelled.
     virtual bool cancelled() const { return false; }
+    /// Told by run_in_child that the process \p pid does the work from now on (until the next
+    /// call), for a Progress that measures the work's time (DeadlineProgress). Nothing by default.
+    virtual void watch_child(int pid) const { (void)pid; }
 };
 
-/// A Progress that asks to stop once \p seconds have passed from its making (or when \p inner
-/// does), for work that may run for ever (Gmsh's reparametrization, tried in a child process:
+/// A Progress that asks to stop once the work has had \p seconds (or when \p inner does), for work
+/// that may run for ever (Gmsh's reparametrization and meshing, tried in a child process:
 /// gmsh_probe); expired() tells the two apart. Reports go to \p inner.
+///
+/// While a child process does the work (run_in_child tells it: watch_child), the seconds counted
+/// are that child's CPU time, summed over the children it is given in turn; before any, the
+/// clock's. A machine loaded by other jobs then gives the work the same budget as an idle one,
+/// so whether an attempt ends in time, and with it which mesh comes out, does not depend on
+/// what else runs. A child that waits without computing (a deadlock) is stopped too, once
+/// kWallFactor times the seconds have passed on the clock.
 class DeadlineProgress : public Progress {
 public:
-    DeadlineProgress(double seconds, const Progress* inner = nullptr)
-        : inner_(inner),
-          end_(std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                      std::chrono::duration<double>(seconds))) {}
+    /// The clock's seconds past which a child that has not used its CPU seconds is stopped anyway,
+    /// as a multiple of them: ten times covers a machine shared by ten jobs per core.
+    static constexpr double kWallFactor = 10.0;
+
+    explicit DeadlineProgress(double seconds, const Progress* inner = nullptr);
     void report(std::string_view, double) override {}
-    bool cancelled() const override {
-        if (inner_ && inner_->cancelled()) return true;
-        if (std::chrono::steady_clock::now() >= end_) expired_ = true;
-        return expired_;
-    }
+    bool cancelled() const override;
+    void watch_child(int pid) const override;
     bool expired() const { return expired_; }
+    /// The seconds counted so far: the children's CPU time, or the clock's before any child.
+    double spent() const;
 
 private:
     const Progress* inner_;
-    std::chrono::steady_clock::time_point end_;
+    double seconds_;
+    std::chrono::steady_clock::time_point start_;
+    mutable int child_ = 0;             ///< the child watched, 0 before any
+    mutable double children_done_ = 0;  ///< the CPU seconds of the children watched before it
+    mutable double child_last_ = 0;     ///< the watched child's CPU seconds at the last reading
     mutable bool expired_ = false;
 };
 

@@ -42,16 +42,17 @@ struct RemeshParams {
     double max_aspect_ratio = 1000.0;
     double fan_angle_deg = 0.0;
     double wall_faces_budget = 200000;
-    /// The time budget, seconds, of Gmsh's split of the surface for its parametrization in each
-    /// attempt (tried in a child process first: on poor triangles it can go on for ever); 0: 20 s
-    /// and 2 ms per triangle. Where two attempts in a row run out of it, no more are made: the
-    /// input's triangles, not the angle, are at fault.
+    /// The time budget of Gmsh's split of the surface for its parametrization in each attempt
+    /// (tried in a child process first: on poor triangles it can go on for ever), in CPU seconds
+    /// of that child (DeadlineProgress: the same on a loaded machine as on an idle one, so the
+    /// mesh does not depend on the load); 0: 20 s and 2 ms per triangle. Where two attempts in a
+    /// row run out of it, no more are made: the input's triangles, not the angle, are at fault.
     double classify_seconds = 0.0;
-    /// The time budget, seconds, of Gmsh's meshing of the new surfaces in each attempt (in a
-    /// child process whose mesh is brought back: where the surface is poorly parametrized Gmsh
-    /// can refine for ever, or abort the process); 0: 60 s and 1 ms per face expected (four per
-    /// size squared of the input's area, and the walls' budget where they are meshed finer). Runs
-    /// out of it count with the classification's.
+    /// The time budget of Gmsh's meshing of the new surfaces in each attempt, in CPU seconds of
+    /// its child process (whose mesh is brought back: where the surface is poorly parametrized
+    /// Gmsh can refine for ever, or abort the process); 0: 60 s and 1 ms per face expected (four
+    /// per size squared of the input's area, and the walls' budget where they are meshed finer).
+    /// Runs out of it count with the classification's.
     double mesh_seconds = 0.0;
 };
 
