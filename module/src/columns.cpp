@@ -445,11 +445,14 @@ void close_steps(Columns& col, const StopRules& rules, int k, const std::vector<
                 if (!split_keeps_cells(col, f, c, k, rules)) c = (c + 1) % 4;
                 if (split_keeps_cells(col, f, c, k, rules)) {
                     col.faces.split(f, c);
+                    changed = true;
                 } else {
+                    // Only a stop that happened is a change: a pinned fan column does not stop
+                    // (stop marks it for the caller), and counting it would loop for ever.
                     for (int i = 0; i < 4; ++i)
-                        stop(col, go, col.faces.nodes[u][static_cast<std::size_t>(i)], Shortfall::Neighbours);
+                        changed |=
+                            stop(col, go, col.faces.nodes[u][static_cast<std::size_t>(i)], Shortfall::Neighbours);
                 }
-                changed = true;
                 continue;
             }
             CellType type{};
