@@ -18,6 +18,7 @@
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
+#include <strata/io/files.h>
 #include <strata/io/formats.h>
 #include <strata/io/write_report.h>
 #include <strata/io/write_surface.h>
@@ -53,16 +54,40 @@
 namespace {
 
 // ---------------------------------------------------------------------------------------
-// Ctrl-C: the handler only sets a flag (all a signal handler may do); the stages poll it through
-// Progress::cancelled(). It also restores the default action, so a second Ctrl-C ends the
-// program even while a stage that cannot poll (Gmsh's or TetGen's meshing) is running.
+// Ctrl-C, and SIGTERM and SIGHUP (what `timeout`, Slurm and a closed terminal send): the
+// handler only sets a flag (all a signal handler may do); the stages poll it through
+// Progress::cancelled(), every temporary output goes as the stack unwinds, and the program
+// exits 128 + the signal. A second signal while a stage that cannot poll (Gmsh's or TetGen's
+// meshing, a writer) runs ends the program at once, after removing the temporary outputs.
 
 std::atomic<bool> g_interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT flag must be lock-free to be set in a handler");
+std::atomic<int> g_signal{0};  // the signal that stopped the run; 0: none (--timeout or none)
+static_assert(std::atomic<bool>::is_always_lock_free, "the stop flag must be lock-free to be set in a handler");
+static_assert(std::atomic<int>::is_always_lock_free, "the signal number must be lock-free to be set in a handler");
 
-extern "C" void on_sigint(int) {
-    g_interrupted.store(true);
-    std::signal(SIGINT, SIG_DFL);
+extern "C" void on_stop_signal(int sig) {
+    if (g_interrupted.exchange(true) && g_signal.load() != 0) {
+        strata::remove_temporaries();
+        std::signal(sig, SIG_DFL);
+        ::raise(sig);
+        return;
+    }
+    g_signal.store(sig);
+}
+
+void install_stop_handlers() {
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
+    // Past the file size limit (ulimit -f) a write fails with EFBIG, which the writers report,
+    // instead of the process being killed with the temporary output left behind.
+    std::signal(SIGXFSZ, SIG_IGN);
+}
+
+/// The name of a stop signal, for the message.
+const char* signal_name(int sig) {
+    return sig == SIGTERM ? "SIGTERM" : sig == SIGHUP ? "SIGHUP" : "Ctrl-C (SIGINT)";
 }
 
 /// What a message on stderr starts with where a progress bar may be drawn on the line (a
@@ -86,6 +111,7 @@ const char* after_bar() {
                  "than loose faces), or try another --size or --algorithm; nothing was written\n",
                  after_bar(), what.c_str());
     std::fflush(stderr);
+    strata::remove_temporaries();
     std::_Exit(1);
 }
 
@@ -131,6 +157,7 @@ private:
                      "meshing, which cannot be asked to stop) went on %g s beyond it; nothing was written\n",
                      after_bar(), seconds_, kTimeoutGrace);
         std::fflush(stderr);
+        strata::remove_temporaries();
         std::_Exit(124);
     }
     double seconds_;
@@ -154,8 +181,8 @@ void begin_writing() {
 // would double every surface's meshing time; only quads with Blossom, which aborts the process
 // on some surfaces, are tried in a child first, io/gmsh_session.h). The handler does only what a signal handler
 // may: write() a message built from a stage name kept in a fixed buffer, then _exit(1).
-// Outputs are written under a temporary name and renamed, so before the writers start
-// nothing is left; a crash while writing may leave that temporary file, and the line says so.
+// Outputs are written under a temporary name and renamed; the handler removes the temporaries
+// (remove_temporaries: unlink and rmdir only), so nothing is left.
 
 char g_stage[24] = "reading";  // the stage last reported (Terminal::report), NUL-terminated
 char g_input[512] = "";        // the input's name (the Terminal's), NUL-terminated
@@ -182,6 +209,7 @@ void write_text(const char* text) {
 }
 
 extern "C" void on_crash(int sig) {
+    strata::remove_temporaries();
     const char* name = sig == SIGSEGV ? "SIGSEGV" : sig == SIGBUS ? "SIGBUS" : sig == SIGFPE ? "SIGFPE" : "SIGILL";
     write_text(isatty(2) ? "\nstrata: error: the program crashed (" : "strata: error: the program crashed (");
     write_text(name);
@@ -197,8 +225,8 @@ extern "C" void on_crash(int sig) {
                          "--size-min or --curvature, or export the model again)"
                        : " (a fault in Strata or a library it calls: please report it with the input and the "
                          "command)");
-    write_text(g_writing.load() ? "; it was writing, and a temporary file (the output's name with .tmp) "
-                                  "may be left next to the output\n"
+    write_text(g_writing.load() ? "; it was writing: its temporary files were removed and the previous "
+                                  "output is as it was\n"
                                 : "; nothing was written\n");
     ::_exit(1);
 }
@@ -291,7 +319,15 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
            "--timeout", c.timeout,
            "stop a run that takes longer than this many seconds (exit 124, nothing written); a stage "
            "that cannot be stopped (Gmsh reading a CAD file, OpenCASCADE's union) is ended 5 s later (0: no limit)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                char* end = nullptr;
+                const double v = std::strtod(text.c_str(), &end);
+                if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || v < 0.0)
+                    return "expected a number of seconds, 0 or more (0: no limit), not '" + text + "'";
+                return "";
+            },
+            "SECONDS"))
         ->capture_default_str();
     add_table_options(cmd, c.o, {strata::OptionStage::Surface, strata::OptionStage::Patches});
 }
@@ -887,10 +923,32 @@ struct Start {
 
 enum class Output { Surface, Volume };
 
+/// Every file a run writes for -o OUT: the mesh (and Cobalt60's .bc), then for a volume the
+/// report and, with \p plots, the plots' data.
+std::vector<std::string> run_outputs(const Common& c, Output output, bool plots = false) {
+    if (output == Output::Surface) return {c.output};
+    std::vector<std::string> files = strata::volume_output_files(c.output);
+    files.push_back(strata::report_path(c.output));
+    if (plots) files.push_back(strata::plot_data_path(c.output));
+    return files;
+}
+
+/// Before writing: a warning when the file system of the output has less free space than the
+/// mesh will take (the run goes on: the previous output stays if the disk fills).
+void warn_if_short_of_space(const Common& c, std::size_t nodes, std::size_t cells) {
+    const std::int64_t need = strata::estimate_output_bytes(c.output, nodes, cells);
+    const std::int64_t free = strata::free_bytes_at(c.output);
+    if (free < 0 || need <= free) return;
+    std::fprintf(stderr,
+                 "%sstrata: warning: the file system of '%s' has %.1f MB free and the mesh takes about %.1f MB; "
+                 "writing will likely fail (the previous output then stays as it was)\n",
+                 after_bar(), c.output.c_str(), static_cast<double>(free) / 1e6, static_cast<double>(need) / 1e6);
+}
+
 /// \p mesh: the surface is for that hybrid mesh (prepare_for_layers: CAD walls finer where the
-/// layers would step low).
+/// layers would step low). \p plots: the run writes the plots' data too.
 Start start(const Common& c, const strata::PrepareParams& params, Output output, Terminal& terminal,
-            const strata::HybridParams* mesh = nullptr) {
+            const strata::HybridParams* mesh = nullptr, bool plots = false) {
     const auto t0 = std::chrono::steady_clock::now();
     Start s;
     s.msh_version = strata::parse_msh_version(c.msh_version);
@@ -898,6 +956,11 @@ Start start(const Common& c, const strata::PrepareParams& params, Output output,
         strata::check_surface_output(c.output, s.msh_version);
     else
         strata::check_volume_output(c.output, s.msh_version);
+    // Before the work: no output replaces an input, and every output can be created (a run that
+    // takes minutes should not end on a name that cannot be written).
+    const std::vector<std::string> outputs = run_outputs(c, output, plots);
+    strata::check_outputs_are_not_inputs(outputs, c.o.surface.inputs);
+    for (std::size_t i = 1; i < outputs.size(); ++i) strata::check_output_path(outputs[i]);
     s.surface = mesh ? strata::prepare_for_layers(c.o.surface.inputs, params, *mesh, &s.report, &terminal)
                      : strata::prepare_surfaces(c.o.surface.inputs, params, &s.report, &terminal);
     s.any_cad = strata::any_cad_input(c.o.surface.inputs);
@@ -909,6 +972,7 @@ int run_surface(const Common& c) {
     const auto t0 = std::chrono::steady_clock::now();
     Terminal terminal(c.quiet, c.o.surface.input);
     const Start s = start(c, strata::prepare_params(c.o.surface), Output::Surface, terminal);
+    warn_if_short_of_space(c, s.surface.points.size(), static_cast<std::size_t>(s.surface.num_faces()));
     begin_writing();
     strata::write_surface(s.surface, c.output, s.msh_version, &terminal);
     if (c.quiet) return 0;
@@ -927,10 +991,13 @@ int run_layers(const Common& c) {
     const auto t2 = std::chrono::steady_clock::now();
     const strata::ValidationReport v =
         strata::require_valid_mesh(lm.mesh, c.o.surface.input, {.threads = lp.threads, .progress = &terminal});
-    begin_writing();
-    strata::write_volume(lm.mesh, c.output, s.msh_version, &terminal);
     const strata::LayerReport coverage = strata::layer_report(lm);
-    strata::write_mesh_report(coverage, lm.mesh, v, strata::report_path(c.output));
+    warn_if_short_of_space(c, lm.mesh.points.size(), static_cast<std::size_t>(lm.mesh.num_cells()));
+    begin_writing();
+    strata::OutputSet outputs;  // the mesh and its report, both or neither
+    strata::write_volume(lm.mesh, c.output, s.msh_version, &terminal, &outputs);
+    strata::write_mesh_report(coverage, lm.mesh, v, strata::report_path(c.output), &outputs);
+    outputs.commit();
     if (c.quiet) return 0;
     print_surface_summary(s.surface, s.report, s.any_cad);
     print_wall_aspect_forecast(s.surface, s.report, s.any_cad, strata::resolve(lp.distribution).first_height,
@@ -948,7 +1015,8 @@ int run_mesh(const Common& c, const PlotOptions& po) {
     const strata::HybridParams hp = strata::hybrid_params(c.o.layers, c.o.mesh);
     const auto [cut_axis, cut_value] = parse_cut(po.cut);
     Terminal terminal(c.quiet, c.o.surface.input);
-    const Start s = start(c, strata::prepare_params(c.o.surface, &hp.layers), Output::Volume, terminal, &hp);
+    const Start s =
+        start(c, strata::prepare_params(c.o.surface, &hp.layers), Output::Volume, terminal, &hp, !po.dir.empty());
     strata::HybridReport hr;
     const strata::VolumeMesh mesh = [&] {
         try {
@@ -960,11 +1028,15 @@ int run_mesh(const Common& c, const PlotOptions& po) {
         }
     }();
     const auto t1 = std::chrono::steady_clock::now();
+    warn_if_short_of_space(c, mesh.points.size(), static_cast<std::size_t>(mesh.num_cells()));
     begin_writing();
-    strata::write_volume(mesh, c.output, s.msh_version, &terminal);
-    strata::write_mesh_report(hr.coverage, mesh, hr.validation, strata::report_path(c.output));
+    strata::OutputSet outputs;  // the mesh, its report and the plots' data, all or none
+    strata::write_volume(mesh, c.output, s.msh_version, &terminal, &outputs);
+    strata::write_mesh_report(hr.coverage, mesh, hr.validation, strata::report_path(c.output), &outputs);
     if (!po.dir.empty())
-        strata::write_plot_data(hr.coverage, s.surface, mesh, strata::plot_data_path(c.output), cut_axis, cut_value);
+        strata::write_plot_data(hr.coverage, s.surface, mesh, strata::plot_data_path(c.output), cut_axis, cut_value,
+                                &outputs);
+    outputs.commit();
     const double t_write = seconds_since(t1);
     if (!c.quiet) {
         print_surface_summary(s.surface, s.report, s.any_cad);
@@ -988,7 +1060,7 @@ int run_mesh(const Common& c, const PlotOptions& po) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::signal(SIGINT, on_sigint);
+    install_stop_handlers();
     std::set_terminate(on_terminate);
     install_crash_handler();
     CLI::App app{
@@ -1087,8 +1159,10 @@ int main(int argc, char** argv) {
             std::cerr << after_bar() << "strata: error: stopped by --timeout " << t << " s; nothing was written\n";
             return 124;
         }
-        std::cerr << after_bar() << "strata: " << e.what() << "; nothing was written\n";
-        return 130;
+        const int sig = g_signal.load();
+        std::cerr << after_bar() << "strata: stopped by " << signal_name(sig)
+                  << "; nothing was written, and the previous output is as it was\n";
+        return 128 + (sig != 0 ? sig : SIGINT);
     } catch (const std::exception& e) {
         std::string msg = in_flags(e.what());
         for (char& ch : msg)

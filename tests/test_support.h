@@ -7,8 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/mount.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <algorithm>
+#include <cstdlib>
 #include <array>
 #include <exception>
 #include <filesystem>
@@ -85,6 +88,51 @@ public:
 private:
     std::filesystem::path path_;
 };
+
+/// A small tmpfs mounted on a directory for one test (a full disk, a read-only file system),
+/// unmounted when the object goes. Mounting needs root: mounted() is false otherwise, and the
+/// test says so with GTEST_SKIP.
+class SmallFilesystem {
+public:
+    /// \p options: tmpfs's options, e.g. "size=200k"; \p read_only: mounted read-only.
+    SmallFilesystem(const std::filesystem::path& dir, const std::string& options, bool read_only = false) : dir_(dir) {
+        std::filesystem::create_directories(dir_);
+        const unsigned long flags = read_only ? MS_RDONLY : 0;
+        mounted_ = ::geteuid() == 0 && ::mount("tmpfs", dir_.c_str(), "tmpfs", flags, options.c_str()) == 0;
+    }
+    ~SmallFilesystem() {
+        if (mounted_) ::umount2(dir_.c_str(), MNT_DETACH);
+    }
+    SmallFilesystem(const SmallFilesystem&) = delete;
+    SmallFilesystem& operator=(const SmallFilesystem&) = delete;
+    bool mounted() const { return mounted_; }
+    std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+private:
+    std::filesystem::path dir_;
+    bool mounted_ = false;
+};
+
+/// What a program run by run_command printed and its exit code (-1: killed by a signal).
+struct CommandResult {
+    int code = -1;
+    std::string out, err;
+};
+
+/// Run \p command (shell syntax) in \p dir with no standard input, capturing its output.
+inline CommandResult run_command(const ScratchDir& dir, const std::string& command) {
+    const std::string out = dir.file(".stdout.txt"), err = dir.file(".stderr.txt");
+    const std::string cmd =
+        "cd '" + dir.path().string() + "' && (" + command + ") >'" + out + "' 2>'" + err + "' </dev/null";
+    const int status = std::system(cmd.c_str());
+    CommandResult r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    std::filesystem::remove(out);
+    std::filesystem::remove(err);
+    return r;
+}
 
 /// Every undirected edge is used by exactly two faces (a closed manifold surface).
 inline bool closed_manifold(const SurfaceMesh& m) {

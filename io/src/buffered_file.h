@@ -5,6 +5,9 @@
 // files are exact and depend on nothing but the mesh.
 
 #include <strata/core/error.h>
+#include <strata/io/files.h>
+
+#include <unistd.h>
 
 #include <cerrno>
 #include <charconv>
@@ -21,11 +24,9 @@ namespace strata {
 
 class BufferedFile {
 public:
-    BufferedFile(const std::string& temp, const std::string& target) : path_(temp), target_(target) {
+    BufferedFile(const std::string& temp, const std::string& target) : target_(target) {
         file_ = std::fopen(temp.c_str(), "wb");
-        if (!file_)
-            throw InputError("cannot write '" + target + "': cannot create '" + temp + "': " + std::strerror(errno) +
-                             "; check that the directory is writable");
+        if (!file_) throw OutputError(write_failure(target, errno));
         buf_.resize(kCapacity);
     }
     ~BufferedFile() {
@@ -58,9 +59,12 @@ public:
         n_ = static_cast<std::size_t>(std::to_chars(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
     }
 
-    /// Flush and close; throws InputError if anything could not be written (disk full, ...).
+    /// Flush, fsync and close; throws OutputError if anything could not be written (disk full,
+    /// ...) or did not reach the device.
     void close() {
         flush();
+        if (std::fflush(file_) != 0) fail();
+        if (::fsync(::fileno(file_)) != 0 && errno != EINVAL && errno != EROFS) fail();
         std::FILE* f = file_;
         file_ = nullptr;
         if (std::fclose(f) != 0) fail();
@@ -80,13 +84,10 @@ private:
     void write(const char* data, std::size_t size) {
         if (size != 0 && std::fwrite(data, 1, size, file_) != size) fail();
     }
-    [[noreturn]] void fail() const {
-        throw InputError("cannot write '" + target_ + "': writing '" + path_ + "' failed: " + std::strerror(errno) +
-                         " (disk full?)");
-    }
+    [[noreturn]] void fail() const { throw OutputError(write_failure(target_, errno)); }
 
     std::FILE* file_ = nullptr;
-    std::string path_, target_;
+    std::string target_;
     std::vector<char> buf_;
     std::size_t n_ = 0;
 };

@@ -21,6 +21,7 @@
 #include <cgnslib.h>
 
 #include <array>
+#include <cerrno>
 #include <climits>
 #include <cstdint>
 #include <set>
@@ -43,6 +44,9 @@ std::string take_unique(const std::string& w, std::set<std::string>& taken) {
     taken.insert(name);
     return name;
 }
+
+/// Free bytes below which a failed HDF5 write is taken for a full disk.
+constexpr std::int64_t kFullDisk = 1 << 20;
 
 /// Throws BackendError with the CGNS library's message if \p status is not CG_OK.
 void check(int status, const std::string& where, const char* what) {
@@ -107,7 +111,7 @@ std::vector<std::string> cgns_names(const std::vector<std::string>& names, const
     return out;
 }
 
-void write_cgns(const VolumeMesh& mesh, const std::string& path, Progress* progress) {
+void write_cgns(const VolumeMesh& mesh, const std::string& path, Progress* progress, OutputSet* outputs) {
     report(progress, "writing", 0.0);
     const std::string where = "cannot write CGNS file '" + path + "': ";
     require_sound(check_volume_arrays(mesh), where);
@@ -136,8 +140,9 @@ void write_cgns(const VolumeMesh& mesh, const std::string& path, Progress* progr
             to[static_cast<std::size_t>(b.face_patch[f])].push_back(static_cast<cgsize_t>(*v) + 1);
     }
 
-    AtomicFile out(path);  // InputError now if the directory does not exist
-    {
+    OutputSet own;
+    AtomicFile& out = (outputs ? *outputs : own).file(path);  // InputError now if the directory does not exist
+    try {
         CgnsFile file(out.temp_path(), where);
         const int fn = file.fn();
         int B = 0, Z = 0, C = 0, S = 0;
@@ -208,9 +213,17 @@ void write_cgns(const VolumeMesh& mesh, const std::string& path, Progress* progr
             check(cg_famname_write(name.c_str()), where, "cg_famname_write");
         }
         file.close();
+    } catch (const BackendError&) {
+        // HDF5 names no cause: a file system left with (almost) nothing free is the cause.
+        const std::int64_t free = free_bytes_at(path);
+        if (free >= 0 && free < kFullDisk) throw OutputError(write_failure(path, ENOSPC));
+        throw;
     }
+    // HDF5 can report a full disk only through its own messages: the file is flushed to the
+    // device here (OutputSet::commit syncs it again) and its errors named.
+    sync_file(out.temp_path(), path);
     report(progress, "writing", 1.0);  // cancelled here: the temporary file goes, nothing is written
-    out.commit();
+    if (!outputs) own.commit();
 }
 
 }  // namespace strata

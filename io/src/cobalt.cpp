@@ -148,7 +148,7 @@ void write_bc(BufferedFile& out, const std::string& grid_path, const SurfaceMesh
 
 }  // namespace
 
-void write_cobalt(const VolumeMesh& mesh, const std::string& path, Progress* progress) {
+void write_cobalt(const VolumeMesh& mesh, const std::string& path, Progress* progress, OutputSet* outputs) {
     report(progress, "writing", 0.0);
     const std::string where = "cannot write Cobalt grid '" + path + "': ";
     require_sound(check_volume_arrays(mesh), where);
@@ -166,10 +166,12 @@ void write_cobalt(const VolumeMesh& mesh, const std::string& path, Progress* pro
     const std::vector<Index> c2 = second_cells(match, patch_number);
 
     // Targets: checked before anything is written, then both files complete before either is
-    // renamed into place.
+    // renamed into place (with the caller's other outputs when it gives \p outputs).
     const std::string bc_path = path + ".bc";
-    AtomicFile grid_file(path);
-    AtomicFile bc_file(bc_path);
+    OutputSet own;
+    OutputSet& set = outputs ? *outputs : own;
+    AtomicFile& grid_file = set.file(path);
+    AtomicFile& bc_file = set.file(bc_path);
     {
         BufferedFile out(grid_file.temp_path(), path);
         write_grid(out, mesh, c2, npatches, progress);
@@ -182,17 +184,7 @@ void write_cobalt(const VolumeMesh& mesh, const std::string& path, Progress* pro
     }
 
     report(progress, "writing", 1.0);  // cancelled here: the temporary files go, nothing is written
-
-    // The patch map first, then the grid: if the grid cannot be renamed into place, the new
-    // patch map is removed again so no grid is ever left with another grid's patch map.
-    bc_file.commit();
-    try {
-        grid_file.commit();
-    } catch (...) {
-        std::error_code ec;
-        std::filesystem::remove(bc_path, ec);
-        throw;
-    }
+    if (!outputs) own.commit();  // both or neither: no grid is left with another grid's patch map
 }
 
 }  // namespace strata

@@ -94,4 +94,14 @@ std::vector<std::string> volume_output_files(const std::string& path) {
     return {path};
 }
 
+std::int64_t estimate_output_bytes(const std::string& path, std::size_t nodes, std::size_t cells) {
+    // Bytes per node and per cell, rounded up from meshes written in each format.
+    std::size_t per_node = 80, per_cell = 35;  // ASCII through Gmsh (.msh, .vtk, ...)
+    if (is_cgns_path(path))
+        per_node = 24, per_cell = 20;  // binary: 3 doubles a node, the cells' ids
+    else if (is_cobalt_path(path) || is_polymesh_path(path))
+        per_node = 70, per_cell = 70;  // ASCII faces: about 2.5 faces a cell, with their cells
+    return static_cast<std::int64_t>(per_node * nodes + per_cell * cells);
+}
+
 }  // namespace strata

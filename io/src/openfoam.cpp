@@ -250,13 +250,14 @@ PolyMesh to_polymesh(const VolumeMesh& mesh, int threads) {
     return build_polymesh(mesh, "cannot convert to an OpenFOAM polyMesh: ", threads);
 }
 
-void write_polymesh(const VolumeMesh& mesh, const std::string& path, Progress* progress) {
+void write_polymesh(const VolumeMesh& mesh, const std::string& path, Progress* progress, OutputSet* outputs) {
     report(progress, "writing", 0.0);
     const std::string where = "cannot write OpenFOAM polyMesh '" + path + "': ";
     check_output_directory(path);  // before the work: a bad path should not cost the conversion
     const PolyMesh pm = build_polymesh(mesh, where, 0);
 
-    AtomicDirectory dir(path);
+    OutputSet own;
+    AtomicDirectory& dir = (outputs ? *outputs : own).directory(path);
     const std::string target = dir.target() + "/";
     const std::string note = "nPoints:" + std::to_string(mesh.points.size()) +
                              "  nCells:" + std::to_string(pm.num_cells) + "  nFaces:" + std::to_string(pm.num_faces()) +
@@ -290,7 +291,7 @@ void write_polymesh(const VolumeMesh& mesh, const std::string& path, Progress* p
         out.close();
     }
     report(progress, "writing", 1.0);  // cancelled here: the temporary directory goes, nothing is written
-    dir.commit();
+    if (!outputs) own.commit();
 }
 
 }  // namespace strata

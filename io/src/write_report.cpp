@@ -11,7 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -100,11 +100,11 @@ void write_figures(std::ostream& out, const VolumeMesh& mesh, const ValidationRe
 }
 
 void write_report(const LayerReport& r, const std::string& path, const VolumeMesh* mesh,
-                  const ValidationReport* quality) {
-    AtomicFile file(path);
+                  const ValidationReport* quality, OutputSet* outputs) {
+    OutputSet own;
+    AtomicFile& file = (outputs ? *outputs : own).file(path);
     {
-        std::ofstream out(file.temp_path());
-        if (!out) throw InputError(path + ": cannot write the layer report; check the directory's permissions");
+        std::ostringstream out;
         out << "{\n  \"layers\": " << r.layers << ",\n  \"first_height\": " << number(r.first_height)
             << ",\n  \"thickness\": " << number(r.thickness) << ",\n";
         if (mesh && quality) write_figures(out, *mesh, *quality);
@@ -146,9 +146,9 @@ void write_report(const LayerReport& r, const std::string& path, const VolumeMes
                 << "], \"reason\": " << quoted(std::string(to_string(n.reason))) << "}";
         }
         out << (r.no_fan.empty() ? "]\n}\n" : "\n  ]\n}\n");
-        if (!out.flush()) throw InputError(path + ": writing the layer report failed (disk full?)");
+        write_whole_file(file.temp_path(), path, out.str());
     }
-    file.commit();
+    if (!outputs) own.commit();
 }
 
 }  // namespace
@@ -160,13 +160,13 @@ std::string report_path(const std::string& mesh_path) {
     return p + ".report.json";
 }
 
-void write_layer_report(const LayerReport& r, const std::string& path) {
-    write_report(r, path, nullptr, nullptr);
+void write_layer_report(const LayerReport& r, const std::string& path, OutputSet* outputs) {
+    write_report(r, path, nullptr, nullptr, outputs);
 }
 
 void write_mesh_report(const LayerReport& r, const VolumeMesh& mesh, const ValidationReport& quality,
-                       const std::string& path) {
-    write_report(r, path, &mesh, &quality);
+                       const std::string& path, OutputSet* outputs) {
+    write_report(r, path, &mesh, &quality, outputs);
 }
 
 std::string plot_data_path(const std::string& mesh_path) {
@@ -176,7 +176,7 @@ std::string plot_data_path(const std::string& mesh_path) {
 }
 
 void write_plot_data(const LayerReport& r, const SurfaceMesh& surface, const VolumeMesh& mesh, const std::string& path,
-                     int cut_axis, double cut_value) {
+                     int cut_axis, double cut_value, OutputSet* outputs) {
     // The wall: its faces, and its points renumbered in surface order.
     std::vector<Index> faces;
     std::vector<Index> point_of(surface.points.size(), kNone);
@@ -217,10 +217,10 @@ void write_plot_data(const LayerReport& r, const SurfaceMesh& surface, const Vol
     const std::array<double, 4> window{lo[u] - pad, hi[u] + pad, lo[v] - pad, hi[v] + pad};
     const PlaneCut cut = cut_cells(mesh, axis, value, window);
 
-    AtomicFile file(path);
+    OutputSet own;
+    AtomicFile& file = (outputs ? *outputs : own).file(path);
     {
-        std::ofstream out(file.temp_path());
-        if (!out) throw InputError(path + ": cannot write the plots' data; check the directory's permissions");
+        std::ostringstream out;
         out << "{\n\"wall\": {\"points\": [";
         for (std::size_t i = 0; i < points.size(); ++i) {
             const Vec3& p = surface.points[static_cast<std::size_t>(points[i])];
@@ -261,9 +261,9 @@ void write_plot_data(const LayerReport& r, const SurfaceMesh& surface, const Vol
             out << "]";
         }
         out << "]}\n}\n";
-        if (!out.flush()) throw InputError(path + ": writing the plots' data failed (disk full?)");
+        write_whole_file(file.temp_path(), path, out.str());
     }
-    file.commit();
+    if (!outputs) own.commit();
 }
 
 }  // namespace strata

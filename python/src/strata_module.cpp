@@ -27,6 +27,7 @@
 #include <strata/geometry/check.h>
 #include <strata/gmsh_api/gmsh_api.h>
 #include <strata/hybrid/hybrid_mesh.h>
+#include <strata/io/files.h>
 #include <strata/io/formats.h>
 #include <strata/io/gmsh_session.h>
 #include <strata/io/write_report.h>
@@ -179,6 +180,7 @@ PyObject* g_error = nullptr;
 PyObject* g_input_error = nullptr;
 PyObject* g_topology_error = nullptr;
 PyObject* g_backend_error = nullptr;
+PyObject* g_output_error = nullptr;
 PyObject* g_cancelled = nullptr;
 
 /// Progress for Python: calls the callback (stage, fraction), checks for Ctrl-C on the
@@ -295,6 +297,8 @@ void translate_exception(std::exception_ptr p) {
         raise(g_topology_error, e);
     } catch (const BackendError& e) {
         raise(g_backend_error, e);
+    } catch (const OutputError& e) {
+        raise(g_output_error, e);
     } catch (const Error& e) {
         raise(g_error, e);
     } catch (const Cancelled& e) {
@@ -537,6 +541,16 @@ Prepared prepare(const std::vector<std::string>& inputs, Options& o, Progress* p
     return p;
 }
 
+/// Before the work: the volume output \p output, its Cobalt60 patch map and its report can be
+/// written and none of them is an input.
+void check_volume_outputs(const std::string& output, double version, const std::vector<std::string>& inputs) {
+    check_volume_output(output, version);
+    std::vector<std::string> files = volume_output_files(output);
+    files.push_back(report_path(output));
+    check_outputs_are_not_inputs(files, inputs);
+    for (std::size_t i = 1; i < files.size(); ++i) check_output_path(files[i]);
+}
+
 std::vector<std::string> as_inputs(const py::handle& input) {
     if (py::isinstance<py::str>(input) || py::hasattr(input, "__fspath__"))
         return {py::str(py::module_::import("os").attr("fspath")(input)).cast<std::string>()};
@@ -550,7 +564,10 @@ py::object run_surface(const py::object& input, const py::dict& kwargs, const st
     Options o = options_from(kwargs);
     const std::vector<std::string> inputs = as_inputs(input);
     const double version = parse_msh_version(msh_version);
-    if (output) check_surface_output(*output, version);
+    if (output) {
+        check_surface_output(*output, version);
+        check_outputs_are_not_inputs({*output}, inputs);
+    }
     return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
         Prepared p = prepare(inputs, o, progress);
         if (output) write_surface(p.surface, *output, version, progress);
@@ -567,7 +584,7 @@ py::object run_layers(const py::object& input, const py::dict& kwargs, const std
     const LayerParams lp = layer_params(o.layers);
     const std::vector<std::string> inputs = as_inputs(input);
     const double version = parse_msh_version(msh_version);
-    if (output) check_volume_output(*output, version);
+    if (output) check_volume_outputs(*output, version, inputs);
     return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
         Prepared p = prepare(inputs, o, progress, &lp);
         auto t = std::chrono::steady_clock::now();
@@ -580,8 +597,10 @@ py::object run_layers(const py::object& input, const py::dict& kwargs, const std
         const LayerReport coverage = layer_report(lm);
         t = std::chrono::steady_clock::now();
         if (output) {
-            write_volume(lm.mesh, *output, version, progress);
-            write_mesh_report(coverage, lm.mesh, v, report_path(*output));
+            OutputSet outputs;  // the mesh and its report, both or neither
+            write_volume(lm.mesh, *output, version, progress, &outputs);
+            write_mesh_report(coverage, lm.mesh, v, report_path(*output), &outputs);
+            outputs.commit();
         }
         auto result = std::make_unique<PyMesh>();
         py::dict r = quality_report(lm.mesh, v);
@@ -602,7 +621,7 @@ py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::
     const HybridParams hp = hybrid_params(o.layers, o.mesh);
     const std::vector<std::string> inputs = as_inputs(input);
     const double version = parse_msh_version(msh_version);
-    if (output) check_volume_output(*output, version);
+    if (output) check_volume_outputs(*output, version, inputs);
     return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
         Prepared p = prepare(inputs, o, progress, &hp.layers, &hp);
         HybridReport hr;
@@ -616,8 +635,10 @@ py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::
         }
         const auto t = std::chrono::steady_clock::now();
         if (output) {
-            write_volume(result->mesh, *output, version, progress);
-            write_mesh_report(hr.coverage, result->mesh, hr.validation, report_path(*output));
+            OutputSet outputs;  // the mesh and its report, both or neither
+            write_volume(result->mesh, *output, version, progress, &outputs);
+            write_mesh_report(hr.coverage, result->mesh, hr.validation, report_path(*output), &outputs);
+            outputs.commit();
         }
         py::dict r = hybrid_report(result->mesh, hr);
         r["surface"] = surface_report(p.surface, p.report, p.seconds);
@@ -680,12 +701,18 @@ PYBIND11_MODULE(_strata, m) {
         nullptr);
     g_backend_error =
         PyErr_NewExceptionWithDoc("strata.BackendError", "Gmsh, OpenCASCADE or TetGen failed.", g_error, nullptr);
+    py::tuple output_bases = py::make_tuple(py::handle(g_error), py::handle(PyExc_OSError));
+    g_output_error = PyErr_NewExceptionWithDoc(
+        "strata.OutputError",
+        "An output could not be written to the end (disk full, quota, permission); the previous file is as it was.",
+        output_bases.ptr(), nullptr);
     g_cancelled = PyErr_NewExceptionWithDoc("strata.Cancelled", "The run was cancelled (Ctrl-C); nothing was written.",
                                             PyExc_KeyboardInterrupt, nullptr);
     m.attr("Error") = py::handle(g_error);
     m.attr("InputError") = py::handle(g_input_error);
     m.attr("TopologyError") = py::handle(g_topology_error);
     m.attr("BackendError") = py::handle(g_backend_error);
+    m.attr("OutputError") = py::handle(g_output_error);
     m.attr("Cancelled") = py::handle(g_cancelled);
     py::register_exception_translator(&translate_exception);
 

@@ -15,8 +15,9 @@ the stages run; Ctrl-C cancels at the next check (strata.Cancelled, a KeyboardIn
 timeout=seconds raises TimeoutError at the first check after that long (a design loop's guard;
 checks come at least every 0.1 s, and TetGen's child process is killed; Gmsh's own surface
 meshing makes none, so there it acts when Gmsh returns), and nothing is written.
-Errors raise strata.InputError (also a ValueError), TopologyError, BackendError, all
-strata.Error (a RuntimeError), with Strata's message in keyword names.
+Errors raise strata.InputError (also a ValueError), TopologyError, BackendError, OutputError
+(also an OSError: a full disk, a quota; the previous output is as it was), all strata.Error (a
+RuntimeError), with Strata's message in keyword names.
 
 strata.gmsh.mesh_current_model(...) meshes the model of Python's own gmsh module in place;
 python3 -m strata.gmsh_gui MODEL opens Gmsh's window with Strata's options (strata-gmsh).
@@ -32,13 +33,14 @@ from ._strata import (  # noqa: F401  (re-exported)
     Error,
     InputError,
     Mesh,
+    OutputError,
     Surface,
     TopologyError,
 )
 
 __all__ = [
     "surface", "layers", "mesh", "keywords", "Mesh", "Surface",
-    "Error", "InputError", "TopologyError", "BackendError", "Cancelled",
+    "Error", "InputError", "TopologyError", "BackendError", "OutputError", "Cancelled",
 ]
 
 

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -64,4 +65,125 @@ TEST(AtomicDirectory, NewTargetExistingTargetAndNoCommit) {
     EXPECT_EQ(test::dir_entries(target), std::vector<std::string>{"b"});
     EXPECT_THROW(AtomicDirectory(dir.file("missing/out")), InputError);
     EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"out"});
+}
+
+TEST(AtomicFile, LongNamesGetTemporaryNamesThatFitAndDiffer) {
+    ScratchDir dir("files_long_names");
+    const std::string stem(235, 'a');  // 251 and 249 bytes with their extensions
+    AtomicFile a(dir.file(stem + ".msh.report.json"));
+    AtomicFile b(dir.file(stem + ".msh.plot.json"));
+    EXPECT_LE(fs::path(a.temp_path()).filename().string().size(), 255u);
+    EXPECT_NE(a.temp_path(), b.temp_path());
+    std::ofstream(a.temp_path()) << "report";
+    a.commit();
+    EXPECT_EQ(slurp(dir.file(stem + ".msh.report.json")), "report");
+}
+
+TEST(CheckOutputPath, NamesOverTheFileSystemsLimitAreRefusedBeforeAnyWork) {
+    ScratchDir dir("files_name_limit");
+    test::expect_error<OutputError>([&] { check_output_path(dir.file(std::string(252, 'b') + ".msh")); },
+                                    {"(256 bytes) is too long for the file system (255 bytes at most)",
+                                     "choose a shorter output name"});
+    EXPECT_NO_THROW(check_output_path(dir.file(std::string(251, 'b') + ".msh")));
+    EXPECT_TRUE(test::dir_entries(dir.path()).empty());  // the probe left nothing
+}
+
+TEST(CheckOutputPath, AReadOnlyFileSystemIsRefusedBeforeAnyWork) {
+    ScratchDir dir("files_read_only");
+    test::SmallFilesystem ro(dir.path() / "ro", "size=64k", true);
+    if (!ro.mounted()) GTEST_SKIP() << "mounting a tmpfs needs root";
+    test::expect_error<OutputError>([&] { check_output_path(ro.file("out.msh")); },
+                                    {"cannot write '", "out.msh", "read-only file system"});
+    test::expect_error<OutputError>([&] { check_output_directory(ro.file("polyMesh")); },
+                                    {"polyMesh", "read-only file system"});
+}
+
+TEST(OutputSet, CommitsEveryOutputOrNone) {
+    ScratchDir dir("files_output_set");
+    std::ofstream(dir.file("mesh")) << "old mesh";
+    {
+        OutputSet set;
+        std::ofstream(set.file(dir.file("mesh")).temp_path()) << "new mesh";
+        std::ofstream(set.file(dir.file("report")).temp_path()) << "new report";
+    }  // not committed: the temporaries go, the old mesh stays
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"mesh"});
+    EXPECT_EQ(slurp(dir.file("mesh")), "old mesh");
+    {
+        OutputSet set;
+        std::ofstream(set.file(dir.file("mesh")).temp_path()) << "new mesh";
+        std::ofstream(set.file(dir.file("report")).temp_path()) << "new report";
+        // The report's target turns into a directory that a file cannot replace: its rename
+        // fails after the mesh's, and the mesh goes back to what it was.
+        fs::create_directories(dir.file("report/inside"));
+        EXPECT_THROW(set.commit(), Error);
+    }
+    EXPECT_EQ(slurp(dir.file("mesh")), "old mesh");
+    fs::remove_all(dir.file("report"));
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"mesh"});
+    {
+        OutputSet set;
+        std::ofstream(set.file(dir.file("mesh")).temp_path()) << "new mesh";
+        AtomicDirectory& d = set.directory(dir.file("polyMesh"));
+        std::ofstream(d.file("points")) << "points";
+        set.commit();
+    }
+    EXPECT_EQ(slurp(dir.file("mesh")), "new mesh");
+    EXPECT_EQ(slurp(dir.file("polyMesh/points")), "points");
+    EXPECT_EQ(test::dir_entries(dir.path()), (std::vector<std::string>{"mesh", "polyMesh"}));
+}
+
+TEST(CheckOutputsAreNotInputs, SameFileByPathLinkOrInodeAndInputsInsideAnOutputDirectory) {
+    ScratchDir dir("files_output_input");
+    std::ofstream(dir.file("in.msh")) << "input";
+    fs::create_symlink(dir.file("in.msh"), dir.file("link.msh"));
+    fs::create_hard_link(dir.file("in.msh"), dir.file("hard.msh"));
+    fs::create_directories(dir.file("case/polyMesh"));
+    std::ofstream(dir.file("case/polyMesh/wall.stl")) << "input";
+    const std::vector<std::string> in{dir.file("in.msh")};
+    for (const std::string& out : {dir.file("in.msh"), dir.file("./in.msh"), dir.file("link.msh"), dir.file("hard.msh")})
+        test::expect_error<InputError>([&] { check_outputs_are_not_inputs({out}, in); },
+                                       {"the output '" + out + "' is the input", "would destroy the input"});
+    test::expect_error<InputError>(
+        [&] { check_outputs_are_not_inputs({dir.file("case/polyMesh/")}, {dir.file("case/polyMesh/wall.stl")}); },
+        {"holds the input", "would be replaced whole"});
+    EXPECT_NO_THROW(check_outputs_are_not_inputs({dir.file("out.msh"), dir.file("in.msh.report.json")}, in));
+    EXPECT_EQ(slurp(dir.file("in.msh")), "input");
+}
+
+TEST(WriteFailure, SaysTheCauseAndThatTheOldFileStays) {
+    EXPECT_EQ(write_failure("d/out.msh", ENOSPC),
+              "disk full writing 'd/out.msh': no space left on the file system of 'd'; free some space or write "
+              "elsewhere; 'd/out.msh' was left as it was");
+    EXPECT_NE(write_failure("out.msh", EFBIG).find("file too large writing 'out.msh'"), std::string::npos);
+    EXPECT_NE(write_failure("out.msh", EDQUOT).find("disk quota exceeded"), std::string::npos);
+    EXPECT_NE(write_failure("out.msh", EIO).find("I/O error"), std::string::npos);
+}
+
+TEST(WriteWholeFile, AFullDiskIsAnOutputErrorNamingTheTarget) {
+    ScratchDir dir("files_full");
+    test::SmallFilesystem full(dir.path() / "full", "size=64k");
+    if (!full.mounted()) GTEST_SKIP() << "mounting a tmpfs needs root";
+    test::expect_error<OutputError>(
+        [&] { write_whole_file(full.file(".tmp"), "out.json", std::string(1 << 20, 'x')); },
+        {"disk full writing 'out.json'"});
+    fs::remove(full.file(".tmp"));  // what the AtomicFile of a real writer removes
+    EXPECT_NO_THROW(write_whole_file(full.file("small"), "small", "fits"));
+    EXPECT_EQ(slurp(full.file("small")), "fits");
+}
+
+TEST(RemoveTemporaries, RemovesUncommittedFilesAndDirectoriesAtOnce) {
+    ScratchDir dir("files_remove_temporaries");
+    std::ofstream(dir.file("kept")) << "old";
+    AtomicFile file(dir.file("kept"));
+    std::ofstream(file.temp_path()) << "new";
+    AtomicDirectory poly(dir.file("polyMesh"));
+    std::ofstream(poly.file("points")) << "points";
+    std::ofstream(poly.file("faces")) << "faces";
+    ScopedTemporary scratch(dir.file("scratch"), true);
+    fs::create_directory(scratch.path());
+    std::ofstream(scratch.path() + "/out.msh") << "x";
+    EXPECT_EQ(test::dir_entries(dir.path()).size(), 4u);
+    remove_temporaries();  // what a signal handler calls
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"kept"});
+    EXPECT_EQ(slurp(dir.file("kept")), "old");
 }

@@ -48,6 +48,14 @@ private:
     double reached_ = 0.0;
 };
 
+/// An output could not be written to the end (disk full, quota, file size limit, I/O error,
+/// a directory that is not writable): the message names the file and the cause; the previous
+/// output is as it was.
+class OutputError : public Error {
+public:
+    using Error::Error;
+};
+
 /// A third-party library (Gmsh, OpenCASCADE, TetGen) failed; the message carries its text.
 class BackendError : public Error {
 public:

@@ -4,6 +4,7 @@
 
 #include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
+#include <strata/io/files.h>
 
 #include <string>
 #include <vector>
@@ -25,7 +26,8 @@ namespace strata {
 /// callers run require_valid_mesh first. InputError (missing directory, malformed arrays, more
 /// elements than CGNS's 32-bit sizes hold), BackendError (the CGNS library failed, with its
 /// message). \p progress: stage "writing"; cancelled, nothing is left at \p path.
-void write_cgns(const VolumeMesh& mesh, const std::string& path, Progress* progress = nullptr);
+void write_cgns(const VolumeMesh& mesh, const std::string& path, Progress* progress = nullptr,
+                OutputSet* outputs = nullptr);
 
 /// Patch names as CGNS node names: '/' and control characters become '_', at most 32
 /// characters (CGNS's limit), an empty name "patch_<i+1>", and a name that is taken (by an

@@ -5,6 +5,7 @@
 
 #include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
+#include <strata/io/files.h>
 
 #include <string>
 
@@ -14,6 +15,7 @@ namespace strata {
 /// `<path>.bc` ("<number> <name> <kind>" per line, numbers 1..npatches in the file's order).
 /// Only patches with faces are numbered. Both files are written atomically. Throws
 /// InputError (unwritable path) or TopologyError (a face shared by more than two cells).
-void write_cobalt(const VolumeMesh& mesh, const std::string& path, Progress* progress = nullptr);
+void write_cobalt(const VolumeMesh& mesh, const std::string& path, Progress* progress = nullptr,
+                  OutputSet* outputs = nullptr);
 
 }  // namespace strata

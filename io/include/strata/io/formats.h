@@ -3,6 +3,8 @@
 /// Output formats, decided by a path's extension, and checked before the work that produces
 /// the mesh starts (a typo in the output name should not cost a meshing run).
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -36,5 +38,9 @@ bool is_polymesh_path(const std::string& path);
 
 /// The files write_volume writes for \p path: the grid and, for Cobalt60, "<path>.bc".
 std::vector<std::string> volume_output_files(const std::string& path);
+
+/// About how many bytes a mesh of \p nodes nodes and \p cells cells (or faces, for a surface)
+/// takes in the format of \p path: for a warning when the disk has less free space.
+std::int64_t estimate_output_bytes(const std::string& path, std::size_t nodes, std::size_t cells);
 
 }  // namespace strata

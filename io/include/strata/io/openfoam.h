@@ -5,6 +5,7 @@
 
 #include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
+#include <strata/io/files.h>
 
 #include <cstdint>
 #include <string>
@@ -61,6 +62,7 @@ std::vector<std::string> foam_patch_names(const std::vector<std::string>& names)
 /// directory is replaced as a whole. Does not validate: callers run require_valid_mesh first.
 /// InputError (missing parent directory, \p path a file, malformed arrays), TopologyError
 /// (faces that do not match). \p progress: stage "writing"; cancelled, nothing is left.
-void write_polymesh(const VolumeMesh& mesh, const std::string& path, Progress* progress = nullptr);
+void write_polymesh(const VolumeMesh& mesh, const std::string& path, Progress* progress = nullptr,
+                    OutputSet* outputs = nullptr);
 
 }  // namespace strata

@@ -8,6 +8,7 @@
 #include <strata/core/surface_mesh.h>
 #include <strata/core/validate.h>
 #include <strata/core/volume_mesh.h>
+#include <strata/io/files.h>
 
 #include <string>
 
@@ -25,8 +26,9 @@ std::string report_path(const std::string& mesh_path);
 ///  "short_nodes": [{"node", "position": [x, y, z], "share", "layers", "reason"}],
 ///  "no_fan_nodes": [{"node", "position": [x, y, z], "reason": "unusable" | "uncapped" | "skewed" |
 ///   "open" | "unclosed"}]}.
-/// Atomic (temporary name, then rename); InputError naming the path if it cannot be written.
-void write_layer_report(const LayerReport& report, const std::string& path);
+/// Atomic (temporary name, then rename), or staged in \p outputs to be committed with the mesh;
+/// OutputError naming the path if it cannot be written.
+void write_layer_report(const LayerReport& report, const std::string& path, OutputSet* outputs = nullptr);
 
 /// write_layer_report with the mesh's figures after "thickness": "nodes", "cells" (per cell
 /// type, all four), and "quality": {"min_scaled_jacobian": {"all", and per type with cells},
@@ -34,7 +36,7 @@ void write_layer_report(const LayerReport& report, const std::string& path);
 /// 1e-6 ... 1; bin 0 also holds anything ≤ 0), "histograms": {per type with cells: kQualityBins
 /// counts summing to its cells}}. Small whatever the mesh: what `strata report` plots.
 void write_mesh_report(const LayerReport& report, const VolumeMesh& mesh, const ValidationReport& quality,
-                       const std::string& path);
+                       const std::string& path, OutputSet* outputs = nullptr);
 
 /// The file of the plots' geometry beside the mesh \p mesh_path: mesh_path + ".plot.json".
 std::string plot_data_path(const std::string& mesh_path);
@@ -52,9 +54,10 @@ std::string plot_data_path(const std::string& mesh_path);
 /// axis = value, each as its polygon of intersection, within the wall's box widened by half its
 /// size in the plane (the layers and the first tetrahedra, not the farfield). The plane is
 /// through the wall box's centre across its longest side (a wing's section, a missile's cross
-/// section) unless \p cut_axis is 0, 1 or 2 (then at \p cut_value). Atomic; InputError
-/// naming the path if it cannot be written.
+/// section) unless \p cut_axis is 0, 1 or 2 (then at \p cut_value). Atomic, or staged in
+/// \p outputs; OutputError naming the path if it cannot be written.
 void write_plot_data(const LayerReport& report, const SurfaceMesh& surface, const VolumeMesh& mesh,
-                     const std::string& path, int cut_axis = -1, double cut_value = 0.0);
+                     const std::string& path, int cut_axis = -1, double cut_value = 0.0,
+                     OutputSet* outputs = nullptr);
 
 }  // namespace strata

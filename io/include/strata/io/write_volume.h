@@ -5,6 +5,7 @@
 
 #include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
+#include <strata/io/files.h>
 
 #include <string>
 
@@ -15,11 +16,12 @@ namespace strata {
 /// an OpenFOAM polyMesh directory (write_polymesh); .cgns as CGNS (write_cgns); .msh as MSH \p msh_version 4.1 or 2.2;
 /// .vtk, .su2, .unv, ... through Gmsh: one discrete volume with all cells and a physical group "fluid" (3D), one
 /// discrete surface and one 2D physical group per boundary patch, named after the patch (add_volume_to_gmsh_model).
-/// Atomic (temporary name, then rename). Does not validate: callers run require_valid_mesh first. InputError for an
+/// Atomic (temporary name, then rename; every write checked and synced: OutputError on a full
+/// disk), or staged in \p outputs to be committed with the run's other outputs. Does not validate: callers run require_valid_mesh first. InputError for an
 /// unknown extension, a missing directory or malformed arrays; BackendError if Gmsh fails. \p progress: stage
 /// "writing"; cancelled, nothing is left at \p path.
 void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version = 4.1,
-                  Progress* progress = nullptr);
+                  Progress* progress = nullptr, OutputSet* outputs = nullptr);
 
 /// Read a volume mesh written by write_volume (or any .msh with linear tets, pyramids,
 /// prisms and hexes, and 2D physical groups as patches) through the Gmsh API
