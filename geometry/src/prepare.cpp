@@ -7,6 +7,7 @@
 #include <strata/geometry/topology.h>
 #include <strata/geometry/touching.h>
 #include <strata/io/files.h>
+#include <strata/io/input_file.h>
 #include <strata/io/read_surface.h>
 
 #include <algorithm>
@@ -26,7 +27,7 @@ std::string lower(std::string s) {
 SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const CadParams& cad, CadUnits* units,
                      WallSizeReport* walls, SewReport* sew, RecombinationReport* recombination,
                      const Progress* progress) {
-    check_input_file(path);
+    check_input_source(path);  // not check_input_file: opening a pipe here would lose what it holds
     if (is_cad_file(path)) {
         CadParams with_kinds = cad;
         with_kinds.wall_patch_kinds = params.patch_kinds;
