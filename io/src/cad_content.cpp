@@ -47,8 +47,8 @@ bool holds_step(std::string_view s) {
 }
 
 /// IGES: the first record (blank lines and CR line ends skipped, as OpenCASCADE does) carries
-/// its section letter and sequence number: `S`, `G`, `F` (a compressed file's flag section)
-/// or `B` (binary) in column 73, digits after it; or, in a record that lost its padding, the
+/// its section letter and sequence number: `S`, `G`, `C` or `F` (a compressed file's flag
+/// section, by the standard and by some writers) or `B` (binary) in column 73, digits after it; or, in a record that lost its padding, the
 /// letter and the number 1 in the last 8 columns of the line.
 bool holds_iges(std::string_view s) {
     s = without_bom(s);
@@ -56,7 +56,7 @@ bool holds_iges(std::string_view s) {
     std::string_view line = s.substr(0, s.find_first_of("\r\n"));
     if (line.size() > 160) return false;  // not a record of 80 columns, whatever it ends with
     while (!line.empty() && is_blank(line.back())) line.remove_suffix(1);
-    const auto section = [](char c) { return c == 'S' || c == 'G' || c == 'F' || c == 'B'; };
+    const auto section = [](char c) { return c == 'S' || c == 'G' || c == 'C' || c == 'F' || c == 'B'; };
     if (line.size() >= 74 && section(line[72])) {
         std::string_view number = line.substr(73);
         while (!number.empty() && number.front() == ' ') number.remove_prefix(1);

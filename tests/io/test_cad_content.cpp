@@ -76,7 +76,8 @@ TEST(CadContent, IgesVariants) {
              start + "\r\n" + global + "\r\n",                  // CRLF
              "\n\r\n" + start + "\n",                           // blank lines first
              global + "\n",                                     // no start section
-             record("", 'F', 1) + "\n" + start + "\n",          // compressed ASCII: the flag section
+             record("", 'C', 1) + "\n" + start + "\n",          // compressed ASCII: the flag section
+             record("", 'F', 1) + "\n" + start + "\n",
              std::string("a start line S      1\n"),            // a record that lost its padding
              record("", 'S', 1) + "   \n",                      // trailing blanks
          })

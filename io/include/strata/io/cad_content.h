@@ -16,7 +16,7 @@ enum class CadContent { Step, Iges, Brep };
 /// - STEP: `ISO-10303-21;` (any case), after an optional UTF-8 byte-order mark, white space and
 ///   comments;
 /// - IGES: the first record, after blank lines, has its section letter in column 73 (`S`, `G`,
-///   `F` for a compressed file's flag section, `B` for binary) and a sequence number after it;
+///   `C` or `F` for a compressed file's flag section, `B` for binary) and a sequence number;
 ///   a first record whose padding was lost ("...text S      1") is taken too, as OpenCASCADE
 ///   reads it;
 /// - BREP (OpenCASCADE's text format): `DBRep_DrawableShape` or a first line with
