@@ -204,6 +204,17 @@ private:
     int saved_ = -1;
 };
 
+/// InputError unless \p path can be given to Gmsh: a file (Gmsh reads it by name, more than once:
+/// its unit, the import, sewing's reload), holding what its extension says (OpenCASCADE takes a
+/// PNG for a model with no surfaces).
+void check_input(const std::string& path, CadFormat format) {
+    require_regular_input(path, "Gmsh");
+    if (format == CadFormat::Geo) return;
+    check_cad_content(path, format == CadFormat::Step   ? CadContent::Step
+                            : format == CadFormat::Iges ? CadContent::Iges
+                                                        : CadContent::Brep);
+}
+
 /// The file into the current model (load without its error translation).
 void import_file(const std::string& path, CadFormat format) {
     if (format == CadFormat::Geo) {
@@ -715,13 +726,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
                          ": not a CAD file Strata reads; use .step/.stp, .iges/.igs, "
                          ".brep/.brp or a Gmsh .geo script");
     validate(params);
-    // Read by name, more than once (its unit, the import, sewing's reload): no pipe. And what
-    // the extension says, checked first: OpenCASCADE takes a PNG for a file with no surfaces.
-    require_regular_input(path, "Gmsh");
-    if (*format != CadFormat::Geo)
-        check_cad_content(path, *format == CadFormat::Step   ? CadContent::Step
-                                : *format == CadFormat::Iges ? CadContent::Iges
-                                                             : CadContent::Brep);
+    check_input(path, *format);
     const bool script = *format == CadFormat::Geo;
 
     GmshSession session("strata_cad");
