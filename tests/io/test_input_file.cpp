@@ -8,10 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
+#include <sys/wait.h>
 #include <unistd.h>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -96,6 +99,35 @@ TEST(ReadInput, RegularFileWhole) {
 TEST(OutOfMemory, NamesTheFile) {
     const std::string msg = out_of_memory("big.msh").what();
     EXPECT_EQ(msg.rfind("not enough memory to read 'big.msh' (", 0), 0u) << msg;
+
+    // A 1 GB (sparse) file read where only 64 MB more can be allocated: a child process, its
+    // address space limited, gets the InputError naming the file, not std::bad_alloc.
+    ScratchDir dir("input_oom");
+    const std::string big = dir.file("big.stl");
+    std::ofstream(big).flush();
+    fs::resize_file(big, std::uintmax_t{1} << 30);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        long pages = 0;
+        std::ifstream("/proc/self/statm") >> pages;
+        const rlim_t limit = static_cast<rlim_t>(pages) * static_cast<rlim_t>(::sysconf(_SC_PAGESIZE)) + (64u << 20);
+        const rlimit rl{limit, limit};
+        ::setrlimit(RLIMIT_AS, &rl);
+        try {
+            (void)read_input(big);
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            ::_exit(what.rfind("not enough memory to read '" + big + "'", 0) == 0 ? 0 : 2);
+        } catch (...) {
+            ::_exit(3);
+        }
+        ::_exit(4);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "2: another message, 3: another exception, 4: no exception";
 }
 
 TEST(DescribeContent, CommonFormatsBinaryAndText) {
