@@ -6,9 +6,11 @@
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <array>
 #include <charconv>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -118,23 +120,38 @@ std::optional<std::string_view> section(std::string_view text, std::string_view 
     return std::nullopt;
 }
 
-/// The second count of a 4.1 section header (numEntityBlocks numNodes|numElements ...), or
-/// the one count of a 2.x header.
-std::optional<std::uint64_t> claimed(std::string_view s, const MshFormat& f) {
-    if (!f.v4 || !f.binary) {
-        if (f.v4) token(s);  // numEntityBlocks
-        return count(token(s));
-    }
-    const std::size_t at = f.data_size;  // after numEntityBlocks
-    if (s.size() < at + f.data_size) return std::nullopt;
-    std::uint64_t v = 0;
+/// The unsigned integer of \p f's data size at \p p, in the machine's byte order.
+std::uint64_t load_unsigned(const char* p, const MshFormat& f) {
     if (f.data_size == 8) {
-        std::memcpy(&v, s.data() + at, 8);
-        if (f.swapped) v = __builtin_bswap64(v);
-    } else {
-        std::uint32_t w = 0;
-        std::memcpy(&w, s.data() + at, 4);
-        v = f.swapped ? __builtin_bswap32(w) : w;
+        std::uint64_t v = 0;
+        std::memcpy(&v, p, sizeof v);
+        return f.swapped ? __builtin_bswap64(v) : v;
+    }
+    std::uint32_t w = 0;
+    std::memcpy(&w, p, sizeof w);
+    return f.swapped ? __builtin_bswap32(w) : w;
+}
+
+/// The values of a section header: 4.1's numEntityBlocks, numNodes|numElements, minTag, maxTag
+/// (text, or binary of the data size), 2.x's one count as the second; none if they do not parse.
+std::optional<std::array<std::uint64_t, 4>> header_values(std::string_view s, const MshFormat& f) {
+    std::array<std::uint64_t, 4> v{};
+    if (!f.v4) {
+        const std::optional<std::uint64_t> n = count(token(s));
+        if (!n) return std::nullopt;
+        v[1] = *n;
+        return v;
+    }
+    for (std::uint64_t& x : v) {
+        if (!f.binary) {
+            const std::optional<std::uint64_t> n = count(token(s));
+            if (!n) return std::nullopt;
+            x = *n;
+            continue;
+        }
+        if (s.size() < f.data_size) return std::nullopt;
+        x = load_unsigned(s.data(), f);
+        s.remove_prefix(f.data_size);
     }
     return v;
 }
@@ -144,12 +161,19 @@ std::optional<std::uint64_t> claimed(std::string_view s, const MshFormat& f) {
 void check_claim(const std::string& path, std::optional<std::string_view> header, const MshFormat& f,
                  const char* what, std::uint64_t min_bytes, std::size_t file_size) {
     if (!header) return;
-    const std::optional<std::uint64_t> n = claimed(*header, f);
-    if (!n || *n <= file_size / min_bytes) return;
-    throw InputError("'" + path + "' claims " + std::to_string(*n) + " " + what + "s but the file has only " +
-                     std::to_string(file_size) + " bytes (" + (f.binary ? "a binary" : "an ASCII") + " MSH " +
-                     (f.v4 ? "4.1 " : "2 ") + what + " takes at least " + std::to_string(min_bytes) +
-                     "): it is truncated or damaged; write it again");
+    const std::optional<std::array<std::uint64_t, 4>> values = header_values(*header, f);
+    if (!values) return;
+    const std::uint64_t n = (*values)[1];
+    if (n > file_size / min_bytes)
+        throw InputError("'" + path + "' claims " + std::to_string(n) + " " + what + "s but the file has only " +
+                         std::to_string(file_size) + " bytes (" + (f.binary ? "a binary" : "an ASCII") + " MSH " +
+                         (f.v4 ? "4.1 " : "2 ") + what + " takes at least " + std::to_string(min_bytes) +
+                         "): it is truncated or damaged; write it again");
+    // Gmsh 4.8's MSH 4.1 reader looks the elements' nodes up by an int: a larger tag crashed it.
+    if (f.v4 && std::string_view(what) == "node" && (*values)[3] > std::numeric_limits<int>::max())
+        throw InputError("'" + path + "': its node tags reach " + std::to_string((*values)[3]) + ", beyond the " +
+                         std::to_string(std::numeric_limits<int>::max()) +
+                         " Gmsh reads; number the nodes from 1 again (Gmsh: Mesh.Renumber) and write it again");
 }
 
 }  // namespace

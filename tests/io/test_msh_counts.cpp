@@ -88,6 +88,22 @@ TEST(MshCounts, Binary41And22HugeCountsInEitherByteOrder) {
     }
 }
 
+TEST(MshCounts, Msh41NodeTagsBeyondAnIntAreRefused) {
+    // Gmsh 4.8 crashed (SIGSEGV in GModel::getMeshVertexByTag(int)) on an element using node 3e9.
+    ScratchDir dir("msh_counts_tags");
+    const std::string path = write(dir, "tags.msh", kAscii41 +
+                                                        "$Nodes\n1 3 1 3000000000\n2 1 0 3\n1\n2\n3000000000\n"
+                                                        "0 0 0\n1 0 0\n0 1 0\n$EndNodes\n$Elements\n1 1 1 1\n"
+                                                        "2 1 2 1\n1 1 2 3000000000\n$EndElements\n");
+    test::expect_error<InputError>([&] { read_msh(path); },
+                                   {"tags.msh': its node tags reach 3000000000, beyond the 2147483647 Gmsh reads"});
+    // MSH 2.2 and element tags take them (Gmsh reads those as they are).
+    const std::string v22 = write(dir, "tags22.msh", kAscii22 +
+                                                         "$Nodes\n3\n1 0 0 0\n2 1 0 0\n3000000000 0 1 0\n$EndNodes\n"
+                                                         "$Elements\n1\n1 2 2 1 1 1 2 3000000000\n$EndElements\n");
+    EXPECT_EQ(read_msh(v22).num_triangles(), 1);
+}
+
 TEST(MshCounts, NotAnMshFileSaysWhatItIs) {
     ScratchDir dir("msh_counts_png");
     const std::string png = write(dir, "x.msh", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16));

@@ -15,7 +15,8 @@ namespace strata {
 /// (ASCII 4.1: 8 per node, 4 per element; binary 4.1: 24 + the data size per node, twice the
 /// data size per element; ASCII 2.x: 8 and 8; binary 2.x: 28 and 8): "'x.msh' claims
 /// 3000000000 nodes but the file has only 1234 bytes: it is truncated or damaged; write it
-/// again". Other versions are left to Gmsh.
+/// again". MSH 4.1 node tags beyond INT_MAX (its $Nodes header's maxNodeTag) are refused too:
+/// Gmsh 4.8 crashes reading elements on them. Other versions are left to Gmsh.
 void check_msh_counts(const std::string& path);
 
 }  // namespace strata
