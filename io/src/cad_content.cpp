@@ -36,8 +36,7 @@ bool holds_step(std::string_view s) {
         s.remove_prefix(end + 2);
     }
     constexpr std::string_view kKeyword = "ISO-10303-21";
-    if (s.size() < kKeyword.size() ||
-        !std::equal(kKeyword.begin(), kKeyword.end(), s.begin(), [](char k, char c) {
+    if (s.size() < kKeyword.size() || !std::equal(kKeyword.begin(), kKeyword.end(), s.begin(), [](char k, char c) {
             return k == std::toupper(static_cast<unsigned char>(c));
         }))
         return false;
@@ -48,8 +47,8 @@ bool holds_step(std::string_view s) {
 
 /// IGES: the first record (blank lines and CR line ends skipped, as OpenCASCADE does) carries
 /// its section letter and sequence number: `S`, `G`, `C` or `F` (a compressed file's flag
-/// section, by the standard and by some writers) or `B` (binary) in column 73, digits after it; or, in a record that lost its padding, the
-/// letter and the number 1 in the last 8 columns of the line.
+/// section, by the standard and by some writers) or `B` (binary) in column 73, digits after
+/// it; or, in a record that lost its padding, the letter and the number 1 in its last 8 columns.
 bool holds_iges(std::string_view s) {
     s = without_bom(s);
     while (!s.empty() && (s.front() == '\r' || s.front() == '\n')) s.remove_prefix(1);

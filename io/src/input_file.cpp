@@ -82,10 +82,10 @@ constexpr std::array<std::pair<std::string_view, const char*>, 16> kSignatures{{
     {"PK\x05\x06", "an empty ZIP archive"},
     {"\x1f\x8b", "gzip-compressed data (decompress it first)"},
     {"BZh", "bzip2-compressed data (decompress it first)"},
-    {"\xFD" "7zXZ", "xz-compressed data (decompress it first)"},
+    {"\xFD\x37\x7A\x58\x5A", "xz-compressed data (decompress it first)"},
     {"7z\xBC\xAF\x27\x1C", "a 7-Zip archive"},
     {"Rar!\x1A\x07", "a RAR archive"},
-    {"\x7F" "ELF", "a program (an ELF executable)"},
+    {"\x7F\x45LF", "a program (an ELF executable)"},
     {"$MeshFormat", "a Gmsh MSH mesh"},
     {"glTF", "a binary glTF model"},
 }};
@@ -116,8 +116,7 @@ std::string hex_bytes(std::string_view head) {
 InputSource check_input_source(const std::string& path) {
     const struct stat st = status_of(path);
     const std::string give = "; give the " + format_label(path) + " file itself";
-    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode))
-        throw InputError("'" + path + "' is a device, not a file" + give);
+    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) throw InputError("'" + path + "' is a device, not a file" + give);
     if (S_ISSOCK(st.st_mode)) throw InputError("'" + path + "' is a socket, not a file" + give);
     if (S_ISFIFO(st.st_mode)) return InputSource::Stream;
     check_input_file(path);

@@ -49,9 +49,9 @@ private:
 
 /// What the `$MeshFormat` section says about the encoding.
 struct MshFormat {
-    bool v4 = false;        // 4.1 (else 2.x)
-    bool binary = false;    // file-type 1
-    bool swapped = false;   // binary, written on a machine of the other endianness
+    bool v4 = false;            // 4.1 (else 2.x)
+    bool binary = false;        // file-type 1
+    bool swapped = false;       // binary, written on a machine of the other endianness
     std::size_t data_size = 8;  // bytes of a size_t (4.1 binary counts and tags)
 };
 
@@ -158,8 +158,8 @@ std::optional<std::array<std::uint64_t, 4>> header_values(std::string_view s, co
 
 /// InputError if \p what (a section header at \p header) claims more items than \p file_size
 /// bytes hold at \p min_bytes each.
-void check_claim(const std::string& path, std::optional<std::string_view> header, const MshFormat& f,
-                 const char* what, std::uint64_t min_bytes, std::size_t file_size) {
+void check_claim(const std::string& path, std::optional<std::string_view> header, const MshFormat& f, const char* what,
+                 std::uint64_t min_bytes, std::size_t file_size) {
     if (!header) return;
     const std::optional<std::array<std::uint64_t, 4>> values = header_values(*header, f);
     if (!values) return;

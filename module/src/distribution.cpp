@@ -47,11 +47,13 @@ void check_geometric_extent(const DistributionParams& p) {
     const auto [total, last] = log10_geometric_extent(p.first_height, p.growth, p.layers);
     if (std::max(total, last) <= std::log10(kMaxThickness)) return;
     const double ratio = (p.layers - 1) * std::log10(p.growth);
-    auto power = [](double log10_value) { return "1e" + std::to_string(static_cast<long long>(std::floor(log10_value))); };
-    throw InputError("DistributionParams::layers = " + std::to_string(p.layers) + " with DistributionParams::growth = " +
-                     format_number(p.growth) + ": the last layer would be " + format_number(p.growth) + "^" +
-                     std::to_string(p.layers - 1) + " ≈ " + power(ratio) + " times the first (" +
-                     format_number(p.first_height) + ") and the layers " + power(total) +
+    auto power = [](double log10_value) {
+        return "1e" + std::to_string(static_cast<long long>(std::floor(log10_value)));
+    };
+    throw InputError("DistributionParams::layers = " + std::to_string(p.layers) +
+                     " with DistributionParams::growth = " + format_number(p.growth) + ": the last layer would be " +
+                     format_number(p.growth) + "^" + std::to_string(p.layers - 1) + " ≈ " + power(ratio) +
+                     " times the first layer (" + format_number(p.first_height) + ") and the layers " + power(total) +
                      " thick in all, beyond the " + format_number(kMaxThickness, 2) +
                      " a prism's volume can be computed with in double precision; use fewer layers or a smaller "
                      "growth");
@@ -108,11 +110,10 @@ DistributionParams resolve(const DistributionParams& in) {
                              " distribution: its heights follow from the first height and the thickness; give "
                              "no growth ratio");
         if (!(p.thickness > 0.0) || !(p.thickness <= kMaxThickness))
-            throw InputError("DistributionParams::thickness = " + format_number(p.thickness) + ": the " +
-                             std::string(to_string(p.kind)) +
-                             " distribution needs a positive total thickness, at most " +
-                             format_number(kMaxThickness, 2) +
-                             " (a prism's volume must be computable in double precision)");
+            throw InputError(
+                "DistributionParams::thickness = " + format_number(p.thickness) + ": the " +
+                std::string(to_string(p.kind)) + " distribution needs a positive total thickness, at most " +
+                format_number(kMaxThickness, 2) + " (a prism's volume must be computable in double precision)");
     }
     return p;
 }

@@ -80,16 +80,17 @@ TEST(CliBadInput, MshClaimingBillionsOfNodes) {
         "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3000000000 1 3000000000\n2 1 0 3000000000\n1\n0 0 0\n"
         "$EndNodes\n";
     std::ofstream(dir.file("huge.msh"), std::ios::binary) << text;
-    expect_refused(strata_cli(dir, "surface huge.msh -o out.msh"),
-                   "'huge.msh' claims 3000000000 nodes but the file has only " + std::to_string(text.size()) +
-                       " bytes");
+    expect_refused(
+        strata_cli(dir, "surface huge.msh -o out.msh"),
+        "'huge.msh' claims 3000000000 nodes but the file has only " + std::to_string(text.size()) + " bytes");
     EXPECT_EQ(files_in(dir), std::vector<std::string>{"huge.msh"});
 }
 
 TEST(CliBadInput, DeviceNamedStl) {
     test::ScratchDir dir("cli_bad_device");
     fs::create_symlink("/dev/zero", dir.file("x.stl"));
-    expect_refused(strata_cli(dir, "surface x.stl -o out.msh"), "'x.stl' is a device, not a file; give the STL file itself");
+    expect_refused(strata_cli(dir, "surface x.stl -o out.msh"),
+                   "'x.stl' is a device, not a file; give the STL file itself");
     EXPECT_EQ(files_in(dir), std::vector<std::string>{"x.stl"});
 }
 
@@ -131,7 +132,8 @@ TEST(CliBadInput, LayersNoDoubleHolds) {
     test::ScratchDir dir("cli_bad_layers");
     const CliResult r =
         strata_cli(dir, "layers '" + example_data("sphere.stl") + "' -o out.msh --layers 10000 --first-height 1e-5");
-    expect_refused(r, "--layers = 10000 with --growth = 1.2: the last layer would be 1.2^9999 ≈ 1e791 times the first");
+    expect_refused(
+        r, "--layers = 10000 with --growth = 1.2: the last layer would be 1.2^9999 ≈ 1e791 times the first layer");
     EXPECT_NE(r.err.find("use fewer layers or a smaller growth"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("inf"), std::string::npos) << r.err;
     EXPECT_TRUE(files_in(dir).empty());

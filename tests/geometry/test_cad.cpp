@@ -653,9 +653,9 @@ TEST(MeshCadErrors, WrongContentAndPipesAreRefusedBeforeGmshReads) {
     test::expect_error<InputError>([&] { mesh_cad(png, {}); },
                                    {"wing.iges' is not an IGES file: it looks like a PNG image"});
     std::ofstream(dir.file("wing.brep"), std::ios::binary) << test::slurp(example_data("wing_fuselage.step"));
-    test::expect_error<InputError>([&] { mesh_cad(dir.file("wing.brep"), {}); },
-                                   {"wing.brep' is not a BREP file: it looks like a STEP file",
-                                    "give the file the extension of its format"});
+    test::expect_error<InputError>(
+        [&] { mesh_cad(dir.file("wing.brep"), {}); },
+        {"wing.brep' is not a BREP file: it looks like a STEP file", "give the file the extension of its format"});
     // A pipe: refused at once (opening it would wait for a writer; Gmsh reads files by name).
     ASSERT_EQ(::mkfifo(dir.file("pipe.step").c_str(), 0600), 0);
     test::expect_error<InputError>([&] { mesh_cad(dir.file("pipe.step"), {}); },

@@ -72,27 +72,27 @@ TEST(CadContent, StepVariants) {
 TEST(CadContent, IgesVariants) {
     const std::string start = record("", 'S', 1), global = record(",,31HOpen CASCADE IGES processor", 'G', 1);
     for (const std::string& head : {
-             start + "\n" + global + "\n",                      // the usual
-             start + "\r\n" + global + "\r\n",                  // CRLF
-             "\n\r\n" + start + "\n",                           // blank lines first
-             global + "\n",                                     // no start section
-             record("", 'C', 1) + "\n" + start + "\n",          // compressed ASCII: the flag section
+             start + "\n" + global + "\n",              // the usual
+             start + "\r\n" + global + "\r\n",          // CRLF
+             "\n\r\n" + start + "\n",                   // blank lines first
+             global + "\n",                             // no start section
+             record("", 'C', 1) + "\n" + start + "\n",  // compressed ASCII: the flag section
              record("", 'F', 1) + "\n" + start + "\n",
-             std::string("a start line S      1\n"),            // a record that lost its padding
-             record("", 'S', 1) + "   \n",                      // trailing blanks
+             std::string("a start line S      1\n"),  // a record that lost its padding
+             record("", 'S', 1) + "   \n",            // trailing blanks
          })
         EXPECT_TRUE(holds_cad_content(head, CadContent::Iges)) << head;
-    for (const std::string& head : {std::string(""), std::string("hello\n"), record("", 'D', 1) + "\n",
-                                    record("", 'S', 1).substr(0, 73) + "x\n", std::string(200, ' ') + "S1\n",
-                                    std::string("G17 G90\n"), std::string("text G      2\n"),
-                                    std::string("ISO-10303-21;\n")})
+    for (const std::string& head :
+         {std::string(""), std::string("hello\n"), record("", 'D', 1) + "\n", record("", 'S', 1).substr(0, 73) + "x\n",
+          std::string(200, ' ') + "S1\n", std::string("G17 G90\n"), std::string("text G      2\n"),
+          std::string("ISO-10303-21;\n")})
         EXPECT_FALSE(holds_cad_content(head, CadContent::Iges)) << head;
 }
 
 TEST(CadContent, BrepVariants) {
-    for (const char* head : {"DBRep_DrawableShape\n\nCASCADE Topology V1, (c) Matra-Datavision\n",
-                             "CASCADE Topology V3, (c) Open Cascade\nLocations 0\n",
-                             "\nCASCADE Topology V1, (c) Matra-Datavision\n"})
+    for (const char* head :
+         {"DBRep_DrawableShape\n\nCASCADE Topology V1, (c) Matra-Datavision\n",
+          "CASCADE Topology V3, (c) Open Cascade\nLocations 0\n", "\nCASCADE Topology V1, (c) Matra-Datavision\n"})
         EXPECT_TRUE(holds_cad_content(head, CadContent::Brep)) << head;
     for (const char* head : {"", "Locations 0\nCASCADE Topology V1", "ISO-10303-21;"})
         EXPECT_FALSE(holds_cad_content(head, CadContent::Brep)) << head;
@@ -103,8 +103,9 @@ TEST(CadContent, WrongContentIsNamed) {
     const std::string png = write(dir, "x.iges", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16));
     test::expect_error<InputError>(
         [&] { check_cad_content(png, CadContent::Iges); },
-        {"'" + png + "' is not an IGES file: it looks like a PNG image; export the model again as IGES, or give the "
-                     "file the extension of its format (.step, .iges, .brep)"});
+        {"'" + png +
+         "' is not an IGES file: it looks like a PNG image; export the model again as IGES, or give the "
+         "file the extension of its format (.step, .iges, .brep)"});
     const std::string step = write(dir, "wing.brep", "ISO-10303-21;\nHEADER;\n");
     test::expect_error<InputError>([&] { check_cad_content(step, CadContent::Brep); },
                                    {"is not a BREP file: it looks like a STEP file"});

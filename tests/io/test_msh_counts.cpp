@@ -54,19 +54,19 @@ TEST(MshCounts, Ascii41HugeNodeAndElementCounts) {
     expect_claim(write(dir, "nodes.msh",
                        kAscii41 + "$Nodes\n1 3000000000 1 3000000000\n2 1 0 3000000000\n1\n0 0 0\n$EndNodes\n"),
                  "3000000000 nodes");
-    expect_claim(write(dir, "elements.msh", kAscii41 +
-                                                "$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
-                                                "$Elements\n1 2000000000 1 2000000000\n2 1 2 2000000000\n1 1 2 3\n"
-                                                "$EndElements\n"),
+    expect_claim(write(dir, "elements.msh",
+                       kAscii41 + "$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
+                                  "$Elements\n1 2000000000 1 2000000000\n2 1 2 2000000000\n1 1 2 3\n"
+                                  "$EndElements\n"),
                  "2000000000 elements");
 }
 
 TEST(MshCounts, Ascii22HugeNodeAndElementCounts) {
     ScratchDir dir("msh_counts_a22");
     expect_claim(write(dir, "nodes.msh", kAscii22 + "$Nodes\n3000000000\n1 0 0 0\n$EndNodes\n"), "3000000000 nodes");
-    expect_claim(write(dir, "elements.msh", kAscii22 +
-                                                "$Nodes\r\n3\r\n1 0 0 0\r\n2 1 0 0\r\n3 0 1 0\r\n$EndNodes\r\n"
-                                                "$Elements\r\n4000000000\r\n1 2 0 1 2 3\r\n$EndElements\r\n"),
+    expect_claim(write(dir, "elements.msh",
+                       kAscii22 + "$Nodes\r\n3\r\n1 0 0 0\r\n2 1 0 0\r\n3 0 1 0\r\n$EndNodes\r\n"
+                                  "$Elements\r\n4000000000\r\n1 2 0 1 2 3\r\n$EndElements\r\n"),
                  "4000000000 elements");
 }
 
@@ -76,8 +76,8 @@ TEST(MshCounts, Binary41And22HugeCountsInEitherByteOrder) {
         SCOPED_TRACE(swap ? "swapped" : "native");
         const std::string one = raw(std::int32_t{1}, swap);
         std::string b41 = "$MeshFormat\n4.1 1 8\n" + one + "\n$EndMeshFormat\n$Nodes\n";
-        for (const std::uint64_t v : {std::uint64_t{1}, std::uint64_t{3000000000}, std::uint64_t{1},
-                                      std::uint64_t{3000000000}})
+        for (const std::uint64_t v :
+             {std::uint64_t{1}, std::uint64_t{3000000000}, std::uint64_t{1}, std::uint64_t{3000000000}})
             b41 += raw(v, swap);
         b41 += std::string(40, '\0') + "\n$EndNodes\n";
         expect_claim(write(dir, "b41.msh", b41), "3000000000 nodes");
@@ -91,24 +91,26 @@ TEST(MshCounts, Binary41And22HugeCountsInEitherByteOrder) {
 TEST(MshCounts, Msh41NodeTagsBeyondAnIntAreRefused) {
     // Gmsh 4.8 crashed (SIGSEGV in GModel::getMeshVertexByTag(int)) on an element using node 3e9.
     ScratchDir dir("msh_counts_tags");
-    const std::string path = write(dir, "tags.msh", kAscii41 +
-                                                        "$Nodes\n1 3 1 3000000000\n2 1 0 3\n1\n2\n3000000000\n"
-                                                        "0 0 0\n1 0 0\n0 1 0\n$EndNodes\n$Elements\n1 1 1 1\n"
-                                                        "2 1 2 1\n1 1 2 3000000000\n$EndElements\n");
+    const std::string path = write(dir, "tags.msh",
+                                   kAscii41 +
+                                       "$Nodes\n1 3 1 3000000000\n2 1 0 3\n1\n2\n3000000000\n"
+                                       "0 0 0\n1 0 0\n0 1 0\n$EndNodes\n$Elements\n1 1 1 1\n"
+                                       "2 1 2 1\n1 1 2 3000000000\n$EndElements\n");
     test::expect_error<InputError>([&] { read_msh(path); },
                                    {"tags.msh': its node tags reach 3000000000, beyond the 2147483647 Gmsh reads"});
     // MSH 2.2 and element tags take them (Gmsh reads those as they are).
-    const std::string v22 = write(dir, "tags22.msh", kAscii22 +
-                                                         "$Nodes\n3\n1 0 0 0\n2 1 0 0\n3000000000 0 1 0\n$EndNodes\n"
-                                                         "$Elements\n1\n1 2 2 1 1 1 2 3000000000\n$EndElements\n");
+    const std::string v22 = write(dir, "tags22.msh",
+                                  kAscii22 +
+                                      "$Nodes\n3\n1 0 0 0\n2 1 0 0\n3000000000 0 1 0\n$EndNodes\n"
+                                      "$Elements\n1\n1 2 2 1 1 1 2 3000000000\n$EndElements\n");
     EXPECT_EQ(read_msh(v22).num_triangles(), 1);
 }
 
 TEST(MshCounts, NotAnMshFileSaysWhatItIs) {
     ScratchDir dir("msh_counts_png");
     const std::string png = write(dir, "x.msh", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16));
-    test::expect_error<InputError>([&] { read_msh(png); },
-                                   {"'" + png + "' is not an MSH file: it looks like a PNG image; write the mesh again"});
+    test::expect_error<InputError>(
+        [&] { read_msh(png); }, {"'" + png + "' is not an MSH file: it looks like a PNG image; write the mesh again"});
     const std::string empty = write(dir, "empty.msh", "");
     test::expect_error<InputError>([&] { read_msh(empty); }, {"'" + empty + "' is not an MSH file: it is empty"});
 }
