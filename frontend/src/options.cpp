@@ -105,6 +105,7 @@ LayerParams layer_params(const LayerOptions& o) {
     p.distribution.kind = parse_distribution(o.distribution);
     p.normals = parse_normal_method(o.normals);
     p.proximity = parse_proximity_mode(o.proximity);
+    (void)resolve(p.distribution);  // its errors before any input is read: an option should not cost a run
     return p;
 }
 

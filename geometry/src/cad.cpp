@@ -6,11 +6,13 @@
 #include <strata/core/format.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
+#include <strata/io/cad_content.h>
 #include <strata/io/cad_units.h>
 #include <strata/io/files.h>
 #include <strata/io/geo_script.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
+#include <strata/io/input_file.h>
 
 #include "wall_size.h"
 
@@ -22,6 +24,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <new>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -201,44 +204,64 @@ private:
     int saved_ = -1;
 };
 
+/// InputError unless \p path can be given to Gmsh: a file (Gmsh reads it by name, more than once:
+/// its unit, the import, sewing's reload), holding what its extension says (OpenCASCADE takes a
+/// PNG for a model with no surfaces).
+void check_input(const std::string& path, CadFormat format) {
+    require_regular_input(path, "Gmsh");
+    if (format == CadFormat::Geo) return;
+    check_cad_content(path, format == CadFormat::Step   ? CadContent::Step
+                            : format == CadFormat::Iges ? CadContent::Iges
+                                                        : CadContent::Brep);
+}
+
+/// The file into the current model (load without its error translation).
+void import_file(const std::string& path, CadFormat format) {
+    if (format == CadFormat::Geo) {
+        // merge, not open: gmsh::open renames the current model after the file (or
+        // adds a new one), and the current model belongs to our GmshSession.
+        merge_geo_script(path);  // the script's Macros renamed if Gmsh holds them already
+        // A script may have used either kernel; both must be visible to the model.
+        gmsh::model::geo::synchronize();
+        gmsh::model::occ::synchronize();
+    } else {
+        // The format is given explicitly: Gmsh guesses from the extension and knows
+        // neither ".brp" nor upper-case extensions.
+        const char* kind = format == CadFormat::Step ? "step" : format == CadFormat::Iges ? "iges" : "brep";
+        // Every shape, not only the highest dimension's: with highestDimOnly a file
+        // holding a solid and loose faces (a fuselage solid and a wing written as
+        // surfaces) lost the faces without a word. Free curves and points (a STEP's
+        // construction geometry) bound nothing Strata meshes and go.
+        gmsh::vectorpair imported;
+        {
+            const std::optional<QuietStdout> quiet =
+                format == CadFormat::Iges ? std::make_optional<QuietStdout>() : std::nullopt;
+            gmsh::model::occ::importShapes(path, imported, false, kind);
+        }
+        gmsh::model::occ::synchronize();
+        for (const int dim : {1, 0}) {
+            gmsh::vectorpair entities, loose;
+            gmsh::model::getEntities(entities, dim);
+            for (const auto& e : entities) {
+                std::vector<int> up, down;
+                gmsh::model::getAdjacencies(e.first, e.second, up, down);
+                if (up.empty()) loose.push_back(e);
+            }
+            if (loose.empty()) continue;
+            gmsh::model::occ::remove(loose, true);
+            gmsh::model::occ::synchronize();
+        }
+    }
+}
+
 void load(const std::string& path, CadFormat format) {
     const std::string context = path + ": Gmsh could not read this " + std::string(format_name(format)) + " file";
     try {
         gmsh_call(context, [&] {
-            if (format == CadFormat::Geo) {
-                // merge, not open: gmsh::open renames the current model after the file (or
-                // adds a new one), and the current model belongs to our GmshSession.
-                merge_geo_script(path);  // the script's Macros renamed if Gmsh holds them already
-                // A script may have used either kernel; both must be visible to the model.
-                gmsh::model::geo::synchronize();
-                gmsh::model::occ::synchronize();
-            } else {
-                // The format is given explicitly: Gmsh guesses from the extension and knows
-                // neither ".brp" nor upper-case extensions.
-                const char* kind = format == CadFormat::Step ? "step" : format == CadFormat::Iges ? "iges" : "brep";
-                // Every shape, not only the highest dimension's: with highestDimOnly a file
-                // holding a solid and loose faces (a fuselage solid and a wing written as
-                // surfaces) lost the faces without a word. Free curves and points (a STEP's
-                // construction geometry) bound nothing Strata meshes and go.
-                gmsh::vectorpair imported;
-                {
-                    const std::optional<QuietStdout> quiet =
-                        format == CadFormat::Iges ? std::make_optional<QuietStdout>() : std::nullopt;
-                    gmsh::model::occ::importShapes(path, imported, false, kind);
-                }
-                gmsh::model::occ::synchronize();
-                for (const int dim : {1, 0}) {
-                    gmsh::vectorpair entities, loose;
-                    gmsh::model::getEntities(entities, dim);
-                    for (const auto& e : entities) {
-                        std::vector<int> up, down;
-                        gmsh::model::getAdjacencies(e.first, e.second, up, down);
-                        if (up.empty()) loose.push_back(e);
-                    }
-                    if (loose.empty()) continue;
-                    gmsh::model::occ::remove(loose, true);
-                    gmsh::model::occ::synchronize();
-                }
+            try {
+                import_file(path, format);
+            } catch (const std::bad_alloc&) {
+                throw out_of_memory(path);
             }
         });
     } catch (const BackendError& e) {
@@ -703,7 +726,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
                          ": not a CAD file Strata reads; use .step/.stp, .iges/.igs, "
                          ".brep/.brp or a Gmsh .geo script");
     validate(params);
-    check_input_file(path);
+    check_input(path, *format);
     const bool script = *format == CadFormat::Geo;
 
     GmshSession session("strata_cad");

@@ -7,6 +7,7 @@
 #include <strata/geometry/topology.h>
 #include <strata/geometry/touching.h>
 #include <strata/io/files.h>
+#include <strata/io/input_file.h>
 #include <strata/io/read_surface.h>
 
 #include <algorithm>
@@ -17,6 +18,24 @@
 namespace strata {
 namespace {
 
+/// \p stage's result, its topology and input errors named after \p source: the stages after
+/// check_surface (filling holes, orienting, fusing, collapsing short edges) name faces, nodes
+/// and edges, not the file they came from.
+template <class F>
+auto naming(const std::string& source, F&& stage) -> decltype(stage()) {
+    const auto named = [&](const std::exception& e) {
+        const std::string what = e.what();
+        return what.compare(0, source.size(), source) == 0 ? what : source + ": " + what;
+    };
+    try {
+        return stage();
+    } catch (const TopologyError& e) {
+        throw TopologyError(named(e));
+    } catch (const InputError& e) {
+        throw InputError(named(e));
+    }
+}
+
 std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
     return s;
@@ -26,7 +45,7 @@ std::string lower(std::string s) {
 SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const CadParams& cad, CadUnits* units,
                      WallSizeReport* walls, SewReport* sew, RecombinationReport* recombination,
                      const Progress* progress) {
-    check_input_file(path);
+    check_input_source(path);  // not check_input_file: opening a pipe here would lose what it holds
     if (is_cad_file(path)) {
         CadParams with_kinds = cad;
         with_kinds.wall_patch_kinds = params.patch_kinds;
@@ -123,14 +142,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     assign_patch_kinds(raw, params.patch_kinds, source);
     // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
     if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
-    SurfaceMesh merged;
-    try {
-        merged = merge_coincident_nodes(raw, params.merge_tolerance);
-    } catch (const TopologyError& e) {
-        // Its one TopologyError, coordinates spanning more than a double computes with: a real
-        // file can hold them, so the message names it.
-        throw TopologyError(source + ": " + e.what());
-    }
+    SurfaceMesh merged = naming(source, [&] { return merge_coincident_nodes(raw, params.merge_tolerance); });
     const Index merged_nodes = raw.num_points() - merged.num_points();
     Index collapsed = 0, duplicates = 0, t_junctions = 0;
     merged = remove_collapsed_faces(merged, &collapsed);
@@ -166,16 +178,16 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
                             "); fusing the bodies into one (--fuse) removes them");
     }
     HoleReport holes;
-    if (params.fill_holes > 0) merged = fill_holes(merged, params.fill_holes, &holes);
+    if (params.fill_holes > 0) merged = naming(source, [&] { return fill_holes(merged, params.fill_holes, &holes); });
     strata::report(progress, "surface", 0.8);
     OrientReport orient;
-    SurfaceMesh oriented = orient_surface(merged, &orient, params.internal_flow);
+    SurfaceMesh oriented = naming(source, [&] { return orient_surface(merged, &orient, params.internal_flow); });
     FuseReport fuse;
     if (params.fuse) {
-        SurfaceMesh fused = fuse_components(oriented, &fuse);
+        SurfaceMesh fused = naming(source, [&] { return fuse_components(oriented, &fuse); });
         if (fuse.fused > 0) {
             // The union's faces with the untouched components: checked and oriented again.
-            fused = merge_coincident_nodes(fused, params.merge_tolerance);
+            fused = naming(source, [&] { return merge_coincident_nodes(fused, params.merge_tolerance); });
             // The union's cuts can pass within the merge tolerance of a node (a cone's faceted
             // side across a sphere's vertex): merged, the sliver faces between repeat a node.
             Index reduced = 0;
@@ -197,14 +209,15 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
                                     " (the union of the bodies left it where their facets nearly coincide: --remesh "
                                     "rebuilds the united surface)");
             }
-            oriented = orient_surface(fused, &orient, params.internal_flow);
+            oriented = naming(source, [&] { return orient_surface(fused, &orient, params.internal_flow); });
         }
     }
     // Not before remeshing, which rebuilds the surface from the input's own edges: given the
     // collapsed glider STL, Gmsh's surfaces kept 148 needles instead of 4.
     ShortEdgeReport short_edges;
     if (params.collapse_ratio > 0.0 && !params.remesh) {
-        SurfaceMesh shorter = collapse_short_edges(oriented, params.collapse_ratio, &short_edges);
+        SurfaceMesh shorter =
+            naming(source, [&] { return collapse_short_edges(oriented, params.collapse_ratio, &short_edges); });
         if (short_edges.collapsed > 0) {
             check_surface(shorter, source + " (short edges collapsed)");
             oriented = std::move(shorter);
@@ -214,10 +227,10 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     if (params.remesh) {
         strata::report(progress, "surface", 0.9);
         SurfaceMesh remeshed = remesh_surface(oriented, params.remeshing, source, &remesh);
-        remeshed = merge_coincident_nodes(remeshed, params.merge_tolerance);
+        remeshed = naming(source, [&] { return merge_coincident_nodes(remeshed, params.merge_tolerance); });
         check_surface(remeshed, source + " (remeshed)");
         OrientReport again;
-        oriented = orient_surface(remeshed, &again, params.internal_flow);
+        oriented = naming(source, [&] { return orient_surface(remeshed, &again, params.internal_flow); });
         orient.flipped_faces += again.flipped_faces;
     }
     if (report) {

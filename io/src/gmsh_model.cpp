@@ -2,9 +2,10 @@
 // elements and physical groups into faces, cells and patches, for read_msh, read_volume_msh,
 // the CAD import and the Gmsh-API entry point. Gmsh's 1-based size_t tags stay in this file.
 
-#include <strata/io/files.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
+#include <strata/io/input_file.h>
+#include <strata/io/msh_counts.h>
 
 #include "gmsh_element_types.h"
 
@@ -12,6 +13,7 @@
 #include <array>
 #include <limits>
 #include <map>
+#include <new>
 #include <numeric>
 #include <utility>
 
@@ -320,12 +322,20 @@ VolumeMesh volume_from_gmsh_model(const std::string& context) {
 
 void merge_msh_file(const std::string& path) {
     // gmsh::merge on a missing file logs an error but an open on one silently starts an empty
-    // model, so the file is checked first with the system's own reason.
-    check_input_file(path);
+    // model, so the file is checked first with the system's own reason. Gmsh opens it by name
+    // (a pipe would be read here first), and sizes its arrays from the counts it claims.
+    require_regular_input(path, "Gmsh");
+    check_msh_counts(path);
     const std::string reading = "reading '" + path + "'";
     GmshLock lock(reading);
     try {
-        gmsh_call(reading, [&] { gmsh::merge(path); });
+        gmsh_call(reading, [&] {
+            try {
+                gmsh::merge(path);
+            } catch (const std::bad_alloc&) {
+                throw out_of_memory(path);
+            }
+        });
     } catch (const BackendError& e) {
         // Gmsh fails to read a file that is not valid MSH: that is the user's input.
         throw InputError(std::string(e.what()) + " (is it a valid MSH 2.2 or 4.1 file?)");

@@ -3,19 +3,17 @@
 // most of it reading and scanning the text; binary is a straight copy.
 
 #include <strata/core/error.h>
-#include <strata/io/files.h>
+#include <strata/io/input_file.h>
 #include <strata/io/read_surface.h>
 
 #include <bit>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
-#include <memory>
+#include <new>
 #include <string>
 #include <string_view>
 
@@ -24,25 +22,6 @@ namespace {
 
 constexpr std::size_t kBinaryHeader = 84;  // 80-byte comment + uint32 facet count
 constexpr std::size_t kBinaryFacet = 50;   // normal + 3 vertices (12 float32) + uint16 attribute
-
-/// The whole file as bytes; InputError "cannot open 'X': <reason>" otherwise.
-std::string slurp(const std::string& path) {
-    check_input_file(path);
-    std::error_code ec;
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!f) throw InputError("cannot open '" + path + "': " + std::strerror(errno));
-    // One read of the known size (no regrowth of a 100+ MB buffer); the loop also covers
-    // files that change size or report none (pipes).
-    std::string data(std::filesystem::file_size(path, ec), '\0');
-    if (ec) data.clear();
-    std::size_t size = std::fread(data.data(), 1, data.size(), f.get());
-    data.resize(size);
-    char buf[1 << 16];
-    std::size_t got;
-    while ((got = std::fread(buf, 1, sizeof buf, f.get())) > 0) data.append(buf, got);
-    if (std::ferror(f.get())) throw InputError("cannot read '" + path + "': " + std::strerror(errno));
-    return data;
-}
 
 /// Index overflow guard: STL stores 3 unmerged nodes per facet, so 32-bit indices end at
 /// ~715 M facets.
@@ -267,13 +246,8 @@ bool looks_ascii(std::string_view data) {
     return true;
 }
 
-}  // namespace
-
-SurfaceMesh read_stl(const std::string& path) {
-    return read_stl_bytes(slurp(path), path);
-}
-
-SurfaceMesh read_stl_bytes(std::string_view data, const std::string& source) {
+/// The STL in \p data (read_stl_bytes without its memory guard).
+SurfaceMesh parse_stl(std::string_view data, const std::string& source) {
     if (data.size() >= kBinaryHeader) {
         const std::size_t n = load_u32le(data.data() + 80);
         if (data.size() == kBinaryHeader + kBinaryFacet * n) return parse_binary(source, data);
@@ -293,6 +267,21 @@ SurfaceMesh read_stl_bytes(std::string_view data, const std::string& source) {
                      std::to_string(n) + " = " + std::to_string(kBinaryHeader + kBinaryFacet * n) +
                      " bytes expected, but the file has " + std::to_string(data.size()) + " (" + std::to_string(whole) +
                      " whole facets); the file is truncated or not an STL file");
+}
+
+}  // namespace
+
+SurfaceMesh read_stl(const std::string& path) {
+    // read_input: a pipe is read to its end, a device refused (its size means nothing).
+    return read_stl_bytes(read_input(path), path);
+}
+
+SurfaceMesh read_stl_bytes(std::string_view data, const std::string& source) {
+    try {
+        return parse_stl(data, source);
+    } catch (const std::bad_alloc&) {
+        throw out_of_memory(source);
+    }
 }
 
 }  // namespace strata

@@ -3,9 +3,12 @@
 #include <strata/core/format.h>
 #include <strata/module/distribution.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <string>
+#include <utility>
 
 namespace strata {
 namespace {
@@ -22,6 +25,38 @@ double bisect(F f, double lo, double hi) {
             lo = mid;
     }
     return 0.5 * (lo + hi);
+}
+
+/// The largest total thickness the layers may have: a prism's volume and Jacobians multiply
+/// three of its lengths, and the layer stage must be able to compute them in double precision.
+const double kMaxThickness = std::cbrt(std::numeric_limits<double>::max());  // ≈ 5.6e102
+
+/// log10 of the geometric layers' total thickness h1 (q^n − 1)/(q − 1) and of their last
+/// marching distance h1 q^n, computed so that neither overflows.
+std::pair<double, double> log10_geometric_extent(double h1, double q, int n) {
+    if (q == 1.0) return {std::log10(h1) + std::log10(static_cast<double>(n)), std::log10(h1)};
+    const double x = n * std::log1p(q - 1.0);  // ln q^n > 0
+    const double ln_total = std::log(h1) + x + std::log1p(-std::exp(-x)) - std::log(q - 1.0);
+    return {ln_total / std::log(10.0), (std::log(h1) + x) / std::log(10.0)};
+}
+
+/// InputError if a geometric distribution's layers are thicker in all, or its last marching
+/// distance larger, than kMaxThickness: 10000 layers at growth 1.2 are 1e787 thick, which
+/// is no number a double holds.
+void check_geometric_extent(const DistributionParams& p) {
+    const auto [total, last] = log10_geometric_extent(p.first_height, p.growth, p.layers);
+    if (std::max(total, last) <= std::log10(kMaxThickness)) return;
+    const double ratio = (p.layers - 1) * std::log10(p.growth);
+    auto power = [](double log10_value) {
+        return "1e" + std::to_string(static_cast<long long>(std::floor(log10_value)));
+    };
+    throw InputError("DistributionParams::layers = " + std::to_string(p.layers) +
+                     " with DistributionParams::growth = " + format_number(p.growth) + ": the last layer would be " +
+                     format_number(p.growth) + "^" + std::to_string(p.layers - 1) + " ≈ " + power(ratio) +
+                     " times the first layer (" + format_number(p.first_height) + ") and the layers " + power(total) +
+                     " thick in all, beyond the " + format_number(kMaxThickness, 2) +
+                     " a prism's volume can be computed with in double precision; use fewer layers or a smaller "
+                     "growth");
 }
 
 }  // namespace
@@ -67,15 +102,18 @@ DistributionParams resolve(const DistributionParams& in) {
         if (!(p.growth >= 1.0) || !std::isfinite(p.growth))
             throw InputError("DistributionParams::growth = " + format_number(p.growth) +
                              ": the growth ratio must be ≥ 1");
+        check_geometric_extent(p);
     } else {
         if (has_growth)
             throw InputError("DistributionParams::growth = " + format_number(p.growth) + " with the " +
                              std::string(to_string(p.kind)) +
                              " distribution: its heights follow from the first height and the thickness; give "
                              "no growth ratio");
-        if (!(p.thickness > 0.0) || !std::isfinite(p.thickness))
-            throw InputError("DistributionParams::thickness = " + format_number(p.thickness) + ": the " +
-                             std::string(to_string(p.kind)) + " distribution needs a positive, finite total thickness");
+        if (!(p.thickness > 0.0) || !(p.thickness <= kMaxThickness))
+            throw InputError(
+                "DistributionParams::thickness = " + format_number(p.thickness) + ": the " +
+                std::string(to_string(p.kind)) + " distribution needs a positive total thickness, at most " +
+                format_number(kMaxThickness, 2) + " (a prism's volume must be computable in double precision)");
     }
     return p;
 }

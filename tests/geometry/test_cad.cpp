@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -643,6 +644,22 @@ TEST(MeshCadErrors, ModelWithoutSurfaces) {
     const std::string what = error_text([&] { mesh_cad(path, {}); });
     EXPECT_NE(what.find("curves.geo: no surfaces in the model"), std::string::npos) << what;
     EXPECT_THROW(mesh_cad(write_file(dir, "empty.geo", ""), {}), InputError);
+}
+
+TEST(MeshCadErrors, WrongContentAndPipesAreRefusedBeforeGmshReads) {
+    ScratchDir dir("cad_wrong_content");
+    // A PNG named .iges gave "no surfaces in the model"; a STEP named .brep, Gmsh's parse error.
+    const std::string png = write_file(dir, "wing.iges", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16));
+    test::expect_error<InputError>([&] { mesh_cad(png, {}); },
+                                   {"wing.iges' is not an IGES file: it looks like a PNG image"});
+    std::ofstream(dir.file("wing.brep"), std::ios::binary) << test::slurp(example_data("wing_fuselage.step"));
+    test::expect_error<InputError>(
+        [&] { mesh_cad(dir.file("wing.brep"), {}); },
+        {"wing.brep' is not a BREP file: it looks like a STEP file", "give the file the extension of its format"});
+    // A pipe: refused at once (opening it would wait for a writer; Gmsh reads files by name).
+    ASSERT_EQ(::mkfifo(dir.file("pipe.step").c_str(), 0600), 0);
+    test::expect_error<InputError>([&] { mesh_cad(dir.file("pipe.step"), {}); },
+                                   {"pipe.step' is a pipe, not a file: Gmsh reads it by name"});
 }
 
 TEST(MeshCadErrors, BadParametersAreRefusedBeforeReading) {

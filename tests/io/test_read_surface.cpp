@@ -11,6 +11,7 @@
 
 #include "test_support.h"
 
+#include <sys/stat.h>
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -22,6 +23,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace strata {
@@ -189,6 +191,26 @@ TEST(ReadStl, MultiSolidAsciiGivesOnePatchPerSolid) {
 TEST(ReadStl, MissingFile) {
     const std::string path = "/nonexistent_dir/io_missing.stl";
     expect_input_error([&] { read_stl(path); }, {"cannot open", path, "no such file"});
+}
+
+TEST(ReadStl, PipeReadToItsEndDeviceRefused) {
+    test::ScratchDir dir("io_stl_pipe");
+    const std::string fifo = dir.file("sphere.stl");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::string bytes = slurp(example_data("sphere.stl"));
+    std::thread writer([&] {
+        std::FILE* f = std::fopen(fifo.c_str(), "wb");  // waits for the reader
+        if (!f) return;
+        std::fwrite(bytes.data(), 1, bytes.size(), f);
+        std::fclose(f);
+    });
+    const SurfaceMesh m = read_stl(fifo);
+    writer.join();
+    EXPECT_EQ(m.num_triangles(), 606);
+    EXPECT_EQ(m.points, read_stl(example_data("sphere.stl")).points);
+    // A device's size means nothing (/dev/zero: 0, and it never ends).
+    fs::create_symlink("/dev/zero", dir.file("zero.stl"));
+    expect_input_error([&] { read_stl(dir.file("zero.stl")); }, {"zero.stl' is a device, not a file"});
 }
 
 TEST(ReadStl, TruncatedBinary) {

@@ -249,6 +249,29 @@ TEST(Distribution, RejectsBadInput) {
     expect_input_error([] { (void)first_height_from_yplus(1.0, 1e6, 0.0); }, "length");
 }
 
+TEST(Distribution, GeometricLayersBeyondDoublePrecisionAreRefused) {
+    // 10000 layers at 1.2 would be 1e787 thick: "inf" everywhere downstream.
+    test::expect_error<InputError>(
+        [] { (void)layer_heights(params(Distribution::Geometric, 10000, 1e-5, 1.2, 0.0)); },
+        {"DistributionParams::layers = 10000 with DistributionParams::growth = 1.2: the last layer would be "
+         "1.2^9999 ≈ 1e791 times the first layer (1e-05) and the layers 1e787 thick in all",
+         "use fewer layers or a smaller growth"});
+    // The bound is that a prism's volume, three lengths multiplied, stays a double: at h1 1e-5 and
+    // growth 1.2 the layers reach it between 1351 (4.7e102 thick) and 1352 layers (5.6e102).
+    const std::vector<double> d = layer_heights(params(Distribution::Geometric, 1351, 1e-5, 1.2, 0.0));
+    const double t = total(d, 1351);
+    EXPECT_TRUE(std::isfinite(t * t * t)) << t;
+    EXPECT_GT(t, 4.7e102);
+    expect_input_error([] { (void)layer_heights(params(Distribution::Geometric, 1352, 1e-5, 1.2, 0.0)); }, "1352");
+    // Growth 1 never grows: any number of layers is a finite thickness.
+    EXPECT_NEAR(total(layer_heights(params(Distribution::Geometric, 100000, 1e-5, 1.0, 0.0)), 100000), 1.0, 1e-9);
+    // A given thickness is bounded the same way.
+    expect_input_error([] { (void)layer_heights(params(Distribution::Thickness, 10, 1e-3, 0.0, 1e200)); },
+                       "DistributionParams::thickness = 1e+200");
+    expect_input_error([] { (void)layer_heights(params(Distribution::Tanh, 10, 1e-3, 0.0, 1e200)); },
+                       "at most 5.6e+102");
+}
+
 TEST(Distribution, Names) {
     for (Distribution d : {Distribution::Auto, Distribution::Geometric, Distribution::Thickness, Distribution::Tanh})
         EXPECT_EQ(parse_distribution(to_string(d)), d);

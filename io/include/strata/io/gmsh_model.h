@@ -98,8 +98,10 @@ void add_surface_to_gmsh_model(const SurfaceMesh& mesh);
 void add_volume_to_gmsh_model(const VolumeMesh& mesh);
 
 /// Merge the .msh file \p path into the current model (gmsh::merge, not gmsh::open, which may
-/// replace the current model). InputError for a missing or unreadable file and for a file Gmsh
-/// cannot parse (with Gmsh's reason).
+/// replace the current model). InputError for a missing or unreadable file, a pipe or device
+/// (Gmsh reads files by name), a file that is not MSH or claims more nodes or elements than its
+/// size holds (check_msh_counts), a file Gmsh cannot parse (with Gmsh's reason) and one whose
+/// mesh does not fit in memory.
 void merge_msh_file(const std::string& path);
 
 }  // namespace strata

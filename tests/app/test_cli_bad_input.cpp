@@ -1,0 +1,143 @@
+// The `strata` program on inputs that are not what their names say (a PNG named .iges, a .msh
+// claiming billions of nodes, /dev/zero named .stl, a pipe) and on layers no double holds: one
+// line naming the file or the option and what to do, exit code 1, no output file. A pipe named
+// .stl is read to its end.
+
+#include <strata/io/read_surface.h>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace strata {
+namespace {
+
+namespace fs = std::filesystem;
+using test::example_data;
+using test::slurp;
+
+struct CliResult {
+    int code = -1;
+    std::string out, err;
+};
+
+/// Run the strata program with \p args (already shell-quoted) in \p dir, its standard input
+/// from \p feed (a shell command piped in) or /dev/null; stopped after 120 s, so that a run
+/// waiting for ever on a pipe fails instead of hanging the suite.
+CliResult strata_cli(const test::ScratchDir& dir, const std::string& args, const std::string& feed = "") {
+    const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+    const std::string cmd = "cd '" + dir.path().string() + "' && " + (feed.empty() ? "" : feed + " | ") +
+                            "timeout 120 '" + STRATA_CLI + "' " + args + " >'" + out + "' 2>'" + err + "'" +
+                            (feed.empty() ? " </dev/null" : "");
+    const int status = std::system(cmd.c_str());
+    CliResult r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+}
+
+/// Files in \p dir (after the runner removed its own capture files).
+std::vector<std::string> files_in(const test::ScratchDir& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir.path())) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+/// \p r failed as a bad input does: exit 1, one line on stderr holding \p message.
+void expect_refused(const CliResult& r, const std::string& message) {
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << "'" << message << "' not in: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+TEST(CliBadInput, PngNamedIges) {
+    test::ScratchDir dir("cli_bad_png");
+    std::ofstream(dir.file("wing.iges"), std::ios::binary) << std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16);
+    expect_refused(strata_cli(dir, "surface wing.iges -o out.msh"),
+                   "'wing.iges' is not an IGES file: it looks like a PNG image; export the model again as IGES, or "
+                   "give the file the extension of its format (.step, .iges, .brep)");
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"wing.iges"});
+}
+
+TEST(CliBadInput, MshClaimingBillionsOfNodes) {
+    test::ScratchDir dir("cli_bad_msh");
+    const std::string text =
+        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3000000000 1 3000000000\n2 1 0 3000000000\n1\n0 0 0\n"
+        "$EndNodes\n";
+    std::ofstream(dir.file("huge.msh"), std::ios::binary) << text;
+    expect_refused(
+        strata_cli(dir, "surface huge.msh -o out.msh"),
+        "'huge.msh' claims 3000000000 nodes but the file has only " + std::to_string(text.size()) + " bytes");
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"huge.msh"});
+}
+
+TEST(CliBadInput, DeviceNamedStl) {
+    test::ScratchDir dir("cli_bad_device");
+    fs::create_symlink("/dev/zero", dir.file("x.stl"));
+    expect_refused(strata_cli(dir, "surface x.stl -o out.msh"),
+                   "'x.stl' is a device, not a file; give the STL file itself");
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"x.stl"});
+}
+
+TEST(CliBadInput, PipeNamedMshOrStepIsRefusedWithoutWaiting) {
+    test::ScratchDir dir("cli_bad_fifo");
+    // No writer: opening either would wait for ever (the runner's timeout would end it: 124).
+    for (const char* name : {"p.msh", "p.step"}) {
+        ASSERT_EQ(::mkfifo(dir.file(name).c_str(), 0600), 0);
+        expect_refused(strata_cli(dir, std::string("surface ") + name + " -o out.msh"),
+                       std::string(name) + "' is a pipe, not a file: Gmsh reads it by name");
+    }
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"p.msh", "p.step"}));
+}
+
+TEST(CliBadInput, PipeNamedStlIsReadToItsEnd) {
+    test::ScratchDir dir("cli_fifo_stl");
+    const std::string fifo = dir.file("sphere.stl");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::string bytes = slurp(example_data("sphere.stl"));
+    std::thread writer([&] {
+        std::FILE* f = std::fopen(fifo.c_str(), "wb");  // waits for the program to open it
+        if (!f) return;
+        std::fwrite(bytes.data(), 1, bytes.size(), f);
+        std::fclose(f);
+    });
+    const CliResult r = strata_cli(dir, "surface sphere.stl -o out.msh");
+    writer.join();
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(read_msh(dir.file("out.msh")).num_triangles(), 606);
+
+    // And the shell's pipe, through /dev/stdin under an .stl name.
+    fs::create_symlink("/dev/stdin", dir.file("stdin.stl"));
+    const CliResult s = strata_cli(dir, "surface stdin.stl -o piped.msh", "cat '" + example_data("sphere.stl") + "'");
+    ASSERT_EQ(s.code, 0) << s.err;
+    EXPECT_EQ(read_msh(dir.file("piped.msh")).num_triangles(), 606);
+}
+
+TEST(CliBadInput, LayersNoDoubleHolds) {
+    test::ScratchDir dir("cli_bad_layers");
+    const CliResult r =
+        strata_cli(dir, "layers '" + example_data("sphere.stl") + "' -o out.msh --layers 10000 --first-height 1e-5");
+    expect_refused(
+        r, "--layers = 10000 with --growth = 1.2: the last layer would be 1.2^9999 ≈ 1e791 times the first layer");
+    EXPECT_NE(r.err.find("use fewer layers or a smaller growth"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("inf"), std::string::npos) << r.err;
+    EXPECT_TRUE(files_in(dir).empty());
+}
+
+}  // namespace
+}  // namespace strata
