@@ -5,6 +5,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
+#include <strata/core/parallel.h>
 #include <strata/geometry/cad.h>
 
 #include <algorithm>
@@ -102,6 +103,7 @@ std::string sewing_hint(const SewReport& sew) {
 
 LayerParams layer_params(const LayerOptions& o) {
     LayerParams p = o.params;
+    check_threads(p.threads, "LayerParams::threads");  // before any work: the stages check it again
     p.distribution.kind = parse_distribution(o.distribution);
     p.normals = parse_normal_method(o.normals);
     p.proximity = parse_proximity_mode(o.proximity);

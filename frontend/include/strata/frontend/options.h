@@ -57,7 +57,7 @@ struct LayerOptions {
     std::string proximity{to_string(LayerParams{}.proximity)};
 };
 
-/// The LayerParams of \p options (InputError for an unknown enum name).
+/// The LayerParams of \p options (InputError for an unknown enum name or a negative thread count).
 LayerParams layer_params(const LayerOptions& options);
 
 /// Hybrid options: the HybridParams fields beyond the layers.
