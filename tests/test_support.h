@@ -7,9 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -85,6 +87,30 @@ public:
 private:
     std::filesystem::path path_;
 };
+
+/// What a program that run_program ran did: its exit code (-1: ended by a signal) and output.
+struct CliResult {
+    int code = -1;
+    std::string out, err;
+};
+
+/// Run \p program with \p args (already shell-quoted) in \p dir, under \p wrapper (a command
+/// prefix such as "timeout 60 "), its standard input empty and its output captured (in files of
+/// \p dir, removed afterwards).
+inline CliResult run_program(const ScratchDir& dir, const std::string& program, const std::string& args,
+                             const std::string& wrapper = "") {
+    const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+    const std::string cmd = "cd '" + dir.path().string() + "' && " + wrapper + "'" + program + "' " + args + " >'" +
+                            out + "' 2>'" + err + "' </dev/null";
+    const int status = std::system(cmd.c_str());
+    CliResult r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    std::filesystem::remove(out);
+    std::filesystem::remove(err);
+    return r;
+}
 
 /// Every undirected edge is used by exactly two faces (a closed manifold surface).
 inline bool closed_manifold(const SurfaceMesh& m) {

@@ -201,14 +201,16 @@ private:
     int saved_ = -1;
 };
 
-void load(const std::string& path, CadFormat format) {
+void load(const std::string& path, CadFormat format, bool trust_geo) {
     const std::string context = path + ": Gmsh could not read this " + std::string(format_name(format)) + " file";
     try {
         gmsh_call(context, [&] {
             if (format == CadFormat::Geo) {
                 // merge, not open: gmsh::open renames the current model after the file (or
                 // adds a new one), and the current model belongs to our GmshSession.
-                merge_geo_script(path);  // the script's Macros renamed if Gmsh holds them already
+                // Refused unless trusted where it reaches outside the model (a shell command, a
+                // file written); its Macros renamed if Gmsh holds them already.
+                merge_geo_script(path, trust_geo);
                 // A script may have used either kernel; both must be visible to the model.
                 gmsh::model::geo::synchronize();
                 gmsh::model::occ::synchronize();
@@ -733,7 +735,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     set_number("Geometry.OCCScaling", scaling);
     if (units) *units = read_in;
 
-    load(path, *format);
+    load(path, *format, params.trust_geo);
 
     const std::vector<int> loaded_surfaces = entity_tags(2);
     if (loaded_surfaces.empty())
@@ -754,7 +756,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
                           gmsh::model::removePhysicalGroups();
                           gmsh::model::occ::remove(everything, true);
                           gmsh::model::occ::synchronize();
-                          load(path, *format);
+                          load(path, *format, params.trust_geo);
                       };
                       renamed = sew_faces(params.sew_tolerance, sewn);
                       if (!sewn.rejected && sewn.cracks > 0 && sewn.suggested_tolerance <= kSewShareMax) {
