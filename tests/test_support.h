@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <array>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -113,19 +114,24 @@ private:
     bool mounted_ = false;
 };
 
-/// What a program run by run_command printed and its exit code (-1: killed by a signal).
-struct CommandResult {
+/// What a program that run_program ran did: its exit code (-1: ended by a signal) and output.
+struct CliResult {
     int code = -1;
     std::string out, err;
 };
 
-/// Run \p command (shell syntax) in \p dir with no standard input, capturing its output.
-inline CommandResult run_command(const ScratchDir& dir, const std::string& command) {
-    const std::string out = dir.file(".stdout.txt"), err = dir.file(".stderr.txt");
-    const std::string cmd =
-        "cd '" + dir.path().string() + "' && (" + command + ") >'" + out + "' 2>'" + err + "' </dev/null";
+/// Run \p program with \p args (already shell-quoted) in \p dir, under \p wrapper (a command
+/// prefix such as "timeout 60 "), its standard input empty and its output captured (in files of
+/// \p dir, removed afterwards).
+/// \p feed: a shell command whose output is piped in instead.
+inline CliResult run_program(const ScratchDir& dir, const std::string& program, const std::string& args,
+                             const std::string& wrapper = "", const std::string& feed = "") {
+    const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+    const std::string cmd = "cd '" + dir.path().string() + "' && " + (feed.empty() ? "" : feed + " | ") + wrapper +
+                            "'" + program + "' " + args + " >'" + out + "' 2>'" + err + "'" +
+                            (feed.empty() ? " </dev/null" : "");
     const int status = std::system(cmd.c_str());
-    CommandResult r;
+    CliResult r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.out = slurp(out);
     r.err = slurp(err);

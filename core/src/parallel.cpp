@@ -1,5 +1,9 @@
 #include <strata/core/parallel.h>
 
+#include <strata/core/error.h>
+
+#include <string>
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -13,6 +17,12 @@ int thread_count(int requested) {
 #else
     return 1;
 #endif
+}
+
+void check_threads(int threads, const char* parameter) {
+    if (threads < 0)
+        throw InputError(std::string(parameter) + " is " + std::to_string(threads) +
+                         ": give 0 (all cores) or a positive count");
 }
 
 int thread_count(int requested, long long items) {

@@ -219,6 +219,7 @@ BoundaryVolume boundary_volume(const VolumeMesh& mesh) {
 }
 
 ValidationReport validate(const VolumeMesh& mesh, const ValidateParams& params, std::size_t& total) {
+    check_threads(params.threads, "ValidateParams::threads");
     ValidationReport report;
     strata::report(params.progress, "validation", 0.0);
     const CellNumbering cells(mesh);

@@ -5,6 +5,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
+#include <strata/core/parallel.h>
 #include <strata/geometry/cad.h>
 
 #include <algorithm>
@@ -102,6 +103,7 @@ std::string sewing_hint(const SewReport& sew) {
 
 LayerParams layer_params(const LayerOptions& o) {
     LayerParams p = o.params;
+    check_threads(p.threads, "LayerParams::threads");  // before any work: the stages check it again
     p.distribution.kind = parse_distribution(o.distribution);
     p.normals = parse_normal_method(o.normals);
     p.proximity = parse_proximity_mode(o.proximity);
@@ -204,6 +206,12 @@ std::vector<OptionSpec> make_table() {
         [](Options& o) -> double& { return o.surface.prepare.cad.sew_tolerance; },
         "STEP, IGES, BREP: faces that bound no solid (a surface model, whose faces each have their own edges) are "
         "sewn by OpenCASCADE with this tolerance, a share of the bounding-box diagonal (in [0, 0.001]; 0: not sewn)"));
+    t.push_back(no_default(spec(
+        "--trust-geo", "trust_geo", "CadParams::trust_geo", Stage::Surface,
+        [](Options& o) -> bool& { return o.surface.prepare.cad.trust_geo; },
+        "run a .geo script even where it runs shell commands or programs, talks to a server or writes files "
+        "(SystemCall, OnelabRun, Save, Printf > file, ...), itself or through a script it reads: a .geo file is a "
+        "program; give this only for a script whose author you trust")));
     t.push_back(spec(
         "--scale", "scale", "PrepareParams::scale", Stage::Surface,
         [](Options& o) -> double& { return o.surface.prepare.scale; },
@@ -422,15 +430,19 @@ const std::vector<OptionSpec>& option_table() {
 
 namespace {
 
-/// Library names to the CLI's flags or (\p keywords) Python's: a switch's "= false" first (as
-/// what turns it off), then the parameters, then for Python the flags of the front-end's own
-/// messages.
+/// Library names to the CLI's flags or (\p keywords) Python's: a switch's "= false" or "= true"
+/// first (as what its flag, or its keyword so given, does), then the parameters, then for
+/// Python the flags of the front-end's own messages.
 std::vector<std::pair<std::string, std::string>> names_for(bool keywords) {
     std::vector<std::pair<std::string, std::string>> n;
     auto name = [keywords](const OptionSpec& o) -> const std::string& { return keywords ? o.keyword : o.flag; };
-    for (const OptionSpec& o : option_table())
-        if (o.flag_sets_false && !name(o).empty())
+    for (const OptionSpec& o : option_table()) {
+        if (name(o).empty() || o.param.empty() || !std::holds_alternative<bool& (*)(Options&)>(o.field)) continue;
+        if (o.flag_sets_false)
             n.emplace_back(o.param + " = false", keywords ? o.keyword + "=False" : o.flag);
+        else
+            n.emplace_back(o.param + " = true", keywords ? o.keyword + "=True" : o.flag);
+    }
     for (const OptionSpec& o : option_table())
         if (!name(o).empty() && !o.param.empty()) n.emplace_back(o.param, name(o));
     // Parameters several options set, or no option alone.

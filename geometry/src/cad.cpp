@@ -216,11 +216,13 @@ void check_input(const std::string& path, CadFormat format) {
 }
 
 /// The file into the current model (load without its error translation).
-void import_file(const std::string& path, CadFormat format) {
+void import_file(const std::string& path, CadFormat format, bool trust_geo) {
     if (format == CadFormat::Geo) {
         // merge, not open: gmsh::open renames the current model after the file (or
         // adds a new one), and the current model belongs to our GmshSession.
-        merge_geo_script(path);  // the script's Macros renamed if Gmsh holds them already
+        // Refused unless trusted where it reaches outside the model (a shell command, a file
+        // written); its Macros renamed if Gmsh holds them already.
+        merge_geo_script(path, trust_geo);
         // A script may have used either kernel; both must be visible to the model.
         gmsh::model::geo::synchronize();
         gmsh::model::occ::synchronize();
@@ -254,12 +256,12 @@ void import_file(const std::string& path, CadFormat format) {
     }
 }
 
-void load(const std::string& path, CadFormat format) {
+void load(const std::string& path, CadFormat format, bool trust_geo) {
     const std::string context = path + ": Gmsh could not read this " + std::string(format_name(format)) + " file";
     try {
         gmsh_call(context, [&] {
             try {
-                import_file(path, format);
+                import_file(path, format, trust_geo);
             } catch (const std::bad_alloc&) {
                 throw out_of_memory(path);
             }
@@ -756,7 +758,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     set_number("Geometry.OCCScaling", scaling);
     if (units) *units = read_in;
 
-    load(path, *format);
+    load(path, *format, params.trust_geo);
 
     const std::vector<int> loaded_surfaces = entity_tags(2);
     if (loaded_surfaces.empty())
@@ -777,7 +779,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
                           gmsh::model::removePhysicalGroups();
                           gmsh::model::occ::remove(everything, true);
                           gmsh::model::occ::synchronize();
-                          load(path, *format);
+                          load(path, *format, params.trust_geo);
                       };
                       renamed = sew_faces(params.sew_tolerance, sewn);
                       if (!sewn.rejected && sewn.cracks > 0 && sewn.suggested_tolerance <= kSewShareMax) {

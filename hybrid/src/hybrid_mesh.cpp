@@ -5,6 +5,7 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/core/format.h>
+#include <strata/core/parallel.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
@@ -414,6 +415,7 @@ Index lower_columns_around(const SurfaceMesh& region, Index top_patch, const std
 VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& params, Progress* progress,
                              HybridReport* report) {
     HybridReport rep;
+    check_threads(params.threads, "HybridParams::threads");
     check_tet_improve_params(params.improve);  // before the work it would otherwise end
     bool has_outer = false;
     SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, rep.closed_half_model, rep.internal_flow);
@@ -616,6 +618,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
 }
 
 StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double quality, double max_aspect_ratio) {
+    check_threads(params.threads, "HybridParams::threads");
     bool has_outer = false, half = false, internal = false;
     SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, half, internal);
     if (has_outer) split_into_planes(surface);  // as build_hybrid_mesh marches them

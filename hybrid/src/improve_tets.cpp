@@ -669,6 +669,7 @@ private:
 }  // namespace
 
 void check_tet_improve_params(const TetImproveParams& params) {
+    check_threads(params.threads, "TetImproveParams::threads");
     if (!(params.below >= 0.0 && params.below < 1.0))
         throw InputError("improve_tets: TetImproveParams::below = " + format_number(params.below) +
                          ": need a scaled-Jacobian bound in [0, 1) (0: off)");

@@ -28,6 +28,9 @@ void check_input_file(const std::string& path) {
     const fs::file_status st = fs::status(path, ec);
     if (!fs::exists(st)) throw InputError("cannot open '" + path + "': no such file; check the path");
     if (fs::is_directory(st)) throw InputError("cannot open '" + path + "': it is a directory; give the file itself");
+    // Opening a FIFO waits for its writer and closing it loses what the writer sent: readers take
+    // pipes through check_input_source and read_input (input_file.h).
+    if (fs::is_fifo(st)) return;
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!f) throw InputError("cannot open '" + path + "': " + std::strerror(errno));
 }

@@ -11,6 +11,7 @@
 #include <strata/io/formats.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
+#include <strata/io/input_file.h>
 #include <strata/io/openfoam.h>
 #include <strata/io/read_surface.h>
 #include <strata/io/write_surface.h>
@@ -24,6 +25,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 #include <thread>
@@ -160,13 +162,21 @@ void write_through_gmsh(const std::string& path, double msh_version, const char*
 SurfaceMesh read_msh(const std::string& path) {
     GmshSession session("read_msh");
     merge_msh_file(path);
-    return surface_from_gmsh_model("'" + path + "'");
+    try {
+        return surface_from_gmsh_model("'" + path + "'");
+    } catch (const std::bad_alloc&) {
+        throw out_of_memory(path);
+    }
 }
 
 VolumeMesh read_volume_msh(const std::string& path) {
     GmshSession session("read_volume_msh");
     merge_msh_file(path);
-    return volume_from_gmsh_model("'" + path + "'");
+    try {
+        return volume_from_gmsh_model("'" + path + "'");
+    } catch (const std::bad_alloc&) {
+        throw out_of_memory(path);
+    }
 }
 
 void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_version, Progress* progress,

@@ -972,6 +972,7 @@ ProximityMode parse_proximity_mode(std::string_view text) {
 }
 
 ProximityPlan proximity_plan(const SurfaceMesh& surface, const LayerParams& params) {
+    check_threads(params.threads, "LayerParams::threads");
     const std::vector<double> delta = layer_heights(params.distribution);
     Wall w = extract_wall(surface);
     const FanWall fans = add_fans(surface, params, w);
@@ -1002,6 +1003,7 @@ ProximityPlan proximity_plan(const SurfaceMesh& surface, const LayerParams& para
 
 LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
     const std::vector<double> delta = layer_heights(params.distribution);
+    check_threads(params.threads, "LayerParams::threads");
     if (params.sweeps < 0)
         throw InputError("LayerParams::sweeps = " + std::to_string(params.sweeps) +
                          ": need 0 or more sweeps per layer");

@@ -33,27 +33,13 @@ namespace fs = std::filesystem;
 using test::example_data;
 using test::test_data;
 
-struct CliResult {
-    int code = -1;
-    std::string out, err;
-};
-
+using test::CliResult;
 using strata::test::slurp;
 
 /// Run the strata program with \p args (already shell-quoted) in \p dir, under \p wrapper (a
 /// command prefix such as "timeout ... ").
 CliResult strata_cli(const test::ScratchDir& dir, const std::string& args, const std::string& wrapper = "") {
-    const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-    const std::string cmd = "cd '" + dir.path().string() + "' && " + wrapper + "'" + STRATA_CLI + "' " + args + " >'" +
-                            out + "' 2>'" + err + "' </dev/null";
-    const int status = std::system(cmd.c_str());
-    CliResult r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
+    return test::run_program(dir, STRATA_CLI, args, wrapper);
 }
 
 /// Files in \p dir (after the runner removed its own capture files).

@@ -27,35 +27,13 @@ namespace fs = std::filesystem;
 using test::example_data;
 using test::slurp;
 
-struct CliResult {
-    int code = -1;
-    std::string out, err;
-};
+using test::CliResult;
 
 /// Run the strata program with \p args (already shell-quoted) in \p dir, its standard input
 /// from \p feed (a shell command piped in) or /dev/null; stopped after 120 s, so that a run
 /// waiting for ever on a pipe fails instead of hanging the suite.
 CliResult strata_cli(const test::ScratchDir& dir, const std::string& args, const std::string& feed = "") {
-    const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-    const std::string cmd = "cd '" + dir.path().string() + "' && " + (feed.empty() ? "" : feed + " | ") +
-                            "timeout 120 '" + STRATA_CLI + "' " + args + " >'" + out + "' 2>'" + err + "'" +
-                            (feed.empty() ? " </dev/null" : "");
-    const int status = std::system(cmd.c_str());
-    CliResult r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-}
-
-/// Files in \p dir (after the runner removed its own capture files).
-std::vector<std::string> files_in(const test::ScratchDir& dir) {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir.path())) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
+    return test::run_program(dir, STRATA_CLI, args, "timeout 120 ", feed);
 }
 
 /// \p r failed as a bad input does: exit 1, one line on stderr holding \p message.
@@ -71,7 +49,7 @@ TEST(CliBadInput, PngNamedIges) {
     expect_refused(strata_cli(dir, "surface wing.iges -o out.msh"),
                    "'wing.iges' is not an IGES file: it looks like a PNG image; export the model again as IGES, or "
                    "give the file the extension of its format (.step, .iges, .brep)");
-    EXPECT_EQ(files_in(dir), std::vector<std::string>{"wing.iges"});
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"wing.iges"});
 }
 
 TEST(CliBadInput, MshClaimingBillionsOfNodes) {
@@ -83,7 +61,7 @@ TEST(CliBadInput, MshClaimingBillionsOfNodes) {
     expect_refused(
         strata_cli(dir, "surface huge.msh -o out.msh"),
         "'huge.msh' claims 3000000000 nodes but the file has only " + std::to_string(text.size()) + " bytes");
-    EXPECT_EQ(files_in(dir), std::vector<std::string>{"huge.msh"});
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"huge.msh"});
 }
 
 TEST(CliBadInput, DeviceNamedStl) {
@@ -91,7 +69,7 @@ TEST(CliBadInput, DeviceNamedStl) {
     fs::create_symlink("/dev/zero", dir.file("x.stl"));
     expect_refused(strata_cli(dir, "surface x.stl -o out.msh"),
                    "'x.stl' is a device, not a file; give the STL file itself");
-    EXPECT_EQ(files_in(dir), std::vector<std::string>{"x.stl"});
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"x.stl"});
 }
 
 TEST(CliBadInput, PipeNamedMshOrStepIsRefusedWithoutWaiting) {
@@ -102,7 +80,7 @@ TEST(CliBadInput, PipeNamedMshOrStepIsRefusedWithoutWaiting) {
         expect_refused(strata_cli(dir, std::string("surface ") + name + " -o out.msh"),
                        std::string(name) + "' is a pipe, not a file: Gmsh reads it by name");
     }
-    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"p.msh", "p.step"}));
+    EXPECT_EQ(test::dir_entries(dir.path()), (std::vector<std::string>{"p.msh", "p.step"}));
 }
 
 TEST(CliBadInput, PipeNamedStlIsReadToItsEnd) {
@@ -136,7 +114,7 @@ TEST(CliBadInput, LayersNoDoubleHolds) {
         r, "--layers = 10000 with --growth = 1.2: the last layer would be 1.2^9999 ≈ 1e791 times the first layer");
     EXPECT_NE(r.err.find("use fewer layers or a smaller growth"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("inf"), std::string::npos) << r.err;
-    EXPECT_TRUE(files_in(dir).empty());
+    EXPECT_TRUE(test::dir_entries(dir.path()).empty());
 }
 
 }  // namespace

@@ -23,7 +23,7 @@ namespace strata {
 namespace {
 
 namespace fs = std::filesystem;
-using test::CommandResult;
+using test::CliResult;
 using test::ScratchDir;
 using test::slurp;
 
@@ -31,8 +31,8 @@ const std::string kSphere = test::example_data("sphere.stl");
 const std::string kLayers = " --layers 3 --first-height 0.01";
 
 /// `strata ARGS` in \p dir under \p prefix (shell commands before it, e.g. "ulimit -f 100;").
-CommandResult strata(const ScratchDir& dir, const std::string& args, const std::string& prefix = "") {
-    return test::run_command(dir, prefix + " '" + std::string(STRATA_CLI) + "' " + args);
+CliResult strata(const ScratchDir& dir, const std::string& args, const std::string& prefix = "") {
+    return test::run_program(dir, STRATA_CLI, args, prefix);
 }
 
 /// The previous outputs of a run: each file with its old bytes, to compare after a failure.
@@ -85,7 +85,7 @@ TEST(CliOutputs, AFullDiskFailsWithTheCauseAndKeepsThePreviousOutputOfEveryForma
         const Previous before = previous_outputs(full.file(""), name);
         const std::string args = command + " '" + kSphere + "' -o full/" + output;
         // The surface alone fits in 200 KB: a file fills most of the disk first.
-        const CommandResult r = command == "surface" ? strata(dir, args, "head -c 150000 /dev/zero >full/filler;")
+        const CliResult r = command == "surface" ? strata(dir, args, "head -c 150000 /dev/zero >full/filler;")
                                 : command == "layers" ? strata(dir, args)
                                                       : strata(dir, args + kLayers);
         EXPECT_EQ(r.code, 1) << args << "\n" << r.err;
@@ -103,7 +103,7 @@ TEST(CliOutputs, AFileSizeLimitFailsWithTheCauseAndKeepsThePreviousOutput) {
     for (const std::string name : {"out.msh", "out.cgr", "polyMesh"}) {
         const Previous before = previous_outputs(dir.path().string(), name);
         // 100 blocks of 1024 bytes: the mesh takes megabytes.
-        const CommandResult r = strata(dir, "mesh '" + kSphere + "' -o " + name + kLayers, "ulimit -f 100;");
+        const CliResult r = strata(dir, "mesh '" + kSphere + "' -o " + name + kLayers, "ulimit -f 100;");
         EXPECT_EQ(r.code, 1) << name << "\n" << r.err;
         EXPECT_NE(r.err.find("file too large writing '"), std::string::npos) << r.err;
         before.expect_unchanged();
@@ -115,7 +115,7 @@ TEST(CliOutputs, AnOutputNamedAsTheInputIsRefusedBeforeAnyWork) {
     ScratchDir dir("cli_output_is_input");
     fs::copy_file(kSphere, dir.file("in.stl"));
     const std::string sphere = slurp(dir.file("in.stl"));
-    CommandResult r = strata(dir, "surface in.stl -o in.stl");
+    CliResult r = strata(dir, "surface in.stl -o in.stl");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("the output 'in.stl' is the input 'in.stl': writing it would destroy the input"),
               std::string::npos)
@@ -136,7 +136,7 @@ TEST(CliOutputs, AnOutputNamedAsTheInputIsRefusedBeforeAnyWork) {
 TEST(CliOutputs, OutputsThatCannotBeWrittenAreRefusedBeforeAnyWork) {
     ScratchDir dir("cli_unwritable");
     const std::string mesh = "mesh '" + kSphere + "' -o ";
-    CommandResult r = strata(dir, mesh + "missing/out.msh" + kLayers);
+    CliResult r = strata(dir, mesh + "missing/out.msh" + kLayers);
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("directory 'missing' does not exist"), std::string::npos) << r.err;
     // A legal mesh name whose report name is over the file system's 255 bytes.
@@ -167,7 +167,7 @@ TEST(CliOutputs, OutputsThatCannotBeWrittenAreRefusedBeforeAnyWork) {
 TEST(CliOutputs, TimeoutAndItsValuesAreChecked) {
     ScratchDir dir("cli_timeout_values");
     for (const std::string bad : {"nan", "-1", "inf", "soon"}) {
-        const CommandResult r = strata(dir, "surface '" + kSphere + "' -o out.msh --timeout " + bad);
+        const CliResult r = strata(dir, "surface '" + kSphere + "' -o out.msh --timeout " + bad);
         EXPECT_EQ(r.code, 2) << bad;
         EXPECT_NE(r.err.find("expected a number of seconds, 0 or more"), std::string::npos) << r.err;
     }

@@ -1,7 +1,10 @@
 // Team sizes (parallel.h): the count asked, OpenMP's default, and one thread for small loops.
+#include <strata/core/error.h>
 #include <strata/core/parallel.h>
 
 #include <gtest/gtest.h>
+
+#include <string>
 
 namespace strata {
 namespace {
@@ -9,6 +12,17 @@ namespace {
 TEST(ThreadCount, AskedOrOpenMPsDefault) {
     EXPECT_EQ(thread_count(3), 3);
     EXPECT_GE(thread_count(0), 1);
+}
+
+TEST(ThreadCount, ANegativeCountIsAnInputErrorNamingTheParameter) {
+    EXPECT_NO_THROW(check_threads(0, "LayerParams::threads"));
+    EXPECT_NO_THROW(check_threads(4, "LayerParams::threads"));
+    try {
+        check_threads(-1, "LayerParams::threads");
+        ADD_FAILURE() << "no exception";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), "LayerParams::threads is -1: give 0 (all cores) or a positive count");
+    }
 }
 
 TEST(ThreadCount, SmallLoopsRunOnOneThread) {

@@ -235,6 +235,16 @@ TEST(ValidateMesh, ReportIsTheSameForAnyThreadCount) {
     }
 }
 
+TEST(ValidateMesh, ANegativeThreadCountIsRefusedByName) {
+    const VolumeMesh m = test::BoxMesh(2, 2, 2, 0.5).build();
+    try {
+        (void)validate_mesh(m, {.threads = -2});
+        ADD_FAILURE() << "no exception";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), "ValidateParams::threads is -2: give 0 (all cores) or a positive count");
+    }
+}
+
 TEST(ValidateMesh, RemovedInteriorCellLeavesAHoleAndAVolumeMismatch) {
     test::BoxMesh box(3, 3, 3);
     const VolumeMesh full = box.build();

@@ -202,6 +202,15 @@ TEST(HybridMesh, AHoleOrACrackIsNotTakenForAHalfModel) {
                                    {"two of their nodes are 1e-05 apart", "a crack: --merge-tolerance"});
 }
 
+TEST(HybridMesh, ANegativeThreadCountIsRefusedByName) {
+    HybridParams p = sphere_params();
+    p.threads = -1;
+    const SurfaceMesh wall = prepare_surface(example_data("sphere.stl"), {});
+    test::expect_error<InputError>([&] { (void)build_hybrid_mesh(wall, p); },
+                                   {"HybridParams::threads is -1: give 0 (all cores) or a positive count"});
+    test::expect_error<InputError>([&] { (void)step_plan(wall, p, 0.1, 1000.0); }, {"HybridParams::threads is -1"});
+}
+
 TEST(HybridMesh, LayersThickerThanTheGeneratedFarfieldAllowsAreRefusedWithTheNumbers) {
     // 10 layers from 0.5 at 1.2 make 12.98 around a unit sphere; a farfield 1.1 times its
     // diagonal (3.46) across leaves 0.8-0.9 (the divisions cut the sphere): refused before any layer (TetGen used to

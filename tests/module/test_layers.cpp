@@ -489,5 +489,15 @@ TEST(Layers, SameOutputForOneAndTwoThreads) {
     }
 }
 
+TEST(Layers, ANegativeThreadCountIsRefusedByName) {
+    // thread_count took any count below 1 for all cores: -1 was a typo run silently.
+    LayerParams p = geometric(3, 1e-2, 1.2);
+    p.threads = -1;
+    const SurfaceMesh wall = test::quad_grid(4, 4, 0.1);
+    test::expect_error<InputError>([&] { (void)extrude_layers(wall, p); },
+                                   {"LayerParams::threads is -1: give 0 (all cores) or a positive count"});
+    test::expect_error<InputError>([&] { (void)proximity_plan(wall, p); }, {"LayerParams::threads is -1"});
+}
+
 }  // namespace
 }  // namespace strata

@@ -228,6 +228,26 @@ def test_errors_carry_strata_messages_in_keyword_names(tmp_path):
         strata.mesh(SPHERE_STL, output=str(tmp_path / "x.unknown"), **SMALL)
 
 
+def test_a_geo_script_that_runs_a_shell_command_needs_trust_geo(tmp_path):
+    # a .geo file is a program: Gmsh would run its SystemCall with the user's rights
+    geo = tmp_path / "evil.geo"
+    pwned = tmp_path / "pwned"
+    geo.write_text('SetFactory("OpenCASCADE");\nBox(1) = {0, 0, 0, 1, 1, 1};\n'
+                   f"SystemCall \"touch '{pwned}'\";\n")
+    with pytest.raises(strata.InputError, match=r"evil.geo, line 3: `SystemCall` runs a shell command.*"
+                                                 r"give trust_geo=True to run it") as e:
+        strata.surface(str(geo))
+    assert "--" not in str(e.value) and "CadParams" not in str(e.value)
+    assert not pwned.exists()
+    strata.surface(str(geo), trust_geo=True)
+    assert pwned.exists()
+
+
+def test_a_negative_thread_count_is_refused_by_its_keyword():
+    with pytest.raises(strata.InputError, match=r"threads is -1: give 0 \(all cores\) or a positive count"):
+        strata.layers(SPHERE_STL, threads=-1, **SMALL)
+
+
 def test_progress_exception_propagates_and_nothing_is_written(tmp_path):
     class Stop(Exception):
         pass

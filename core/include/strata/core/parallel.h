@@ -18,6 +18,11 @@ int thread_count(int requested);
 /// to 55 s in the layer stage, 93 % of it in libgomp's barriers, instead of 0.08 s alone.
 int thread_count(int requested, long long items);
 
+/// InputError "<parameter> is <threads>: give 0 (all cores) or a positive count" for a negative
+/// \p threads, which thread_count would silently take for all cores; each stage that takes a
+/// count in its Params checks it, naming the field (\p parameter: "LayerParams::threads").
+void check_threads(int threads, const char* parameter);
+
 /// See thread_count(int, long long).
 inline constexpr long long kParallelItems = 2048;
 

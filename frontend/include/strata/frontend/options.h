@@ -57,8 +57,8 @@ struct LayerOptions {
     std::string proximity{to_string(LayerParams{}.proximity)};
 };
 
-/// The LayerParams of \p options (InputError for an unknown enum name, or a distribution that
-/// resolve() refuses).
+/// The LayerParams of \p options (InputError for an unknown enum name, a negative thread count,
+/// or a distribution that resolve() refuses).
 LayerParams layer_params(const LayerOptions& options);
 
 /// Hybrid options: the HybridParams fields beyond the layers.

@@ -116,6 +116,12 @@ struct CadParams {
     /// model is meshed again with size_points there (step_sizes) so that h_k / L reaches this
     /// (the cells then reach about half of it). In [0, 1); 0: not.
     double step_quality = 0.1;
+    /// A .geo script is a program: Gmsh runs the shell commands it gives (SystemCall), the
+    /// programs it starts (OnelabRun), and writes the files it names (Save, Printf > file), with
+    /// the rights of whoever reads it. Such a script, or one that reads such a script (Include,
+    /// Merge), is refused (InputError naming the file, the line and the command:
+    /// check_geo_script, io/geo_script.h) unless this is set, for a script whose author is trusted.
+    bool trust_geo = false;
 };
 
 /// What the front-ends' prepare_for_layers did for CadParams::step_quality.
@@ -224,8 +230,9 @@ struct CadUnits {
 /// node order is Gmsh's (the caller orients). Nodes are numbered in order of first use, faces surface by surface in tag
 /// order: the same file and parameters give the same mesh.
 ///
-/// Throws InputError for bad parameters, a missing, unreadable or corrupt file, or a model
-/// without surfaces (each naming the file); BackendError when Gmsh fails to mesh or leaves a
+/// Throws InputError for bad parameters, a missing, unreadable or corrupt file, a .geo script
+/// that reaches outside Gmsh's model (CadParams::trust_geo), or a model without surfaces (each
+/// naming the file); BackendError when Gmsh fails to mesh or leaves a
 /// surface without elements (naming the surface).
 /// \p walls, if given, receives what the wall-size cap did; \p sew what the sewing did;
 /// \p recombination what the recombination into quads did. Gmsh meshes the surfaces in a child

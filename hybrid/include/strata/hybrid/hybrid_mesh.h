@@ -21,8 +21,8 @@ struct HybridParams {
     TetFillParams tets;
     TetImproveParams improve;  ///< the tetrahedra below a scaled Jacobian improved after TetGen
     FarfieldParams farfield;   ///< used when the surface has no farfield patch
-    /// Threads of every parallel stage (layers, validation; 0: OpenMP's default). The mesh is the
-    /// same for any count.
+    /// Threads of every parallel stage (layers, validation; 0: OpenMP's default; negative:
+    /// InputError). The mesh is the same for any count.
     int threads = 0;
 };
 
