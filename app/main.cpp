@@ -1160,7 +1160,7 @@ int main(int argc, char** argv) {
             return 124;
         }
         const int sig = g_signal.load();
-        std::cerr << after_bar() << "strata: stopped by " << signal_name(sig)
+        std::cerr << after_bar() << "strata: cancelled by " << signal_name(sig)
                   << "; nothing was written, and the previous output is as it was\n";
         return 128 + (sig != 0 ? sig : SIGINT);
     } catch (const std::exception& e) {

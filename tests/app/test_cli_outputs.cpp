@@ -231,7 +231,7 @@ TEST(CliOutputs, SigtermAndSighupWhileWritingRemoveEveryTemporaryAndKeepThePrevi
         std::string err;
         const int code = signalled_while_writing(dir, args, sig, &err);
         EXPECT_EQ(code, 128 + sig) << name << " " << err;
-        EXPECT_NE(err.find(sig == SIGTERM ? "stopped by SIGTERM" : "stopped by SIGHUP"), std::string::npos) << err;
+        EXPECT_NE(err.find(sig == SIGTERM ? "cancelled by SIGTERM" : "cancelled by SIGHUP"), std::string::npos) << err;
         EXPECT_NE(err.find("the previous output is as it was"), std::string::npos) << err;
         before.expect_unchanged();
         EXPECT_TRUE(hidden_files(dir.path()).empty()) << name;

@@ -1,6 +1,7 @@
 // msh_counts.h: a .msh file claiming more nodes or elements than its size holds is refused
 // before Gmsh sizes its arrays from the claim; real files, ASCII and binary, pass.
 
+#include "msh_variants.h"
 #include "test_support.h"
 
 #include <strata/core/error.h>
@@ -123,22 +124,8 @@ TEST(MshCounts, RealFilesPass) {
     ASSERT_GE(files.size(), 6u);
     // And Gmsh's binary 4.1 and 2.2 (ASCII 2.2 too) of one of them, little-endian like the machine.
     ScratchDir dir("msh_counts_real");
-    {
-        GmshSession session("msh_counts_convert");
-        gmsh::merge(test::example_data("sphere_pyhyp_quads.msh"));
-        double version = 0, binary = 0;
-        gmsh::option::getNumber("Mesh.MshFileVersion", version);
-        gmsh::option::getNumber("Mesh.Binary", binary);
-        for (auto [v, b, name] :
-             {std::tuple{4.1, 1, "b41.msh"}, std::tuple{2.2, 1, "b22.msh"}, std::tuple{2.2, 0, "a22.msh"}}) {
-            gmsh::option::setNumber("Mesh.MshFileVersion", v);
-            gmsh::option::setNumber("Mesh.Binary", b);
-            gmsh::write(dir.file(name));
-            files.push_back(dir.file(name));
-        }
-        gmsh::option::setNumber("Mesh.MshFileVersion", version);
-        gmsh::option::setNumber("Mesh.Binary", binary);
-    }
+    for (const std::string& f : test::write_msh_variants(test::example_data("sphere_pyhyp_quads.msh"), dir))
+        files.push_back(f);
     for (const std::string& f : files) {
         SCOPED_TRACE(f);
         EXPECT_NO_THROW(check_msh_counts(f));

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "msh_variants.h"
 #include "test_support.h"
 
 #include <sys/stat.h>
@@ -327,22 +328,7 @@ TEST(ReadMsh, BinaryAndVersion22AgreeWithAscii) {
     test::ScratchDir dir("io_msh_binary");
     const std::string src = example_data("onera_m6_mixed_quadtri.msh");
     const SurfaceMesh ref = read_msh(src);
-    {
-        // Convert with Gmsh itself: binary 4.1, binary 2.2, ASCII 2.2.
-        GmshSession session("test_convert");
-        gmsh::merge(src);
-        double version = 0, binary = 0;
-        gmsh::option::getNumber("Mesh.MshFileVersion", version);
-        gmsh::option::getNumber("Mesh.Binary", binary);
-        for (auto [v, b, name] :
-             {std::tuple{4.1, 1, "b41.msh"}, std::tuple{2.2, 1, "b22.msh"}, std::tuple{2.2, 0, "a22.msh"}}) {
-            gmsh::option::setNumber("Mesh.MshFileVersion", v);
-            gmsh::option::setNumber("Mesh.Binary", b);
-            gmsh::write(dir.file(name));
-        }
-        gmsh::option::setNumber("Mesh.MshFileVersion", version);
-        gmsh::option::setNumber("Mesh.Binary", binary);
-    }
+    test::write_msh_variants(src, dir);
     for (const char* name : {"b41.msh", "b22.msh", "a22.msh"}) {
         SCOPED_TRACE(name);
         const SurfaceMesh m = read_msh(dir.file(name));

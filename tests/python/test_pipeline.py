@@ -340,3 +340,20 @@ def test_quads_where_blossom_would_end_the_python_process():
     assert s.report["quads"] > s.report["triangles"]
     assert strata.surface(spiky, fuse=True).report["blossom_failure"] == ""
 
+
+
+def test_outputs_never_replace_inputs_and_a_full_disk_is_an_output_error(tmp_path):
+    src = tmp_path / "in.stl"
+    src.write_bytes(open(SPHERE_STL, "rb").read())
+    before = src.read_bytes()
+    with pytest.raises(strata.InputError, match="is the input"):
+        strata.surface(str(src), output=str(src))
+    mesh = tmp_path / "in.msh"
+    strata.surface(str(src), output=str(mesh))
+    with pytest.raises(strata.InputError, match="is the input"):
+        strata.mesh(str(mesh), output=str(mesh), **SMALL)
+    assert src.read_bytes() == before
+    # Strata's writer errors are OSErrors too, so `except OSError` catches a full disk.
+    assert issubclass(strata.OutputError, OSError) and issubclass(strata.OutputError, strata.Error)
+    with pytest.raises(strata.OutputError, match="too long for the file system"):
+        strata.mesh(SPHERE_STL, output=str(tmp_path / ("n" * 250 + ".msh")), **SMALL)
