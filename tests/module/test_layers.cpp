@@ -368,14 +368,13 @@ TEST(Layers, FoldsStopTheColumnsThere) {
 }
 
 TEST(Layers, AQualityThatCannotBeComputedStopsTheLayers) {
-    // Edges of 1e104 and a layer of 1e102 (under resolve()'s bound on the thickness): every
-    // position is finite, but a corner's |e1| |e2| |e3| overflows to infinity and every scaled
-    // Jacobian is NaN. A NaN never compares below the
-    // layer's minimum, so such a layer used to pass as valid (min scaled Jacobian 1); now it stops
-    // the extrusion, naming where.
+    // Edges of 1e155 and a layer of 1e100 (under resolve()'s bound on the thickness): every
+    // position is finite, but a wall edge's squared length overflows to infinity and every
+    // scaled Jacobian is NaN. A NaN never compares below the layer's minimum, so such a layer used
+    // to pass as valid (min scaled Jacobian 1); now it stops the extrusion, naming where.
     SurfaceMesh wall = prepare_surface(example_data("sphere.stl"), {});
-    for (Vec3& x : wall.points) x *= 1e105;
-    LayerParams p = geometric(1, 1e102, 1.2);
+    for (Vec3& x : wall.points) x *= 1e156;
+    LayerParams p = geometric(1, 1e100, 1.2);
     p.smoothing = false;  // plain extrusion along the normals
     // With local stopping every column stops before such a cell; none is left: an error saying so.
     test::expect_error<TopologyError>([&] { (void)extrude_layers(wall, p); },
