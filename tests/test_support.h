@@ -11,7 +11,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include <algorithm>
-#include <cstdlib>
 #include <array>
 #include <cstdlib>
 #include <exception>

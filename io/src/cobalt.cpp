@@ -184,7 +184,7 @@ void write_cobalt(const VolumeMesh& mesh, const std::string& path, Progress* pro
     }
 
     report(progress, "writing", 1.0);  // cancelled here: the temporary files go, nothing is written
-    if (!outputs) own.commit();  // both or neither: no grid is left with another grid's patch map
+    if (!outputs) own.commit();        // both or neither: no grid is left with another grid's patch map
 }
 
 }  // namespace strata

@@ -152,8 +152,7 @@ std::string write_failure(const std::string& target, int err) {
         case EIO:
             return "I/O error writing '" + target + "': the device reported a failure; check the disk" + kept;
         case EROFS:
-            return "cannot write '" + target + "': '" + dir + "' is on a read-only file system; write elsewhere" +
-                   kept;
+            return "cannot write '" + target + "': '" + dir + "' is on a read-only file system; write elsewhere" + kept;
         case EACCES:
         case EPERM:
             return "cannot write '" + target + "': permission denied in '" + dir +

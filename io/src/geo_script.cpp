@@ -163,11 +163,11 @@ constexpr GeoCommand kGeoCommands[] = {
 /// solver, which only OnelabRun (refused) would start.
 const std::set<std::string>& own_reader_extensions() {
     static const std::set<std::string> extensions = {
-        ".stl", ".STL", ".step", ".STEP", ".stp", ".STP", ".iges", ".IGES", ".igs", ".IGS", ".brep", ".brp",
-        ".BRP", ".unv", ".UNV", ".vtk", ".VTK", ".med", ".MED", ".mmed", ".MMED", ".rmed", ".RMED", ".bdf",
-        ".BDF", ".nas", ".NAS", ".p3d", ".P3D", ".mesh", ".MESH", ".ply", ".PLY", ".ply2", ".PLY2", ".wrl",
-        ".WRL", ".vrml", ".VRML", ".diff", ".DIFF", ".dat", ".DAT", ".jpg", ".JPG", ".png", ".PNG", ".pro",
-        ".py", ".PY", ".m", ".M", ".exe", ".EXE"};
+        ".stl",  ".STL",  ".step", ".STEP", ".stp",  ".STP",  ".iges", ".IGES", ".igs",  ".IGS",  ".brep",
+        ".brp",  ".BRP",  ".unv",  ".UNV",  ".vtk",  ".VTK",  ".med",  ".MED",  ".mmed", ".MMED", ".rmed",
+        ".RMED", ".bdf",  ".BDF",  ".nas",  ".NAS",  ".p3d",  ".P3D",  ".mesh", ".MESH", ".ply",  ".PLY",
+        ".ply2", ".PLY2", ".wrl",  ".WRL",  ".vrml", ".VRML", ".diff", ".DIFF", ".dat",  ".DAT",  ".jpg",
+        ".JPG",  ".png",  ".PNG",  ".pro",  ".py",   ".PY",   ".m",    ".M",    ".exe",  ".EXE"};
     return extensions;
 }
 
@@ -213,13 +213,14 @@ GeoScan scan_geo_text(const std::string& text) {
     auto found = [&](int line, std::string command, std::string what) {
         scan.hazards.push_back({"", line, std::move(command), std::move(what), ""});
     };
-    bool after_dot = false;  // the token before t[0] is '.'
-    int depth = 0;           // of parentheses
+    bool after_dot = false;                        // the token before t[0] is '.'
+    int depth = 0;                                 // of parentheses
     std::vector<std::pair<int, int>> printf_open;  // each Printf in them: the depth outside its parentheses, its line
     for (fill(); !t.empty(); after_dot = is(0, "."), t.pop_front(), fill()) {
         if (is(0, "(")) ++depth;
         if (is(0, ")") && --depth >= 0 && !printf_open.empty() && depth == printf_open.back().first) {
-            if (is(1, ">") || is(1, ">>")) found(printf_open.back().second, "Printf(...) " + t[1].text, "writes a file");
+            if (is(1, ">") || is(1, ">>"))
+                found(printf_open.back().second, "Printf(...) " + t[1].text, "writes a file");
             printf_open.pop_back();
         }
         if (t[0].kind != GeoToken::Word) continue;
@@ -277,11 +278,11 @@ void check_geo_script(const std::string& path) {
     if (!h.read_from.empty()) message += " (a script read by " + h.read_from + ")";
     if (found.size() > 1) {
         constexpr std::size_t kListed = 4;
-        message += " (and " + std::to_string(found.size() - 1) + " more such statement" +
-                   (found.size() > 2 ? "s" : "") + ":";
+        message +=
+            " (and " + std::to_string(found.size() - 1) + " more such statement" + (found.size() > 2 ? "s" : "") + ":";
         for (std::size_t i = 1; i < found.size() && i <= kListed; ++i)
-            message += std::string(i > 1 ? "," : "") + (found[i].file == h.file ? "" : " " + found[i].file) +
-                       " line " + std::to_string(found[i].line) + " `" + found[i].command + "`";
+            message += std::string(i > 1 ? "," : "") + (found[i].file == h.file ? "" : " " + found[i].file) + " line " +
+                       std::to_string(found[i].line) + " `" + found[i].command + "`";
         message += found.size() > kListed + 1 ? ", ...)" : ")";
     }
     throw InputError(message +

@@ -33,8 +33,8 @@ namespace fs = std::filesystem;
 using test::example_data;
 using test::test_data;
 
-using test::CliResult;
 using strata::test::slurp;
+using test::CliResult;
 
 /// Run the strata program with \p args (already shell-quoted) in \p dir, under \p wrapper (a
 /// command prefix such as "timeout ... ").

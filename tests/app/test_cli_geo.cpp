@@ -33,8 +33,8 @@ TEST(CliGeo, AScriptRunningAShellCommandIsRefusedAndNothingRuns) {
     write_evil_script(dir);
     const test::CliResult r = strata_cli(dir, "surface evil.geo -o out.msh");
     EXPECT_EQ(r.code, 1) << r.err;
-    for (const char* part : {"evil.geo, line 3: `SystemCall` runs a shell command", "a .geo file is a program",
-                             "give --trust-geo"})
+    for (const char* part :
+         {"evil.geo, line 3: `SystemCall` runs a shell command", "a .geo file is a program", "give --trust-geo"})
         EXPECT_NE(r.err.find(part), std::string::npos) << "'" << part << "' not in: " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(dir.file("pwned")));

@@ -75,19 +75,22 @@ TEST(CliOutputs, AFullDiskFailsWithTheCauseAndKeepsThePreviousOutputOfEveryForma
     ScratchDir dir("cli_full_disk");
     test::SmallFilesystem full(dir.path() / "full", "size=200k");
     if (!full.mounted()) GTEST_SKIP() << "mounting a tmpfs needs root (the file size limit test runs for anyone)";
-    const std::vector<std::pair<std::string, std::string>> runs{
-        {"mesh", "out.msh"},  {"mesh", "out.msh --msh-version 2.2"},
-        {"mesh", "out.vtk"},  {"mesh", "out.cgr"},
-        {"mesh", "out.cgns"}, {"mesh", "polyMesh"},
-        {"layers", "out.su2 --layers 20 --first-height 1e-3"}, {"surface", "out.stl"}};
+    const std::vector<std::pair<std::string, std::string>> runs{{"mesh", "out.msh"},
+                                                                {"mesh", "out.msh --msh-version 2.2"},
+                                                                {"mesh", "out.vtk"},
+                                                                {"mesh", "out.cgr"},
+                                                                {"mesh", "out.cgns"},
+                                                                {"mesh", "polyMesh"},
+                                                                {"layers", "out.su2 --layers 20 --first-height 1e-3"},
+                                                                {"surface", "out.stl"}};
     for (const auto& [command, output] : runs) {
         const std::string name = output.substr(0, output.find(' '));
         const Previous before = previous_outputs(full.file(""), name);
         const std::string args = command + " '" + kSphere + "' -o full/" + output;
         // The surface alone fits in 200 KB: a file fills most of the disk first.
-        const CliResult r = command == "surface" ? strata(dir, args, "head -c 150000 /dev/zero >full/filler;")
-                                : command == "layers" ? strata(dir, args)
-                                                      : strata(dir, args + kLayers);
+        const CliResult r = command == "surface"  ? strata(dir, args, "head -c 150000 /dev/zero >full/filler;")
+                            : command == "layers" ? strata(dir, args)
+                                                  : strata(dir, args + kLayers);
         EXPECT_EQ(r.code, 1) << args << "\n" << r.err;
         EXPECT_NE(r.err.find("disk full writing 'full/"), std::string::npos) << args << "\n" << r.err;
         EXPECT_NE(r.err.find("was left as it was"), std::string::npos) << r.err;
@@ -159,8 +162,7 @@ TEST(CliOutputs, OutputsThatCannotBeWrittenAreRefusedBeforeAnyWork) {
     if (!ro.mounted()) GTEST_SKIP() << "mounting a read-only tmpfs needs root";
     r = strata(dir, mesh + "ro/out.cgns" + kLayers);
     EXPECT_EQ(r.code, 1);
-    EXPECT_NE(r.err.find("cannot write 'ro/out.cgns': 'ro' is on a read-only file system"), std::string::npos)
-        << r.err;
+    EXPECT_NE(r.err.find("cannot write 'ro/out.cgns': 'ro' is on a read-only file system"), std::string::npos) << r.err;
     EXPECT_EQ(r.out, "");
 }
 
@@ -199,8 +201,7 @@ int signalled_while_writing(const ScratchDir& dir, const std::vector<std::string
             return n.starts_with(".") && n.find(".tmp") != std::string::npos;
         };
         for (const auto& e : fs::recursive_directory_iterator(dir.path()))  // a file or a polyMesh's
-            if ((temporary(e.path()) || temporary(e.path().parent_path())) && e.is_regular_file() &&
-                e.file_size() > 0)
+            if ((temporary(e.path()) || temporary(e.path().parent_path())) && e.is_regular_file() && e.file_size() > 0)
                 return true;
         return false;
     };
@@ -222,9 +223,12 @@ int signalled_while_writing(const ScratchDir& dir, const std::vector<std::string
 TEST(CliOutputs, SigtermAndSighupWhileWritingRemoveEveryTemporaryAndKeepThePreviousOutput) {
     ScratchDir dir("cli_signals_writing");
     const std::vector<std::string> layers{"--layers", "20", "--first-height", "1e-3"};
-    for (const auto& [sig, name] : std::vector<std::pair<int, std::string>>{
-             {SIGTERM, "out.msh"}, {SIGHUP, "out.msh"}, {SIGTERM, "out.cgr"}, {SIGHUP, "out.cgns"},
-             {SIGTERM, "polyMesh"}, {SIGHUP, "out.vtk"}}) {
+    for (const auto& [sig, name] : std::vector<std::pair<int, std::string>>{{SIGTERM, "out.msh"},
+                                                                            {SIGHUP, "out.msh"},
+                                                                            {SIGTERM, "out.cgr"},
+                                                                            {SIGHUP, "out.cgns"},
+                                                                            {SIGTERM, "polyMesh"},
+                                                                            {SIGHUP, "out.vtk"}}) {
         const Previous before = previous_outputs(dir.path().string(), name);
         std::vector<std::string> args{"mesh", kSphere, "-o", name};
         args.insert(args.end(), layers.begin(), layers.end());

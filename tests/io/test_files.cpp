@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cerrno>
 #include <algorithm>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -81,9 +81,9 @@ TEST(AtomicFile, LongNamesGetTemporaryNamesThatFitAndDiffer) {
 
 TEST(CheckOutputPath, NamesOverTheFileSystemsLimitAreRefusedBeforeAnyWork) {
     ScratchDir dir("files_name_limit");
-    test::expect_error<OutputError>([&] { check_output_path(dir.file(std::string(252, 'b') + ".msh")); },
-                                    {"(256 bytes) is too long for the file system (255 bytes at most)",
-                                     "choose a shorter output name"});
+    test::expect_error<OutputError>(
+        [&] { check_output_path(dir.file(std::string(252, 'b') + ".msh")); },
+        {"(256 bytes) is too long for the file system (255 bytes at most)", "choose a shorter output name"});
     EXPECT_NO_THROW(check_output_path(dir.file(std::string(251, 'b') + ".msh")));
     EXPECT_TRUE(test::dir_entries(dir.path()).empty());  // the probe left nothing
 }
@@ -140,7 +140,8 @@ TEST(CheckOutputsAreNotInputs, SameFileByPathLinkOrInodeAndInputsInsideAnOutputD
     fs::create_directories(dir.file("case/polyMesh"));
     std::ofstream(dir.file("case/polyMesh/wall.stl")) << "input";
     const std::vector<std::string> in{dir.file("in.msh")};
-    for (const std::string& out : {dir.file("in.msh"), dir.file("./in.msh"), dir.file("link.msh"), dir.file("hard.msh")})
+    for (const std::string& out :
+         {dir.file("in.msh"), dir.file("./in.msh"), dir.file("link.msh"), dir.file("hard.msh")})
         test::expect_error<InputError>([&] { check_outputs_are_not_inputs({out}, in); },
                                        {"the output '" + out + "' is the input", "would destroy the input"});
     test::expect_error<InputError>(
@@ -163,9 +164,8 @@ TEST(WriteWholeFile, AFullDiskIsAnOutputErrorNamingTheTarget) {
     ScratchDir dir("files_full");
     test::SmallFilesystem full(dir.path() / "full", "size=64k");
     if (!full.mounted()) GTEST_SKIP() << "mounting a tmpfs needs root";
-    test::expect_error<OutputError>(
-        [&] { write_whole_file(full.file(".tmp"), "out.json", std::string(1 << 20, 'x')); },
-        {"disk full writing 'out.json'"});
+    test::expect_error<OutputError>([&] { write_whole_file(full.file(".tmp"), "out.json", std::string(1 << 20, 'x')); },
+                                    {"disk full writing 'out.json'"});
     fs::remove(full.file(".tmp"));  // what the AtomicFile of a real writer removes
     EXPECT_NO_THROW(write_whole_file(full.file("small"), "small", "fits"));
     EXPECT_EQ(slurp(full.file("small")), "fits");

@@ -102,11 +102,11 @@ TEST(GeoScriptScan, EachCommandThatReachesOutsideTheModelIsFoundOnItsLine) {
         "Include StrCat(\"part\", \".geo\");\n"
         "Merge Sprintf(\"fin%g.geo\", 1);\n"
         "Exit;\n";
-    EXPECT_EQ(hazards_of(text), (std::vector<std::string>{"2 SystemCall", "3 System", "4 NonBlockingSystemCall",
-                                                          "5 OnelabRun", "6 CreateDir", "7 Save", "8 Print",
-                                                          "9 Save", "10 SendToServer", "11 Printf(...) >",
-                                                          "12 Printf(...) >>", "13 Plugin(Bubbles).Run",
-                                                          "14 Include", "15 Merge", "16 Exit"}));
+    EXPECT_EQ(
+        hazards_of(text),
+        (std::vector<std::string>{"2 SystemCall", "3 System", "4 NonBlockingSystemCall", "5 OnelabRun", "6 CreateDir",
+                                  "7 Save", "8 Print", "9 Save", "10 SendToServer", "11 Printf(...) >",
+                                  "12 Printf(...) >>", "13 Plugin(Bubbles).Run", "14 Include", "15 Merge", "16 Exit"}));
     const GeoHazard first = scan_geo_text(text).hazards.front();
     EXPECT_EQ(first.what, "runs a shell command");
     EXPECT_TRUE(first.file.empty());
@@ -123,8 +123,8 @@ TEST(GeoScriptScan, CommentsStringsAndOtherUsesOfTheWordsAreNotCommands) {
         "Printf(\"SystemCall 'touch b'; Exit;\");\n"  // a string: not run
         "Physical Surface(\"Save\") = {1};\n"
         "s = 'Include \"x.geo\"; OnelabRun';\n"
-        "Print.Width = 800;\n"      // an option
-        "General.Print = 1;\n"      // a word after a dot
+        "Print.Width = 800;\n"       // an option
+        "General.Print = 1;\n"       // a word after a dot
         "Save = 1; x = Save + 1;\n"  // a variable
         "SystemCallX \"a\"; MySave \"b\";\n"
         "SystemCall~{2} \"c\";\n"  // Gmsh's name SystemCall_2: an unknown command
@@ -173,9 +173,9 @@ TEST(GeoScriptCheck, IncludedAndMergedScriptsAreScannedRelativeToTheScriptReadin
     std::filesystem::create_directories(dir.path() / "parts");
     std::ofstream(dir.file("main.geo")) << "Point(1) = {0, 0, 0, 1};\n"
                                            "Include \"parts/wing.geo\";\n"
-                                           "Merge \"parts/body.step\";\n"   // a reader of its own
+                                           "Merge \"parts/body.step\";\n"      // a reader of its own
                                            "Include \"parts/missing.geo\";\n"  // Gmsh fails on it
-                                           "Include \"main.geo\";\n";         // scanned once
+                                           "Include \"main.geo\";\n";          // scanned once
     std::ofstream(dir.file("parts/wing.geo")) << "Point(2) = {1, 0, 0, 1};\nMerge \"tip.txt\";\n";
     std::ofstream(dir.file("parts/body.step")) << "SystemCall \"touch not_a_script\";\n";
     std::ofstream(dir.file("parts/tip.txt")) << "\n\nSave \"tip.msh\";\n";
@@ -186,8 +186,8 @@ TEST(GeoScriptCheck, IncludedAndMergedScriptsAreScannedRelativeToTheScriptReadin
     EXPECT_EQ(found[0].command, "Save");
     EXPECT_EQ(found[0].read_from, (dir.path() / "parts" / "wing.geo").string() + ", line 2");
     test::expect_error<InputError>([&] { check_geo_script(dir.file("main.geo")); },
-                                   {"tip.txt, line 3: `Save` writes a file", "a script read by",
-                                    "wing.geo, line 2", "a .geo file is a program", "CadParams::trust_geo = true"});
+                                   {"tip.txt, line 3: `Save` writes a file", "a script read by", "wing.geo, line 2",
+                                    "a .geo file is a program", "CadParams::trust_geo = true"});
 }
 
 TEST(GeoScriptCheck, TheMessageNamesTheFirstStatementAndListsTheOthers) {

@@ -46,7 +46,7 @@ struct ValidationReport {
 struct ValidateParams {
     double volume_tolerance = 1e-9;  ///< allowed |Σ cell volumes − boundary volume|, relative to the latter, plus
                                      ///< the boundary sum's rounding error (its terms cancel in a thin shell)
-    int threads = 0;                 ///< 0: OpenMP's default (negative: InputError); the report is the same for any count
+    int threads = 0;                 ///< 0: OpenMP's default (negative: InputError); same report for any count
     Progress* progress = nullptr;    ///< stage "validation", checked between the checks
 };
 

@@ -57,7 +57,6 @@ std::string plot_data_path(const std::string& mesh_path);
 /// section) unless \p cut_axis is 0, 1 or 2 (then at \p cut_value). Atomic, or staged in
 /// \p outputs; OutputError naming the path if it cannot be written.
 void write_plot_data(const LayerReport& report, const SurfaceMesh& surface, const VolumeMesh& mesh,
-                     const std::string& path, int cut_axis = -1, double cut_value = 0.0,
-                     OutputSet* outputs = nullptr);
+                     const std::string& path, int cut_axis = -1, double cut_value = 0.0, OutputSet* outputs = nullptr);
 
 }  // namespace strata

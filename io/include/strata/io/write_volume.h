@@ -17,9 +17,9 @@ namespace strata {
 /// .vtk, .su2, .unv, ... through Gmsh: one discrete volume with all cells and a physical group "fluid" (3D), one
 /// discrete surface and one 2D physical group per boundary patch, named after the patch (add_volume_to_gmsh_model).
 /// Atomic (temporary name, then rename; every write checked and synced: OutputError on a full
-/// disk), or staged in \p outputs to be committed with the run's other outputs. Does not validate: callers run require_valid_mesh first. InputError for an
-/// unknown extension, a missing directory or malformed arrays; BackendError if Gmsh fails. \p progress: stage
-/// "writing"; cancelled, nothing is left at \p path.
+/// disk), or staged in \p outputs to be committed with the run's other outputs. Does not validate: callers run
+/// require_valid_mesh first. InputError for an unknown extension, a missing directory or malformed arrays; BackendError
+/// if Gmsh fails. \p progress: stage "writing"; cancelled, nothing is left at \p path.
 void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version = 4.1,
                   Progress* progress = nullptr, OutputSet* outputs = nullptr);
 

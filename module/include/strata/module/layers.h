@@ -95,7 +95,8 @@ struct LayerParams {
     /// mode. build_hybrid_mesh lowers it where the layer front intersects itself.
     std::vector<double> node_thickness_limit;
     /// Threads of the smoothing and the normals (0: OpenMP's default; negative: InputError); the
-    /// layers are the same for any count. For extrude_layers called alone: build_hybrid_mesh sets it from HybridParams::threads.
+    /// layers are the same for any count. For extrude_layers called alone: build_hybrid_mesh sets it from
+    /// HybridParams::threads.
     int threads = 0;
     /// Diagnostics only: return layers with inverted cells instead of throwing (the stats
     /// then show min_scaled_jacobian ≤ 0), as marched: nothing is held back or stopped. Never
