@@ -255,12 +255,19 @@ void check_cgns_patches(const VolumeMesh& m, int fn, const std::vector<std::pair
         cg(cg_fambc_read(fn, 1, f, 1, fambc, &type), "cg_fambc_read");
         family_bc[name] = type;
     }
+    // The patches' names as cgns.h says (cgns_names), kept apart from the names of the zone's and
+    // the base's other children.
+    std::vector<std::string> patch_names;
+    for (const Patch& patch : m.boundary.patches) patch_names.push_back(patch.name);
+    patch_names = cgns_names(patch_names, {"Fluid", "GridCoordinates", "ZoneBC", "ZoneType", "FamilyName", "Tetrahedra",
+                                           "Pyramids", "Prisms", "Hexahedra"});
     int bc = 0;
     for (std::size_t p = 0; p < of_patch.size(); ++p) {
         if (of_patch[p].count == 0) continue;
         const std::string what = "the CGNS boundary condition of patch " + std::to_string(p);
         require(++bc <= nbocos, what + " is there");
         const std::string& section = sections[of_patch[p].first].first;
+        require(section == patch_names[p], what + " is named '" + patch_names[p] + "', not '" + section + "'");
         const std::array<cgsize_t, 2> range{sections[of_patch[p].first].second.start,
                                             sections[of_patch[p].first + of_patch[p].count - 1].second.end};
         char name[64] = {}, family[64] = {};
