@@ -5,9 +5,10 @@
 #include <strata/core/error.h>
 #include <strata/io/read_surface.h>
 
+#include "fuzz_support.h"
 #include "fuzz_targets.h"
+#include "surface_chain.h"
 
-#include <stdexcept>
 #include <string_view>
 
 int strata_fuzz_one_stl(const std::uint8_t* data, std::size_t size) {
@@ -20,9 +21,9 @@ int strata_fuzz_one_stl(const std::uint8_t* data, std::size_t size) {
         return 0;  // the expected answer to bad input
     }
     // Every facet is a triangle of 3 new nodes (the reader merges nothing).
-    if (mesh.num_points() != 3 * mesh.num_faces() ||
-        mesh.face_patch.size() != static_cast<std::size_t>(mesh.num_faces()))
-        throw std::logic_error("fuzz oracle failed: read_stl_bytes gives 3 nodes and a patch per facet");
+    fuzz::require(mesh.num_points() == 3 * mesh.num_faces() &&
+                      mesh.face_patch.size() == static_cast<std::size_t>(mesh.num_faces()),
+                  "read_stl_bytes gives 3 nodes and a patch per facet");
     fuzz::run_surface_chain(mesh, PrepareParams{}, "fuzz.stl");
     return 0;
 }

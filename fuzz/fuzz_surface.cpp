@@ -5,64 +5,17 @@
 
 #include <strata/core/error.h>
 
+#include "fuzz_support.h"
 #include "fuzz_targets.h"
+#include "surface_chain.h"
 
-#include <algorithm>
 #include <array>
-#include <cstring>
-#include <limits>
-#include <utility>
 
 namespace strata::fuzz {
 namespace {
 
-/// Reads the bytes front to back; past the end every read fails.
-class Bytes {
-public:
-    Bytes(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
-    bool byte(std::uint8_t& out) {
-        if (pos_ >= size_) return false;
-        out = data_[pos_++];
-        return true;
-    }
-    bool raw_double(double& out) {
-        if (size_ - pos_ < sizeof out) return false;
-        std::memcpy(&out, data_ + pos_, sizeof out);
-        pos_ += sizeof out;
-        return true;
-    }
-
-private:
-    const std::uint8_t* data_;
-    std::size_t size_;
-    std::size_t pos_ = 0;
-};
-
-/// Coordinates a real file may hold or a bug may make: non-finite, extreme, tiny, signed zero.
-constexpr std::array<double, 16> kSpecial = {std::numeric_limits<double>::quiet_NaN(),
-                                             std::numeric_limits<double>::infinity(),
-                                             -std::numeric_limits<double>::infinity(),
-                                             1e308,
-                                             -1e308,
-                                             std::numeric_limits<double>::max(),
-                                             std::numeric_limits<double>::denorm_min(),
-                                             1e-300,
-                                             1e300,
-                                             1e15,
-                                             -1e15,
-                                             1e-15,
-                                             -0.0,
-                                             0.1,
-                                             3.0000000001,
-                                             9007199254740993.0};
-
 constexpr std::array<double, 4> kTolerance = {1e-9, 0.0, 1e-3, 0.3};
 constexpr std::array<const char*, 4> kPatchNames = {"wall", "farfield", "symmetry_y0", "inlet"};
-
-/// Grid point of the 4 × 4 × 4 lattice: bits 0-1 x, 2-3 y, 4-5 z.
-Vec3 grid(unsigned g) {
-    return Vec3(static_cast<double>(g & 3u), static_cast<double>((g >> 2) & 3u), static_cast<double>((g >> 4) & 3u));
-}
 
 /// Break the arrays the way a caller's own code might (what: bits 0-1 which array, bits 2-7 a
 /// position; value: the new value): every piece must refuse the mesh, not index through it.
@@ -98,12 +51,8 @@ void corrupt(SurfaceMesh& m, std::uint8_t what, std::uint8_t value) {
 ///              bit 7     corrupt the arrays after decoding: two more bytes, what and value
 ///                        (corrupt() above)
 ///   N          number of nodes, 0-255
-///   N nodes    one byte g each:
-///              g < 0xC0          grid point g & 0x3F (x = bits 0-1, y = 2-3, z = 4-5), moved
-///                                by g >> 6: 0 not, 1 by 1e-10 in x (merges), 2 by 0.5 in z
-///              0xC0 <= g < 0xF0  grid point of the next byte & 0x3F with coordinate
-///                                (g - 0xC0) / 16 replaced by kSpecial[(g - 0xC0) % 16]
-///              0xF0 <= g         three raw doubles from the next 24 bytes
+///   N nodes    each a byte and what follows it (decode_point, fuzz_support.h: a grid point, moved
+///              or not, one coordinate special, or three raw doubles)
 ///   faces      until the end, a header byte h and 3 (h bit 0 clear) or 4 ids each:
 ///              bits 1-2  patch (modulo the number of patches), or with bit 4 set (h >> 5) - 1,
 ///                        which may be out of range
@@ -125,20 +74,8 @@ Soup decode_soup(const std::uint8_t* data, std::size_t size) {
 
     if (!in.byte(count)) return soup;
     for (unsigned i = 0; i < count; ++i) {
-        std::uint8_t g = 0, h = 0;
-        if (!in.byte(g)) break;
         Vec3 x;
-        if (g < 0xC0) {
-            x = grid(g & 0x3Fu);
-            if (g >> 6 == 1) x.x() += 1e-10;
-            if (g >> 6 == 2) x.z() += 0.5;
-        } else if (g < 0xF0) {
-            if (!in.byte(h)) break;
-            x = grid(h & 0x3Fu);
-            x[(g - 0xC0) / 16] = kSpecial[(g - 0xC0u) % 16];
-        } else if (!in.raw_double(x.x()) || !in.raw_double(x.y()) || !in.raw_double(x.z())) {
-            break;
-        }
+        if (!decode_point(in, x)) break;
         m.points.push_back(x);
     }
     const auto n = static_cast<Index>(m.points.size());

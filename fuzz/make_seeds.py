@@ -1,15 +1,23 @@
 #!/usr/bin/env python3
-"""Write the committed seed corpus of the fuzz targets (fuzz/corpus/stl, fuzz/corpus/surface).
+"""Write the committed seed corpus of the fuzz targets (fuzz/corpus/<target>).
 
-Small valid inputs that reach deep: every one is read (or decoded) and prepared without error
-and has node rings (tests/fuzz/test_fuzz_regressions.cpp checks it), so the fuzzer starts from
-meshes that pass every check and mutates them into ones that do not. The soup format is
-documented at decode_soup in fuzz/fuzz_surface.cpp.
+Small valid inputs that reach deep (tests/fuzz/test_fuzz_regressions.cpp checks it), so the
+fuzzer starts from meshes that pass every check and mutates them into ones that do not: every
+STL file and soup is read (or decoded) and prepared without error and has node rings; every
+.msh file is read by read_msh or read_volume_msh; every volume soup is written by both writers.
+The soup formats are documented at decode_soup in fuzz/fuzz_surface.cpp and decode_volume in
+fuzz/volume_soup.cpp. The .msh files are Gmsh's own (its Python module, Debian's python3-gmsh).
     python3 fuzz/make_seeds.py [OUT_DIR]   (default: fuzz/corpus)
 """
 import os
 import struct
 import sys
+
+try:
+    import gmsh
+except ImportError:  # Debian's python3-gmsh is installed for the system's python3
+    sys.path.append("/usr/lib/python3/dist-packages")
+    import gmsh
 
 out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
 
@@ -123,3 +131,91 @@ inner = [(1, 1, 1), (2, 1, 1), (1, 2, 1), (1, 1, 2)]
 write("surface/tetra_in_farfield_cube",
       soup(CUBE_POINTS + inner, CUBE_QUADS + [tuple(8 + v for v in f) for f in TETRA_FACES], flags=0x04 | 0x10,
            patches=[1] * 6 + [0] * 4))
+
+
+# ------------------------------------------------------------------------------------ volume soups
+# Cells in Gmsh order with positive volumes on the 4x4x4 lattice: a hex [0,1]^3, a pyramid on
+# its top, the cube [1,2]x[0,1]^2 as two prisms, a tetrahedron on the first prism's top.
+EVERY_TYPE_POINTS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1),
+                     (0, 0, 2), (2, 0, 0), (2, 1, 0), (2, 0, 1), (2, 1, 1), (2, 0, 2)]
+EVERY_TYPE_CELLS = [("tet", (5, 11, 12, 13)), ("pyramid", (4, 5, 6, 7, 8)),
+                    ("prism", (1, 9, 10, 5, 11, 12)), ("prism", (1, 10, 2, 5, 12, 6)),
+                    ("hex", (0, 1, 2, 3, 4, 5, 6, 7))]
+CELL_CODE = {"tet": 0, "pyramid": 1, "prism": 2, "hex": 3}
+
+
+def volume_soup(points, cells, faces=(), flags=0):
+    """cells: (type, corners); faces: (patch, nodes) boundary faces listed before completion."""
+    data = bytes([flags, len(points)]) + bytes(g(p) for p in points)
+    for kind, corners in cells:
+        data += bytes([CELL_CODE[kind]] + list(corners))
+    for patch, nodes in faces:
+        data += bytes([4 | (len(nodes) == 4) | (patch << 4)] + list(nodes))
+    return data
+
+
+COMPLETE = 0x08
+write("writers/tetrahedron", volume_soup(TETRA_POINTS, [("tet", (0, 1, 2, 3))], flags=COMPLETE))
+# The tetrahedron's faces listed outward (its cell_faces order), on patches 0, 1, 1, 0.
+write("writers/tetrahedron_listed_faces",
+      volume_soup(TETRA_POINTS, [("tet", (0, 1, 2, 3))], [(0, (0, 2, 1)), (1, (0, 1, 3)), (1, (0, 3, 2)), (0, (3, 1, 2))],
+                  flags=0x01))
+write("writers/hex", volume_soup(CUBE_POINTS, [("hex", (0, 1, 3, 2, 4, 5, 7, 6))], flags=COMPLETE | 0x02))
+# Every type, four patches, kinds rotated by 1.
+write("writers/every_type", volume_soup(EVERY_TYPE_POINTS, EVERY_TYPE_CELLS, flags=COMPLETE | 0x03 | 0x10))
+# Every type with the awkward patch names (a CGNS section's name, '/' and a tab, blank, long).
+write("writers/every_type_awkward_names",
+      volume_soup(EVERY_TYPE_POINTS, EVERY_TYPE_CELLS, flags=COMPLETE | 0x03 | 0x04))
+# Two patches with one name.
+write("writers/every_type_one_name", volume_soup(EVERY_TYPE_POINTS, EVERY_TYPE_CELLS, flags=COMPLETE | 0x01 | 0x40))
+
+
+# ------------------------------------------------------------------------------------------- MSH
+GMSH_TYPE = {"tet": 4, "pyramid": 7, "prism": 6, "hex": 5}
+
+
+def msh_files():
+    """The every-type mesh (volume, two boundary physical groups) and a closed surface alone,
+    as Gmsh writes them: MSH 4.1 and 2.2, ASCII and binary."""
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Terminal", 0)
+    scratch = os.path.join(out, "msh", "scratch.msh")
+    os.makedirs(os.path.dirname(scratch), exist_ok=True)
+
+    def save(name, version, binary):
+        gmsh.option.setNumber("Mesh.MshFileVersion", version)
+        gmsh.option.setNumber("Mesh.Binary", binary)
+        gmsh.write(scratch)
+        with open(scratch, "rb") as f:
+            write("msh/" + name, f.read())
+        os.remove(scratch)
+
+    gmsh.model.add("every_type")
+    gmsh.model.addDiscreteEntity(3, 1)
+    gmsh.model.addDiscreteEntity(2, 1)
+    gmsh.model.addDiscreteEntity(2, 2)
+    gmsh.model.mesh.addNodes(3, 1, list(range(1, 15)), [c for p in EVERY_TYPE_POINTS for c in p])
+    for tag, (kind, corners) in enumerate(EVERY_TYPE_CELLS, start=1):
+        gmsh.model.mesh.addElementsByType(1, GMSH_TYPE[kind], [tag], [v + 1 for v in corners])
+    # The hex's bottom (a quad) on "wall", the prisms' bottoms (triangles) on "floor".
+    gmsh.model.mesh.addElementsByType(1, 3, [6], [1, 4, 3, 2])
+    gmsh.model.mesh.addElementsByType(2, 2, [7, 8], [2, 11, 10, 2, 3, 11])
+    for dim, tag, name in ((3, 1, "fluid"), (2, 1, "wall"), (2, 2, "floor")):
+        group = gmsh.model.addPhysicalGroup(dim, [tag])
+        gmsh.model.setPhysicalName(dim, group, name)
+    for version in (4.1, 2.2):
+        for binary in (0, 1):
+            save("every_type_%s%s.msh" % (str(version).replace(".", ""), "_binary" if binary else ""), version, binary)
+    gmsh.model.remove()
+
+    gmsh.model.add("cube_surface")
+    gmsh.model.addDiscreteEntity(2, 1)
+    gmsh.model.mesh.addNodes(2, 1, list(range(1, 9)), [c for p in CUBE_POINTS for c in p])
+    gmsh.model.mesh.addElementsByType(1, 3, [1, 2, 3], [v + 1 for q in CUBE_QUADS[:3] for v in q])
+    gmsh.model.mesh.addElementsByType(1, 2, list(range(4, 10)), [v + 1 for t in triangles(CUBE_QUADS[3:]) for v in t])
+    save("cube_surface_41.msh", 4.1, 0)
+    save("cube_surface_22_binary.msh", 2.2, 1)
+    gmsh.finalize()
+
+
+msh_files()

@@ -1,24 +1,18 @@
 // The geometry stage's input code on whatever mesh a fuzz target made: every piece alone, then
-// prepare_mesh as a whole, with a few oracles on what it returns (fuzz_targets.h).
+// prepare_mesh as a whole, with a few oracles on what it returns (surface_chain.h).
 
 #include <strata/core/error.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 
-#include "fuzz_targets.h"
+#include "fuzz_support.h"
+#include "surface_chain.h"
 
-#include <stdexcept>
 #include <string>
 
 namespace strata::fuzz {
 namespace {
-
-/// An oracle: a property every result must have. Its failure is a finding, so it is not a
-/// strata::Error (those are caught as the expected answer to bad input).
-void require(bool ok, const std::string& what) {
-    if (!ok) throw std::logic_error("fuzz oracle failed: " + what);
-}
 
 /// Run \p f; a strata::Error is an expected outcome (false), anything else escapes.
 template <class F>

@@ -410,8 +410,10 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
         std::set<std::pair<int, int>> fan_points;
         for (int c : fan)
             for (int q : points_of[c]) fan_points.insert({q, kind_at(c, q)});
+        // An init-capture: clang 14 cannot capture a structured binding (scripts/fuzz.sh builds with it).
         for (const auto& [c, pts] : points_of)
-            if (std::any_of(pts.begin(), pts.end(), [&](int q) { return fan_points.count({q, kind_at(c, q)}) > 0; }))
+            if (std::any_of(pts.begin(), pts.end(),
+                            [&, curve = c](int q) { return fan_points.count({q, kind_at(curve, q)}) > 0; }))
                 fan.insert(c);
     }
     for (int c : chain) {

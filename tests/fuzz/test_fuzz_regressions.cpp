@@ -1,16 +1,22 @@
 // The fuzz targets' bodies (fuzz/fuzz_targets.h) in the normal build: every seed of
 // fuzz/corpus/<target>/ and every reproducer of a past finding in fuzz/regressions/<target>/
 // runs through its target without a crash or an exception other than Strata's own; the seeds
-// are valid meshes that get all the way through (so the fuzzer starts deep); the soup decoder
-// does what its format says.
+// are valid meshes that get all the way through (so the fuzzer starts deep); the soup decoders
+// do what their formats say.
 
 #include <strata/core/error.h>
+#include <strata/core/face_match.h>
+#include <strata/core/mesh_check.h>
+#include <strata/core/validate.h>
 #include <strata/io/read_surface.h>
+#include <strata/io/write_volume.h>
 
 #include <gtest/gtest.h>
 
 #include "fuzz_targets.h"
+#include "surface_chain.h"
 #include "test_support.h"
+#include "volume_soup.h"
 
 #include <algorithm>
 #include <cmath>
@@ -66,6 +72,14 @@ TEST(FuzzRegressions, SurfaceSeedsAndReproducers) {
     replay("surface", &strata_fuzz_one_surface);
 }
 
+TEST(FuzzRegressions, MshSeedsAndReproducers) {
+    replay("msh", &strata_fuzz_one_msh);
+}
+
+TEST(FuzzRegressions, WritersSeedsAndReproducers) {
+    replay("writers", &strata_fuzz_one_writers);
+}
+
 TEST(FuzzSeeds, StlSeedsAreReadPreparedAndHaveRings) {
     for (const fs::path& file : inputs("corpus", "stl")) {
         SCOPED_TRACE(file.string());
@@ -82,6 +96,70 @@ TEST(FuzzSeeds, SurfaceSeedsDecodeToPreparedSurfacesWithRings) {
         EXPECT_GT(soup.mesh.num_faces(), 0);
         EXPECT_EQ(fuzz::run_surface_chain(soup.mesh, soup.params, file.string()), 2);
     }
+}
+
+TEST(FuzzSeeds, MshSeedsAreRead) {
+    for (const fs::path& file : inputs("corpus", "msh")) {
+        SCOPED_TRACE(file.string());
+        const SurfaceMesh surface = read_msh(file.string());
+        EXPECT_GT(surface.num_faces(), 0);
+        EXPECT_TRUE(check_surface_arrays(surface).ok());
+        if (file.filename().string().rfind("every_type", 0) != 0) continue;
+        // One cell of each type but the prism, of which two; two patches.
+        const VolumeMesh volume = read_volume_msh(file.string());
+        EXPECT_TRUE(check_volume_arrays(volume).ok());
+        EXPECT_EQ(volume.tets.size() + volume.pyramids.size() + volume.hexes.size(), 3u);
+        EXPECT_EQ(volume.prisms.size(), 2u);
+        EXPECT_EQ(volume.boundary.patches.size(), 2u);
+    }
+}
+
+TEST(FuzzSeeds, WritersSeedsDecodeToValidMeshes) {
+    for (const fs::path& file : inputs("corpus", "writers")) {
+        SCOPED_TRACE(file.string());
+        const std::string data = slurp(file);
+        const VolumeMesh mesh = fuzz::decode_volume(bytes(data), data.size());
+        EXPECT_GT(mesh.num_cells(), 0);
+        // Valid, so both writers must write it (and the target reads it back).
+        const ValidationReport report = validate_mesh(mesh);
+        EXPECT_TRUE(report.ok()) << (report.problems.empty() ? "" : report.problems.front());
+    }
+}
+
+TEST(FuzzVolumeSoup, DecodesTheDocumentedFormat) {
+    // Flags: 2 patches, awkward names, kinds rotated by 1, both named as patch 0. Nodes: grid
+    // points 0, 1 (x = 1), 4 (y = 1), 16 (z = 1), the last moved 0.5 in z.
+    const std::string data = {0x01 | 0x04 | 0x10 | 0x40, 4, 0, 1, 4, '\x90',
+                              // a tetrahedron with ids modulo 4 (5 is 1)
+                              0x00, 0, 5, 2, 3,
+                              // a triangle on patch 3 modulo 2 = 1, a quad on patch (0x2D >> 4) - 1 = 1
+                              // with raw ids, a hexahedron cut short (left out)
+                              0x34, 0, 2, 1, 0x2D, 0, 1, 2, 9, 0x03, 1, 2};
+    const VolumeMesh m = fuzz::decode_volume(bytes(data), data.size());
+    ASSERT_EQ(m.boundary.patches.size(), 2u);
+    EXPECT_EQ(m.boundary.patches[0].name, "Hexahedra");
+    EXPECT_EQ(m.boundary.patches[1].name, "Hexahedra");
+    EXPECT_EQ(m.boundary.patches[0].kind, PatchKind::Farfield);
+    EXPECT_EQ(m.boundary.patches[1].kind, PatchKind::Symmetry);
+    ASSERT_EQ(m.points.size(), 4u);
+    EXPECT_EQ(m.points[3], Vec3(0, 0, 1.5));
+    ASSERT_EQ(m.tets.size(), 1u);
+    EXPECT_EQ(m.tets[0], (std::array<Index, 4>{0, 1, 2, 3}));
+    EXPECT_EQ(m.num_cells(), 1);
+    ASSERT_EQ(m.boundary.num_faces(), 2);
+    EXPECT_EQ(std::vector<Index>(m.boundary.face_begin(0), m.boundary.face_end(0)), (std::vector<Index>{0, 2, 1}));
+    EXPECT_EQ(m.boundary.face_patch[0], 1);
+    EXPECT_EQ(std::vector<Index>(m.boundary.face_begin(1), m.boundary.face_end(1)), (std::vector<Index>{0, 1, 2, 9}));
+    EXPECT_EQ(m.boundary.face_patch[1], 1);
+    // Completing the boundary (flag bit 3) adds the tetrahedron's faces, outward, patches in turn.
+    std::string completed = data;
+    completed[0] = 0x08 | 0x01;
+    completed.resize(11);
+    const VolumeMesh c = fuzz::decode_volume(bytes(completed), completed.size());
+    ASSERT_EQ(c.boundary.num_faces(), 4);
+    EXPECT_EQ(std::vector<Index>(c.boundary.face_begin(3), c.boundary.face_end(3)), (std::vector<Index>{3, 1, 2}));
+    EXPECT_EQ(c.boundary.face_patch, (std::vector<Index>{0, 1, 0, 1}));
+    EXPECT_TRUE(match_faces(c).ok());
 }
 
 TEST(FuzzSoup, DecodesTheDocumentedFormat) {
