@@ -221,8 +221,9 @@ extern "C" void on_crash(int sig) {
         write_text(g_input);
     }
     const bool surface = std::strcmp(g_stage, "surface") == 0;
-    write_text(surface ? " (Gmsh meshing the surface: it crashes on some CAD faces and sizes; try another --size, "
-                         "--size-min or --curvature, or export the model again)"
+    write_text(surface ? " (Gmsh meshing the surface, or reading it: it crashes on some CAD faces and sizes, and on "
+                         "some damaged .msh files; try another --size, --size-min or --curvature, or export the "
+                         "model or the mesh again)"
                        : " (a fault in Strata or a library it calls: please report it with the input and the "
                          "command)");
     write_text(g_writing.load() ? "; it was writing: its temporary files were removed and the previous "

@@ -55,6 +55,10 @@ case "$mode" in
     ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
     # The Python package, on the build tree's package (tests/python/conftest.py).
     BUILD_DIR="$build_dir" /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python
+    # The libFuzzer targets for 20 s each from their seeds, in a sanitizer build of their own
+    # (scripts/fuzz.sh smoke; clang). Not yet the msh target: Gmsh 4.8's own MSH reader crashes
+    # on some damaged files (fuzz/pending/msh), which Strata does not yet read in a child.
+    BUILD_DIR="$build_dir-fuzz" bash scripts/fuzz.sh smoke 20 writers stl surface
     ;;
   example)
     mkdir -p out

@@ -29,6 +29,7 @@
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/io/files.h>
 #include <strata/io/formats.h>
+#include <strata/io/geo_script.h>
 #include <strata/io/gmsh_session.h>
 #include <strata/io/write_report.h>
 #include <strata/io/write_surface.h>
@@ -827,6 +828,9 @@ PYBIND11_MODULE(_strata, m) {
         });
 
     const char* run_doc = "(input, options: dict, output, msh_version, progress, timeout); see strata.";
+    m.def("check_geo_script", &check_geo_script, py::arg("path"),
+          "Raise InputError if the .geo script at path (or one it Includes or Merges) runs commands or writes "
+          "files, naming the line.");
     m.def("surface", &run_surface, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),
           py::arg("progress"), py::arg("timeout"), run_doc);
     m.def("layers", &run_layers, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),

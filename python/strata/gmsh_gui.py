@@ -19,7 +19,7 @@ import sys
 
 import gmsh
 
-from . import InputError, keywords
+from . import InputError, _strata, keywords
 from . import gmsh as strata_gmsh
 
 # The panel: ONELAB name -> keyword of strata.gmsh.mesh_current_model. The numeric prefix
@@ -186,7 +186,11 @@ def show_volume():
     gmsh.option.setNumber("General.Clip0D", mid)
 
 
-def open_model(path):
+def open_model(path, trust_geo=False):
+    """Open path in Gmsh; a .geo script is checked first (Strata's check: no shell commands, no
+    files written) unless trust_geo."""
+    if path.lower().endswith(".geo") and not trust_geo:
+        _strata.check_geo_script(path)
     gmsh.open(path)
 
 
@@ -196,6 +200,8 @@ def main(argv=None):
         "and a 'Strata: hybrid mesh' button.")
     parser.add_argument("model", help="anything Gmsh opens: .geo, .step, .brep, .stl, .msh")
     parser.add_argument("--run", action="store_true", help="press the button once the window is open")
+    parser.add_argument("--trust-geo", action="store_true",
+                        help="open a .geo script even where it runs commands or writes files")
     parser.add_argument("--screenshot", metavar="PNG",
                         help="with --run: save the graphics area as PNG when the mesh is shown, then close")
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
@@ -203,7 +209,11 @@ def main(argv=None):
         parser.error("--screenshot needs --run")
     gmsh.initialize()
     try:
-        open_model(args.model)
+        try:
+            open_model(args.model, args.trust_geo)
+        except InputError as e:  # a .geo script that runs commands or writes files
+            print("strata-gmsh: error:", str(e).replace("trust_geo=True", "--trust-geo"), file=sys.stderr)
+            return 1
         gmsh.option.setNumber("Solver.AutoMesh", 0)  # Gmsh's own Run would mesh the model in 3D
         define_parameters()
         # A panel wide enough for the parameters' names, and the message console open: the

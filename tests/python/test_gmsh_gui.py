@@ -91,3 +91,10 @@ def test_real_window_under_xvfb(tmp_path):
     assert "Strata: time" in run.stdout and "coverage" in run.stdout
     data = png.read_bytes()
     assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 5000  # a drawn mesh, not a blank area
+
+
+def test_a_geo_script_that_runs_commands_is_not_opened(tmp_path):
+    evil = tmp_path / "evil.geo"
+    evil.write_text('Point(1) = {0, 0, 0};\nSystemCall "touch %s";\n' % (tmp_path / "pwned"))
+    assert gmsh_gui.main([str(evil)]) == 1
+    assert not (tmp_path / "pwned").exists()
