@@ -200,9 +200,15 @@ int signalled_while_writing(const ScratchDir& dir, const std::vector<std::string
             const std::string n = p.filename().string();
             return n.starts_with(".") && n.find(".tmp") != std::string::npos;
         };
-        for (const auto& e : fs::recursive_directory_iterator(dir.path()))  // a file or a polyMesh's
-            if ((temporary(e.path()) || temporary(e.path().parent_path())) && e.is_regular_file() && e.file_size() > 0)
+        // Files come and go while the program runs (the outputs' probes): an entry gone
+        // between listing and reading is no temporary being written.
+        std::error_code ec;
+        for (auto it = fs::recursive_directory_iterator(dir.path(), ec); !ec && it != fs::end(it); it.increment(ec)) {
+            const fs::path& p = it->path();  // a file, or a file of a polyMesh being written
+            std::error_code size_ec;
+            if ((temporary(p) || temporary(p.parent_path())) && fs::file_size(p, size_ec) > 0 && !size_ec)
                 return true;
+        }
         return false;
     };
     const auto t0 = std::chrono::steady_clock::now();
