@@ -206,8 +206,7 @@ int signalled_while_writing(const ScratchDir& dir, const std::vector<std::string
         for (auto it = fs::recursive_directory_iterator(dir.path(), ec); !ec && it != fs::end(it); it.increment(ec)) {
             const fs::path& p = it->path();  // a file, or a file of a polyMesh being written
             std::error_code size_ec;
-            if ((temporary(p) || temporary(p.parent_path())) && fs::file_size(p, size_ec) > 0 && !size_ec)
-                return true;
+            if ((temporary(p) || temporary(p.parent_path())) && fs::file_size(p, size_ec) > 0 && !size_ec) return true;
         }
         return false;
     };
