@@ -64,6 +64,19 @@ TEST(CliBadInput, MshClaimingBillionsOfNodes) {
     EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"huge.msh"});
 }
 
+TEST(CliBadInput, MshThatCrashesGmshsReaderIsAnError) {
+    // A damaged binary MSH 2.2 file the fuzzer found: Gmsh 4.8's reader crashes on it
+    // (SIGSEGV), in the child process Strata reads it in first.
+    test::ScratchDir dir("cli_bad_msh_crash");
+    fs::copy_file(
+        std::string(STRATA_EXAMPLES_DATA) + "/../../fuzz/regressions/msh/msh22_binary_nodes_garbled_segv_1.msh",
+        dir.file("damaged.msh"));
+    expect_refused(strata_cli(dir, "surface damaged.msh -o out.msh"),
+                   "reading 'damaged.msh': Gmsh's MSH reader crashes (signal 11) on it: the file is damaged or not "
+                   "MSH 2.2 or 4.1; write it again");
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"damaged.msh"});
+}
+
 TEST(CliBadInput, DeviceNamedStl) {
     test::ScratchDir dir("cli_bad_device");
     fs::create_symlink("/dev/zero", dir.file("x.stl"));
