@@ -1,6 +1,7 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/core/format.h>
+#include <strata/geometry/kd_cloud.h>
 #include <strata/geometry/point_sizes.h>
 
 #include <nanoflann.hpp>
@@ -11,29 +12,6 @@
 
 namespace strata {
 namespace {
-
-/// The points as nanoflann's dataset.
-struct Cloud {
-    const std::vector<SizePoint>& points;
-    std::size_t kdtree_get_point_count() const { return points.size(); }
-    double kdtree_get_pt(std::size_t i, std::size_t dim) const { return points[i].at[static_cast<Eigen::Index>(dim)]; }
-    template <class Box>
-    bool kdtree_get_bbox(Box& /*box*/) const {
-        return false;  // let nanoflann compute it
-    }
-};
-
-/// The squared distance as Eigen computes it (the same rounding wherever a point is found).
-struct SquaredDistance {
-    using ElementType = double;
-    using DistanceType = double;
-    const Cloud& cloud;
-    explicit SquaredDistance(const Cloud& c) : cloud(c) {}
-    double evalMetric(const double* a, std::size_t b, std::size_t /*dim*/) const {
-        return (Vec3(a[0], a[1], a[2]) - cloud.points[b].at).squaredNorm();
-    }
-    double accum_dist(double a, double b, std::size_t /*axis*/) const { return (a - b) * (a - b); }
-};
 
 /// nanoflann result set for min_i size_i + growth·d_i: a branch and bound, the search radius
 /// shrinking to the distance beyond which even the smallest size could no longer win.
@@ -61,8 +39,9 @@ private:
 }  // namespace
 
 struct PointSizes::Tree {
-    using KdTree = nanoflann::KDTreeSingleIndexAdaptor<SquaredDistance, Cloud, 3, std::size_t>;
-    Cloud cloud;
+    using KdTree =
+        nanoflann::KDTreeSingleIndexAdaptor<KdSquaredDistance<SizePoint>, KdCloud<SizePoint>, 3, std::size_t>;
+    KdCloud<SizePoint> cloud;
     KdTree index;
     explicit Tree(const std::vector<SizePoint>& points)
         : cloud{points}, index(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {

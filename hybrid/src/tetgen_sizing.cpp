@@ -38,6 +38,7 @@
 
 #include <strata/core/face_geometry.h>
 #include <strata/core/format.h>
+#include <strata/geometry/kd_cloud.h>
 
 #include <nanoflann.hpp>
 
@@ -50,30 +51,6 @@
 
 namespace strata::tetgen {
 namespace {
-
-/// The wall points as nanoflann's dataset.
-struct PointCloud {
-    const std::vector<Vec3>& points;
-    std::size_t kdtree_get_point_count() const { return points.size(); }
-    double kdtree_get_pt(std::size_t i, std::size_t axis) const { return points[i][static_cast<int>(axis)]; }
-    template <class Box>
-    bool kdtree_get_bbox(Box& /*box*/) const {
-        return false;  // let nanoflann compute it
-    }
-};
-
-/// Squared Euclidean distance as Eigen computes it for Vec3 (the same rounding wherever the
-/// point is found); nanoflann's metric interface.
-struct SquaredDistance {
-    using ElementType = double;
-    using DistanceType = double;
-    const PointCloud& cloud;
-    explicit SquaredDistance(const PointCloud& c) : cloud(c) {}
-    double evalMetric(const double* a, std::size_t b, std::size_t /*dim*/) const {
-        return (Vec3(a[0], a[1], a[2]) - cloud.points[b]).squaredNorm();
-    }
-    double accum_dist(double a, double b, std::size_t /*axis*/) const { return (a - b) * (a - b); }
-};
 
 /// nanoflann result set keeping the nearest point; of equally near ones the one of the
 /// smallest \p size, then the lowest index. worstDist is just above the best distance so that
@@ -101,8 +78,8 @@ private:
 }  // namespace
 
 struct SizeField::Tree {
-    using KdTree = nanoflann::KDTreeSingleIndexAdaptor<SquaredDistance, PointCloud, 3, std::size_t>;
-    PointCloud cloud;
+    using KdTree = nanoflann::KDTreeSingleIndexAdaptor<KdSquaredDistance<Vec3>, KdCloud<Vec3>, 3, std::size_t>;
+    KdCloud<Vec3> cloud;
     const std::vector<double>& size;
     KdTree index;
     Tree(const std::vector<Vec3>& points, const std::vector<double>& sizes)
