@@ -682,14 +682,9 @@ py::dict run_gmsh_model(const py::dict& kwargs, const py::object& callback, cons
     });
 }
 
-}  // namespace
-}  // namespace strata
-
-PYBIND11_MODULE(_strata, m) {
-    using namespace strata;
-    m.doc() = "Strata's C++ pipeline; use the package strata (strata.mesh, strata.layers, strata.surface).";
-
-    // Exceptions: one base, InputError also a ValueError, Cancelled a KeyboardInterrupt.
+/// Strata's exception types on the module \p m, and their translation from C++: one base,
+/// InputError also a ValueError, OutputError also an OSError, Cancelled a KeyboardInterrupt.
+void register_exceptions(py::module_& m) {
     g_error =
         PyErr_NewExceptionWithDoc("strata.Error", "Base of every error Strata raises.", PyExc_RuntimeError, nullptr);
     py::tuple input_bases = py::make_tuple(py::handle(g_error), py::handle(PyExc_ValueError));
@@ -716,6 +711,16 @@ PYBIND11_MODULE(_strata, m) {
     m.attr("OutputError") = py::handle(g_output_error);
     m.attr("Cancelled") = py::handle(g_cancelled);
     py::register_exception_translator(&translate_exception);
+}
+
+}  // namespace
+}  // namespace strata
+
+PYBIND11_MODULE(_strata, m) {
+    using namespace strata;
+    m.doc() = "Strata's C++ pipeline; use the package strata (strata.mesh, strata.layers, strata.surface).";
+
+    register_exceptions(m);
 
     m.def(
         "keywords",
