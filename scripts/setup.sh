@@ -49,9 +49,18 @@ bash scripts/install_python.sh "$build_dir"
 # import strata_freecad in FreeCAD and freecadcmd (a symlink into FreeCAD's Mod folder; see the script)
 bash scripts/install_freecad.sh
 
+# The main job: the ONERA M6 wing from its STEP file to a hybrid mesh (Cobalt60 + patch map).
+run_example() {
+  mkdir -p out
+  "$build_dir"/app/strata mesh examples/data/onera_m6_sharp_te.stp -o out/onera_m6.cgr \
+    --size 30 --layers 20 --first-height 0.02 --growth 1.2
+}
+
 case "$mode" in
   build) ;;
   test)
+    # What the first command does after the build, so CI runs both commands of the README.
+    run_example
     ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
     # The Python package, on the build tree's package (tests/python/conftest.py).
     BUILD_DIR="$build_dir" /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python
@@ -61,12 +70,7 @@ case "$mode" in
     # the fuzz build cannot fork beside Gmsh (clang's OpenMP runtime) and crashes on those files.
     BUILD_DIR="$build_dir-fuzz" bash scripts/fuzz.sh smoke 20 writers stl surface
     ;;
-  example)
-    mkdir -p out
-    # The main job: the ONERA M6 wing from its STEP file to a hybrid mesh (Cobalt60 + patch map).
-    "$build_dir"/app/strata mesh examples/data/onera_m6_sharp_te.stp -o out/onera_m6.cgr \
-      --size 30 --layers 20 --first-height 0.02 --growth 1.2
-    ;;
+  example) run_example ;;
   *)
     echo "usage: scripts/setup.sh [example|test|build]" >&2
     exit 2
