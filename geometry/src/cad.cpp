@@ -337,8 +337,7 @@ std::vector<int> free_curves(const std::vector<int>& surfaces, double min_length
 }
 
 /// A surface's bounding box, which sewing moves by at most its tolerance (its area and centre
-/// of mass can change more: OpenCASCADE measured an IGES nose face with a degenerate edge 23 %
-/// larger before the healing than after).
+/// of mass can change more, where healing fixes a degenerate edge).
 struct SurfaceMark {
     int tag = 0;
     std::array<double, 6> box{};
