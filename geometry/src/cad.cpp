@@ -337,8 +337,7 @@ std::vector<int> free_curves(const std::vector<int>& surfaces, double min_length
 }
 
 /// A surface's bounding box, which sewing moves by at most its tolerance (its area and centre
-/// of mass can change more: OpenCASCADE measured an IGES nose face with a degenerate edge 23 %
-/// larger before the healing than after).
+/// of mass can change more, where healing fixes a degenerate edge).
 struct SurfaceMark {
     int tag = 0;
     std::array<double, 6> box{};
@@ -484,19 +483,112 @@ std::vector<int> remove_written_twice(const std::vector<int>& loose, double diag
     return {twice.begin(), twice.end()};
 }
 
-/// CadParams::sew_tolerance: the faces that bound no solid sewn (and closed shells made solids),
-/// the sewn faces given the file's tags back as physical groups "surface_<tag>" where sewing
-/// renumbered them. Returns the new tag of each of the file's surface tags (empty: unchanged).
-std::map<int, int> sew_faces(double share, SewReport& r) {
-    std::map<int, int> renamed;
-    std::vector<int> all = entity_tags(2);
+/// Of \p surfaces, those that bound no solid.
+std::vector<int> loose_surfaces(const std::vector<int>& surfaces) {
     std::vector<int> loose;
-    for (const int s : all) {
+    for (const int s : surfaces) {
         std::vector<int> up, down;
         gmsh::model::getAdjacencies(2, s, up, down);
         if (up.empty()) loose.push_back(s);
     }
-    if (loose.empty() || !(share > 0.0)) return renamed;
+    return loose;
+}
+
+/// OpenCASCADE's sewing of the faces \p loose at \p tolerance, with degenerate edges, edges and
+/// faces smaller than it fixed (sewn alone, a degenerate edge at a spherical nose's pole can
+/// leave the shell open and the nose's 1D mesh not closing, and Gmsh then aborts the process).
+/// With no solid in the model (\p only_faces) the whole model is healed (Gmsh then replaces it);
+/// else the loose faces, whose originals are removed after. Returns what the healing made.
+gmsh::vectorpair heal_loose(const std::vector<int>& loose, bool only_faces, double tolerance) {
+    gmsh::vectorpair healed, input;
+    for (const int s : loose) input.emplace_back(2, s);
+    gmsh::model::occ::healShapes(healed, only_faces ? gmsh::vectorpair{} : input, tolerance, true, true, true, true,
+                                 true);
+    if (!only_faces) {
+        std::set<int> kept;
+        for (const auto& [dim, tag] : healed)
+            if (dim == 2) kept.insert(tag);
+        gmsh::vectorpair gone;
+        for (const int s : loose)
+            if (!kept.count(s)) gone.emplace_back(2, s);
+        gmsh::model::occ::remove(gone, true);
+    }
+    gmsh::model::occ::synchronize();
+    return healed;
+}
+
+/// The free edges left after sewing the surfaces \p now into \p r (free_after, cracks,
+/// widest_gap, gap_at, suggested_tolerance).
+void measure_left_gaps(const std::vector<int>& now, double diagonal, SewReport& r) {
+    const std::vector<int> open = free_curves(now, 1e-9 * diagonal);
+    r.free_after = static_cast<Index>(open.size());
+    if (open.empty()) return;
+    const Gaps left = measure_gaps(open, 1e-3 * diagonal);
+    // Edges that lie on another (no gap) and stayed apart are not a matter of tolerance.
+    if (left.widest > 0.0) r.cracks = left.cracks, r.widest_gap = left.widest, r.gap_at = left.at;
+    if (r.cracks > 0) {
+        // Twice the widest gap, two significant digits up, as a share of the diagonal.
+        const double want = std::min(1e-3, 2.0 * r.widest_gap / diagonal);
+        const double e = std::pow(10.0, std::floor(std::log10(want)) - 1.0);
+        r.suggested_tolerance = std::min(1e-3, std::ceil(want / e - 1e-9) * e);
+    }
+}
+
+/// Each surface \p now against the one \p before with the nearest bounding box: how far the
+/// healing moved a face (into r.moved: trimmed faces whose small edges were "fixed" can lose
+/// much of their area), and the file's tags back, one to one (new tag → old), where \p matched.
+std::map<int, int> match_surfaces(const std::vector<int>& now, const std::vector<SurfaceMark>& before, double diagonal,
+                                  SewReport& r, bool& matched) {
+    std::map<int, int> old_of;
+    matched = now.size() == before.size();
+    std::set<int> taken;
+    for (std::size_t i = 0; i < now.size(); ++i) {
+        const SurfaceMark m = mark(now[i]);
+        // The nearest, and the nearest not matched yet (two bodies' copies of the face they touch
+        // along have the same box).
+        int best = -1;
+        double nearest = std::numeric_limits<double>::infinity(), best_d = nearest;
+        for (const SurfaceMark& b : before) {
+            const double d = box_distance(b, m);
+            nearest = std::min(nearest, d);
+            if (d < best_d && !taken.count(b.tag)) best_d = d, best = b.tag;
+        }
+        r.moved = std::max(r.moved, nearest);
+        matched = matched && best >= 0 && best_d <= nearest + 1e-9 * diagonal;
+        if (matched) taken.insert(best), old_of[now[i]] = best;
+    }
+    return old_of;
+}
+
+/// The sewn surfaces given their file's tags \p old_of (new tag → old) back as physical groups
+/// "surface_<tag>", unless the model has groups of its own (then r.renumbered). Returns the new
+/// tag of each of the file's surface tags (empty: unchanged).
+std::map<int, int> name_by_file_tags(const std::map<int, int>& old_of, SewReport& r) {
+    std::map<int, int> renamed;
+    bool same = true;
+    for (const auto& [n, o] : old_of) same = same && n == o;
+    if (same) return renamed;
+    gmsh::vectorpair groups;
+    gmsh::model::getPhysicalGroups(groups, 2);
+    if (!groups.empty()) {
+        r.renumbered = true;  // a model with its own groups is named by them
+        return renamed;
+    }
+    for (const auto& [n, o] : old_of) {
+        gmsh::model::addPhysicalGroup(2, {n}, o);
+        gmsh::model::setPhysicalName(2, o, "surface_" + std::to_string(o));
+        renamed[o] = n;
+    }
+    return renamed;
+}
+
+/// CadParams::sew_tolerance: the faces that bound no solid sewn (and closed shells made solids),
+/// the sewn faces given the file's tags back as physical groups "surface_<tag>" where sewing
+/// renumbered them. Returns the new tag of each of the file's surface tags (empty: unchanged).
+std::map<int, int> sew_faces(double share, SewReport& r) {
+    std::vector<int> all = entity_tags(2);
+    std::vector<int> loose = loose_surfaces(all);
+    if (loose.empty() || !(share > 0.0)) return {};
     double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
     gmsh::model::getBoundingBox(-1, -1, xmin, ymin, zmin, xmax, ymax, zmax);
     const double diagonal = std::hypot(xmax - xmin, ymax - ymin, zmax - zmin);
@@ -517,99 +609,35 @@ std::map<int, int> sew_faces(double share, SewReport& r) {
     // gap measured between the loose faces' edges.
     const std::vector<int> loose_edges = free_curves(loose, 1e-9 * diagonal);
     r.written_twice = written_twice;
-    if (loose_edges.empty()) return renamed;  // closed faces (a sphere's): nothing to sew
+    if (loose_edges.empty()) return {};  // closed faces (a sphere's): nothing to sew
     r.faces = static_cast<Index>(loose.size());
     r.free_before = static_cast<Index>(loose_edges.size());
     const Gaps gaps = measure_gaps(loose_edges, 1e-3 * diagonal);
     if (gaps.cracks == 0) {  // no edge runs along another (a lone sheet): nothing to sew
         r = SewReport{};
         r.written_twice = written_twice;
-        return renamed;
+        return {};
     }
     r.gap_before = gaps.widest;
     r.tolerance = std::max(share * diagonal, std::min(2.0 * gaps.widest, kSewShareMax * diagonal));
     std::vector<SurfaceMark> before;
     for (const int s : all) before.push_back(mark(s));
-    const bool only_faces = entity_tags(3).empty();
-    gmsh::vectorpair healed, input;
-    for (const int s : loose) input.emplace_back(2, s);
-    // With no solid in the model the whole model is healed (Gmsh then replaces it); else the
-    // loose faces, whose originals are removed after. Degenerate edges, edges and faces
-    // smaller than the tolerance are fixed with the sewing: sewn alone, the trimmed faces of an
-    // IGES export of a body with a spherical nose kept a degenerate edge at the pole that
-    // left the shell open and the nose's 1D mesh not closing (Gmsh then aborts the process).
-    gmsh::model::occ::healShapes(healed, only_faces ? gmsh::vectorpair{} : input, r.tolerance, true, true, true, true,
-                                 true);
-    if (!only_faces) {
-        std::set<int> kept;
-        for (const auto& [dim, tag] : healed)
-            if (dim == 2) kept.insert(tag);
-        gmsh::vectorpair gone;
-        for (const int s : loose)
-            if (!kept.count(s)) gone.emplace_back(2, s);
-        gmsh::model::occ::remove(gone, true);
-    }
-    gmsh::model::occ::synchronize();
+    const gmsh::vectorpair healed = heal_loose(loose, entity_tags(3).empty(), r.tolerance);
     const std::vector<int> now = entity_tags(2);
     for (const auto& [dim, tag] : healed)
         if (dim == 3) ++r.solids;
-    const std::vector<int> open = free_curves(now, 1e-9 * diagonal);
-    r.free_after = static_cast<Index>(open.size());
-    if (!open.empty()) {
-        const Gaps left = measure_gaps(open, 1e-3 * diagonal);
-        // Edges that lie on another (no gap) and stayed apart are not a matter of tolerance.
-        if (left.widest > 0.0) r.cracks = left.cracks, r.widest_gap = left.widest, r.gap_at = left.at;
-        if (r.cracks > 0) {
-            // Twice the widest gap, two significant digits up, as a share of the diagonal.
-            const double want = std::min(1e-3, 2.0 * r.widest_gap / diagonal);
-            const double e = std::pow(10.0, std::floor(std::log10(want)) - 1.0);
-            r.suggested_tolerance = std::min(1e-3, std::ceil(want / e - 1e-9) * e);
-        }
-    }
-    // Each surface now against the one before with the nearest bounding box: how far the
-    // healing moved a face (a capsule's trimmed spherical caps, their small edges "fixed",
-    // lost 60 % of their area and 0.04 of the diagonal), and the file's tags back, one to one.
-    std::map<int, int> old_of;
-    bool matched = now.size() == before.size();
-    std::set<int> taken;
-    for (std::size_t i = 0; i < now.size(); ++i) {
-        const SurfaceMark m = mark(now[i]);
-        // The nearest, and the nearest not matched yet (two bodies' copies of the face they touch
-        // along have the same box).
-        int best = -1;
-        double nearest = std::numeric_limits<double>::infinity(), best_d = nearest;
-        for (const SurfaceMark& b : before) {
-            const double d = box_distance(b, m);
-            nearest = std::min(nearest, d);
-            if (d < best_d && !taken.count(b.tag)) best_d = d, best = b.tag;
-        }
-        r.moved = std::max(r.moved, nearest);
-        matched = matched && best >= 0 && best_d <= nearest + 1e-9 * diagonal;
-        if (matched) taken.insert(best), old_of[now[i]] = best;
-    }
+    measure_left_gaps(now, diagonal, r);
+    bool matched = false;
+    const std::map<int, int> old_of = match_surfaces(now, before, diagonal, r, matched);
     if (r.moved > kSewMoveMax * diagonal + 10.0 * r.tolerance) {
         r.rejected = true;  // the caller reads the file again, unsewn
-        return renamed;
+        return {};
     }
     if (!matched) {
         r.renumbered = true;
-        return renamed;
+        return {};
     }
-    bool same = true;
-    for (const auto& [n, o] : old_of) same = same && n == o;
-    if (same) return renamed;
-    gmsh::vectorpair groups;
-    gmsh::model::getPhysicalGroups(groups, 2);
-    if (!groups.empty()) {
-        r.renumbered = true;  // a model with its own groups is named by them
-        return renamed;
-    }
-    for (const auto& [n, o] : old_of) {
-        gmsh::model::addPhysicalGroup(2, {n}, o);
-        gmsh::model::setPhysicalName(2, o, "surface_" + std::to_string(o));
-        renamed[o] = n;
-    }
-    return renamed;
+    return name_by_file_tags(old_of, r);
 }
 
 // A script that meshed itself ("Mesh 2;") would keep its curve mesh: generate(2) meshes the
@@ -714,34 +742,13 @@ SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, 
     return mesh;
 }
 
-}  // namespace
-
-bool is_cad_file(const std::string& path) {
-    return format_of(path).has_value();
-}
-
-SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units, WallSizeReport* walls,
-                     SewReport* sew, RecombinationReport* recombination, const Progress* progress) {
-    const std::optional<CadFormat> format = format_of(path);
-    if (!format)
-        throw InputError(path +
-                         ": not a CAD file Strata reads; use .step/.stp, .iges/.igs, "
-                         ".brep/.brp or a Gmsh .geo script");
-    validate(params);
-    check_input(path, *format);
-    const bool script = *format == CadFormat::Geo;
-
-    GmshSession session("strata_cad");
-    GmshOptionScope options;  // declared after the session: restored while Gmsh is still locked
-    options.save(kSavedOptions);
-    options.save_string("Geometry.OCCTargetUnit");
-
-    // Units: OpenCASCADE converts STEP and IGES to millimetres; scaled back on import to the
-    // unit the file declares, or the one asked.
+/// Units: OpenCASCADE converts STEP and IGES to millimetres; scaled back on import to the unit
+/// the file declares, or the one asked. Sets Gmsh's import options for it; returns the units.
+CadUnits set_import_units(const std::string& path, CadFormat format, const CadParams& params) {
     CadUnits read_in;
-    const bool has_unit = *format == CadFormat::Step || *format == CadFormat::Iges;
+    const bool has_unit = format == CadFormat::Step || format == CadFormat::Iges;
     if (!has_unit && !params.units.empty())
-        throw InputError(path + ": a " + std::string(format_name(*format)) +
+        throw InputError(path + ": a " + std::string(format_name(format)) +
                          " file declares no length unit, so CadParams::units (" + params.units +
                          ") cannot convert it; its numbers are kept as they are (scale them with "
                          "PrepareParams::scale)");
@@ -756,57 +763,49 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     gmsh_call("setting Gmsh option Geometry.OCCTargetUnit",
               [] { gmsh::option::setString("Geometry.OCCTargetUnit", ""); });
     set_number("Geometry.OCCScaling", scaling);
-    if (units) *units = read_in;
+    return read_in;
+}
 
-    load(path, *format, params.trust_geo);
+/// The loaded model's faces that bound no solid sewn (sew_faces), once more from the file at
+/// a higher tolerance where gaps were left that it sews, or back as the file has them where the
+/// healing changed the geometry. Returns the new tag of each of the file's surface tags where
+/// they differ; \p sewn says what was done.
+std::map<int, int> sew_model(const std::string& path, CadFormat format, const CadParams& params, SewReport& sewn) {
+    std::map<int, int> renamed;
+    gmsh_call(path +
+                  ": sewing the faces that bound no solid (OpenCASCADE) failed; sew them in the CAD tool, or "
+                  "give CadParams::sew_tolerance 0 to mesh them as they are",
+              [&] {
+                  auto reload = [&] {
+                      gmsh::vectorpair everything;
+                      gmsh::model::getEntities(everything, -1);
+                      gmsh::model::removePhysicalGroups();
+                      gmsh::model::occ::remove(everything, true);
+                      gmsh::model::occ::synchronize();
+                      load(path, format, params.trust_geo);
+                  };
+                  renamed = sew_faces(params.sew_tolerance, sewn);
+                  if (!sewn.rejected && sewn.cracks > 0 && sewn.suggested_tolerance <= kSewShareMax) {
+                      // Edges still apart by a gap the measure before sewing missed (a
+                      // face's edge that healing changed): once more from the file, at the
+                      // tolerance that sews them.
+                      reload();
+                      SewReport again;
+                      renamed = sew_faces(std::max(params.sew_tolerance, sewn.suggested_tolerance), again);
+                      again.first_tolerance = sewn.tolerance;
+                      sewn = again;
+                  }
+                  if (sewn.rejected) {
+                      // The healing changed the geometry: the faces as the file has them.
+                      reload();
+                      renamed.clear();
+                  }
+              });
+    return renamed;
+}
 
-    const std::vector<int> loaded_surfaces = entity_tags(2);
-    if (loaded_surfaces.empty())
-        throw InputError(path +
-                         ": no surfaces in the model; the file holds only points or "
-                         "curves (or nothing): export the surfaces or solids from the "
-                         "CAD tool");
-    SewReport sewn;
-    std::map<int, int> renamed;  // the file's surface tag → its tag after sewing, where they differ
-    if (!script)
-        gmsh_call(path +
-                      ": sewing the faces that bound no solid (OpenCASCADE) failed; sew them in the CAD tool, or "
-                      "give CadParams::sew_tolerance 0 to mesh them as they are",
-                  [&] {
-                      auto reload = [&] {
-                          gmsh::vectorpair everything;
-                          gmsh::model::getEntities(everything, -1);
-                          gmsh::model::removePhysicalGroups();
-                          gmsh::model::occ::remove(everything, true);
-                          gmsh::model::occ::synchronize();
-                          load(path, *format, params.trust_geo);
-                      };
-                      renamed = sew_faces(params.sew_tolerance, sewn);
-                      if (!sewn.rejected && sewn.cracks > 0 && sewn.suggested_tolerance <= kSewShareMax) {
-                          // Edges still apart by a gap the measure before sewing missed (a
-                          // face's edge that healing changed): once more from the file, at the
-                          // tolerance that sews them.
-                          reload();
-                          SewReport again;
-                          renamed = sew_faces(std::max(params.sew_tolerance, sewn.suggested_tolerance), again);
-                          again.first_tolerance = sewn.tolerance;
-                          sewn = again;
-                      }
-                      if (sewn.rejected) {
-                          // The healing changed the geometry: the faces as the file has them.
-                          reload();
-                          renamed.clear();
-                      }
-                  });
-    if (sew) *sew = sewn;
-    if (params.fuse) fuse_volumes(path);
-    const std::vector<int> surfaces = entity_tags(2);
-
-    // A .geo script's own mesh settings stand unless the caller asked for something explicitly
-    // (a CadParams field away from its default); everything else gets Strata's defaults, set
-    // explicitly so that no earlier Gmsh user's settings leak in.
-    auto script_set = [&](const char* name) { return script && options.changed(name); };
-
+/// The diagonal of the model's bounding box (InputError where it has no extent).
+double model_diagonal(const std::string& path) {
     double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
     gmsh_call(path + ": computing the bounding box",
               [&] { gmsh::model::getBoundingBox(-1, -1, xmin, ymin, zmin, xmax, ymax, zmax); });
@@ -815,28 +814,52 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     if (!(diagonal > 0.0) || !std::isfinite(diagonal))
         throw InputError(path + ": the model has no extent (bounding-box diagonal " + format_number(diagonal) +
                          "); check the file's geometry");
+    return diagonal;
+}
 
-    const bool default_size = !(params.size > 0.0) && !script_set("Mesh.MeshSizeMax");  // before it is set
+/// Whether a .geo script set a Gmsh option itself: a script's own mesh settings stand unless
+/// the caller asked for something explicitly (a CadParams field away from its default);
+/// everything else gets Strata's defaults, set explicitly so that no earlier Gmsh user's
+/// settings leak in.
+struct ScriptSet {
+    bool script = false;
+    const GmshOptionScope& options;
+    bool operator()(const char* name) const { return script && options.changed(name); }
+};
+
+/// The element sizes mesh_cad asked of Gmsh.
+struct CadSizes {
+    bool default_size = false;      ///< the size is mesh_cad's default (no CadParams::size, none from a script)
+    double size = 0.0;              ///< Mesh.MeshSizeMax
+    bool curvature = false;         ///< sizes from the curvature
+    bool default_size_min = false;  ///< likewise for the smallest size
+};
+
+/// Gmsh's size options from \p params (a script's where \p script_set, else Strata's defaults
+/// for a model of bounding-box diagonal \p diagonal), and the linear elements Strata needs.
+CadSizes set_sizes(const CadParams& params, const ScriptSet& script_set, double diagonal) {
+    CadSizes s;
+    s.default_size = !(params.size > 0.0) && !script_set("Mesh.MeshSizeMax");  // before it is set
     if (params.size > 0.0)
         set_number("Mesh.MeshSizeMax", params.size);
     else if (!script_set("Mesh.MeshSizeMax"))
         set_number("Mesh.MeshSizeMax", diagonal / 20.0);
-    const double size = get_number("Mesh.MeshSizeMax");
+    s.size = get_number("Mesh.MeshSizeMax");
 
     if (params.curvature_points > 0)
         set_number("Mesh.MeshSizeFromCurvature", params.curvature_points);
     else if (!script_set("Mesh.MeshSizeFromCurvature"))
         set_number("Mesh.MeshSizeFromCurvature", 0);
-    const bool curvature = get_number("Mesh.MeshSizeFromCurvature") > 0;
+    s.curvature = get_number("Mesh.MeshSizeFromCurvature") > 0;
 
-    const bool default_size_min = !(params.size_min > 0.0) && !script_set("Mesh.MeshSizeMin");
+    s.default_size_min = !(params.size_min > 0.0) && !script_set("Mesh.MeshSizeMin");
     if (params.size_min > 0.0)
         set_number("Mesh.MeshSizeMin", params.size_min);
     else if (!script_set("Mesh.MeshSizeMin"))
         // The floor matters only for curvature refinement, which would otherwise resolve a
         // sharp edge's tiny radius with needle-small elements. Without it, no floor: a
         // script's point sizes are then never clamped.
-        set_number("Mesh.MeshSizeMin", curvature ? size / 20.0 : 0.0);
+        set_number("Mesh.MeshSizeMin", s.curvature ? s.size / 20.0 : 0.0);
 
     // Gmsh's default, explicit: sizes on curves (curvature-refined edges, a script's point
     // sizes) spread into the surfaces they bound instead of jumping to the maximum size.
@@ -845,7 +868,11 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     // Strata needs linear faces, whatever a script asks for.
     set_number("Mesh.ElementOrder", 1);
     if (!script_set("Mesh.SubdivisionAlgorithm")) set_number("Mesh.SubdivisionAlgorithm", 0);
+    return s;
+}
 
+/// Gmsh's 2D algorithm and recombination from \p params (or a script's, where \p script_set).
+void set_algorithm(const CadParams& params, const ScriptSet& script_set) {
     const int kDefaultAlgorithm = CadParams{}.algorithm;  // not constexpr: clang rejects the std::string members
     if (params.algorithm != kDefaultAlgorithm || !script_set("Mesh.Algorithm"))
         set_number("Mesh.Algorithm", params.algorithm);
@@ -857,7 +884,12 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
         set_number("Mesh.RecombinationAlgorithm", 0);
     else if (!script_set("Mesh.RecombinationAlgorithm"))
         set_number("Mesh.RecombinationAlgorithm", 1);  // Blossom
+}
 
+/// Triangles, quads or quads on CadParams::quad_surfaces only (given by the file's tags, \p
+/// renamed by sewing; \p surfaces the model's).
+void set_elements(const std::string& path, const CadParams& params, const std::map<int, int>& renamed,
+                  const std::vector<int>& surfaces, const ScriptSet& script_set) {
     switch (params.elements) {
         case SurfaceElements::Triangles:
             if (!script_set("Mesh.RecombineAll")) set_number("Mesh.RecombineAll", 0);
@@ -882,15 +914,98 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
             break;
         }
     }
+}
 
+/// A part thinner than the default size can get its two sides meshed through the same nodes (a
+/// blade's tip, one chord across): halve the size, up to three times, while that leaves fewer
+/// such edges. Where it does not (a model whose surfaces meet three to an edge, which no size
+/// mends), the size and mesh before stay: no finer mesh for nothing. \p generate meshes the
+/// model once; the sizes used go into \p r.
+SurfaceMesh mend_shared_chords(const std::string& path, const std::vector<int>& surfaces, const CadSizes& sizes,
+                               const SurfaceGenerator& generate_surfaces, const std::function<void()>& generate,
+                               SurfaceMesh mesh, std::vector<int>& face_surface, WallSizeReport& r) {
+    Index chords = shared_chords(mesh);
+    for (int round = 0; round < 3 && chords > 0; ++round) {
+        const double before = get_number("Mesh.MeshSizeMax"), smaller = before / 2.0;
+        const std::string finer_context = path + ": Gmsh failed to mesh the surfaces again finer (maximum size " +
+                                          format_number(smaller) +
+                                          ") where the default size left a thin part's two sides on one chord; "
+                                          "give a smaller size";
+        auto remesh_at = [&](double at) {
+            set_number("Mesh.MeshSizeMax", at);
+            if (sizes.curvature && sizes.default_size_min) set_number("Mesh.MeshSizeMin", at / 20.0);
+            generate_surfaces(finer_context, [&] {
+                gmsh::model::mesh::clear();
+                generate();
+            });
+            face_surface.clear();
+            return extract(path, surfaces, face_surface);
+        };
+        SurfaceMesh finer = remesh_at(smaller);
+        const Index left = shared_chords(finer);
+        if (left >= chords) {
+            mesh = remesh_at(before);  // the Gmsh model back to the mesh kept
+            break;
+        }
+        mesh = std::move(finer);
+        chords = left;
+        r.thin_size = smaller;
+        r.default_size = sizes.size;
+    }
+    return mesh;
+}
+
+}  // namespace
+
+bool is_cad_file(const std::string& path) {
+    return format_of(path).has_value();
+}
+
+SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits* units, WallSizeReport* walls,
+                     SewReport* sew, RecombinationReport* recombination, const Progress* progress) {
+    const std::optional<CadFormat> format = format_of(path);
+    if (!format)
+        throw InputError(path +
+                         ": not a CAD file Strata reads; use .step/.stp, .iges/.igs, "
+                         ".brep/.brp or a Gmsh .geo script");
+    validate(params);
+    check_input(path, *format);
+    const bool script = *format == CadFormat::Geo;
+
+    GmshSession session("strata_cad");
+    GmshOptionScope options;  // declared after the session: restored while Gmsh is still locked
+    options.save(kSavedOptions);
+    options.save_string("Geometry.OCCTargetUnit");
+    const CadUnits read_in = set_import_units(path, *format, params);
+    if (units) *units = read_in;
+
+    load(path, *format, params.trust_geo);
+
+    const std::vector<int> loaded_surfaces = entity_tags(2);
+    if (loaded_surfaces.empty())
+        throw InputError(path +
+                         ": no surfaces in the model; the file holds only points or "
+                         "curves (or nothing): export the surfaces or solids from the "
+                         "CAD tool");
+    SewReport sewn;
+    // The file's surface tag → its tag after sewing, where they differ.
+    const std::map<int, int> renamed = script ? std::map<int, int>{} : sew_model(path, *format, params, sewn);
+    if (sew) *sew = sewn;
+    if (params.fuse) fuse_volumes(path);
+    const std::vector<int> surfaces = entity_tags(2);
+
+    const ScriptSet script_set{script, options};
+    const CadSizes sizes = set_sizes(params, script_set, model_diagonal(path));
+    set_algorithm(params, script_set);
+    set_elements(path, params, renamed, surfaces, script_set);
     if (script) clear_script_mesh(path);
 
     // CadParams::size_points, in the model's coordinates as the result's (scaled on import).
     const PointSizes points(params.size_points, params.size_point_growth);
     const double size_factor = get_number("Mesh.MeshSizeFactor");
-    const std::string context = path + ": Gmsh failed to mesh the surfaces (maximum size " + format_number(size) +
+    const std::string context = path + ": Gmsh failed to mesh the surfaces (maximum size " + format_number(sizes.size) +
                                 "); try a smaller size, another algorithm, or repair the CAD";
-    const auto generate = [&] {
+    const std::function<void()> generate = [&] {
         std::optional<SizeCallback> callback;
         if (!points.empty()) callback.emplace(EntitySizes{}, size_factor, &points);
         gmsh::model::mesh::generate(2);
@@ -903,40 +1018,9 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     std::vector<int> face_surface;
     SurfaceMesh mesh = extract(path, surfaces, face_surface);
     WallSizeReport wall_report;
-    if (default_size) {
-        // A part thinner than the default size can get its two sides meshed through the same
-        // nodes (a blade's tip, one chord across): halve the size, up to three times, while
-        // that leaves fewer such edges. Where it does not (a model whose surfaces meet three to
-        // an edge, which no size mends), the size and mesh before stay: no finer mesh for nothing.
-        Index chords = shared_chords(mesh);
-        for (int round = 0; round < 3 && chords > 0; ++round) {
-            const double before = get_number("Mesh.MeshSizeMax"), smaller = before / 2.0;
-            const std::string finer_context = path + ": Gmsh failed to mesh the surfaces again finer (maximum size " +
-                                              format_number(smaller) +
-                                              ") where the default size left a thin part's two sides on one chord; "
-                                              "give a smaller size";
-            auto remesh_at = [&](double at) {
-                set_number("Mesh.MeshSizeMax", at);
-                if (curvature && default_size_min) set_number("Mesh.MeshSizeMin", at / 20.0);
-                generate_surfaces(finer_context, [&] {
-                    gmsh::model::mesh::clear();
-                    generate();
-                });
-                face_surface.clear();
-                return extract(path, surfaces, face_surface);
-            };
-            SurfaceMesh finer = remesh_at(smaller);
-            const Index left = shared_chords(finer);
-            if (left >= chords) {
-                mesh = remesh_at(before);  // the Gmsh model back to the mesh kept
-                break;
-            }
-            mesh = std::move(finer);
-            chords = left;
-            wall_report.thin_size = smaller;
-            wall_report.default_size = size;
-        }
-    }
+    if (sizes.default_size)
+        mesh = mend_shared_chords(path, surfaces, sizes, generate_surfaces, generate, std::move(mesh), face_surface,
+                                  wall_report);
     if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0)
         mesh = limit_wall_aspect(path, params, surfaces, points, std::move(mesh), face_surface, wall_report,
                                  generate_surfaces);

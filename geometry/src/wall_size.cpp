@@ -178,6 +178,11 @@ struct CurveKinds {
     /// (end point, kind) → the edges of the point's node that turn kChainDeg or more and lie on
     /// no sharp curve (a coarse wall's facets, through which fans.cpp's chains run too).
     std::map<std::pair<int, int>, int> facets;
+    /// The kind of curve \p c at its end point \p q (0 where unknown).
+    int kind_at(int c, int q) const {
+        const auto it = kind.find({c, q});
+        return it == kind.end() ? 0 : it->second;
+    }
 };
 
 /// CurveKinds for the sharp curves \p points_of (curve → its end points); \p edges_of gives a
@@ -239,183 +244,166 @@ CurveKinds curve_kinds(const SurfaceMesh& mesh, const std::map<std::array<double
     return out;
 }
 
-/// The fan curves of WallLimits::fan_angle_deg (wall_aspect): each one's first wedge measured
-/// into \p out (worst, curve_need), the nodes on every fan curve into \p fan_nodes (their
-/// columns start along each side's normal).
-void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallLimits& params,
-                const std::map<std::array<Index, 2>, std::vector<Index>>& faces_of_edge,
-                const std::map<Index, std::vector<Index>>& faces_at, WallAspect& out, std::set<Index>& fan_nodes) {
-    const double h = params.first_height, limit = params.max_aspect_ratio;
-    // Fans: the first cell of a fan on a wall edge whose faces turn by the fan angle or more, and
-    // on the convex edges of 30 degrees or more that close its chain (fans.cpp: a wing's tip and
-    // root; here the curves of 30 degrees or more of its kind that share an end point with such
-    // a curve, on chains that close: below). Only the curves are meshed finer (Gmsh grades the
-    // surfaces beside them from their boundary sizes).
-    // fans.cpp's kFeatureDeg and kWedgeDeg (module/ is above geometry/: they cannot be shared).
-    constexpr double kChainDeg = 30.0, kWedgeDeg = 90.0;
-    struct Edge {
-        Vec3 a, b, n1, n2;
-        double turn;
-        Index ia = kNone, ib = kNone, f1 = kNone, f2 = kNone;
-    };
-    std::map<int, std::vector<Edge>> edges_of;  // curve between two wall surfaces → its sharp edges
-    std::map<int, double> sharpest;             // and its largest turn
-    const auto at = node_at(mesh);
+/// fans.cpp's kFeatureDeg and kWedgeDeg (module/ is above geometry/: they cannot be shared):
+/// the turn of the convex edges that close a fan's chain, and the widest wedge of a fan.
+constexpr double kChainDeg = 30.0, kWedgeDeg = 90.0;
+
+/// A wall edge on a curve between two wall surfaces that turns kChainDeg or more: its ends and
+/// nodes, its faces and their normals (oriented alike), and its turn in degrees.
+struct SharpEdge {
+    Vec3 a, b, n1, n2;
+    double turn;
+    Index ia = kNone, ib = kNone, f1 = kNone, f2 = kNone;
+};
+
+/// The curves between two wall surfaces with sharp edges (SharpEdge).
+struct SharpCurves {
+    std::map<int, std::vector<SharpEdge>> edges_of;  ///< curve → its sharp edges
+    std::map<int, double> sharpest;                  ///< curve → its largest turn
+};
+
+/// The sharp edges of the Gmsh curve \p c, found in \p mesh by their nodes' points (\p at),
+/// added to \p s.
+void add_sharp_edges(const SurfaceMesh& mesh, int c, const std::map<std::array<double, 3>, Index>& at,
+                     const std::map<std::array<Index, 2>, std::vector<Index>>& faces_of_edge, SharpCurves& s) {
+    std::vector<std::size_t> tags, line_nodes;
+    std::vector<double> xyz, uvw;
+    gmsh::model::mesh::getNodes(tags, xyz, uvw, 1, c, true, false);
+    std::map<std::size_t, Index> index_of;
+    for (std::size_t i = 0; i < tags.size(); ++i) {
+        const auto it = at.find({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+        if (it != at.end()) index_of.emplace(tags[i], it->second);
+    }
+    std::vector<std::size_t> line_tags;
+    gmsh::model::mesh::getElementsByType(1, line_tags, line_nodes, c);
+    for (std::size_t l = 0; l + 1 < line_nodes.size(); l += 2) {
+        const auto ia = index_of.find(line_nodes[l]), ib = index_of.find(line_nodes[l + 1]);
+        if (ia == index_of.end() || ib == index_of.end()) continue;
+        const Index a = ia->second, b = ib->second;
+        const auto fe = faces_of_edge.find({std::min(a, b), std::max(a, b)});
+        if (fe == faces_of_edge.end() || fe->second.size() != 2) continue;
+        const Index f1 = fe->second[0], f2 = fe->second[1];
+        // Gmsh orients each surface by its own parametrization: one whose faces run the edge the
+        // same way as the other's is turned round.
+        auto runs_forward = [&](Index f) {
+            for (Index i = 0, n = mesh.face_size(f); i < n; ++i)
+                if (mesh.face_node(f, i) == a) return mesh.face_node(f, (i + 1) % n) == b;
+            return false;
+        };
+        const Vec3 n1 = face_area_vector(mesh, f1).normalized();
+        Vec3 n2 = face_area_vector(mesh, f2).normalized();
+        if (runs_forward(f1) == runs_forward(f2)) n2 = -n2;
+        const double turn = std::acos(std::clamp(n1.dot(n2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+        // Faces back to back (two bodies' copies of the face they touch along, which --fuse
+        // removes) are not an edge of the wall.
+        if (!(turn >= kChainDeg) || (n2 - n1.dot(n2) * n1).norm() < 1e-6) continue;
+        s.edges_of[c].push_back({mesh.points[static_cast<std::size_t>(a)], mesh.points[static_cast<std::size_t>(b)], n1,
+                                 n2, turn, a, b, f1, f2});
+        double& m = s.sharpest[c];
+        m = std::max(m, turn);
+    }
+}
+
+/// The sharp curves between two wall surfaces of \p walls (each such curve's wall surfaces into
+/// \p curve_up).
+SharpCurves sharp_curves(const SurfaceMesh& mesh, const std::set<int>& walls,
+                         const std::map<std::array<double, 3>, Index>& at,
+                         const std::map<std::array<Index, 2>, std::vector<Index>>& faces_of_edge,
+                         std::map<int, std::vector<int>>& curve_up) {
+    SharpCurves s;
     gmsh::vectorpair curves;
     gmsh::model::getEntities(curves, 1);
     for (const auto& [dim, c] : curves) {
         std::vector<int> up, down;
         gmsh::model::getAdjacencies(1, c, up, down);
         if (up.size() != 2 || !walls.count(up[0]) || !walls.count(up[1])) continue;
-        out.curve_up[c] = up;
-        std::vector<std::size_t> tags, line_nodes;
-        std::vector<double> xyz, uvw;
-        gmsh::model::mesh::getNodes(tags, xyz, uvw, 1, c, true, false);
-        std::map<std::size_t, Index> index_of;
-        for (std::size_t i = 0; i < tags.size(); ++i) {
-            const auto it = at.find({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
-            if (it != at.end()) index_of.emplace(tags[i], it->second);
-        }
-        std::vector<std::size_t> line_tags;
-        gmsh::model::mesh::getElementsByType(1, line_tags, line_nodes, c);
-        for (std::size_t l = 0; l + 1 < line_nodes.size(); l += 2) {
-            const auto ia = index_of.find(line_nodes[l]), ib = index_of.find(line_nodes[l + 1]);
-            if (ia == index_of.end() || ib == index_of.end()) continue;
-            const Index a = ia->second, b = ib->second;
-            const auto fe = faces_of_edge.find({std::min(a, b), std::max(a, b)});
-            if (fe == faces_of_edge.end() || fe->second.size() != 2) continue;
-            const Index f1 = fe->second[0], f2 = fe->second[1];
-            // Gmsh orients each surface by its own parametrization: one whose faces run the edge the
-            // same way as the other's is turned round.
-            auto runs_forward = [&](Index f) {
-                for (Index i = 0, n = mesh.face_size(f); i < n; ++i)
-                    if (mesh.face_node(f, i) == a) return mesh.face_node(f, (i + 1) % n) == b;
-                return false;
-            };
-            const Vec3 n1 = face_area_vector(mesh, f1).normalized();
-            Vec3 n2 = face_area_vector(mesh, f2).normalized();
-            if (runs_forward(f1) == runs_forward(f2)) n2 = -n2;
-            const double turn = std::acos(std::clamp(n1.dot(n2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-            // Faces back to back (two bodies' copies of the face they touch along, which --fuse
-            // removes) are not an edge of the wall.
-            if (!(turn >= kChainDeg) || (n2 - n1.dot(n2) * n1).norm() < 1e-6) continue;
-            edges_of[c].push_back({mesh.points[static_cast<std::size_t>(a)], mesh.points[static_cast<std::size_t>(b)],
-                                   n1, n2, turn, a, b, f1, f2});
-            double& m = sharpest[c];
-            m = std::max(m, turn);
-        }
+        curve_up[c] = up;
+        add_sharp_edges(mesh, c, at, faces_of_edge, s);
     }
-    // The fan curves: those at the fan angle, and the sharp ones that share an end point with them.
-    std::map<int, std::vector<int>> points_of;
-    std::set<int> fan;
-    for (const auto& [c, turn] : sharpest) {
-        gmsh::vectorpair ends;
-        gmsh::model::getBoundary({{1, c}}, ends, false, false, false);
-        for (const auto& [d, t] : ends) points_of[c].push_back(std::abs(t));
-    }
-    // Only convex edges make fans (fans.cpp), and only chains that close: two sharp curves meeting
-    // at a point are of one chain where they are of one kind there (both convex or both concave,
-    // told apart round the point's node, the only orientation known here), and a chain's curve
-    // that ends on a point with no other curve of its kind goes (the graph's 2-core), unless that
-    // point lies on a surface that is not a wall (a chain may end on a symmetry plane), or its
-    // node has sharp edges of the curve's kind off the curves (a coarse wall's facets, through
-    // which fans.cpp's chains go on: the wing-fuselage's leading edges close so). A trailing
-    // edge ending on a fuselage, whose chain the root's concave curves met there, got walls meshed
-    // finer for fans that fans.cpp then did not build: on the body-fin box with --fan-angle 110,
-    // wall nodes with every layer 90.0 -> 82.0 %.
-    // Without a curve at the fan angle there is no fan and nothing to prune (nor Gmsh to ask).
-    const bool any_fan = std::any_of(sharpest.begin(), sharpest.end(),
-                                     [&](const auto& ct) { return ct.second >= params.fan_angle_deg; });
-    const CurveKinds kinds = !any_fan ? CurveKinds{}
-                                      : curve_kinds(
-                                            mesh, at, faces_of_edge, faces_at, points_of,
-                                            [&](int c) {
-                                                std::vector<std::array<Index, 4>> e;
-                                                for (const Edge& x : edges_of[c]) e.push_back({x.ia, x.ib, x.f1, x.f2});
-                                                return e;
-                                            },
-                                            kChainDeg);
-    auto kind_at = [&](int c, int q) {
-        const auto it = kinds.kind.find({c, q});
-        return it == kinds.kind.end() ? 0 : it->second;
+    return s;
+}
+
+/// Drops the sharp curves (from \p points_of, curve → its end points, and \p sharpest) of
+/// chains that do not close: two sharp curves meeting at a point are of one chain where they
+/// are of one kind there (\p kinds: both convex or both concave, told apart round the point's
+/// node, the only orientation known here), and a chain's curve that ends on a point with no
+/// other curve of its kind goes (the graph's 2-core), unless that point lies on a surface that
+/// is not a wall (a chain may end on a symmetry plane), or its node has sharp edges of the
+/// curve's kind off the curves (a coarse wall's facets, through which fans.cpp's chains go on).
+/// Otherwise walls would be meshed finer for fans that fans.cpp then does not build.
+void prune_open_chains(const CurveKinds& kinds, const std::set<int>& walls, std::map<int, std::vector<int>>& points_of,
+                       std::map<int, double>& sharpest) {
+    // (point, kind) → curve ends there, and the sharp facets a chain may go on through
+    std::map<std::pair<int, int>, int> degree = kinds.facets;
+    for (const auto& [c, pts] : points_of)
+        for (const int q : pts) ++degree[{q, kinds.kind_at(c, q)}];
+    std::map<int, bool> open_end;  // point → on a surface that is not a wall
+    auto plane_point = [&](int q) {
+        const auto [it, fresh] = open_end.emplace(q, false);
+        if (fresh) {
+            std::vector<int> up, down;
+            gmsh::model::getAdjacencies(0, q, up, down);
+            for (const int c : up) {
+                std::vector<int> sides, ends;
+                gmsh::model::getAdjacencies(1, std::abs(c), sides, ends);
+                for (const int f : sides) it->second = it->second || !walls.count(f);
+            }
+        }
+        return it->second;
     };
-    if (any_fan) {
-        // (point, kind) → curve ends there, and the sharp facets a chain may go on through
-        std::map<std::pair<int, int>, int> degree = kinds.facets;
-        for (const auto& [c, pts] : points_of)
-            for (const int q : pts) ++degree[{q, kind_at(c, q)}];
-        std::map<int, bool> open_end;  // point → on a surface that is not a wall
-        auto plane_point = [&](int q) {
-            const auto [it, fresh] = open_end.emplace(q, false);
-            if (fresh) {
-                std::vector<int> up, down;
-                gmsh::model::getAdjacencies(0, q, up, down);
-                for (const int c : up) {
-                    std::vector<int> sides, ends;
-                    gmsh::model::getAdjacencies(1, std::abs(c), sides, ends);
-                    for (const int f : sides) it->second = it->second || !walls.count(f);
-                }
+    for (bool pruned = true; pruned;) {
+        pruned = false;
+        for (auto it = points_of.begin(); it != points_of.end();) {
+            const int c = it->first;
+            const bool loose = std::any_of(it->second.begin(), it->second.end(), [&](int q) {
+                return degree[{q, kinds.kind_at(c, q)}] < 2 && !plane_point(q);
+            });
+            if (!loose) {
+                ++it;
+                continue;
             }
-            return it->second;
-        };
-        for (bool pruned = true; pruned;) {
-            pruned = false;
-            for (auto it = points_of.begin(); it != points_of.end();) {
-                const int c = it->first;
-                const bool loose = std::any_of(it->second.begin(), it->second.end(), [&](int q) {
-                    return degree[{q, kind_at(c, q)}] < 2 && !plane_point(q);
-                });
-                if (!loose) {
-                    ++it;
-                    continue;
-                }
-                for (const int q : it->second) --degree[{q, kind_at(c, q)}];
-                sharpest.erase(c);
-                it = points_of.erase(it);
-                pruned = true;
-            }
+            for (const int q : it->second) --degree[{q, kinds.kind_at(c, q)}];
+            sharpest.erase(c);
+            it = points_of.erase(it);
+            pruned = true;
         }
     }
-    for (const auto& [c, turn] : sharpest)
-        if (turn >= params.fan_angle_deg) fan.insert(c);
-    // The chains: every sharp curve joined to a fan curve through sharp curves' end points, as
-    // fans.cpp's chains run. Their nodes start along each side's normal (fan_nodes); but only
-    // the fan curves and their neighbours are sized for the wedges: sizing the whole chain
-    // passes the blades and the fin on a body, but refines the M6's root, where the columns at
-    // its leading edge then stop at the wall and the cells beside them, tetrahedra on the root
-    // face 0.02 high, reach 1904 (the sizing does not predict such cells).
-    // The sharp curves joined through shared end points (one set per chain).
-    std::vector<int> sharp_curves;  // index → curve tag, in tag order
+}
+
+/// Each sharp curve of \p points_of (curve → its end points) → its chain (the lowest index, in
+/// tag order, of the sharp curves joined to it through end points where they are of one kind).
+std::map<int, Index> chains_of(const std::map<int, std::vector<int>>& points_of, const CurveKinds& kinds) {
     std::map<int, std::size_t> index_of;
-    for (const auto& [c, pts] : points_of) {
-        index_of[c] = sharp_curves.size();
-        sharp_curves.push_back(c);
-    }
-    UnionFind joined(sharp_curves.size());
-    {
-        std::map<std::pair<int, int>, std::size_t> first_at;  // (point, kind) → the first sharp curve on it
-        for (const auto& [c, pts] : points_of)
-            for (const int q : pts) {
-                const auto [it, added] = first_at.emplace(std::make_pair(q, kind_at(c, q)), index_of[c]);
-                if (!added) joined.unite(static_cast<Index>(it->second), static_cast<Index>(index_of[c]));
-            }
-    }
-    auto chain_of = [&](int c) { return joined.find(static_cast<Index>(index_of.at(c))); };
-    std::set<Index> fan_chains;
-    for (const int c : fan) fan_chains.insert(chain_of(c));
-    std::set<int> chain;
-    for (const int c : sharp_curves)
-        if (fan_chains.count(chain_of(c))) chain.insert(c);
-    {
-        std::set<std::pair<int, int>> fan_points;
-        for (int c : fan)
-            for (int q : points_of[c]) fan_points.insert({q, kind_at(c, q)});
-        // An init-capture: clang 14 cannot capture a structured binding (scripts/fuzz.sh builds with it).
-        for (const auto& [c, pts] : points_of)
-            if (std::any_of(pts.begin(), pts.end(),
-                            [&, curve = c](int q) { return fan_points.count({q, kind_at(curve, q)}) > 0; }))
-                fan.insert(c);
-    }
+    for (const auto& [c, pts] : points_of) index_of.emplace(c, index_of.size());
+    UnionFind joined(index_of.size());
+    std::map<std::pair<int, int>, std::size_t> first_at;  // (point, kind) → the first sharp curve on it
+    for (const auto& [c, pts] : points_of)
+        for (const int q : pts) {
+            const auto [it, added] = first_at.emplace(std::make_pair(q, kinds.kind_at(c, q)), index_of[c]);
+            if (!added) joined.unite(static_cast<Index>(it->second), static_cast<Index>(index_of[c]));
+        }
+    std::map<int, Index> chain;
+    for (const auto& [c, i] : index_of) chain[c] = joined.find(static_cast<Index>(i));
+    return chain;
+}
+
+/// Adds to the fan curves \p fan the sharp curves that share an end point with one, of its
+/// kind there.
+void add_fan_neighbours(const std::map<int, std::vector<int>>& points_of, const CurveKinds& kinds, std::set<int>& fan) {
+    std::set<std::pair<int, int>> fan_points;
+    for (int c : fan)
+        for (int q : points_of.at(c)) fan_points.insert({q, kinds.kind_at(c, q)});
+    // An init-capture: clang 14 cannot capture a structured binding (scripts/fuzz.sh builds with it).
+    for (const auto& [c, pts] : points_of)
+        if (std::any_of(pts.begin(), pts.end(), [&, curve = c](int q) {
+                return fan_points.count({q, kinds.kind_at(curve, q)}) > 0;
+            }))
+            fan.insert(c);
+}
+
+/// Adds the mesh nodes (found by their points, \p at) of the curves \p chain to \p fan_nodes.
+void add_curve_nodes(const std::set<int>& chain, const std::map<std::array<double, 3>, Index>& at,
+                     std::set<Index>& fan_nodes) {
     for (int c : chain) {
         std::vector<std::size_t> tags;
         std::vector<double> xyz, uvw;
@@ -425,25 +413,33 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
             if (it != at.end()) fan_nodes.insert(it->second);
         }
     }
-    // Wedges per edge: as many as the sharpest curve of its chain needs (fans.cpp gives a whole
-    // run of fan edges the count of its sharpest: a blade's 90-degree closing edges, in the run
-    // of its 160-degree edge, get two wedges of 45 degrees).
+}
+
+/// Wedges per curve of \p chain: as many as the sharpest curve of its chain (\p chain_of) needs
+/// (fans.cpp gives a whole run of fan edges the count of its sharpest: a blade's 90-degree
+/// closing edges, in the run of its 160-degree edge, get two wedges of 45 degrees).
+std::map<int, int> chain_wedges(const std::set<int>& chain, const std::map<int, Index>& chain_of,
+                                const std::map<int, double>& sharpest) {
     std::map<int, int> wedges_of;
-    {
-        std::map<Index, double> sharpest_of_chain;
-        for (const int c : chain) {
-            double& m = sharpest_of_chain[chain_of(c)];
-            m = std::max(m, sharpest[c]);
-        }
-        for (const int c : chain)
-            wedges_of[c] = std::max(1, static_cast<int>(std::ceil(sharpest_of_chain[chain_of(c)] / kWedgeDeg - 1e-9)));
+    std::map<Index, double> sharpest_of_chain;
+    for (const int c : chain) {
+        double& m = sharpest_of_chain[chain_of.at(c)];
+        m = std::max(m, sharpest.at(c));
     }
+    for (const int c : chain)
+        wedges_of[c] = std::max(1, static_cast<int>(std::ceil(sharpest_of_chain[chain_of.at(c)] / kWedgeDeg - 1e-9)));
+    return wedges_of;
+}
+
+/// The first wedge of the fan on each curve of \p fan (its \p wedges_of wedges at most 90 degrees
+/// apart, from n1 towards n2) under a first layer of \p h, into \p out: the worst aspect
+/// ratio, and on curves over \p limit the edge length that gives kCapShare of it.
+void measure_fan_wedges(const std::set<int>& fan, const std::map<int, std::vector<SharpEdge>>& edges_of,
+                        const std::map<int, int>& wedges_of, double h, double limit, WallAspect& out) {
     for (int c : fan) {
         double curve_worst = 0.0, need = std::numeric_limits<double>::infinity();
-        for (const Edge& e : edges_of[c]) {
-            // The fan's first wedge: its run's wedges (above) at most 90 degrees apart, from n1
-            // towards n2.
-            const double wedge = e.turn / wedges_of[c] * std::numbers::pi / 180.0;
+        for (const SharpEdge& e : edges_of.at(c)) {
+            const double wedge = e.turn / wedges_of.at(c) * std::numbers::pi / 180.0;
             const Vec3 t = (e.n2 - e.n1.dot(e.n2) * e.n1).normalized();
             const Vec3 d2 = std::cos(wedge) * e.n1 + std::sin(wedge) * t;
             const double ar = fan_wedge_aspect_ratio(e.a, e.b, e.n1, d2, h);
@@ -455,6 +451,59 @@ void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallL
         out.worst = std::max(out.worst, curve_worst);
         if (curve_worst > limit) out.curve_need[c] = need;
     }
+}
+
+/// The fan curves of WallLimits::fan_angle_deg (wall_aspect): each one's first wedge measured
+/// into \p out (worst, curve_need), the nodes on every fan curve into \p fan_nodes (their
+/// columns start along each side's normal).
+void fan_curves(const SurfaceMesh& mesh, const std::set<int>& walls, const WallLimits& params,
+                const std::map<std::array<Index, 2>, std::vector<Index>>& faces_of_edge,
+                const std::map<Index, std::vector<Index>>& faces_at, WallAspect& out, std::set<Index>& fan_nodes) {
+    // Fans: the first cell of a fan on a wall edge whose faces turn by the fan angle or more, and
+    // on the convex edges of 30 degrees or more that close its chain (fans.cpp: a wing's tip and
+    // root; here the curves of 30 degrees or more of its kind that share an end point with such
+    // a curve, on chains that close). Only the curves are meshed finer (Gmsh grades the
+    // surfaces beside them from their boundary sizes).
+    const auto at = node_at(mesh);
+    SharpCurves sharp = sharp_curves(mesh, walls, at, faces_of_edge, out.curve_up);
+    std::map<int, std::vector<int>> points_of;  // sharp curve → its end points
+    for (const auto& [c, turn] : sharp.sharpest) {
+        gmsh::vectorpair ends;
+        gmsh::model::getBoundary({{1, c}}, ends, false, false, false);
+        for (const auto& [d, t] : ends) points_of[c].push_back(std::abs(t));
+    }
+    // Without a curve at the fan angle there is no fan and nothing to prune (nor Gmsh to ask).
+    const bool any_fan = std::any_of(sharp.sharpest.begin(), sharp.sharpest.end(),
+                                     [&](const auto& ct) { return ct.second >= params.fan_angle_deg; });
+    const CurveKinds kinds = !any_fan ? CurveKinds{}
+                                      : curve_kinds(
+                                            mesh, at, faces_of_edge, faces_at, points_of,
+                                            [&](int c) {
+                                                std::vector<std::array<Index, 4>> e;
+                                                for (const SharpEdge& x : sharp.edges_of[c])
+                                                    e.push_back({x.ia, x.ib, x.f1, x.f2});
+                                                return e;
+                                            },
+                                            kChainDeg);
+    if (any_fan) prune_open_chains(kinds, walls, points_of, sharp.sharpest);
+    // The fan curves: those at the fan angle, and the sharp ones that share an end point with them.
+    std::set<int> fan;
+    for (const auto& [c, turn] : sharp.sharpest)
+        if (turn >= params.fan_angle_deg) fan.insert(c);
+    // The chains: every sharp curve joined to a fan curve through sharp curves' end points, as
+    // fans.cpp's chains run. Their nodes start along each side's normal (fan_nodes); but only
+    // the fan curves and their neighbours are sized for the wedges, for the sizing does not
+    // predict the cells beside a chain's columns that then stop at the wall.
+    const std::map<int, Index> chain_of = chains_of(points_of, kinds);
+    std::set<Index> fan_chains;
+    for (const int c : fan) fan_chains.insert(chain_of.at(c));
+    std::set<int> chain;
+    for (const auto& [c, pts] : points_of)
+        if (fan_chains.count(chain_of.at(c))) chain.insert(c);
+    add_fan_neighbours(points_of, kinds, fan);
+    add_curve_nodes(chain, at, fan_nodes);
+    measure_fan_wedges(fan, sharp.edges_of, chain_wedges(chain, chain_of, sharp.sharpest), params.first_height,
+                       params.max_aspect_ratio, out);
 }
 
 /// Each wall surface of \p out's boundary curves: their lengths in the current mesh and the

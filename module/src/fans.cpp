@@ -29,9 +29,8 @@ constexpr double kCornerSpan = 0.25;
 /// by more than this (a delta wing's apex, where its two sharp leading edges meet at 62°: 112°)
 /// gets each edge's columns between its two sides and a corner polygon closing them, as a
 /// corner does. Shared columns there would twist the wedges on both edges by half that angle,
-/// more than half the widest wedge (kWedgeDeg). Measured: from 45° on, the airliner of the
-/// sweep split 13 nodes (46-68°: its wing tips, tails, tail cone), lost the fans of 34 nodes as
-/// unusable and kept 7,431 prisms instead of 71,041.
+/// more than half the widest wedge (kWedgeDeg); a lower bound splits smooth chains too
+/// (docs/DESIGN_NOTES.md).
 constexpr double kChainTurnDeg = 90.0;
 
 Vec3 unit(const Vec3& v) {
@@ -126,71 +125,162 @@ std::vector<std::vector<Index>> prune(const EdgeTable& et, std::size_t un, const
     return at;
 }
 
-/// The fan wall for the fan edges \p keep (a 2-core, \p at per node), or the fan edges to drop
-/// before trying again (\p bad, empty if none): where a corner's columns span too little
-/// (nearly in one plane: its cells would be flat), the corner's fan edge that turns least.
-FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector<char>& keep,
-                 const std::vector<std::vector<Index>>& at, const std::vector<double>& turn,
-                 const std::vector<Vec3>& anchor, double plane_reach, std::vector<Index>& bad) {
-    FanWall out;
-    bad.clear();
-    const Index nn = wall.num_points(), nf = wall.num_faces();
-    const auto un = static_cast<std::size_t>(nn);
-    const auto ne = et.nodes.size();
-    for (std::size_t e = 0; e < ne; ++e) out.fan_edges += keep[e] ? 1 : 0;
-    // Wedges per edge: ceil(turn / 90°), the largest along the chain (runs through nodes with
-    // two fan edges) so that the columns between match along it.
-    std::vector<int> wedges(ne, 0);
-    {
-        UnionFind runs(ne);
-        for (std::size_t i = 0; i < un; ++i)
-            if (at[i].size() == 2) runs.unite(at[i][0], at[i][1]);
-        std::vector<double> worst(ne, 0.0);
-        for (std::size_t e = 0; e < ne; ++e)
-            if (keep[e]) {
-                double& w = worst[static_cast<std::size_t>(runs.find(static_cast<Index>(e)))];
-                w = std::max(w, turn[e]);
-            }
-        for (std::size_t e = 0; e < ne; ++e)
-            if (keep[e])
-                wedges[e] = std::max(
-                    1, static_cast<int>(std::ceil(
-                           worst[static_cast<std::size_t>(runs.find(static_cast<Index>(e)))] / kWedgeDeg - 1e-9)));
-    }
+/// What assemble builds the fan wall from: the wall, its edge table, the fan edges (\p keep, a
+/// 2-core, \p at per node), each edge's turn (degrees) and each node's plane (\p anchor, zero
+/// where none).
+struct FanEdges {
+    const SurfaceMesh& wall;
+    const EdgeTable& et;
+    const std::vector<char>& keep;
+    const std::vector<std::vector<Index>>& at;
+    const std::vector<double>& turn;
+    const std::vector<Vec3>& anchor;
+};
 
-    // A plane node's columns lie in its plane; along the chain from it, the columns lean into
-    // that plane the more the nearer they are to it (weight 1 - distance / plane_reach). Fixed
-    // and unsmoothed, a swept trailing edge's columns beside the plane would otherwise cross it
-    // within the layers' thickness, and those of the plane node's strip would twist.
-    std::vector<Vec3> lean(un, Vec3::Zero());
-    std::vector<double> lean_weight(un, 0.0);
+/// Wedges per fan edge: ceil(turn / 90°), the largest along the chain (runs through nodes with
+/// two fan edges) so that the columns between match along it; 0 for the other edges.
+std::vector<int> chain_wedges(const FanEdges& in) {
+    const auto ne = in.et.nodes.size();
+    std::vector<int> wedges(ne, 0);
+    UnionFind runs(ne);
+    for (std::size_t i = 0; i < in.at.size(); ++i)
+        if (in.at[i].size() == 2) runs.unite(in.at[i][0], in.at[i][1]);
+    std::vector<double> worst(ne, 0.0);
+    for (std::size_t e = 0; e < ne; ++e)
+        if (in.keep[e]) {
+            double& w = worst[static_cast<std::size_t>(runs.find(static_cast<Index>(e)))];
+            w = std::max(w, in.turn[e]);
+        }
+    for (std::size_t e = 0; e < ne; ++e)
+        if (in.keep[e])
+            wedges[e] =
+                std::max(1, static_cast<int>(std::ceil(
+                                worst[static_cast<std::size_t>(runs.find(static_cast<Index>(e)))] / kWedgeDeg - 1e-9)));
+    return wedges;
+}
+
+/// Per node, the plane its columns lean into and by how much (0: none).
+struct Lean {
+    std::vector<Vec3> plane;
+    std::vector<double> weight;
+    /// Direction \p d leaned into node \p i's plane.
+    Vec3 operator()(std::size_t i, const Vec3& d) const {
+        return weight[i] > 0.0 ? unit(d - weight[i] * d.dot(plane[i]) * plane[i]) : d;
+    }
+};
+
+/// A plane node's columns lie in its plane; along the chain from it, the columns lean into
+/// that plane the more the nearer they are to it (weight 1 - distance / plane_reach). Fixed
+/// and unsmoothed, a swept trailing edge's columns beside the plane would otherwise cross it
+/// within the layers' thickness, and those of the plane node's strip would twist.
+Lean plane_lean(const FanEdges& in, double plane_reach) {
+    const auto un = in.at.size();
+    Lean lean{std::vector<Vec3>(un, Vec3::Zero()), std::vector<double>(un, 0.0)};
     for (std::size_t a = 0; a < un; ++a) {
-        if (anchor[a] == Vec3::Zero() || at[a].size() != 1) continue;
-        const Vec3& p = anchor[a];
-        lean[a] = p, lean_weight[a] = 1.0;
-        Index prev = static_cast<Index>(a), e = at[a][0];
+        if (in.anchor[a] == Vec3::Zero() || in.at[a].size() != 1) continue;
+        const Vec3& p = in.anchor[a];
+        lean.plane[a] = p, lean.weight[a] = 1.0;
+        Index prev = static_cast<Index>(a), e = in.at[a][0];
         for (;;) {
-            const auto& ab = et.nodes[static_cast<std::size_t>(e)];
+            const auto& ab = in.et.nodes[static_cast<std::size_t>(e)];
             const Index cur = ab[0] == prev ? ab[1] : ab[0];
             const auto uc = static_cast<std::size_t>(cur);
-            const double w = 1.0 - std::abs((wall.points[cur] - wall.points[a]).dot(p)) / plane_reach;
-            if (!(w > 0.0) || anchor[uc] != Vec3::Zero()) break;
-            if (w > lean_weight[uc]) lean[uc] = p, lean_weight[uc] = w;
-            if (at[uc].size() != 2) break;  // a corner
-            e = at[uc][0] == e ? at[uc][1] : at[uc][0];
+            const double w = 1.0 - std::abs((in.wall.points[cur] - in.wall.points[a]).dot(p)) / plane_reach;
+            if (!(w > 0.0) || in.anchor[uc] != Vec3::Zero()) break;
+            if (w > lean.weight[uc]) lean.plane[uc] = p, lean.weight[uc] = w;
+            if (in.at[uc].size() != 2) break;  // a corner
+            e = in.at[uc][0] == e ? in.at[uc][1] : in.at[uc][0];
             prev = cur;
         }
     }
-    auto in_plane = [&](std::size_t i, const Vec3& d) {
-        return lean_weight[i] > 0.0 ? unit(d - lean_weight[i] * d.dot(lean[i]) * lean[i]) : d;
-    };
-    // Sectors: the faces round a fan node between two of its fan edges (or, at a plane node,
-    // between its fan edge and the open boundary). The sector of the node's lowest face keeps
-    // the node's id, the others get new nodes.
-    const Csr vf = vertex_faces(wall);
-    std::vector<std::array<Index, 4>> corner_node(static_cast<std::size_t>(nf));  // per face corner: its column
+    return lean;
+}
+
+/// A new column of \p out at wall node \p i, marching along \p dir; its id.
+Index add_column(FanWall& out, const SurfaceMesh& wall, Index i, const Vec3& dir) {
+    out.mesh.points.push_back(wall.points[i]);
+    out.base.push_back(i);
+    out.direction.push_back(dir);
+    return static_cast<Index>(out.mesh.points.size() - 1);
+}
+
+/// The columns of the fan nodes' sectors: the faces round a fan node between two of its fan
+/// edges (or, at a plane node, between its fan edge and the open boundary).
+struct Sectors {
+    std::vector<std::array<Index, 4>> corner_node;  ///< per face corner: its column
+    std::map<std::pair<Index, Index>, Index> node;  ///< (node, a face of the sector) → column
+};
+
+/// The faces round fan node \p i (row i of \p vf) in sets, one per sector: two faces sharing
+/// an edge at i that has no fan are of one sector.
+UnionFind sectors_round(const FanEdges& in, const Csr& vf, Index i) {
+    const SurfaceMesh& wall = in.wall;
+    const Index* f0 = vf.row_begin(i);
+    const auto m = static_cast<std::size_t>(vf.row_size(i));
+    UnionFind sec(m);
+    for (std::size_t p = 0; p < m; ++p)
+        for (std::size_t q = p + 1; q < m; ++q) {
+            const Index fp = f0[p], fq = f0[q];
+            for (Index c = 0; c < wall.face_size(fp); ++c) {
+                const Index x = wall.face_node(fp, c);
+                if (x == i) continue;
+                bool in_q = false;
+                for (const Index* v = wall.face_begin(fq); v != wall.face_end(fq); ++v) in_q |= *v == x;
+                const Index e = in_q ? find_edge(in.et, i, x) : kNone;
+                if (e != kNone && !in.keep[static_cast<std::size_t>(e)])
+                    sec.unite(static_cast<Index>(p), static_cast<Index>(q));
+            }
+        }
+    return sec;
+}
+
+/// Splits fan node \p i into a column per sector, along the max-min direction of the corner
+/// normals at i of the sector's faces (leaned by \p lean). The sector of the node's lowest
+/// face keeps the node's id, the others get new columns.
+void split_node(const FanEdges& in, const Csr& vf, const Lean& lean, Index i, Sectors& s, FanWall& out) {
+    const SurfaceMesh& wall = in.wall;
+    const Index* f0 = vf.row_begin(i);
+    const auto m = static_cast<std::size_t>(vf.row_size(i));
+    UnionFind sec = sectors_round(in, vf, i);
+    std::map<Index, std::vector<Vec3>> corners_of;
+    for (std::size_t p = 0; p < m; ++p) {
+        const Index f = f0[p];
+        const Index n = wall.face_size(f);
+        for (Index c = 0; c < n; ++c)
+            if (wall.face_node(f, c) == i) {
+                const Vec3& o = wall.points[i];
+                corners_of[sec.find(static_cast<Index>(p))].push_back(
+                    unit((wall.points[wall.face_node(f, (c + 1) % n)] - o)
+                             .cross(wall.points[wall.face_node(f, (c + n - 1) % n)] - o)));
+            }
+    }
+    bool first = true;
+    for (const auto& [root, corners] : corners_of) {
+        const Vec3 dir = lean(static_cast<std::size_t>(i), unit(max_min_dot_direction(corners)));
+        const Index id = first ? i : add_column(out, wall, i, dir);
+        if (first) out.direction[static_cast<std::size_t>(i)] = dir;
+        first = false;
+        for (std::size_t p = 0; p < m; ++p)
+            if (sec.find(static_cast<Index>(p)) == root) {
+                s.node[{i, f0[p]}] = id;
+                const Index f = f0[p];
+                for (Index c = 0; c < wall.face_size(f); ++c)
+                    if (wall.face_node(f, c) == i)
+                        s.corner_node[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)] = id;
+            }
+    }
+}
+
+/// Starts \p out as the wall with its nodes' columns, and splits each fan node into its
+/// sectors' columns (counting the fan nodes, corners and plane nodes).
+Sectors split_sectors(const FanEdges& in, const Csr& vf, const Lean& lean, FanWall& out) {
+    const SurfaceMesh& wall = in.wall;
+    const Index nn = wall.num_points(), nf = wall.num_faces();
+    const auto un = static_cast<std::size_t>(nn);
+    Sectors s;
+    s.corner_node.resize(static_cast<std::size_t>(nf));
     for (Index f = 0; f < nf; ++f) {
-        auto& c = corner_node[static_cast<std::size_t>(f)];
+        auto& c = s.corner_node[static_cast<std::size_t>(f)];
         c = {kNone, kNone, kNone, kNone};
         std::copy(wall.face_begin(f), wall.face_end(f), c.begin());
     }
@@ -199,227 +289,259 @@ FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector
     out.base.resize(un);
     std::iota(out.base.begin(), out.base.end(), Index{0});
     out.direction.assign(un, Vec3::Zero());
-    auto add_node = [&](Index i, const Vec3& dir) {
-        out.mesh.points.push_back(wall.points[i]);
-        out.base.push_back(i);
-        out.direction.push_back(dir);
-        return static_cast<Index>(out.mesh.points.size() - 1);
-    };
-    std::map<std::pair<Index, Index>, Index> sector_node;  // (node, a face of the sector) → column
     for (Index i = 0; i < nn; ++i) {
-        if (at[static_cast<std::size_t>(i)].empty()) continue;
+        if (in.at[static_cast<std::size_t>(i)].empty()) continue;
         ++out.fan_nodes;
-        out.corners += at[static_cast<std::size_t>(i)].size() > 2 ? 1 : 0;
-        out.plane_nodes += anchor[static_cast<std::size_t>(i)] != Vec3::Zero() ? 1 : 0;
-        const Index* f0 = vf.row_begin(i);
-        const auto m = static_cast<std::size_t>(vf.row_size(i));
-        UnionFind sec(m);
-        for (std::size_t p = 0; p < m; ++p)
-            for (std::size_t q = p + 1; q < m; ++q) {
-                // Faces p and q share an edge at i that has no fan: one sector.
-                const Index fp = f0[p], fq = f0[q];
-                for (Index c = 0; c < wall.face_size(fp); ++c) {
-                    const Index x = wall.face_node(fp, c);
-                    if (x == i) continue;
-                    bool in_q = false;
-                    for (const Index* v = wall.face_begin(fq); v != wall.face_end(fq); ++v) in_q |= *v == x;
-                    const Index e = in_q ? find_edge(et, i, x) : kNone;
-                    if (e != kNone && !keep[static_cast<std::size_t>(e)])
-                        sec.unite(static_cast<Index>(p), static_cast<Index>(q));
-                }
-            }
-        // Sector normals: the max-min direction of the corner normals at i of its faces.
-        std::map<Index, std::vector<Vec3>> corners_of;
-        for (std::size_t p = 0; p < m; ++p) {
-            const Index f = f0[p];
-            const Index n = wall.face_size(f);
-            for (Index c = 0; c < n; ++c)
-                if (wall.face_node(f, c) == i) {
-                    const Vec3& o = wall.points[i];
-                    corners_of[sec.find(static_cast<Index>(p))].push_back(
-                        unit((wall.points[wall.face_node(f, (c + 1) % n)] - o)
-                                 .cross(wall.points[wall.face_node(f, (c + n - 1) % n)] - o)));
-                }
-        }
-        bool first = true;
-        for (const auto& [root, corners] : corners_of) {
-            const Vec3 dir = in_plane(static_cast<std::size_t>(i), unit(max_min_dot_direction(corners)));
-            const Index id = first ? i : add_node(i, dir);
-            if (first) out.direction[static_cast<std::size_t>(i)] = dir;
-            first = false;
-            for (std::size_t p = 0; p < m; ++p)
-                if (sec.find(static_cast<Index>(p)) == root) {
-                    sector_node[{i, f0[p]}] = id;
-                    const Index f = f0[p];
-                    for (Index c = 0; c < wall.face_size(f); ++c)
-                        if (wall.face_node(f, c) == i)
-                            corner_node[static_cast<std::size_t>(f)][static_cast<std::size_t>(c)] = id;
-                }
-        }
+        out.corners += in.at[static_cast<std::size_t>(i)].size() > 2 ? 1 : 0;
+        out.plane_nodes += in.anchor[static_cast<std::size_t>(i)] != Vec3::Zero() ? 1 : 0;
+        split_node(in, vf, lean, i, s, out);
+    }
+    return s;
+}
+
+/// The outward bisector of fan edge \p e's two sides at a node whose sector normals are \p na, \p nb.
+Vec3 outward_bisector(const FanEdges& in, Index e, const Vec3& na, const Vec3& nb) {
+    const Index a = in.et.nodes[static_cast<std::size_t>(e)][0], b = in.et.nodes[static_cast<std::size_t>(e)][1];
+    const Index f = in.et.faces.row_begin(e)[0], g = in.et.faces.row_begin(e)[1];
+    return unit(na + nb - into_face(in.wall, f, a, b) - into_face(in.wall, g, a, b));
+}
+
+/// The directions of the \p w - 1 columns between unit \p na and \p nb, through \p ref halfway.
+std::vector<Vec3> mid_directions(const Vec3& na, const Vec3& nb, const Vec3& ref, int w) {
+    std::vector<Vec3> dirs;
+    for (int q = 1; q < w; ++q) {
+        const double t = static_cast<double>(q) / w;
+        dirs.push_back(t <= 0.5 ? slerp(na, ref, 2.0 * t) : slerp(ref, nb, 2.0 * t - 1.0));
+    }
+    return dirs;
+}
+
+/// Fan edge \p e's two faces: first the one that goes from its low node to its high one.
+std::pair<Index, Index> edge_sides(const FanEdges& in, Index e) {
+    const Index a = in.et.nodes[static_cast<std::size_t>(e)][0], b = in.et.nodes[static_cast<std::size_t>(e)][1];
+    Index f = in.et.faces.row_begin(e)[0], g = in.et.faces.row_begin(e)[1];
+    if (!goes(in.wall, f, a, b)) std::swap(f, g);
+    return {f, g};
+}
+
+/// Whether node \p i, with two fan edges (of one run, so of one wedge count \p w ≥ 2) and two
+/// sector columns, is split like a corner: where the chain turns sharply (kChainTurnDeg), each
+/// edge gets its own columns and a polygon closes them, if that polygon's cells span well
+/// (kCornerSpan; else the shared columns stay).
+bool splits_like_corner(const FanEdges& in, const Sectors& s, const FanWall& out, Index i, int w) {
+    const auto& es = in.at[static_cast<std::size_t>(i)];
+    Index lo = kNone, hi = kNone;
+    for (auto it = s.node.lower_bound({i, std::numeric_limits<Index>::min()});
+         it != s.node.end() && it->first.first == i; ++it)
+        lo = lo == kNone ? it->second : std::min(lo, it->second), hi = std::max(hi, it->second);
+    if (lo == hi) return false;
+    const Vec3& nl = out.direction[static_cast<std::size_t>(lo)];
+    const Vec3& nh = out.direction[static_cast<std::size_t>(hi)];
+    const Vec3 r0 = outward_bisector(in, es[0], nl, nh), r1 = outward_bisector(in, es[1], nl, nh);
+    if (std::acos(std::clamp(r0.dot(r1), -1.0, 1.0)) * 180.0 / std::numbers::pi <= kChainTurnDeg) return false;
+    std::vector<Vec3> poly{nl};
+    for (const Vec3& d : mid_directions(nl, nh, r0, w)) poly.push_back(d);
+    poly.push_back(nh);
+    const std::vector<Vec3> back = mid_directions(nl, nh, r1, w);
+    poly.insert(poly.end(), back.rbegin(), back.rend());
+    std::size_t from = 0;
+    const double fwd = best_corner_fan(poly, from);
+    std::reverse(poly.begin(), poly.end());
+    return std::max(fwd, best_corner_fan(poly, from)) >= kCornerSpan;
+}
+
+/// The columns of each fan edge's ends, made on first use: at a node with two fan edges,
+/// shared between both (its two sectors, in the order of their column ids); at a corner (or a
+/// node split like one), each edge's own.
+class ColumnRuns {
+public:
+    ColumnRuns(const FanEdges& in, const std::vector<int>& wedges, const Lean& lean, const Sectors& s,
+               const std::vector<char>& split, FanWall& out)
+        : in_(in), wedges_(wedges), lean_(lean), s_(s), split_(split), out_(out) {}
+
+    /// Whether node \p i is closed by a polygon of its columns.
+    bool cornered(Index i) const {
+        return in_.at[static_cast<std::size_t>(i)].size() > 2 || split_[static_cast<std::size_t>(i)];
     }
 
-    // The columns between: per fan edge and end, from the side of the face that goes from
-    // the edge's low node to its high one (f) to the other (g). A node with two fan edges
-    // shares them between both (its two sectors, in the order of their column ids).
-    std::map<Index, std::vector<Index>> shared;                 // node → columns from its lower sector column
-    std::map<std::pair<Index, Index>, std::vector<Index>> own;  // (node, edge) → columns from f's side
-    // The outward bisector of fan edge e's two sides at a node whose sector normals are na, nb.
-    auto reference = [&](Index e, const Vec3& na, const Vec3& nb) {
-        const Index a = et.nodes[static_cast<std::size_t>(e)][0], b = et.nodes[static_cast<std::size_t>(e)][1];
-        const Index f = et.faces.row_begin(e)[0], g = et.faces.row_begin(e)[1];
-        return unit(na + nb - into_face(wall, f, a, b) - into_face(wall, g, a, b));
-    };
-    auto mid_directions = [](const Vec3& na, const Vec3& nb, const Vec3& ref, int w) {
-        std::vector<Vec3> dirs;
-        for (int q = 1; q < w; ++q) {
-            const double t = static_cast<double>(q) / w;
-            dirs.push_back(t <= 0.5 ? slerp(na, ref, 2.0 * t) : slerp(ref, nb, 2.0 * t - 1.0));
-        }
-        return dirs;
-    };
-    auto between = [&](Index i, const Vec3& na, const Vec3& nb, const Vec3& ref, int w) {
-        std::vector<Index> ids;
-        for (const Vec3& d : mid_directions(na, nb, ref, w)) ids.push_back(add_node(i, d));
-        return ids;
-    };
-    auto sides = [&](Index e, Index& f, Index& g) {
-        const Index a = et.nodes[static_cast<std::size_t>(e)][0], b = et.nodes[static_cast<std::size_t>(e)][1];
-        f = et.faces.row_begin(e)[0], g = et.faces.row_begin(e)[1];
-        if (!goes(wall, f, a, b)) std::swap(f, g);
-    };
-    // A node with two fan edges where the chain turns sharply (kChainTurnDeg) is split like a
-    // corner: each edge gets its own columns, and a polygon closes them, where that polygon's
-    // cells span well (kCornerSpan; else the shared columns stay). Both edges are of one run,
-    // so of one wedge count; with one wedge there are no columns between to share.
-    std::vector<char> split(un, 0);
-    for (std::size_t i = 0; i < un; ++i) {
-        if (at[i].size() != 2 || wedges[static_cast<std::size_t>(at[i][0])] < 2) continue;
-        const Index ii = static_cast<Index>(i);
-        Index lo = kNone, hi = kNone;
-        for (auto it = sector_node.lower_bound({ii, std::numeric_limits<Index>::min()});
-             it != sector_node.end() && it->first.first == ii; ++it)
-            lo = lo == kNone ? it->second : std::min(lo, it->second), hi = std::max(hi, it->second);
-        if (lo == hi) continue;
-        const Vec3& nl = out.direction[static_cast<std::size_t>(lo)];
-        const Vec3& nh = out.direction[static_cast<std::size_t>(hi)];
-        const Vec3 r0 = reference(at[i][0], nl, nh), r1 = reference(at[i][1], nl, nh);
-        if (std::acos(std::clamp(r0.dot(r1), -1.0, 1.0)) * 180.0 / std::numbers::pi <= kChainTurnDeg) continue;
-        std::vector<Vec3> poly{nl};
-        const int w = wedges[static_cast<std::size_t>(at[i][0])];
-        for (const Vec3& d : mid_directions(nl, nh, r0, w)) poly.push_back(d);
-        poly.push_back(nh);
-        const std::vector<Vec3> back = mid_directions(nl, nh, r1, w);
-        poly.insert(poly.end(), back.rbegin(), back.rend());
-        std::size_t from = 0;
-        const double fwd = best_corner_fan(poly, from);
-        std::reverse(poly.begin(), poly.end());
-        split[i] = std::max(fwd, best_corner_fan(poly, from)) >= kCornerSpan;
-    }
-    auto cornered = [&](Index i) {
-        return at[static_cast<std::size_t>(i)].size() > 2 || split[static_cast<std::size_t>(i)];
-    };
-    for (std::size_t i = 0; i < un; ++i) out.corners += split[i];
-
-    auto column_run = [&](Index i, Index e) {
-        Index f = kNone, g = kNone;
-        sides(e, f, g);
-        const Index sf = sector_node.at({i, f}), sg = sector_node.at({i, g});
-        const Vec3 &nf_ = out.direction[static_cast<std::size_t>(sf)],
-                   &ng = out.direction[static_cast<std::size_t>(sg)];
-        const int w = wedges[static_cast<std::size_t>(e)];
+    /// The columns at node \p i of fan edge \p e, from its first side's sector (edge_sides) to the other's.
+    std::vector<Index> operator()(Index i, Index e) {
+        const auto [f, g] = edge_sides(in_, e);
+        const Index sf = s_.node.at({i, f}), sg = s_.node.at({i, g});
+        const int w = wedges_[static_cast<std::size_t>(e)];
         std::vector<Index> run{sf};
         if (!cornered(i)) {
-            const Index lo = std::min(sf, sg), hi = std::max(sf, sg);
-            auto it = shared.find(i);
-            if (it == shared.end()) {
-                const auto& es = at[static_cast<std::size_t>(i)];
-                const Vec3& nl = out.direction[static_cast<std::size_t>(lo)];
-                const Vec3& nh = out.direction[static_cast<std::size_t>(hi)];
-                const Vec3 ref = in_plane(static_cast<std::size_t>(i),
-                                          es.size() == 1 ? reference(es[0], nl, nh)
-                                                         : unit(reference(es[0], nl, nh) + reference(es[1], nl, nh)));
-                it = shared.emplace(i, between(i, nl, nh, ref, w)).first;
-            }
-            std::vector<Index> mid = it->second;
-            if (sf != lo) std::reverse(mid.begin(), mid.end());
+            std::vector<Index> mid = shared(i, std::min(sf, sg), std::max(sf, sg), w);
+            if (sf != std::min(sf, sg)) std::reverse(mid.begin(), mid.end());
             run.insert(run.end(), mid.begin(), mid.end());
         } else {
-            auto it = own.find({i, e});
-            if (it == own.end())
-                it = own.emplace(std::make_pair(i, e),
-                                 between(i, nf_, ng, in_plane(static_cast<std::size_t>(i), reference(e, nf_, ng)), w))
-                         .first;
-            run.insert(run.end(), it->second.begin(), it->second.end());
+            const std::vector<Index>& mid = own(i, e, sf, sg, w);
+            run.insert(run.end(), mid.begin(), mid.end());
         }
         run.push_back(sg);
         return run;
-    };
+    }
 
-    // The wall's faces with their corners' columns, then the fans' quads along each edge.
+private:
+    /// New columns at node \p i between directions \p na and \p nb (\p w wedges), through \p ref.
+    std::vector<Index> between(Index i, const Vec3& na, const Vec3& nb, const Vec3& ref, int w) {
+        std::vector<Index> ids;
+        for (const Vec3& d : mid_directions(na, nb, ref, w)) ids.push_back(add_column(out_, in_.wall, i, d));
+        return ids;
+    }
+
+    /// The columns node \p i's fan edges share, from its lower sector column \p lo to \p hi.
+    const std::vector<Index>& shared(Index i, Index lo, Index hi, int w) {
+        auto it = shared_.find(i);
+        if (it == shared_.end()) {
+            const auto& es = in_.at[static_cast<std::size_t>(i)];
+            const Vec3& nl = out_.direction[static_cast<std::size_t>(lo)];
+            const Vec3& nh = out_.direction[static_cast<std::size_t>(hi)];
+            const Vec3 ref = lean_(
+                static_cast<std::size_t>(i),
+                es.size() == 1 ? outward_bisector(in_, es[0], nl, nh)
+                               : unit(outward_bisector(in_, es[0], nl, nh) + outward_bisector(in_, es[1], nl, nh)));
+            it = shared_.emplace(i, between(i, nl, nh, ref, w)).first;
+        }
+        return it->second;
+    }
+
+    /// Fan edge \p e's own columns at node \p i, from its sector column \p sf to \p sg.
+    const std::vector<Index>& own(Index i, Index e, Index sf, Index sg, int w) {
+        auto it = own_.find({i, e});
+        if (it == own_.end()) {
+            const Vec3 &nf = out_.direction[static_cast<std::size_t>(sf)],
+                       &ng = out_.direction[static_cast<std::size_t>(sg)];
+            it = own_.emplace(
+                         std::make_pair(i, e),
+                         between(i, nf, ng, lean_(static_cast<std::size_t>(i), outward_bisector(in_, e, nf, ng)), w))
+                     .first;
+        }
+        return it->second;
+    }
+
+    const FanEdges& in_;
+    const std::vector<int>& wedges_;
+    const Lean& lean_;
+    const Sectors& s_;
+    const std::vector<char>& split_;
+    FanWall& out_;
+    std::map<Index, std::vector<Index>> shared_;                 // node → columns from its lower sector column
+    std::map<std::pair<Index, Index>, std::vector<Index>> own_;  // (node, edge) → columns from its first side's
+};
+
+/// Corner node → the directed column edges its fans' quads leave open.
+using CornerEdges = std::map<Index, std::vector<std::pair<Index, Index>>>;
+
+/// Adds the wall's faces with their corners' columns to \p out, then the fans' quads along each
+/// fan edge; returns the edges the quads leave open at the corners.
+CornerEdges add_faces(const FanEdges& in, const Sectors& s, ColumnRuns& runs, FanWall& out) {
+    const SurfaceMesh& wall = in.wall;
+    const Index nf = wall.num_faces();
     for (Index f = 0; f < nf; ++f)
-        out.mesh.add_face(corner_node[static_cast<std::size_t>(f)].data(), wall.face_size(f), wall.face_patch[f]);
+        out.mesh.add_face(s.corner_node[static_cast<std::size_t>(f)].data(), wall.face_size(f), wall.face_patch[f]);
     out.fan_face.assign(static_cast<std::size_t>(nf), 0);
-    std::map<Index, std::vector<std::pair<Index, Index>>> corner_edges;  // corner node → directed column edges
-    for (std::size_t e = 0; e < ne; ++e) {
-        if (!keep[e]) continue;
-        const Index a = et.nodes[e][0], b = et.nodes[e][1];
-        const std::vector<Index> ra = column_run(a, static_cast<Index>(e)), rb = column_run(b, static_cast<Index>(e));
-        Index f = kNone, g = kNone;
-        sides(static_cast<Index>(e), f, g);
+    CornerEdges corner_edges;
+    for (std::size_t e = 0; e < in.et.nodes.size(); ++e) {
+        if (!in.keep[e]) continue;
+        const Index a = in.et.nodes[e][0], b = in.et.nodes[e][1];
+        const std::vector<Index> ra = runs(a, static_cast<Index>(e)), rb = runs(b, static_cast<Index>(e));
+        const Index f = edge_sides(in, static_cast<Index>(e)).first;
         for (std::size_t q = 0; q + 1 < ra.size(); ++q) {
             out.mesh.add_face({rb[q], ra[q], ra[q + 1], rb[q + 1]}, wall.face_patch[f]);
             out.fan_face.push_back(1);
-            if (cornered(a)) corner_edges[a].push_back({ra[q], ra[q + 1]});
-            if (cornered(b)) corner_edges[b].push_back({rb[q + 1], rb[q]});
+            if (runs.cornered(a)) corner_edges[a].push_back({ra[q], ra[q + 1]});
+            if (runs.cornered(b)) corner_edges[b].push_back({rb[q + 1], rb[q]});
         }
     }
-    // At a corner the fans' quads leave a polygon of the node's columns open: close it (as
-    // triangles from its first column where it has more than four).
-    for (auto& [i, edges] : corner_edges) {
-        std::map<Index, Index> next;  // the polygon goes opposite to the quads' edges
-        for (const auto& [x, y] : edges) next[y] = x;
-        std::vector<Index> poly{next.begin()->first};
-        while (poly.size() <= edges.size()) {
-            const auto it = next.find(poly.back());
-            if (it == next.end()) break;
-            if (it->second == poly.front()) break;
-            poly.push_back(it->second);
-        }
-        if (poly.size() != edges.size())
-            throw TopologyError("internal: the fans at the corner " + std::to_string(i) +
-                                " do not close into one polygon");
-        const Index patch = wall.face_patch[vf.row_begin(i)[0]];
-        // On the wall the polygon's cells are a tetrahedron per triangle (the node, and the
-        // triangle's columns one step out), or a pyramid on a quad: each as good as the three
-        // directions it spans, det(a, b, c). A quad whose every corner spans well stays one;
-        // otherwise the fan of triangles whose worst triangle spans most.
-        const std::size_t p = poly.size();
-        std::vector<Vec3> dirs;
-        for (const Index c : poly) dirs.push_back(out.direction[static_cast<std::size_t>(c)]);
-        auto span = [&](std::size_t a, std::size_t b, std::size_t c) {
-            return dirs[a % p].dot(dirs[b % p].cross(dirs[c % p]));
-        };
-        std::size_t from = 0;
-        const double best = best_corner_fan(dirs, from);
-        if (best < kCornerSpan) {
-            // Too flat: drop the corner's fan edge that turns least, and try again.
-            Index weakest = kNone;
-            for (const Index e : at[static_cast<std::size_t>(i)])
-                if (weakest == kNone || turn[static_cast<std::size_t>(e)] < turn[static_cast<std::size_t>(weakest)])
-                    weakest = e;
-            bad.push_back(weakest);  // one at a time: dropping it may leave the other corners sound
-            return out;
-        }
-        double quad = 2.0;
-        for (std::size_t c = 0; c < p; ++c) quad = std::min(quad, span(c + p - 1, c, c + 1));
-        if (p == 3 || (p == 4 && quad >= 0.5 * best && quad > 0.0)) {
-            out.mesh.add_face(poly.data(), static_cast<Index>(p), patch);
+    return corner_edges;
+}
+
+/// The polygon of corner \p i's columns that its fans' quads (\p edges) leave open, in order.
+std::vector<Index> corner_polygon(Index i, const std::vector<std::pair<Index, Index>>& edges) {
+    std::map<Index, Index> next;  // the polygon goes opposite to the quads' edges
+    for (const auto& [x, y] : edges) next[y] = x;
+    std::vector<Index> poly{next.begin()->first};
+    while (poly.size() <= edges.size()) {
+        const auto it = next.find(poly.back());
+        if (it == next.end()) break;
+        if (it->second == poly.front()) break;
+        poly.push_back(it->second);
+    }
+    if (poly.size() != edges.size())
+        throw TopologyError("internal: the fans at the corner " + std::to_string(i) + " do not close into one polygon");
+    return poly;
+}
+
+/// Closes corner \p i's polygon \p poly in \p out. On the wall the polygon's cells are a
+/// tetrahedron per triangle (the node, and the triangle's columns one step out), or a pyramid
+/// on a quad: each as good as the three directions it spans, det(a, b, c). A quad whose every
+/// corner spans well stays one; otherwise the fan of triangles whose worst triangle spans
+/// most. False, with nothing added, where even that spans too little (kCornerSpan).
+bool close_corner(const std::vector<Index>& poly, Index patch, FanWall& out) {
+    const std::size_t p = poly.size();
+    std::vector<Vec3> dirs;
+    for (const Index c : poly) dirs.push_back(out.direction[static_cast<std::size_t>(c)]);
+    auto span = [&](std::size_t a, std::size_t b, std::size_t c) {
+        return dirs[a % p].dot(dirs[b % p].cross(dirs[c % p]));
+    };
+    std::size_t from = 0;
+    const double best = best_corner_fan(dirs, from);
+    if (best < kCornerSpan) return false;
+    double quad = 2.0;
+    for (std::size_t c = 0; c < p; ++c) quad = std::min(quad, span(c + p - 1, c, c + 1));
+    if (p == 3 || (p == 4 && quad >= 0.5 * best && quad > 0.0)) {
+        out.mesh.add_face(poly.data(), static_cast<Index>(p), patch);
+        out.fan_face.push_back(1);
+    } else {
+        for (std::size_t t = 1; t + 1 < p; ++t) {
+            out.mesh.add_face({poly[from], poly[(from + t) % p], poly[(from + t + 1) % p]}, patch);
             out.fan_face.push_back(1);
-        } else {
-            for (std::size_t t = 1; t + 1 < p; ++t) {
-                out.mesh.add_face({poly[from], poly[(from + t) % p], poly[(from + t + 1) % p]}, patch);
-                out.fan_face.push_back(1);
-            }
+        }
+    }
+    return true;
+}
+
+/// Corner \p i's fan edge that turns least.
+Index weakest_edge(const FanEdges& in, Index i) {
+    Index weakest = kNone;
+    for (const Index e : in.at[static_cast<std::size_t>(i)])
+        if (weakest == kNone || in.turn[static_cast<std::size_t>(e)] < in.turn[static_cast<std::size_t>(weakest)])
+            weakest = e;
+    return weakest;
+}
+
+/// The fan wall for the fan edges \p keep (a 2-core, \p at per node), or the fan edges to drop
+/// before trying again (\p bad, empty if none): where a corner's columns span too little
+/// (nearly in one plane: its cells would be flat), the corner's fan edge that turns least.
+FanWall assemble(const SurfaceMesh& wall, const EdgeTable& et, const std::vector<char>& keep,
+                 const std::vector<std::vector<Index>>& at, const std::vector<double>& turn,
+                 const std::vector<Vec3>& anchor, double plane_reach, std::vector<Index>& bad) {
+    const FanEdges in{wall, et, keep, at, turn, anchor};
+    FanWall out;
+    bad.clear();
+    const Index nn = wall.num_points();
+    const auto un = static_cast<std::size_t>(nn);
+    const auto ne = et.nodes.size();
+    for (std::size_t e = 0; e < ne; ++e) out.fan_edges += keep[e] ? 1 : 0;
+    const std::vector<int> wedges = chain_wedges(in);
+    const Lean lean = plane_lean(in, plane_reach);
+    const Csr vf = vertex_faces(wall);
+    const Sectors sectors = split_sectors(in, vf, lean, out);
+    // A node with two fan edges of two wedges or more (with one there are no columns between
+    // to share) may be split like a corner.
+    std::vector<char> split(un, 0);
+    for (std::size_t i = 0; i < un; ++i)
+        if (at[i].size() == 2 && wedges[static_cast<std::size_t>(at[i][0])] >= 2)
+            split[i] =
+                splits_like_corner(in, sectors, out, static_cast<Index>(i), wedges[static_cast<std::size_t>(at[i][0])]);
+    for (std::size_t i = 0; i < un; ++i) out.corners += split[i];
+    ColumnRuns runs(in, wedges, lean, sectors, split, out);
+    for (const auto& [i, edges] : add_faces(in, sectors, runs, out)) {
+        const std::vector<Index> poly = corner_polygon(i, edges);
+        if (!close_corner(poly, wall.face_patch[vf.row_begin(i)[0]], out)) {
+            bad.push_back(weakest_edge(in, i));  // one at a time: dropping it may leave the other corners sound
+            return out;
         }
     }
     out.columns = out.mesh.num_points() - nn;

@@ -24,11 +24,9 @@ inline constexpr double kStepSizeShare = 0.7;
 /// s / quality, the smallest over i's neighbours. In node order, one per such node.
 ///
 /// Only proximity steps: their place follows the gap, so a finer wall there gives the same
-/// steps, better closed. Refining around columns stopped at a sharp edge or a junction (Quality,
-/// SharpEdge, Neighbours) was tried (2026-11-24): the new nodes stop too, and on the body-fin
-/// box, the NACA tunnel and the wing-fuselage the finer walls at those junctions made the layers
-/// fold there, the lowering spreading over most of the body (coverage 90 % -> 18 %, 92 % -> 20 %,
-/// 36 % -> 16 %). \p quality in (0, 1] (InputError otherwise).
+/// steps, better closed; round columns stopped at a sharp edge or a junction the new nodes stop
+/// too, and finer walls there make the layers fold (docs/DESIGN_NOTES.md). \p quality in (0, 1]
+/// (InputError otherwise).
 std::vector<SizePoint> step_sizes(const SurfaceMesh& wall, const ProximityPlan& plan,
                                   const std::vector<double>& heights, double quality);
 
@@ -55,10 +53,8 @@ FanWedgeSizes fan_wedge_sizes(const SurfaceMesh& wall, const ProximityPlan& plan
                               double max_aspect_ratio);
 
 /// fan_wedge_sizes skips wedges whose columns are closer than this (degrees): the narrowest a
-/// chain's closing curve of 30 degrees gets in a run of two wedges. The sweep's cylinder with a
-/// 1 mm fin has fan wedges of 5.6 degrees along its fin's top (aspect ratio 311,863 under 3e-4):
-/// their sizes, 3e-4 at a fin 1 mm thick, made needles of its faces, and its layers fell from
-/// 61.9 % of the wall nodes with every layer to 16.7 % (checkMesh failing on a tetrahedron).
+/// chain's closing curve of 30 degrees gets in a run of two wedges; the sizes narrower wedges
+/// ask make needles of a thin fin's faces (docs/DESIGN_NOTES.md).
 inline constexpr double kFanWedgeMinDeg = 15.0;
 
 }  // namespace strata
