@@ -300,24 +300,25 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
     return mesh;
 }
 
-/// The message of the error when the boundary TetGen is to fill against still crosses itself
-/// after \p rounds rounds: found here, with exact predicates, where it is and why, rather than by
-/// TetGen (which stops without a place).
-std::string front_intersects_message(const SurfaceMesh& region, const std::vector<FacePair>& pairs, int rounds) {
+/// Rounds of lowering colliding columns before giving up (each halves their thickness).
+constexpr int kFrontRounds = 8;
+
+/// The error when the boundary TetGen is to fill against still crosses itself after every
+/// round: found here, with exact predicates, where it is and why, rather than by TetGen (which
+/// stops without a place).
+std::string front_intersects_message(const SurfaceMesh& region, const std::vector<FacePair>& pairs) {
     std::string where;
     for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 3); ++i)
         where += (i ? "; " : "") + describe_pair(region, pairs[i]);
     return "the boundary of the region to fill with tetrahedra (the layer top and the outer boundary) "
            "intersects itself in " +
-           std::to_string(pairs.size()) + " pairs of faces after lowering the layers there " + std::to_string(rounds) +
-           " times: " + where + (pairs.size() > 3 ? "; and " + std::to_string(pairs.size() - 3) + " more" : "") +
+           std::to_string(pairs.size()) + " pairs of faces after lowering the layers there " +
+           std::to_string(kFrontRounds) + " times: " + where +
+           (pairs.size() > 3 ? "; and " + std::to_string(pairs.size() - 3) + " more" : "") +
            ". The layers collide there (a gap narrower than the layers on both sides) or reach the "
            "outer boundary: fewer or thinner layers (DistributionParams::layers, "
            "DistributionParams::first_height, DistributionParams::growth), or a larger farfield";
 }
-
-/// Rounds of lowering colliding columns before giving up (each halves their thickness).
-constexpr int kFrontRounds = 8;
 
 /// A stage's local failure, in place of its result: what to change before the layers are marched
 /// again (build_hybrid_mesh applies it to the LayerConstraints and the surface), and why.
@@ -488,7 +489,7 @@ std::optional<Repair> front_repair(const SurfaceMesh& region, Index top_patch, c
                                    const PyramidLayer& pyr, int threads) {
     const std::vector<FacePair> pairs = self_intersections(region, 0, threads);
     if (pairs.empty()) return std::nullopt;
-    Repair repair(Repair::Stage::Front, front_intersects_message(region, pairs, kFrontRounds));
+    Repair repair(Repair::Stage::Front, front_intersects_message(region, pairs));
     std::vector<char> marked(static_cast<std::size_t>(lm.wall_nodes()), 0);
     for (const FacePair& p : pairs)
         for (const Index f : {p.a, p.b})
