@@ -16,7 +16,10 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
+#include <type_traits>
+#include <variant>
 
 namespace strata {
 namespace {
@@ -297,41 +300,80 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
     return mesh;
 }
 
-/// The boundary TetGen is to fill against must not cross itself: found here, with exact
-/// predicates, where it is and why, rather than by TetGen (which stops without a place).
-[[noreturn]] void throw_front_intersects(const SurfaceMesh& region, const std::vector<FacePair>& pairs, int rounds) {
-    std::string where;
-    for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 3); ++i)
-        where += (i ? "; " : "") + describe_pair(region, pairs[i]);
-    throw TopologyError(
-        "the boundary of the region to fill with tetrahedra (the layer top and the outer boundary) "
-        "intersects itself in " +
-        std::to_string(pairs.size()) + " pairs of faces after lowering the layers there " + std::to_string(rounds) +
-        " times: " + where + (pairs.size() > 3 ? "; and " + std::to_string(pairs.size() - 3) + " more" : "") +
-        ". The layers collide there (a gap narrower than the layers on both sides) or reach the "
-        "outer boundary: fewer or thinner layers (DistributionParams::layers, "
-        "DistributionParams::first_height, DistributionParams::growth), or a larger farfield");
-}
-
 /// Rounds of lowering colliding columns before giving up (each halves their thickness).
 constexpr int kFrontRounds = 8;
 
-/// The quad face of \p mesh over the four nodes \p nodes (any order), replaced in place by two
-/// triangles split along its shorter diagonal, each keeping the quad's orientation and patch.
-/// False if \p mesh has no such quad.
-bool split_wall_quad(SurfaceMesh& mesh, std::vector<Index> nodes) {
-    if (nodes.size() != 4) return false;
+/// The error when the boundary TetGen is to fill against still crosses itself after every
+/// round: found here, with exact predicates, where it is and why, rather than by TetGen (which
+/// stops without a place).
+std::string front_intersects_message(const SurfaceMesh& region, const std::vector<FacePair>& pairs) {
+    std::string where;
+    for (std::size_t i = 0; i < std::min<std::size_t>(pairs.size(), 3); ++i)
+        where += (i ? "; " : "") + describe_pair(region, pairs[i]);
+    return "the boundary of the region to fill with tetrahedra (the layer top and the outer boundary) "
+           "intersects itself in " +
+           std::to_string(pairs.size()) + " pairs of faces after lowering the layers there " +
+           std::to_string(kFrontRounds) + " times: " + where +
+           (pairs.size() > 3 ? "; and " + std::to_string(pairs.size() - 3) + " more" : "") +
+           ". The layers collide there (a gap narrower than the layers on both sides) or reach the "
+           "outer boundary: fewer or thinner layers (DistributionParams::layers, "
+           "DistributionParams::first_height, DistributionParams::growth), or a larger farfield";
+}
+
+/// A stage's local failure, in place of its result: what to change before the layers are marched
+/// again (build_hybrid_mesh applies it to the LayerConstraints and the surface), and why.
+struct Repair {
+    enum class Stage { Layers, Pyramids, Front, Tets };
+    Repair(Stage stage, std::string failure) : from(stage), why(std::move(failure)) {}
+    Stage from;
+    std::string why;  ///< the failure: the error if no round is left to mend it
+    /// Per input node, a bound on its layers' thickness (the lowest holds): one per column lowered.
+    std::vector<std::pair<Index, double>> bounds;
+    std::vector<Index> no_fan;               ///< input nodes to march without a fan
+    std::vector<std::vector<Index>> splits;  ///< wall quads (their input nodes, ascending) to split in two
+};
+
+/// A stage's result, or the repair it asks for.
+template <class T>
+using Outcome = std::variant<T, Repair>;
+
+/// A LocalTopologyError as a value: where a stage could not go on (nodes of the surface it was
+/// given) and how far the layers got there.
+struct LocalFailure {
+    std::string why;
+    std::vector<Index> nodes;
+    double reached = 0.0;
+};
+
+/// \p stage's result, or its LocalTopologyError as a value. extrude_layers, build_pyramids and
+/// fill_with_tets throw it from deep inside (a fold with stopping off, a quad no apex caps, a face
+/// TetGen cannot recover); this is the one place the pipeline turns it into an outcome.
+template <class F>
+std::variant<std::invoke_result_t<F>, LocalFailure> local_failure_as_value(F&& stage) {
+    try {
+        return stage();
+    } catch (const LocalTopologyError& e) {
+        return LocalFailure{e.what(), e.nodes(), e.reached()};
+    }
+}
+
+/// The quad face of \p mesh over the four nodes \p nodes (any order), or kNone.
+Index find_quad(const SurfaceMesh& mesh, std::vector<Index> nodes) {
+    if (nodes.size() != 4) return kNone;
     std::sort(nodes.begin(), nodes.end());
-    const auto over_nodes = [&](Index f) {
-        if (mesh.face_size(f) != 4) return false;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        if (mesh.face_size(f) != 4) continue;
         std::array<Index, 4> sorted{};
         std::copy(mesh.face_begin(f), mesh.face_end(f), sorted.begin());
         std::sort(sorted.begin(), sorted.end());
-        return std::equal(sorted.begin(), sorted.end(), nodes.begin());
-    };
-    Index quad = 0;
-    while (quad < mesh.num_faces() && !over_nodes(quad)) ++quad;
-    if (quad == mesh.num_faces()) return false;
+        if (std::equal(sorted.begin(), sorted.end(), nodes.begin())) return f;
+    }
+    return kNone;
+}
+
+/// Quad \p quad of \p mesh replaced in place by two triangles split along its shorter diagonal,
+/// each keeping the quad's orientation and patch.
+void split_quad(SurfaceMesh& mesh, Index quad) {
     SurfaceMesh out;
     out.points = mesh.points;
     out.patches = mesh.patches;
@@ -347,7 +389,6 @@ bool split_wall_quad(SurfaceMesh& mesh, std::vector<Index> nodes) {
         out.add_face({q[d], q[d + 2], q[(d + 3) % 4]}, p);
     }
     mesh = std::move(out);
-    return true;
 }
 
 /// Mark the wall columns under layer-top face \p f of \p region: region node ids below the
@@ -364,50 +405,260 @@ void mark_columns(const SurfaceMesh& region, Index f, Index nw, const PyramidLay
     }
 }
 
-/// Lower the thickness limit of the \p marked columns to half what they reached. Returns the
-/// number of surface nodes lowered; \p grown, if given, is set to the number of those that
-/// had grown at all (the others' limit becomes 0, which changes nothing this round).
-Index lower_marked_columns(const std::vector<char>& marked, const LayerMesh& lm, std::vector<double>& limit,
-                           Index* grown = nullptr) {
-    Index count = 0, grew = 0;
-    for (Index w = 0; w < lm.wall_nodes(); ++w) {
-        if (!marked[static_cast<std::size_t>(w)]) continue;
-        const double reached = (lm.mesh.points[lm.top_node(w)] - lm.mesh.points[lm.level_node(0, w)]).norm();
-        double& l = limit[static_cast<std::size_t>(lm.input_node[static_cast<std::size_t>(w)])];
-        l = std::min(l, 0.5 * reached);
-        ++count;
-        if (reached > 0.0) ++grew;
-    }
-    if (grown) *grown = grew;
-    return count;
+/// The length wall node \p w's column reached.
+double column_length(const LayerMesh& lm, Index w) {
+    return (lm.mesh.points[lm.top_node(w)] - lm.mesh.points[lm.level_node(0, w)]).norm();
 }
 
-/// Lower the thickness limit of the columns under the layer-top faces of \p pairs to half
-/// what they reached. Returns the number of surface nodes lowered.
-Index lower_colliding_columns(const SurfaceMesh& region, Index top_patch, const std::vector<FacePair>& pairs,
-                              const LayerMesh& lm, const PyramidLayer& pyr, std::vector<double>& limit) {
+/// The \p marked columns bounded in \p repair to half what they reached. Returns how many of them
+/// had grown at all (the others' bound becomes 0, which changes nothing).
+Index halve_marked_columns(const std::vector<char>& marked, const LayerMesh& lm, Repair& repair) {
+    Index grew = 0;
+    for (Index w = 0; w < lm.wall_nodes(); ++w) {
+        if (!marked[static_cast<std::size_t>(w)]) continue;
+        const double reached = column_length(lm, w);
+        repair.bounds.emplace_back(lm.input_node[static_cast<std::size_t>(w)], 0.5 * reached);
+        if (reached > 0.0) ++grew;
+    }
+    return grew;
+}
+
+/// The layers on \p surface; or, where a cell folds (local stopping off), the columns of its
+/// nodes bounded to 0.7 of what the layers below it reached (half the thickness \p asked if not known).
+Outcome<LayerMesh> march_layers(const SurfaceMesh& surface, const LayerParams& params,
+                                const LayerConstraints& constraints, double asked, Progress* progress) {
+    auto out = local_failure_as_value([&] { return extrude_layers(surface, params, constraints, progress); });
+    const auto* fold = std::get_if<LocalFailure>(&out);
+    if (!fold) return std::get<LayerMesh>(std::move(out));
+    Repair repair(Repair::Stage::Layers, fold->why);
+    const double to = fold->reached > 0.0 ? 0.7 * fold->reached : 0.5 * asked;
+    for (const Index n : fold->nodes) repair.bounds.emplace_back(n, to);
+    return repair;
+}
+
+/// The repair of the layer-top quads that took no pyramid (four wall nodes each in \p failed,
+/// pyramids.h), all in one round. \p uncappable: the quads that failed in the rounds before.
+Repair pyramid_repair(const LocalFailure& failed, const LayerMesh& lm, const SurfaceMesh& surface,
+                      std::set<std::vector<Index>>& uncappable) {
+    Repair repair(Repair::Stage::Pyramids, failed.why);
+    for (std::size_t at = 0; at + 4 <= failed.nodes.size(); at += 4) {
+        const auto quad_begin = failed.nodes.begin() + static_cast<std::ptrdiff_t>(at);
+        const std::vector<Index> quad(quad_begin, quad_begin + 4);
+        // A face of a fan (its columns twist from one end to the other where the wall is
+        // small against the layers): no fan on its nodes.
+        bool fan = false;
+        for (const Index w : quad) fan |= !lm.fan_column.empty() && lm.fan_column[static_cast<std::size_t>(w)];
+        if (fan) {
+            for (const Index w : quad) repair.no_fan.push_back(lm.input_node[static_cast<std::size_t>(w)]);
+            continue;
+        }
+        // A wall quad with no layer on it (its columns stopped at the wall), or whose
+        // columns were lowered for it before, that no apex can cap (a quad bent round a
+        // small hole): split into two triangles, whose columns need no pyramid.
+        std::vector<Index> wall_nodes;
+        bool on_wall = true;
+        for (const Index w : quad) {
+            on_wall &= lm.top_node(w) == lm.level_node(0, w);
+            wall_nodes.push_back(lm.input_node[static_cast<std::size_t>(w)]);
+        }
+        std::sort(wall_nodes.begin(), wall_nodes.end());
+        const bool again = !uncappable.insert(wall_nodes).second;
+        const bool split_already =
+            std::find(repair.splits.begin(), repair.splits.end(), wall_nodes) != repair.splits.end();
+        if ((on_wall || again) && !split_already && find_quad(surface, wall_nodes) != kNone) {
+            repair.splits.push_back(std::move(wall_nodes));
+            continue;
+        }
+        for (const Index w : quad)
+            repair.bounds.emplace_back(lm.input_node[static_cast<std::size_t>(w)], 0.5 * column_length(lm, w));
+    }
+    return repair;
+}
+
+/// The pyramids on \p lm's top, or the repair of the quads none can cap (pyramid_repair).
+Outcome<PyramidLayer> cap_with_pyramids(const LayerMesh& lm, const SurfaceMesh& surface, const PyramidParams& params,
+                                        std::set<std::vector<Index>>& uncappable, Progress* progress) {
+    auto out = local_failure_as_value([&] { return build_pyramids(lm.top, params, progress); });
+    if (const auto* failed = std::get_if<LocalFailure>(&out)) return pyramid_repair(*failed, lm, surface, uncappable);
+    return std::get<PyramidLayer>(std::move(out));
+}
+
+/// Nothing if the boundary TetGen is to fill against does not cross itself; else the columns
+/// under the layer-top faces of the crossing pairs halved.
+std::optional<Repair> front_repair(const SurfaceMesh& region, Index top_patch, const LayerMesh& lm,
+                                   const PyramidLayer& pyr, int threads) {
+    const std::vector<FacePair> pairs = self_intersections(region, 0, threads);
+    if (pairs.empty()) return std::nullopt;
+    Repair repair(Repair::Stage::Front, front_intersects_message(region, pairs));
     std::vector<char> marked(static_cast<std::size_t>(lm.wall_nodes()), 0);
     for (const FacePair& p : pairs)
         for (const Index f : {p.a, p.b})
             if (region.face_patch[f] == top_patch) mark_columns(region, f, lm.wall_nodes(), pyr, marked);
-    return lower_marked_columns(marked, lm, limit);
+    halve_marked_columns(marked, lm, repair);
+    return repair;
 }
 
-/// TetGen stopped at region nodes \p nodes (recovering the face or edge they make): lower the
-/// columns under every layer-top face touching them to half what they reached, so that the
-/// front there changes shape. Returns the number of surface nodes lowered; \p grown: how many
-/// of them had grown (0: nothing there can change).
-Index lower_columns_around(const SurfaceMesh& region, Index top_patch, const std::vector<Index>& nodes,
-                           const LayerMesh& lm, const PyramidLayer& pyr, std::vector<double>& limit, Index& grown) {
+/// The tetrahedra filling \p region. Where TetGen stops on one of its internal checks recovering
+/// a face of the layer top (a configuration of the front it cannot handle, though no face crosses
+/// another), the columns under every layer-top face touching that face's nodes halved, so that
+/// the front there changes shape; an error where none of them grew (a face of the outer boundary
+/// or of walls with no layers: nothing there can change).
+Outcome<TetFill> fill_region(const SurfaceMesh& region, Index top_patch, const LayerMesh& lm, const PyramidLayer& pyr,
+                             const TetFillParams& params, Progress* progress) {
+    auto out = local_failure_as_value([&] { return fill_with_tets(region, points_in_layers(lm), params, progress); });
+    const auto* stuck = std::get_if<LocalFailure>(&out);
+    if (!stuck) return std::get<TetFill>(std::move(out));
     std::vector<char> marked(static_cast<std::size_t>(lm.wall_nodes()), 0);
     for (Index f = 0; f < region.num_faces(); ++f) {
         if (region.face_patch[f] != top_patch) continue;
         bool touches = false;
         for (const Index* v = region.face_begin(f); v != region.face_end(f) && !touches; ++v)
-            touches = std::find(nodes.begin(), nodes.end(), *v) != nodes.end();
+            touches = std::find(stuck->nodes.begin(), stuck->nodes.end(), *v) != stuck->nodes.end();
         if (touches) mark_columns(region, f, lm.wall_nodes(), pyr, marked);
     }
-    return lower_marked_columns(marked, lm, limit, &grown);
+    Repair repair(Repair::Stage::Tets, stuck->why);
+    if (halve_marked_columns(marked, lm, repair) == 0)
+        throw LocalTopologyError(stuck->why, stuck->nodes, stuck->reached);
+    return repair;
+}
+
+/// What build_hybrid_mesh's rounds carry from one to the next.
+struct Rounds {
+    SurfaceMesh surface;                      ///< the domain the layers grow on, its wall quads split so far
+    bool has_outer = false;                   ///< the input closes the fluid itself (closed_domain)
+    Index farfield_patch = kNone;             ///< the generated farfield's patch of the region, if any
+    double asked = 0.0;                       ///< the thickness asked: the sum of the layer heights
+    LayerParams layers;                       ///< the settings, front_slope as this round spreads the bounds
+    LayerConstraints constraints;             ///< the thickness bounds and the nodes without a fan
+    std::vector<double> limit_before;         ///< the thickness bounds of the round before
+    int repeats = 0;                          ///< rounds that lowered a column lowered before
+    std::vector<Index> uncapped;              ///< input nodes whose fan's face on the layer top took no pyramid
+    std::set<Index> unusable, skewed;         ///< input nodes whose fan extrude_layers dropped (LayerMesh)
+    std::set<std::vector<Index>> uncappable;  ///< the input nodes of quads that took no pyramid
+
+    /// The front rounds' bounds spread along the wall at front_slope (ProximityParams, \p given),
+    /// halved from the second round on that lowers a column lowered before, and from round
+    /// kFrontRounds / 2 on at the proximity limits' slope (never above what was asked): a
+    /// lowering stays local unless the front keeps meeting itself there (ALGORITHM.md, "Proximity").
+    void spread(int round, const ProximityParams& given) {
+        const std::vector<double>& limit = constraints.node_thickness_limit;
+        bool again = false;
+        for (std::size_t i = 0; i < limit.size() && !again; ++i)
+            again = limit[i] < limit_before[i] && std::isfinite(limit_before[i]);
+        ProximityParams& now = layers.proximity_limits;
+        if (again && ++repeats > 1) now.front_slope *= 0.5;
+        const double lowest = std::min(given.front_slope, given.slope);  // extrude_layers refuses 0
+        if (round >= kFrontRounds / 2) now.front_slope = 0.0;
+        now.front_slope = std::max(now.front_slope, lowest);
+        limit_before = limit;
+    }
+
+    /// The fans \p lm dropped stay dropped in the rounds after: the same march without trying them again.
+    void keep_dropped_fans(const LayerMesh& lm) {
+        for (const auto& [dropped, into] :
+             {std::pair{&lm.fans_dropped, &unusable}, std::pair{&lm.fans_skewed, &skewed}})
+            for (const Index v : *dropped) {
+                constraints.bar_fan(v, surface.points.size());
+                into->insert(v);
+            }
+    }
+
+    /// \p repair carried out for the next round, and counted in \p rep.
+    void apply(const Repair& repair, HybridReport& rep) {
+        for (const auto& [node, bound] : repair.bounds) {
+            double& l = constraints.node_thickness_limit[static_cast<std::size_t>(node)];
+            l = std::min(l, bound);
+        }
+        for (const Index v : repair.no_fan)
+            if (constraints.bar_fan(v, surface.points.size())) uncapped.push_back(v);
+        for (const std::vector<Index>& quad : repair.splits) split_quad(surface, find_quad(surface, quad));
+        rep.front_lowered_nodes += static_cast<Index>(repair.bounds.size());
+        rep.split_quads += static_cast<int>(repair.splits.size());
+        rep.tet_retries += repair.from == Repair::Stage::Tets ? 1 : 0;
+    }
+};
+
+/// What one round's stages made, the mesh is assembled from.
+struct Stages {
+    LayerMesh lm;
+    PyramidLayer pyr;
+    OuterBoundary outer;
+    SurfaceMesh region;  ///< what the tetrahedra fill (region_to_fill)
+    Index top_patch = kNone;
+    TetFill fill;
+};
+
+/// One round: the layers, the pyramids, the front's check and the tetrahedra, or the first
+/// stage's repair.
+Outcome<Stages> attempt(const HybridParams& params, Rounds& rounds, HybridReport& rep, Progress* progress) {
+    using clock = std::chrono::steady_clock;
+    Stages s;
+    auto t0 = clock::now();
+    Outcome<LayerMesh> layers = march_layers(rounds.surface, rounds.layers, rounds.constraints, rounds.asked, progress);
+    rep.seconds_layers += seconds_since(t0);
+    if (auto* repair = std::get_if<Repair>(&layers)) return std::move(*repair);
+    s.lm = std::get<LayerMesh>(std::move(layers));
+    rounds.keep_dropped_fans(s.lm);
+    t0 = clock::now();
+    Outcome<PyramidLayer> pyr = cap_with_pyramids(s.lm, rounds.surface, params.pyramids, rounds.uncappable, progress);
+    rep.seconds_pyramids += seconds_since(t0);
+    if (auto* repair = std::get_if<Repair>(&pyr)) return std::move(*repair);
+    s.pyr = std::get<PyramidLayer>(std::move(pyr));
+    t0 = clock::now();
+    s.outer = outer_part(rounds.surface, s.lm, rounds.has_outer, params.farfield, params.tets.growth);
+    s.region = region_to_fill(rounds.surface.patches, s.pyr, s.outer, rounds.farfield_patch, s.top_patch);
+    std::optional<Repair> crossing = front_repair(s.region, s.top_patch, s.lm, s.pyr, params.threads);
+    rep.seconds_tets += seconds_since(t0);
+    if (crossing) return std::move(*crossing);
+    t0 = clock::now();
+    strata::report(progress, "tetrahedra", 0.0);
+    TetFillParams tet_params = params.tets;
+    tet_params.background_mesh = params.tets.background_mesh && s.outer.remeshed.empty();  // see TetFillParams
+    Outcome<TetFill> fill = fill_region(s.region, s.top_patch, s.lm, s.pyr, tet_params, progress);
+    if (auto* repair = std::get_if<Repair>(&fill)) {
+        rep.seconds_tets += seconds_since(t0);
+        return std::move(*repair);
+    }
+    s.fill = std::get<TetFill>(std::move(fill));
+    TetImproveParams improve = params.improve;
+    improve.threads = params.threads;
+    rep.tet_improve = improve_tets(s.fill, s.region.num_points(), improve, progress);
+    rep.seconds_tets += seconds_since(t0);
+    strata::report(progress, "tetrahedra", 1.0);
+    return s;
+}
+
+/// The rounds' starting point on \p surface (closed_domain's): the settings of \p params, no
+/// bound on any node's thickness; an InputError if the layers asked cannot fit the farfield
+/// generated around the body.
+Rounds first_round(SurfaceMesh surface, bool has_outer, const HybridParams& params) {
+    Rounds rounds;
+    rounds.has_outer = has_outer;
+    rounds.farfield_patch = has_outer ? kNone : static_cast<Index>(surface.patches.size());
+    rounds.layers = params.layers;
+    rounds.layers.threads = params.threads;
+    rounds.constraints.node_thickness_limit.assign(surface.points.size(), std::numeric_limits<double>::infinity());
+    rounds.limit_before = rounds.constraints.node_thickness_limit;
+    const std::vector<double> heights = layer_heights(params.layers.distribution);
+    for (int k = 0; k < params.layers.distribution.layers; ++k) rounds.asked += heights[static_cast<std::size_t>(k)];
+    if (!has_outer)
+        check_layers_fit_farfield(surface, params.farfield, rounds.asked, params.layers.proximity_limits.other_patch);
+    rounds.surface = std::move(surface);
+    return rounds;
+}
+
+/// The stages marched round after round, each round's repair applied before the next, until
+/// every stage goes through; after kFrontRounds rounds, the last failure is the error.
+Stages march_with_repairs(const HybridParams& params, Rounds& rounds, HybridReport& rep, Progress* progress) {
+    for (int round = 0;; ++round) {
+        rounds.spread(round, params.layers.proximity_limits);
+        Outcome<Stages> outcome = attempt(params, rounds, rep, progress);
+        const Repair* repair = std::get_if<Repair>(&outcome);
+        if (!repair) return std::get<Stages>(std::move(outcome));
+        if (round == kFrontRounds) throw TopologyError(repair->why);
+        rounds.apply(*repair, rep);
+        rep.front_rounds = round + 1;
+    }
 }
 
 }  // namespace
@@ -433,183 +684,30 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
                          "coarse size there) meshed again finer, without quads, or repaired, before layers can grow "
                          "on it");
 
-    // Layers, pyramids and the front TetGen fills against; where the front intersects itself,
-    // the columns under the faces involved are lowered and the layers marched again.
-    LayerParams layer_params = params.layers;
-    layer_params.threads = params.threads;
-    if (layer_params.node_thickness_limit.empty())
-        layer_params.node_thickness_limit.assign(surface.points.size(), std::numeric_limits<double>::infinity());
-    LayerMesh lm;
-    PyramidLayer pyr;
-    OuterBoundary outer;
-    SurfaceMesh region;
-    Index top_patch = kNone;
-    const Index farfield_patch = has_outer ? kNone : static_cast<Index>(surface.patches.size());
-    std::vector<double>& limit = layer_params.node_thickness_limit;
-    double asked = 0.0;  // the thickness asked: the sum of the layer heights
-    {
-        const std::vector<double> heights = layer_heights(params.layers.distribution);
-        for (int k = 0; k < params.layers.distribution.layers; ++k) asked += heights[static_cast<std::size_t>(k)];
-    }
-    if (!has_outer)
-        check_layers_fit_farfield(surface, params.farfield, asked, params.layers.proximity_limits.other_patch);
-    std::vector<Index> uncapped;              // input nodes whose fan's face on the layer top took no pyramid
-    std::set<Index> unusable, skewed;         // input nodes whose fan extrude_layers dropped (LayerMesh)
-    std::set<std::vector<Index>> uncappable;  // the input nodes of quads that took no pyramid
-    TetFillParams tet_params = params.tets;
-    TetFill fill;
-    // The front rounds' lowering spreads along the wall at front_slope (ProximityParams),
-    // halved from the second round on that lowers a column lowered before, and from round
-    // kFrontRounds / 2 on at the proximity limits' slope (never above what was asked): a
-    // lowering stays local unless the front keeps meeting itself there (ALGORITHM.md,
-    // "Proximity").
-    std::vector<double> limit_before = limit;
-    int repeats = 0;  // rounds that lowered a column lowered before
-    for (int round = 0;; ++round) {
-        {
-            bool again = false;
-            for (std::size_t i = 0; i < limit.size() && !again; ++i)
-                again = limit[i] < limit_before[i] && std::isfinite(limit_before[i]);
-            ProximityParams& now = layer_params.proximity_limits;
-            if (again && ++repeats > 1) now.front_slope *= 0.5;
-            const double lowest =  // extrude_layers refuses a front_slope not above 0
-                std::min(params.layers.proximity_limits.front_slope, params.layers.proximity_limits.slope);
-            if (round >= kFrontRounds / 2) now.front_slope = 0.0;
-            now.front_slope = std::max(now.front_slope, lowest);
-            limit_before = limit;
-        }
-        auto t0 = std::chrono::steady_clock::now();
-        try {
-            lm = extrude_layers(surface, layer_params, progress);
-        } catch (const LocalTopologyError& e) {  // a fold: lower the layers there and march again
-            rep.seconds_layers += seconds_since(t0);
-            if (round == kFrontRounds) throw;
-            const double to = e.reached() > 0.0 ? 0.7 * e.reached() : 0.5 * asked;
-            for (const Index n : e.nodes())
-                limit[static_cast<std::size_t>(n)] = std::min(limit[static_cast<std::size_t>(n)], to);
-            rep.front_lowered_nodes += static_cast<Index>(e.nodes().size());
-            rep.front_rounds = round + 1;
-            continue;
-        }
-        rep.seconds_layers += seconds_since(t0);
-        // The fans extrude_layers dropped stay dropped in the rounds after: the same march
-        // without trying them again.
-        for (const auto& [dropped, into] :
-             {std::pair{&lm.fans_dropped, &unusable}, std::pair{&lm.fans_skewed, &skewed}})
-            for (const Index v : *dropped) {
-                if (layer_params.no_fan_nodes.empty()) layer_params.no_fan_nodes.assign(surface.points.size(), 0);
-                layer_params.no_fan_nodes[static_cast<std::size_t>(v)] = 1;
-                into->insert(v);
-            }
-        t0 = std::chrono::steady_clock::now();
-        try {
-            pyr = build_pyramids(lm.top, params.pyramids, progress);
-        } catch (const LocalTopologyError& e) {  // no room for a pyramid: lower its quads' columns
-            rep.seconds_pyramids += seconds_since(t0);
-            if (round == kFrontRounds) throw;
-            // Four nodes per quad that took no pyramid (pyramids.h), all mended in this round.
-            const std::vector<Index>& failed = e.nodes();
-            for (std::size_t at = 0; at + 4 <= failed.size(); at += 4) {
-                const auto quad_begin = failed.begin() + static_cast<std::ptrdiff_t>(at);
-                const std::vector<Index> quad(quad_begin, quad_begin + 4);
-                // A face of a fan (its columns twist from one end to the other where the wall is
-                // small against the layers): no fan on its nodes.
-                bool fan = false;
-                for (const Index w : quad) fan |= !lm.fan_column.empty() && lm.fan_column[static_cast<std::size_t>(w)];
-                if (fan) {
-                    if (layer_params.no_fan_nodes.empty()) layer_params.no_fan_nodes.assign(surface.points.size(), 0);
-                    for (const Index w : quad) {
-                        const Index v = lm.input_node[static_cast<std::size_t>(w)];
-                        char& no = layer_params.no_fan_nodes[static_cast<std::size_t>(v)];
-                        if (!no) uncapped.push_back(v);
-                        no = 1;
-                    }
-                    continue;
-                }
-                // A wall quad with no layer on it (its columns stopped at the wall), or whose
-                // columns were lowered for it before, that no apex can cap (a quad bent round a
-                // small hole): split into two triangles, whose columns need no pyramid.
-                std::vector<Index> wall_nodes;
-                bool on_wall = true;
-                for (const Index w : quad) {
-                    on_wall &= lm.top_node(w) == lm.level_node(0, w);
-                    wall_nodes.push_back(lm.input_node[static_cast<std::size_t>(w)]);
-                }
-                std::sort(wall_nodes.begin(), wall_nodes.end());
-                const bool again = !uncappable.insert(wall_nodes).second;
-                if ((on_wall || again) && split_wall_quad(surface, wall_nodes)) {
-                    ++rep.split_quads;
-                    continue;
-                }
-                for (const Index w : quad) {
-                    const double reached =
-                        (lm.mesh.points[lm.top_node(w)] - lm.mesh.points[lm.level_node(0, w)]).norm();
-                    double& l = limit[static_cast<std::size_t>(lm.input_node[static_cast<std::size_t>(w)])];
-                    l = std::min(l, 0.5 * reached);
-                }
-                rep.front_lowered_nodes += 4;
-            }
-            rep.front_rounds = round + 1;
-            continue;
-        }
-        rep.seconds_pyramids += seconds_since(t0);
-        t0 = std::chrono::steady_clock::now();
-        outer = outer_part(surface, lm, has_outer, params.farfield, params.tets.growth);
-        region = region_to_fill(surface.patches, pyr, outer, farfield_patch, top_patch);
-        const std::vector<FacePair> pairs = self_intersections(region, 0, params.threads);
-        rep.seconds_tets += seconds_since(t0);
-        if (!pairs.empty()) {
-            if (round == kFrontRounds) throw_front_intersects(region, pairs, round);
-            rep.front_lowered_nodes += lower_colliding_columns(region, top_patch, pairs, lm, pyr, limit);
-            rep.front_rounds = round + 1;
-            continue;
-        }
-        // Region to fill: between the pyramid-capped layer top and the outer boundary. Where
-        // TetGen stops on one of its internal checks recovering a face of the layer top (a
-        // configuration of the front it cannot handle, though no face crosses another), the
-        // columns around that face are lowered and the layers marched again.
-        t0 = std::chrono::steady_clock::now();
-        strata::report(progress, "tetrahedra", 0.0);
-        tet_params.background_mesh = params.tets.background_mesh && outer.remeshed.empty();  // see TetFillParams
-        try {
-            fill = fill_with_tets(region, points_in_layers(lm), tet_params, progress);
-        } catch (const LocalTopologyError& e) {
-            rep.seconds_tets += seconds_since(t0);
-            if (round == kFrontRounds) throw;
-            Index grown = 0;
-            const Index lowered = lower_columns_around(region, top_patch, e.nodes(), lm, pyr, limit, grown);
-            if (grown == 0) throw;  // a face of the outer boundary or of walls with no layers
-            rep.front_lowered_nodes += lowered;
-            rep.tet_retries += 1;
-            rep.front_rounds = round + 1;
-            continue;
-        }
-        TetImproveParams improve = params.improve;
-        improve.threads = params.threads;
-        rep.tet_improve = improve_tets(fill, region.num_points(), improve, progress);
-        rep.seconds_tets += seconds_since(t0);
-        strata::report(progress, "tetrahedra", 1.0);
-        break;
-    }
+    // Layers, pyramids and the front TetGen fills against, marched again after each stage's
+    // repair (a thickness bound, no fan, a split quad) until all go through.
+    Rounds rounds = first_round(std::move(surface), has_outer, params);
+    Stages stages = march_with_repairs(params, rounds, rep, progress);
+    LayerMesh& lm = stages.lm;
     rep.layer_stats = lm.stats;
     rep.unsmoothed_nodes = lm.unsmoothed_nodes;
     rep.fan_edges = lm.fan_edges, rep.fan_nodes = lm.fan_nodes, rep.fan_corners = lm.fan_corners;
     rep.fan_plane_nodes = lm.fan_plane_nodes;
     rep.thinned_nodes = lm.thinned_nodes;
     rep.min_thickness_share = lm.min_thickness_share;
-    lm.fans_dropped.assign(unusable.begin(), unusable.end());
-    lm.fans_skewed.assign(skewed.begin(), skewed.end());
+    lm.fans_dropped.assign(rounds.unusable.begin(), rounds.unusable.end());
+    lm.fans_skewed.assign(rounds.skewed.begin(), rounds.skewed.end());
     rep.coverage = layer_report(lm);
-    std::sort(uncapped.begin(), uncapped.end());
-    for (const Index v : uncapped)
-        rep.coverage.no_fan.push_back({v, surface.points[static_cast<std::size_t>(v)], NoFan::Uncapped});
+    std::sort(rounds.uncapped.begin(), rounds.uncapped.end());
+    for (const Index v : rounds.uncapped)
+        rep.coverage.no_fan.push_back({v, rounds.surface.points[static_cast<std::size_t>(v)], NoFan::Uncapped});
     std::sort(rep.coverage.no_fan.begin(), rep.coverage.no_fan.end(),
               [](const NoFanNode& a, const NoFanNode& b) { return a.node < b.node; });
-    rep.remeshed_patches = outer.remeshed;
+    rep.remeshed_patches = stages.outer.remeshed;
 
     auto t0 = std::chrono::steady_clock::now();
-    const std::vector<Patch> patches(region.patches.begin(), region.patches.begin() + top_patch);
-    VolumeMesh mesh = assemble(lm, pyr, region, top_patch, fill, patches);
+    const std::vector<Patch> patches(stages.region.patches.begin(), stages.region.patches.begin() + stages.top_patch);
+    VolumeMesh mesh = assemble(lm, stages.pyr, stages.region, stages.top_patch, stages.fill, patches);
     merge_planes(mesh, input_patches, plane_of, rep.remeshed_patches);
     rep.validation = require_valid_mesh(mesh, "hybrid mesh", {.threads = params.threads, .progress = progress});
     rep.seconds_validate = seconds_since(t0);

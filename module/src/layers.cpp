@@ -485,8 +485,8 @@ void levels_differ_by_one(const SurfaceMesh& wall, std::vector<int>& levels, std
 /// \p thickness fits), or in Stop mode 1 and (\p max_levels) the layers that fit it, with why.
 /// Directions: the level-0 marching directions.
 std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, const Marcher& mc,
-                                    const std::vector<double>& delta, std::vector<Shortfall>& reason,
-                                    std::vector<int>& max_levels) {
+                                    const std::vector<double>& by_input, const std::vector<double>& delta,
+                                    std::vector<Shortfall>& reason, std::vector<int>& max_levels) {
     const auto nw = static_cast<std::size_t>(w.mesh.num_points());
     const int layers = mc.params.distribution.layers;
     double thickness = 0.0;
@@ -494,10 +494,9 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
     std::vector<double> scale(nw, 1.0);
     reason.assign(nw, Shortfall::None);
     max_levels.assign(nw, layers);
-    const std::vector<double>& by_input = mc.params.node_thickness_limit;
     if ((mc.params.proximity == ProximityMode::Off && by_input.empty()) || !(thickness > 0.0)) return scale;
     if (!by_input.empty() && by_input.size() != surface.points.size())
-        throw InputError("LayerParams::node_thickness_limit has " + std::to_string(by_input.size()) +
+        throw InputError("LayerConstraints::node_thickness_limit has " + std::to_string(by_input.size()) +
                          " values for a surface of " + std::to_string(surface.points.size()) + " nodes");
     std::vector<ProximityHit> hits(nw);
     if (mc.params.proximity != ProximityMode::Off)
@@ -597,18 +596,14 @@ std::vector<Index> skewed_fan_nodes(const LayerMesh& lm, int threads) {
 /// The layers marched again with no fan at \p nodes (of the input surface) either, those of them
 /// that had one listed in \p list of the result (ascending); nothing if none had one.
 std::optional<LayerMesh> without_fans(const SurfaceMesh& surface, const LayerParams& params,
-                                      const std::vector<Index>& nodes, std::vector<Index> LayerMesh::*list,
-                                      Progress* progress) {
-    LayerParams again = params;
-    if (again.no_fan_nodes.empty()) again.no_fan_nodes.assign(surface.points.size(), 0);
+                                      const LayerConstraints& constraints, const std::vector<Index>& nodes,
+                                      std::vector<Index> LayerMesh::*list, Progress* progress) {
+    LayerConstraints again = constraints;
     std::vector<Index> dropped;
-    for (const Index v : nodes) {
-        char& no = again.no_fan_nodes[static_cast<std::size_t>(v)];
-        if (!no) dropped.push_back(v);
-        no = 1;
-    }
+    for (const Index v : nodes)
+        if (again.bar_fan(v, surface.points.size())) dropped.push_back(v);
     if (dropped.empty()) return std::nullopt;
-    LayerMesh retry = extrude_layers(surface, again, progress);
+    LayerMesh retry = extrude_layers(surface, params, again, progress);
     std::vector<Index>& into = retry.*list;
     into.insert(into.end(), dropped.begin(), dropped.end());
     std::sort(into.begin(), into.end());
@@ -639,16 +634,17 @@ std::vector<Vec3> fan_planes(const SurfaceMesh& surface, const Wall& w, const La
 
 /// The fans (fans_on). \p w gets the fans' columns and strip faces; the result keeps
 /// their directions and bases (its mesh moved into \p w).
-FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, Wall& w) {
+FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, const std::vector<char>& no_fan_nodes,
+                 Wall& w) {
     const Index nwall = w.mesh.num_points();
     FanWall fans;
     if (fans_on(params)) {
         std::vector<char> excluded;
-        if (!params.no_fan_nodes.empty()) {
-            if (params.no_fan_nodes.size() != surface.points.size())
-                throw InputError("LayerParams::no_fan_nodes has " + std::to_string(params.no_fan_nodes.size()) +
+        if (!no_fan_nodes.empty()) {
+            if (no_fan_nodes.size() != surface.points.size())
+                throw InputError("LayerConstraints::no_fan_nodes has " + std::to_string(no_fan_nodes.size()) +
                                  " values for a surface of " + std::to_string(surface.points.size()) + " nodes");
-            for (const Index i : w.input_node) excluded.push_back(params.no_fan_nodes[static_cast<std::size_t>(i)]);
+            for (const Index i : w.input_node) excluded.push_back(no_fan_nodes[static_cast<std::size_t>(i)]);
         }
         const std::vector<Vec3> plane_normal = fan_planes(surface, w, params);
         const std::vector<double> heights = layer_heights(params.distribution);  // and the next layer's
@@ -675,8 +671,8 @@ FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, Wall& w)
 /// \p plan_only: the directions and the proximity levels only (proximity_plan), no stencils
 /// or control functions.
 Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const FanWall& fans, const LayerParams& params,
-                     const std::vector<double>& delta, std::vector<Shortfall>& scale_reason,
-                     std::vector<int>& max_levels, bool plan_only = false) {
+                     const LayerConstraints& constraints, const std::vector<double>& delta,
+                     std::vector<Shortfall>& scale_reason, std::vector<int>& max_levels, bool plan_only = false) {
     Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}, {}, {}};
     if (!fans.empty()) mc.fixed = fans.direction, mc.fan_face = fans.fan_face;
     {
@@ -697,7 +693,8 @@ Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const FanWall& f
             if (mc.fixed[i] != Vec3::Zero()) mc.st.valid[i] = 0;
         mc.control_functions();
     }
-    mc.height_scale = proximity_scale(surface, w, mc, delta, scale_reason, max_levels);
+    mc.height_scale =
+        proximity_scale(surface, w, mc, constraints.node_thickness_limit, delta, scale_reason, max_levels);
     return mc;
 }
 
@@ -961,48 +958,8 @@ std::vector<Index> side_patches(const SurfaceMesh& surface, const Wall& w) {
     return out;
 }
 
-}  // namespace
-
-std::string_view to_string(ProximityMode mode) {
-    return kProximityModeNames.name(mode);
-}
-
-ProximityMode parse_proximity_mode(std::string_view text) {
-    return kProximityModeNames.parse(text, "LayerParams::proximity");
-}
-
-ProximityPlan proximity_plan(const SurfaceMesh& surface, const LayerParams& params) {
-    check_threads(params.threads, "LayerParams::threads");
-    const std::vector<double> delta = layer_heights(params.distribution);
-    Wall w = extract_wall(surface);
-    const FanWall fans = add_fans(surface, params, w);
-    std::vector<Shortfall> reason;
-    std::vector<int> max_levels(static_cast<std::size_t>(w.mesh.num_points()), params.distribution.layers);
-    make_marcher(surface, w, fans, params, delta, reason, max_levels, true);
-    ProximityPlan plan;
-    plan.levels.assign(surface.points.size(), params.distribution.layers);
-    plan.proximity.assign(surface.points.size(), 0);
-    for (std::size_t i = 0; i < max_levels.size(); ++i) {  // a fan's columns: their wall node's lowest
-        const auto v = static_cast<std::size_t>(w.input_node[i]);
-        plan.levels[v] = std::min(plan.levels[v], max_levels[i]);
-        if (max_levels[i] < params.distribution.layers && reason[i] == Shortfall::Proximity) plan.proximity[v] = 1;
-    }
-    // A strip quad of a fan is (b's column, a's column, a's next column, b's next column)
-    // (fans.cpp); a corner's polygon has one wall node and no wedge along an edge.
-    for (Index f = 0; f < w.mesh.num_faces(); ++f) {
-        if (fans.fan_face.empty() || !fans.fan_face[static_cast<std::size_t>(f)] || w.mesh.face_size(f) != 4) continue;
-        const Index* c = w.mesh.face_begin(f);
-        const auto base = [&](int k) { return fans.base[static_cast<std::size_t>(c[k])]; };
-        if (base(0) == base(1) || base(1) != base(2) || base(0) != base(3)) continue;
-        plan.fan_wedges.push_back(
-            {w.input_node[static_cast<std::size_t>(base(1))], w.input_node[static_cast<std::size_t>(base(0))],
-             fans.direction[static_cast<std::size_t>(c[1])], fans.direction[static_cast<std::size_t>(c[2])]});
-    }
-    return plan;
-}
-
-LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
-    const std::vector<double> delta = layer_heights(params.distribution);
+/// The settings extrude_layers checks before any work: an InputError naming the first out of range.
+void check_layer_params(const LayerParams& params) {
     check_threads(params.threads, "LayerParams::threads");
     if (params.sweeps < 0)
         throw InputError("LayerParams::sweeps = " + std::to_string(params.sweeps) +
@@ -1025,9 +982,130 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     if (!(params.fan_angle_deg >= 0.0 && params.fan_angle_deg <= 180.0))
         throw InputError("LayerParams::fan_angle_deg = " + format_number(params.fan_angle_deg) +
                          ": need an angle in [0, 180] degrees (0: no fans)");
+}
+
+/// Steps 1 to 4 of every layer over the columns \p col (extrude_layers): each level's moving
+/// nodes appended to \p out's points, its stats, and the nodes held back. Where a fan's first
+/// cells would be unusable, the layers marched again without it instead.
+std::optional<LayerMesh> march_levels(const SurfaceMesh& surface, const Wall& w, const Marcher& mc,
+                                      const LayerConstraints& constraints, const std::vector<double>& delta,
+                                      const StopRules& rules, Columns& col, LayerMesh& out, Progress* progress) {
+    const LayerParams& params = mc.params;
+    const int layers = params.distribution.layers;
+    const Index nw = w.mesh.num_points();
+    const bool holds =
+        params.hold_back && params.smoothing && std::max(params.max_sweeps, params.sweeps) > 0 && !params.keep_invalid;
+    std::vector<Vec3> r0 = w.mesh.points, r1(r0.size());
+    std::vector<char> held(static_cast<std::size_t>(nw));
+    out.stats.assign(static_cast<std::size_t>(layers), LayerStats{});
+    for (int k = 0; k < layers; ++k) {
+        const double dk = delta[static_cast<std::size_t>(k)], dk1 = delta[static_cast<std::size_t>(k) + 1];
+        LayerStats& stats = out.stats[static_cast<std::size_t>(k)];
+        stats.height = dk;
+        if (std::none_of(col.active.begin(), col.active.end(), [](char a) { return a != 0; })) continue;
+        // 1. The locally orthogonal reference mesh: level 1 along the normals (level 2 in step 2).
+        const std::vector<Vec3> n0 = reference_level(mc, r0, dk, r1);
+        // 2. Poisson smoothing of level 1 over every node (stopped ones as ghosts); where its
+        // cells would still invert, hold it back.
+        stats.sweeps = smooth_level(mc, r0, dk, dk1, r1);
+        std::fill(held.begin(), held.end(), 0);
+        // 3. The columns whose cells are usable go on to level k + 1, the others stop. Stopping
+        // off: every column goes on (but for limits), held back where it would fold.
+        if (!rules.quality) {
+            if (holds) hold_back_folds(mc, r0, dk, r1, held);
+            check_folds(w, params, k, col, r1);
+        }
+        stats.stopped_nodes = stop_columns(col, rules, k, r1);
+        if (k == 0 && std::find(col.pinned.begin(), col.pinned.end(), 2) != col.pinned.end()) {
+            // A fan whose first cells would be unusable (a needle face beside it, a gap
+            // narrower than the first layer): no fan at those wall nodes, and march again.
+            std::vector<Index> unusable;
+            for (Index i = 0; i < nw; ++i)
+                if (col.pinned[static_cast<std::size_t>(i)] == 2)
+                    unusable.push_back(w.input_node[static_cast<std::size_t>(i)]);
+            if (auto retry = without_fans(surface, params, constraints, unusable, &LayerMesh::fans_dropped, progress))
+                return retry;
+        }
+        col.pinned.clear();
+        for (Index i = 0; i < nw; ++i) {
+            const auto u = static_cast<std::size_t>(i);
+            if (col.levels[u] != k + 1) continue;
+            out.mesh.points.push_back(r1[u]);
+            if (held[u]) out.held_back[u] = 1, ++stats.held_nodes;
+        }
+        if (rules.quality && holds) {
+            // The stopped columns' ghosts are held back where they would fold, so the level the
+            // next layer starts from stays sound; the moving ones keep what was judged.
+            const std::vector<Vec3> judged = r1;
+            hold_back_folds(mc, r0, dk, r1, held);
+            for (Index i = 0; i < nw; ++i)
+                if (col.levels[static_cast<std::size_t>(i)] == k + 1)
+                    r1[static_cast<std::size_t>(i)] = judged[static_cast<std::size_t>(i)];
+        }
+        layer_orthogonality(col, k, r0, r1, n0, stats);
+        // 4. Level 1 becomes the wall of the next layer (for every node: the ghosts march on).
+        std::swap(r0, r1);
+        report(progress, "layers", static_cast<double>(k + 1) / layers);
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+bool LayerConstraints::bar_fan(Index v, std::size_t nodes) {
+    if (no_fan_nodes.empty()) no_fan_nodes.assign(nodes, 0);
+    char& no = no_fan_nodes[static_cast<std::size_t>(v)];
+    const bool was = no != 0;
+    no = 1;
+    return !was;
+}
+
+std::string_view to_string(ProximityMode mode) {
+    return kProximityModeNames.name(mode);
+}
+
+ProximityMode parse_proximity_mode(std::string_view text) {
+    return kProximityModeNames.parse(text, "LayerParams::proximity");
+}
+
+ProximityPlan proximity_plan(const SurfaceMesh& surface, const LayerParams& params,
+                             const LayerConstraints& constraints) {
+    check_threads(params.threads, "LayerParams::threads");
+    const std::vector<double> delta = layer_heights(params.distribution);
+    Wall w = extract_wall(surface);
+    const FanWall fans = add_fans(surface, params, constraints.no_fan_nodes, w);
+    std::vector<Shortfall> reason;
+    std::vector<int> max_levels(static_cast<std::size_t>(w.mesh.num_points()), params.distribution.layers);
+    make_marcher(surface, w, fans, params, constraints, delta, reason, max_levels, true);
+    ProximityPlan plan;
+    plan.levels.assign(surface.points.size(), params.distribution.layers);
+    plan.proximity.assign(surface.points.size(), 0);
+    for (std::size_t i = 0; i < max_levels.size(); ++i) {  // a fan's columns: their wall node's lowest
+        const auto v = static_cast<std::size_t>(w.input_node[i]);
+        plan.levels[v] = std::min(plan.levels[v], max_levels[i]);
+        if (max_levels[i] < params.distribution.layers && reason[i] == Shortfall::Proximity) plan.proximity[v] = 1;
+    }
+    // A strip quad of a fan is (b's column, a's column, a's next column, b's next column)
+    // (fans.cpp); a corner's polygon has one wall node and no wedge along an edge.
+    for (Index f = 0; f < w.mesh.num_faces(); ++f) {
+        if (fans.fan_face.empty() || !fans.fan_face[static_cast<std::size_t>(f)] || w.mesh.face_size(f) != 4) continue;
+        const Index* c = w.mesh.face_begin(f);
+        const auto base = [&](int k) { return fans.base[static_cast<std::size_t>(c[k])]; };
+        if (base(0) == base(1) || base(1) != base(2) || base(0) != base(3)) continue;
+        plan.fan_wedges.push_back(
+            {w.input_node[static_cast<std::size_t>(base(1))], w.input_node[static_cast<std::size_t>(base(0))],
+             fans.direction[static_cast<std::size_t>(c[1])], fans.direction[static_cast<std::size_t>(c[2])]});
+    }
+    return plan;
+}
+
+LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, const LayerConstraints& constraints,
+                         Progress* progress) {
+    const std::vector<double> delta = layer_heights(params.distribution);
+    check_layer_params(params);
     Wall w = extract_wall(surface);
     const Index nwall = w.mesh.num_points();
-    FanWall fans = add_fans(surface, params, w);
+    FanWall fans = add_fans(surface, params, constraints.no_fan_nodes, w);
     const int layers = params.distribution.layers;
     double thickness = 0.0;
     for (int k = 0; k < layers; ++k) thickness += delta[static_cast<std::size_t>(k)];
@@ -1035,7 +1113,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     const Index nw = w.mesh.num_points();
     LayerMesh out(nw, layers);
     std::vector<int> max_levels(static_cast<std::size_t>(nw), layers);
-    const Marcher mc = make_marcher(surface, w, fans, params, delta, scale_reason, max_levels);
+    const Marcher mc = make_marcher(surface, w, fans, params, constraints, delta, scale_reason, max_levels);
     // Columns held in a symmetry or outflow plane are judged by what a direction in it allows.
     std::vector<Vec3> plane_normal(static_cast<std::size_t>(nw), Vec3::Zero());
     for (std::size_t i = 0; i < plane_normal.size(); ++i)
@@ -1087,60 +1165,8 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     // Stopping: on unless turned off (min_quality 0) or for diagnostics (keep_invalid).
     const StopRules rules{params.min_quality, params.max_turn_deg, params.max_twist_deg,
                           params.min_quality > 0.0 && !params.keep_invalid, mc.threads};
-    const bool holds =
-        params.hold_back && params.smoothing && std::max(params.max_sweeps, params.sweeps) > 0 && !params.keep_invalid;
-    std::vector<Vec3> r0 = w.mesh.points, r1(r0.size());
-    std::vector<char> held(static_cast<std::size_t>(nw));
-    out.stats.assign(static_cast<std::size_t>(layers), LayerStats{});
-    for (int k = 0; k < layers; ++k) {
-        const double dk = delta[static_cast<std::size_t>(k)], dk1 = delta[static_cast<std::size_t>(k) + 1];
-        LayerStats& stats = out.stats[static_cast<std::size_t>(k)];
-        stats.height = dk;
-        if (std::none_of(col.active.begin(), col.active.end(), [](char a) { return a != 0; })) continue;
-        // 1. The locally orthogonal reference mesh: level 1 along the normals (level 2 in step 2).
-        const std::vector<Vec3> n0 = reference_level(mc, r0, dk, r1);
-        // 2. Poisson smoothing of level 1 over every node (stopped ones as ghosts); where its
-        // cells would still invert, hold it back.
-        stats.sweeps = smooth_level(mc, r0, dk, dk1, r1);
-        std::fill(held.begin(), held.end(), 0);
-        // 3. The columns whose cells are usable go on to level k + 1, the others stop. Stopping
-        // off: every column goes on (but for limits), held back where it would fold.
-        if (!rules.quality) {
-            if (holds) hold_back_folds(mc, r0, dk, r1, held);
-            check_folds(w, params, k, col, r1);
-        }
-        stats.stopped_nodes = stop_columns(col, rules, k, r1);
-        if (k == 0 && std::find(col.pinned.begin(), col.pinned.end(), 2) != col.pinned.end()) {
-            // A fan whose first cells would be unusable (a needle face beside it, a gap
-            // narrower than the first layer): no fan at those wall nodes, and march again.
-            std::vector<Index> unusable;
-            for (Index i = 0; i < nw; ++i)
-                if (col.pinned[static_cast<std::size_t>(i)] == 2)
-                    unusable.push_back(w.input_node[static_cast<std::size_t>(i)]);
-            if (auto retry = without_fans(surface, params, unusable, &LayerMesh::fans_dropped, progress))
-                return std::move(*retry);
-        }
-        col.pinned.clear();
-        for (Index i = 0; i < nw; ++i) {
-            const auto u = static_cast<std::size_t>(i);
-            if (col.levels[u] != k + 1) continue;
-            out.mesh.points.push_back(r1[u]);
-            if (held[u]) out.held_back[u] = 1, ++stats.held_nodes;
-        }
-        if (rules.quality && holds) {
-            // The stopped columns' ghosts are held back where they would fold, so the level the
-            // next layer starts from stays sound; the moving ones keep what was judged.
-            const std::vector<Vec3> judged = r1;
-            hold_back_folds(mc, r0, dk, r1, held);
-            for (Index i = 0; i < nw; ++i)
-                if (col.levels[static_cast<std::size_t>(i)] == k + 1)
-                    r1[static_cast<std::size_t>(i)] = judged[static_cast<std::size_t>(i)];
-        }
-        layer_orthogonality(col, k, r0, r1, n0, stats);
-        // 4. Level 1 becomes the wall of the next layer (for every node: the ghosts march on).
-        std::swap(r0, r1);
-        report(progress, "layers", static_cast<double>(k + 1) / layers);
-    }
+    if (auto retry = march_levels(surface, w, mc, constraints, delta, rules, col, out, progress))
+        return std::move(*retry);
     if (std::all_of(col.levels.begin(), col.levels.end(), [](int l) { return l == 0; })) throw_no_layers(w, col);
     out.set_columns(col.levels, fans.empty() ? std::vector<Index>{} : fans.base);
     out.stop_reason.assign(static_cast<std::size_t>(nw), Shortfall::None);
@@ -1151,11 +1177,15 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     if (!fans.empty() && rules.quality) {
         // Fans whose cells have faces checkMesh would fail as skewed: no fan at those wall
         // nodes, and march again (each round marks new nodes, so this ends).
-        if (auto retry =
-                without_fans(surface, params, skewed_fan_nodes(out, mc.threads), &LayerMesh::fans_skewed, progress))
+        if (auto retry = without_fans(surface, params, constraints, skewed_fan_nodes(out, mc.threads),
+                                      &LayerMesh::fans_skewed, progress))
             return std::move(*retry);
     }
     return out;
+}
+
+LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
+    return extrude_layers(surface, params, LayerConstraints{}, progress);
 }
 
 LayerReport layer_report(const LayerMesh& lm) {

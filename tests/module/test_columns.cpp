@@ -36,17 +36,23 @@ SurfaceMesh plate(bool triangles) {
     return t;
 }
 
-/// 8 layers of 0.01 (0.08 in all); the centre node (5, 5) limited to 0.025 (two layers).
-LayerParams limited_centre(const SurfaceMesh& wall) {
+/// 8 layers of 0.01 (0.08 in all), front limits spread at 0.25.
+LayerParams eight_layers() {
     LayerParams p;
     p.distribution.layers = 8;
     p.distribution.first_height = 0.01;
     p.distribution.growth = 1.0;
     p.proximity = ProximityMode::Stop;
-    p.node_thickness_limit.assign(wall.points.size(), std::numeric_limits<double>::infinity());
-    p.node_thickness_limit[5 * 11 + 5] = 0.025;
     p.proximity_limits.front_slope = 0.25;  // spread to the rings round it (the default, 1, spares them)
     return p;
+}
+
+/// The centre node (5, 5) of \p wall limited to 0.025 (two of eight_layers).
+LayerConstraints limited_centre(const SurfaceMesh& wall) {
+    LayerConstraints c;
+    c.node_thickness_limit.assign(wall.points.size(), std::numeric_limits<double>::infinity());
+    c.node_thickness_limit[5 * 11 + 5] = 0.025;
+    return c;
 }
 
 /// \p x turned by \p deg about the vertical axis through \p centre.
@@ -229,9 +235,7 @@ TEST(Columns, ACellOnAFairFaceStopsBelowHalfTheBoundAndOnAPoorFaceAtAFifthOfItsB
 
 TEST(Columns, FullColumnsKeepTheUniformNumbering) {
     const SurfaceMesh wall = plate(true);
-    LayerParams p = limited_centre(wall);
-    p.node_thickness_limit.clear();
-    const LayerMesh lm = extrude_layers(wall, p);
+    const LayerMesh lm = extrude_layers(wall, eight_layers());
     const Index nw = lm.wall_nodes();
     for (Index i = 0; i < nw; ++i) {
         EXPECT_EQ(lm.node_layers(i), 8);
@@ -244,7 +248,7 @@ TEST(Columns, FullColumnsKeepTheUniformNumbering) {
 
 TEST(Columns, AStoppedColumnOnTrianglesIsClosedByPyramidsAndItsNeighboursFollowTheEnvelope) {
     const SurfaceMesh wall = plate(true);
-    const LayerMesh lm = extrude_layers(wall, limited_centre(wall));
+    const LayerMesh lm = extrude_layers(wall, eight_layers(), limited_centre(wall));
     const ValidationReport v = validate_mesh(lm.mesh);
     ASSERT_TRUE(v.ok()) << v.problems.front();
     const Index centre = 5 * 11 + 5;
@@ -307,17 +311,17 @@ TEST(Columns, AFrontLimitSpreadsAtTheFrontSlopeAndAProximityLimitAtItsOwn) {
     // at 0.25 the ring may have 0.05 (4 or 5 layers). The proximity slope plays no part.
     const SurfaceMesh wall = plate(true);
     const Index centre = 5 * 11 + 5;
-    LayerParams p = limited_centre(wall);
+    LayerParams p = eight_layers();
     p.proximity_limits.front_slope = 1.0;
     p.proximity_limits.slope = 0.05;
-    LayerMesh lm = extrude_layers(wall, p);
+    LayerMesh lm = extrude_layers(wall, p, limited_centre(wall));
     EXPECT_EQ(lm.node_layers(centre), 2);
     for (const Index ring : {centre + 1, centre - 1, centre + 11, centre - 11}) EXPECT_EQ(lm.node_layers(ring), 8);
     Index lowered = 0;
     for (Index i = 0; i < lm.wall_nodes(); ++i) lowered += lm.node_layers(i) < 8 ? 1 : 0;
     EXPECT_EQ(lowered, 1);
     p.proximity_limits.front_slope = 0.25;
-    lm = extrude_layers(wall, p);
+    lm = extrude_layers(wall, p, limited_centre(wall));
     EXPECT_GE(lm.node_layers(centre + 1), 4);
     EXPECT_LE(lm.node_layers(centre + 1), 5);
     EXPECT_GE(lm.node_layers(centre + 2), 7);
@@ -325,7 +329,7 @@ TEST(Columns, AFrontLimitSpreadsAtTheFrontSlopeAndAProximityLimitAtItsOwn) {
 
 TEST(Columns, AStoppedColumnOnQuadsSplitsItsQuadsAndKeepsHexahedraElsewhere) {
     const SurfaceMesh wall = plate(false);
-    const LayerMesh lm = extrude_layers(wall, limited_centre(wall));
+    const LayerMesh lm = extrude_layers(wall, eight_layers(), limited_centre(wall));
     const ValidationReport v = validate_mesh(lm.mesh);
     ASSERT_TRUE(v.ok()) << v.problems.front();
     EXPECT_GT(lm.mesh.hexes.size(), 0u);
@@ -342,7 +346,7 @@ TEST(Columns, AStoppedColumnOnQuadsSplitsItsQuadsAndKeepsHexahedraElsewhere) {
 
 TEST(Columns, SameBytesForAnyThreadCount) {
     const SurfaceMesh wall = plate(false);
-    test::expect_same_bytes_for_any_thread_count(wall, limited_centre(wall));
+    test::expect_same_bytes_for_any_thread_count(wall, eight_layers(), limited_centre(wall));
 }
 
 }  // namespace

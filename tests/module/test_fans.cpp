@@ -128,9 +128,10 @@ TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
     const SurfaceMesh wall = test::blade(8, 40.0);  // grows without fans too
     LayerParams p = blade_layers(120.0);
     p.sharp_edge_stop_deg = 0.0;  // the edges whose fans go keep one direction, and grow
-    p.node_thickness_limit.assign(static_cast<std::size_t>(wall.num_points()), std::numeric_limits<double>::infinity());
-    p.node_thickness_limit[3 * 4 + 2] = 0.005;
-    const LayerMesh lm = extrude_layers(wall, p);
+    LayerConstraints c;
+    c.node_thickness_limit.assign(static_cast<std::size_t>(wall.num_points()), std::numeric_limits<double>::infinity());
+    c.node_thickness_limit[3 * 4 + 2] = 0.005;
+    const LayerMesh lm = extrude_layers(wall, p, c);
     EXPECT_FALSE(lm.fans_dropped.empty());
     EXPECT_TRUE(std::is_sorted(lm.fans_dropped.begin(), lm.fans_dropped.end()));
     EXPECT_EQ(std::adjacent_find(lm.fans_dropped.begin(), lm.fans_dropped.end()), lm.fans_dropped.end());

@@ -85,15 +85,7 @@ struct LayerParams {
     /// the wall on a symmetry or outflow plane counts with its mirror image. 0: never (such
     /// nodes keep one direction). Only with local stopping (min_quality > 0).
     double sharp_edge_stop_deg = 110.0;
-    /// Empty, or one per node of the surface given to extrude_layers: 1 where no fan may be
-    /// (build_hybrid_mesh marks the nodes of a fan whose face on the layer top no pyramid can cap).
-    std::vector<char> no_fan_nodes;
     ProximityParams proximity_limits;
-    /// Empty, or one per node of the surface given to extrude_layers: a further bound on the
-    /// node's total thickness (infinity: none), smoothed along the wall like the proximity
-    /// limit but at ProximityParams::front_slope, and applied by scaling whatever the proximity
-    /// mode. build_hybrid_mesh lowers it where the layer front intersects itself.
-    std::vector<double> node_thickness_limit;
     /// Threads of the smoothing and the normals (0: OpenMP's default; negative: InputError); the
     /// layers are the same for any count. For extrude_layers called alone: build_hybrid_mesh sets it from
     /// HybridParams::threads.
@@ -102,6 +94,22 @@ struct LayerParams {
     /// then show min_scaled_jacobian ≤ 0), as marched: nothing is held back or stopped. Never
     /// used for a mesh that is written.
     bool keep_invalid = false;
+};
+
+/// Per-node bounds on the layers of one surface, apart from the settings (LayerParams): what
+/// build_hybrid_mesh's repair rounds change where a later stage failed, marching again.
+struct LayerConstraints {
+    /// Empty, or one per node of the surface given to extrude_layers: a further bound on the
+    /// node's total thickness (infinity: none), smoothed along the wall like the proximity
+    /// limit but at ProximityParams::front_slope, and applied by scaling whatever the proximity
+    /// mode. build_hybrid_mesh lowers it where the layer front intersects itself.
+    std::vector<double> node_thickness_limit;
+    /// Empty, or one per node of the surface given to extrude_layers: 1 where no fan may be
+    /// (build_hybrid_mesh marks the nodes of a fan whose face on the layer top no pyramid can cap).
+    std::vector<char> no_fan_nodes;
+
+    /// No fan at node \p v of a surface of \p nodes nodes from now on; false if there was none already.
+    bool bar_fan(Index v, std::size_t nodes);
 };
 
 /// Quality of one layer's cells.
@@ -215,12 +223,15 @@ LayerReport layer_report(const LayerMesh& lm);
 /// nodes as ghosts the stencils see, ALGORITHM.md), only the columns that go on get nodes. With min_quality 0,
 /// throws TopologyError naming the layer, face and position of the first cell that would invert (a
 /// LocalTopologyError carrying its wall nodes as nodes of \p wall) or whose quality cannot be computed. \p
-/// progress: stage "layers", checked after every layer.
+/// progress: stage "layers", checked after every layer. \p constraints: the per-node bounds (none
+/// without them).
+LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, const LayerConstraints& constraints,
+                         Progress* progress = nullptr);
 LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, Progress* progress = nullptr);
 
 /// The columns' levels that extrude_layers plans before marching, from the proximity limits
 /// alone (LayerParams::proximity Stop; every column full otherwise): per node of \p wall, the
-/// layers that fit its limit (neighbours within one layer; LayerParams::node_thickness_limit
+/// layers that fit its limit (neighbours within one layer; LayerConstraints::node_thickness_limit
 /// included), and whether the proximity limit set them. Nothing is marched: the normals, the
 /// rays and the envelope only. Nodes off the walls keep every layer. And the first wedge of
 /// every fan the layers would build (fans.h; before any is dropped for unusable or skewed cells).
@@ -235,6 +246,7 @@ struct ProximityPlan {
     };
     std::vector<FanWedge> fan_wedges;
 };
-ProximityPlan proximity_plan(const SurfaceMesh& wall, const LayerParams& params);
+ProximityPlan proximity_plan(const SurfaceMesh& wall, const LayerParams& params,
+                             const LayerConstraints& constraints = {});
 
 }  // namespace strata
