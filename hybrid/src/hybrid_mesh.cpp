@@ -591,12 +591,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
         strata::report(progress, "tetrahedra", 1.0);
         break;
     }
-    rep.layer_stats = lm.stats;
-    rep.unsmoothed_nodes = lm.unsmoothed_nodes;
-    rep.fan_edges = lm.fan_edges, rep.fan_nodes = lm.fan_nodes, rep.fan_corners = lm.fan_corners;
-    rep.fan_plane_nodes = lm.fan_plane_nodes;
-    rep.thinned_nodes = lm.thinned_nodes;
-    rep.min_thickness_share = lm.min_thickness_share;
+    rep.layers = static_cast<const LayerCounts&>(lm);
     lm.fans_dropped.assign(unusable.begin(), unusable.end());
     lm.fans_skewed.assign(skewed.begin(), skewed.end());
     rep.coverage = layer_report(lm);

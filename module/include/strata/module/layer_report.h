@@ -2,8 +2,8 @@
 /// \file
 /// The coverage report of the boundary layers: per wall patch, what was asked and what the
 /// columns reached, and every wall node that fell short, with where and why. The layer
-/// module fills it (layer_report), the program prints it, io writes it as JSON
-/// (write_layer_report) next to the mesh.
+/// module fills it (layer_report); the report tree (frontend/report.h) carries it to the JSON,
+/// Python and the CLI.
 
 #include <strata/core/types.h>
 

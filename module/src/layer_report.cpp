@@ -1,5 +1,5 @@
 #include <strata/core/enum_names.h>
-#include <strata/core/layer_report.h>
+#include <strata/module/layer_report.h>
 
 namespace strata {
 
