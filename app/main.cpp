@@ -13,6 +13,7 @@
 #include <strata/core/validate.h>
 #include <strata/frontend/options.h>
 #include <strata/frontend/prepare_layers.h>
+#include <strata/frontend/report.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/prepare.h>
@@ -628,21 +629,28 @@ void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::Prepar
     print_needles(mesh, rep, any_cad);
 }
 
-/// Where layers were held back to stay valid (LayerParams::hold_back), so the user knows they are thinner there.
-void print_thinned(strata::Index nodes, double min_share) {
-    if (nodes == 0) return;
+/// \p key of \p n, an integer of the report, as printf's %d takes it.
+int count(const strata::ReportNode& n, std::string_view key) {
+    return static_cast<int>(n.integer(key));
+}
+
+/// Where layers were thinned (scaled down: proximity, front rounds), so the user knows they are thinner there.
+void print_thinned(const strata::ReportNode& r) {
+    if (r.integer("thinned_nodes") == 0) return;
     std::printf(
         "thinned: layers scaled down at %d wall nodes, down to %.1f %% of the thickness asked (the coverage table "
         "says why)\n",
-        static_cast<int>(nodes), 100.0 * min_share);
+        count(r, "thinned_nodes"), 100.0 * r.number("min_thickness_share"));
 }
 
-void print_held_back(const std::vector<strata::LayerStats>& stats) {
+/// Where layers were held back to stay valid (LayerParams::hold_back), per the report's layer_stats.
+void print_held_back(const strata::ReportNode& r) {
     int layers = 0, most = 0, first = 0;
+    const auto& stats = r.list("layer_stats");
     for (std::size_t k = 0; k < stats.size(); ++k) {
-        if (stats[k].held_nodes == 0) continue;
+        if (stats[k].node().integer("held_nodes") == 0) continue;
         if (layers++ == 0) first = static_cast<int>(k) + 1;
-        most = std::max(most, static_cast<int>(stats[k].held_nodes));
+        most = std::max(most, count(stats[k].node(), "held_nodes"));
     }
     if (layers > 0)
         std::printf(
@@ -651,91 +659,101 @@ void print_held_back(const std::vector<strata::LayerStats>& stats) {
             first, layers, most);
 }
 
-/// The fans at sharp convex edges, if any, and the wall nodes where none could be built (\p
-/// no_fan: its first cells would have been unusable, its face on the layer top could not take a
-/// pyramid, its cells had skewed faces, or its sharp edge's chain could not close into a loop),
-/// each reason with the first such node's position.
-void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners, strata::Index on_plane,
-                const strata::LayerReport& no_fan) {
-    if (edges > 0)
+/// Why a wall node got no fan, as the summary says it.
+const char* no_fan_reason(strata::NoFan reason) {
+    switch (reason) {
+        case strata::NoFan::Unusable:
+            return "its first cells would have been unusable (a needle face or a narrow gap beside it)";
+        case strata::NoFan::Uncapped:
+            return "a fan's face on the layer top could not be capped with a pyramid (its columns twist: the wall "
+                   "there is small against the layers' thickness)";
+        case strata::NoFan::Skewed:
+            return "a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (a fan over a coarsely faceted "
+                   "wall; a finer wall keeps it)";
+        case strata::NoFan::Open:
+            return "their sharp edge's chain reaches the wall's open boundary where it cannot end (an open edge in no "
+                   "plane of a symmetry, outflow or box patch, a node where two such planes meet, or one with two "
+                   "sharp edges), and a fan's chain must close into a loop or end on such a plane: one column each, "
+                   "stopped at the wall on an edge sharper than --sharp-edge-stop (sharp)";
+        case strata::NoFan::Unclosed:
+            break;
+    }
+    return "their sharp edge's chain ends without closing into a loop (at a concave junction, or where a fan was "
+           "dropped): one column each, stopped at the wall on an edge sharper than --sharp-edge-stop (sharp)";
+}
+
+/// The fans at sharp convex edges, if any, and the wall nodes where none could be built (the
+/// report's no_fan_nodes), each reason with the first such node's position.
+void print_fans(const strata::ReportNode& r) {
+    if (r.integer("fan_edges") > 0) {
+        const int on_plane = count(r, "fan_plane_nodes");
         std::printf(
             "fans: %d sharp convex edges, %d wall nodes with a column per side and between (%d corners%s)\n",
-            static_cast<int>(edges), static_cast<int>(nodes), static_cast<int>(corners),
+            count(r, "fan_edges"), count(r, "fan_nodes"), count(r, "fan_corners"),
             on_plane > 0 ? (", " + std::to_string(on_plane) + " ending on a symmetry or other plane").c_str() : "");
-    for (const strata::NoFan reason : {strata::NoFan::Unusable, strata::NoFan::Uncapped, strata::NoFan::Skewed,
-                                       strata::NoFan::Open, strata::NoFan::Unclosed}) {
-        const strata::Index n = no_fan.no_fan_nodes(reason);
+    }
+    for (std::size_t k = 0; k < strata::kNoFanReasons; ++k) {
+        const auto reason = static_cast<strata::NoFan>(k);
+        const std::string name(strata::to_string(reason));
+        int n = 0;
+        const strata::ReportNode* first = nullptr;
+        for (const strata::ReportValue& v : r.list("no_fan_nodes"))
+            if (v.node().text("reason") == name) {
+                if (n++ == 0) first = &v.node();
+            }
         if (n == 0) continue;
-        const auto first = std::find_if(no_fan.no_fan.begin(), no_fan.no_fan.end(),
-                                        [&](const strata::NoFanNode& v) { return v.reason == reason; });
-        std::printf("note: no fan at %d wall nodes where %s;%s node %d at %s (in OUT.report.json with positions)\n",
-                    static_cast<int>(n),
-                    reason == strata::NoFan::Unusable
-                        ? "its first cells would have been unusable (a needle face or a narrow gap beside it)"
-                    : reason == strata::NoFan::Uncapped
-                        ? "a fan's face on the layer top could not be capped with a pyramid (its columns twist: the "
-                          "wall there is small against the layers' thickness)"
-                    : reason == strata::NoFan::Skewed
-                        ? "a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (a fan over a coarsely "
-                          "faceted wall; a finer wall keeps it)"
-                    : reason == strata::NoFan::Open
-                        ? "their sharp edge's chain reaches the wall's open boundary where it cannot end (an open "
-                          "edge in no plane of a symmetry, outflow or box patch, a node where two such planes meet, or "
-                          "one with two sharp edges), and a fan's chain must close into a loop or end on such a "
-                          "plane: one column each, stopped at the wall on an edge sharper than --sharp-edge-stop "
-                          "(sharp)"
-                        : "their sharp edge's chain ends without closing into a loop (at a concave junction, or "
-                          "where a fan was dropped): one column each, stopped at the wall on an edge sharper than "
-                          "--sharp-edge-stop (sharp)",
-                    n > 1 ? " the first," : "", static_cast<int>(first->node),
-                    strata::format_point(first->position).c_str());
+        const auto& p = first->list("position");
+        std::printf("note: no fan at %d wall nodes where %s;%s node %d at %s (in OUT.report.json with positions)\n", n,
+                    no_fan_reason(reason), n > 1 ? " the first," : "", count(*first, "node"),
+                    strata::format_point(strata::Vec3(p[0].number(), p[1].number(), p[2].number())).c_str());
     }
 }
 
-void print_layer_table(const strata::LayerMesh& lm, const strata::LayerReport& coverage) {
+void print_layer_table(const strata::ReportNode& r) {
     std::printf("layer  height       min SJ  mean SJ  max orth  mean orth  sweeps  columns  stopped  steps  step SJ\n");
-    for (std::size_t k = 0; k < lm.stats.size(); ++k) {
-        const strata::LayerStats& s = lm.stats[k];
-        std::printf("%5zu  %-11.4g  %6.3f  %7.3f  %7.1f°  %8.2f°  %6d  %7d  %7d  %5d  %7.3g\n", k + 1, s.height,
-                    s.min_scaled_jacobian, s.mean_scaled_jacobian, s.max_orthogonality_deg, s.mean_orthogonality_deg,
-                    s.sweeps, static_cast<int>(s.columns), static_cast<int>(s.stopped_nodes),
-                    static_cast<int>(s.transition_cells), s.transition_cells > 0 ? s.min_transition_jacobian : 1.0);
+    for (const strata::ReportValue& row : r.list("layer_stats")) {
+        const strata::ReportNode& s = row.node();
+        std::printf("%5d  %-11.4g  %6.3f  %7.3f  %7.1f°  %8.2f°  %6d  %7d  %7d  %5d  %7.3g\n", count(s, "layer"),
+                    s.number("height"), s.number("min_scaled_jacobian"), s.number("mean_scaled_jacobian"),
+                    s.number("max_orthogonality_deg"), s.number("mean_orthogonality_deg"), count(s, "sweeps"),
+                    count(s, "columns"), count(s, "stopped_nodes"), count(s, "transition_cells"),
+                    s.integer("transition_cells") > 0 ? s.number("min_transition_jacobian") : 1.0);
     }
     std::printf(
         "  (columns: wall nodes with the layer; stopped: columns ending below it; steps: cells closing the steps "
         "where they end, pyramids, side-on prisms, tetrahedra; their apex at a stopped column sees the step's thin "
         "side edge-on, hence step SJ about layer height / edge length)\n");
-    print_fans(lm.fan_edges, lm.fan_nodes, lm.fan_corners, lm.fan_plane_nodes, coverage);
-    if (lm.unsmoothed_nodes > 0)
+    print_fans(r);
+    if (r.integer("unsmoothed_nodes") > 0)
         std::printf(
             "note: %d nodes (sharp convex edges, corners of open edges, ends of needle triangles) were extruded along "
             "their normal without smoothing\n",
-            static_cast<int>(lm.unsmoothed_nodes));
-    print_held_back(lm.stats);
-    print_thinned(lm.thinned_nodes, lm.min_thickness_share);
+            count(r, "unsmoothed_nodes"));
+    print_held_back(r);
+    print_thinned(r);
 }
 
 /// The coverage table: per wall patch, the columns with every layer at full thickness, the
-/// layers reached and why the others fell short.
-void print_coverage(const strata::LayerReport& r) {
-    using strata::Shortfall;
+/// layers reached and why the others fell short (one column per reason, the report's "short").
+void print_coverage(const strata::ReportNode& r) {
     std::printf("coverage: %d layers asked, %.4g thick (first %.3g); per wall patch, what the columns reached:\n",
-                r.layers, r.thickness, r.first_height);
+                count(r, "layers"), r.number("thickness"), r.number("first_height"));
     std::printf("  %-20s %7s %7s %6s %6s %6s %6s %6s  short: %5s %5s %5s %5s %5s %5s %5s %5s %5s\n", "patch", "faces",
                 "nodes", "full", "all L", "mean L", "min L", "thick", "prox", "front", "held", "qual", "turn", "twist",
                 "nbrs", "nan", "sharp");
-    for (const strata::PatchCoverage& c : r.patches) {
-        const double n = c.nodes > 0 ? static_cast<double>(c.nodes) : 1.0;
-        std::printf(
-            "  %-20s %7d %7d %5.1f%% %5.1f%% %6.1f %6d %5.1f%%         %5d %5d %5d %5d %5d %5d %5d %5d %5d\n",
-            c.name.c_str(), static_cast<int>(c.faces), static_cast<int>(c.nodes),
-            100.0 * static_cast<double>(c.full_nodes) / n, 100.0 * static_cast<double>(c.all_layers) / n, c.mean_layers,
-            c.min_layers, 100.0 * c.mean_share, static_cast<int>(c.short_nodes(Shortfall::Proximity)),
-            static_cast<int>(c.short_nodes(Shortfall::Front)), static_cast<int>(c.short_nodes(Shortfall::HeldBack)),
-            static_cast<int>(c.short_nodes(Shortfall::Quality)), static_cast<int>(c.short_nodes(Shortfall::Turning)),
-            static_cast<int>(c.short_nodes(Shortfall::Twist)), static_cast<int>(c.short_nodes(Shortfall::Neighbours)),
-            static_cast<int>(c.short_nodes(Shortfall::NonFinite)),
-            static_cast<int>(c.short_nodes(Shortfall::SharpEdge)));
+    for (const strata::ReportValue& row : r.list("patches")) {
+        const strata::ReportNode& c = row.node();
+        const double n = c.integer("nodes") > 0 ? c.number("nodes") : 1.0;
+        std::string short_by;
+        for (const strata::ReportNode::Entry& e : c.node("short").entries()) {
+            char cell[24];
+            std::snprintf(cell, sizeof cell, " %5d", static_cast<int>(e.value.integer()));
+            short_by += cell;
+        }
+        std::printf("  %-20s %7d %7d %5.1f%% %5.1f%% %6.1f %6d %5.1f%%        %s\n", c.text("name").c_str(),
+                    count(c, "faces"), count(c, "nodes"), 100.0 * c.number("full_nodes") / n,
+                    100.0 * c.number("all_layers") / n, c.number("mean_layers"), count(c, "min_layers"),
+                    100.0 * c.number("mean_share"), short_by.c_str());
     }
     std::printf(
         "  (full: every layer at the thickness asked; all L: every layer; thick: mean thickness reached; short: "
@@ -746,19 +764,21 @@ void print_coverage(const strata::LayerReport& r) {
 /// Scaled Jacobian below which the summary warns that a solver may not use the cells.
 constexpr double kSolverQuality = 0.01;
 
-/// OpenFOAM checkMesh's figures, and what it would fail on.
+/// OpenFOAM checkMesh's figures (the report's quality.openfoam), and what it would fail on.
 /// \p kept_surface: the surface mesh was kept as it is (neither CAD nor --remesh), so a failure on
 /// the layers' aspect ratio has one more remedy.
-void print_solver_checks(const strata::SolverChecks& s, bool kept_surface) {
+void print_solver_checks(const strata::ReportNode& s, bool kept_surface) {
     std::printf(
         "openfoam: non-orthogonality max %.3g deg (mean %.3g, %d faces above %g), skewness max %.3g (%d faces above "
         "%g), aspect ratio max %.4g (%d cells above %g): checkMesh would %s\n",
-        s.max_non_orthogonality_deg, s.mean_non_orthogonality_deg, static_cast<int>(s.severely_non_orthogonal),
-        strata::kFoamNonOrthogonalDeg, s.max_skewness, static_cast<int>(s.skew_faces), strata::kFoamSkewness,
-        s.max_aspect_ratio, static_cast<int>(s.high_aspect_cells), strata::kFoamAspectRatio,
-        s.ok() ? "say \"Mesh OK\"" : "fail it");
-    for (const std::string& line : s.failures()) std::printf("warning: checkMesh would fail: %s\n", line.c_str());
-    if (kept_surface && s.high_aspect_cells > 0 && s.worst_aspect_type != strata::CellType::Tet)
+        s.number("max_non_orthogonality_deg"), s.number("mean_non_orthogonality_deg"),
+        count(s, "severely_non_orthogonal_faces"), strata::kFoamNonOrthogonalDeg, s.number("max_skewness"),
+        count(s, "skew_faces"), strata::kFoamSkewness, s.number("max_aspect_ratio"), count(s, "high_aspect_cells"),
+        strata::kFoamAspectRatio, s.flag("check_mesh_ok") ? "say \"Mesh OK\"" : "fail it");
+    for (const strata::ReportValue& line : s.list("failures"))
+        std::printf("warning: checkMesh would fail: %s\n", line.text().c_str());
+    if (kept_surface && s.integer("high_aspect_cells") > 0 &&
+        s.text("worst_aspect_type") != strata::to_string(strata::CellType::Tet))
         std::printf(
             "  the surface mesh was kept as it is: --remesh meshes it again, its walls fine enough for the first "
             "layer (--max-aspect-ratio)\n");
@@ -766,81 +786,103 @@ void print_solver_checks(const strata::SolverChecks& s, bool kept_surface) {
 
 /// The cells by type, the validation's figures, the worst cell of each type, and a warning
 /// below what a solver can use.
-void print_cells(const strata::VolumeMesh& mesh, const strata::ValidationReport& v, bool kept_surface) {
-    std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n",
-                mesh.hexes.size(), mesh.prisms.size(), mesh.pyramids.size(), mesh.tets.size(),
-                static_cast<int>(mesh.num_cells()), mesh.points.size());
-    std::printf("valid: min scaled Jacobian %.3g (%s), volume %.6g (boundary %.6g)\n", v.min_scaled_jacobian,
-                v.worst_cell.c_str(), v.cell_volume, v.boundary_volume);
+void print_cells(const strata::ReportNode& r, bool kept_surface) {
+    using strata::CellType;
+    const strata::ReportNode &cells = r.node("cells"), &q = r.node("quality");
+    const auto cells_of = [&](CellType t) { return count(cells, strata::to_string(t)); };
+    std::printf(
+        "cells: %d hexahedra, %d prisms, %d pyramids, %d tetrahedra (%d in all), %d nodes\n", cells_of(CellType::Hex),
+        cells_of(CellType::Prism), cells_of(CellType::Pyramid), cells_of(CellType::Tet),
+        cells_of(CellType::Hex) + cells_of(CellType::Prism) + cells_of(CellType::Pyramid) + cells_of(CellType::Tet),
+        count(r, "nodes"));
+    const strata::ReportNode &min_sj = q.node("min_scaled_jacobian"), &worst = q.node("worst_cell");
+    std::printf("valid: min scaled Jacobian %.3g (%s), volume %.6g (boundary %.6g)\n", min_sj.number("all"),
+                worst.text("all").c_str(), q.number("cell_volume"), q.number("boundary_volume"));
     // Per cell type, hexahedra first (the order of the cells line), the worst cell of each.
-    for (const strata::CellType t :
-         {strata::CellType::Hex, strata::CellType::Prism, strata::CellType::Pyramid, strata::CellType::Tet}) {
-        const auto& q = v.by_type[static_cast<std::size_t>(t)];
-        if (mesh.num_cells(t) == 0) continue;
-        std::printf("  %-12s min scaled Jacobian %.3g (%s)\n", (std::string(strata::to_string(t)) + ":").c_str(),
-                    q.min_scaled_jacobian, q.worst_cell.c_str());
+    for (const CellType t : {CellType::Hex, CellType::Prism, CellType::Pyramid, CellType::Tet}) {
+        if (cells_of(t) == 0) continue;
+        const std::string name(strata::to_string(t));
+        std::printf("  %-12s min scaled Jacobian %.3g (%s)\n", (name + ":").c_str(), min_sj.number(name),
+                    worst.text(name).c_str());
     }
-    if (v.min_scaled_jacobian < kSolverQuality)
+    if (min_sj.number("all") < kSolverQuality)
         std::printf(
             "warning: cells below a scaled Jacobian of %g, which a solver may reject or converge poorly on; "
             "the worst is %s\n",
-            kSolverQuality, v.worst_cell.c_str());
-    print_solver_checks(v.solver, kept_surface);
+            kSolverQuality, worst.text("all").c_str());
+    print_solver_checks(q.node("openfoam"), kept_surface);
 }
 
-void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridReport& hr, bool kept_surface) {
-    double jmin = 1.0;
-    for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
-    std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
-    if (hr.internal_flow) std::printf("domain: inside the walls (internal flow), no farfield generated\n");
-    if (hr.closed_half_model)
-        std::printf("domain: a half model, closed by a generated half farfield and a symmetry plane\n");
-    print_fans(hr.fan_edges, hr.fan_nodes, hr.fan_corners, hr.fan_plane_nodes, hr.coverage);
-    print_held_back(hr.layer_stats);
-    print_thinned(hr.thinned_nodes, hr.min_thickness_share);
-    print_coverage(hr.coverage);
-    if (hr.front_rounds > 0)
-        std::printf(
-            "front: %d column lowerings in %d rounds where the layers folded, left no room for a pyramid or "
-            "their top intersected itself%s\n",
-            static_cast<int>(hr.front_lowered_nodes), hr.front_rounds,
-            hr.tet_retries > 0 ? (" (in " + std::to_string(hr.tet_retries) +
-                                  " of them TetGen failed recovering a layer-top face, and the columns around it were "
-                                  "lowered)")
-                                     .c_str()
-                               : "");
-    if (hr.split_quads > 0)
-        std::printf(
-            "quads: %d wall quads could take no pyramid on the layer top (too warped for an apex, their columns at the "
-            "wall or lowered for it before) and were split into two triangles, their columns prisms\n",
-            hr.split_quads);
-    if (const strata::TetImproveReport& ti = hr.tet_improve;
-        ti.flips + ti.edge_removals + ti.moved_nodes + ti.inserted_nodes > 0)
+/// What improve_tets did (the report's tet_improve), if anything.
+void print_tet_improve(const strata::ReportNode& ti) {
+    if (ti.integer("flips") + ti.integer("edge_removals") + ti.integer("moved_nodes") + ti.integer("inserted_nodes") >
+        0)
         std::printf(
             "tetrahedra improved: %lld flips, %lld edges removed, %lld interior nodes moved, %lld inserted; below a "
             "scaled Jacobian of %g: %lld -> %lld, the worst %.3g -> %.3g (%.2f s%s)\n",
-            static_cast<long long>(ti.flips), static_cast<long long>(ti.edge_removals),
-            static_cast<long long>(ti.moved_nodes), static_cast<long long>(ti.inserted_nodes), ti.below,
-            static_cast<long long>(ti.below_before), static_cast<long long>(ti.below_after), ti.min_before,
-            ti.min_after, ti.seconds, ti.budget_reached ? "; stopped at its work budget" : "");
-    if (const strata::TetImproveReport& ti = hr.tet_improve; ti.skewed_before + ti.skew_changes > 0)
+            static_cast<long long>(ti.integer("flips")), static_cast<long long>(ti.integer("edge_removals")),
+            static_cast<long long>(ti.integer("moved_nodes")), static_cast<long long>(ti.integer("inserted_nodes")),
+            ti.number("below"), static_cast<long long>(ti.integer("below_before")),
+            static_cast<long long>(ti.integer("below_after")), ti.number("min_before"), ti.number("min_after"),
+            ti.number("seconds"), ti.flag("budget_reached") ? "; stopped at its work budget" : "");
+    if (ti.integer("skewed_before") + ti.integer("skew_changes") > 0)
         std::printf(
             "tetrahedra de-skewed: %lld flips and edge removals for faces above a skewness of %g (checkMesh fails "
             "above 4); faces between tetrahedra above 4: %lld -> %lld\n",
-            static_cast<long long>(ti.skew_changes), strata::kTetSkewTarget, static_cast<long long>(ti.skewed_before),
-            static_cast<long long>(ti.skewed_after));
-    for (const auto& [p, planes] : hr.planes_of_patches)
+            static_cast<long long>(ti.integer("skew_changes")), strata::kTetSkewTarget,
+            static_cast<long long>(ti.integer("skewed_before")), static_cast<long long>(ti.integer("skewed_after")));
+}
+
+void print_hybrid_summary(const strata::ReportNode& r, bool kept_surface) {
+    double jmin = 1.0;
+    for (const strata::ReportValue& s : r.list("layer_stats"))
+        jmin = std::min(jmin, s.node().number("min_scaled_jacobian"));
+    std::printf("layers: %zu, min scaled Jacobian %.3f\n", r.list("layer_stats").size(), jmin);
+    if (r.flag("internal_flow")) std::printf("domain: inside the walls (internal flow), no farfield generated\n");
+    if (r.flag("closed_half_model"))
+        std::printf("domain: a half model, closed by a generated half farfield and a symmetry plane\n");
+    print_fans(r);
+    print_held_back(r);
+    print_thinned(r);
+    print_coverage(r);
+    if (const int retries = count(r, "tet_retries"); r.integer("front_rounds") > 0)
+        std::printf(
+            "front: %d column lowerings in %d rounds where the layers folded, left no room for a pyramid or "
+            "their top intersected itself%s\n",
+            count(r, "front_lowered_nodes"), count(r, "front_rounds"),
+            retries > 0 ? (" (in " + std::to_string(retries) +
+                           " of them TetGen failed recovering a layer-top face, and the columns around it were "
+                           "lowered)")
+                              .c_str()
+                        : "");
+    if (r.integer("split_quads") > 0)
+        std::printf(
+            "quads: %d wall quads could take no pyramid on the layer top (too warped for an apex, their columns at the "
+            "wall or lowered for it before) and were split into two triangles, their columns prisms\n",
+            count(r, "split_quads"));
+    print_tet_improve(r.node("tet_improve"));
+    for (const strata::ReportNode::Entry& e : r.node("planes_of_patches").entries())
         std::printf(
             "planes: patch '%s' is %d planes, the layers end on it; each was re-meshed round them as a "
             "plane, and it is one patch in the mesh\n",
-            mesh.boundary.patches[static_cast<std::size_t>(p)].name.c_str(), planes);
-    if (!hr.remeshed_patches.empty()) {
+            e.key.c_str(), static_cast<int>(e.value.integer()));
+    if (!r.list("remeshed_patches").empty()) {
         std::string names;
-        for (strata::Index p : hr.remeshed_patches)
-            names += (names.empty() ? "" : ", ") + mesh.boundary.patches[static_cast<std::size_t>(p)].name;
+        for (const strata::ReportValue& p : r.list("remeshed_patches")) names += (names.empty() ? "" : ", ") + p.text();
         std::printf("planes re-meshed around the layers' sides: %s\n", names.c_str());
     }
-    print_cells(mesh, hr.validation, kept_surface);
+    print_cells(r, kept_surface);
+}
+
+/// "time: " and each stage of the report's times with its seconds.
+void print_times(const strata::ReportNode& r) {
+    std::string line;
+    for (const strata::ReportNode::Entry& e : r.node("times").entries()) {
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.2f", e.value.number());
+        line += (line.empty() ? "" : ", ") + e.key + " " + seconds + " s";
+    }
+    std::printf("time: %s\n", line.c_str());
 }
 
 std::vector<std::string> with_report(std::vector<std::string> files, const std::string& output) {
@@ -992,22 +1034,25 @@ int run_layers(const Common& c) {
     const auto t2 = std::chrono::steady_clock::now();
     const strata::ValidationReport v =
         strata::require_valid_mesh(lm.mesh, c.o.surface.input, {.threads = lp.threads, .progress = &terminal});
-    const strata::LayerReport coverage = strata::layer_report(lm);
+    strata::ReportNode report =
+        strata::layers_run_report(lm, strata::layer_report(lm), v, &s.surface, &s.report, c.o,
+                                  {{"surface", s.seconds}, {"layers", t_layers}, {"validation", seconds_since(t2)}});
+    const auto t3 = std::chrono::steady_clock::now();
     warn_if_short_of_space(c, lm.mesh.points.size(), static_cast<std::size_t>(lm.mesh.num_cells()));
     begin_writing();
     strata::OutputSet outputs;  // the mesh and its report, both or neither
     strata::write_volume(lm.mesh, c.output, s.msh_version, &terminal, &outputs);
-    strata::write_mesh_report(coverage, lm.mesh, v, strata::report_path(c.output), &outputs);
+    strata::write_report(report, strata::report_path(c.output), &outputs);
     outputs.commit();
+    strata::set_time(report, "write", seconds_since(t3));
     if (c.quiet) return 0;
     print_surface_summary(s.surface, s.report, s.any_cad);
     print_wall_aspect_forecast(s.surface, s.report, s.any_cad, strata::resolve(lp.distribution).first_height,
                                c.o.surface.prepare.cad.max_aspect_ratio);
-    print_layer_table(lm, coverage);
-    print_coverage(coverage);
-    print_cells(lm.mesh, v, !s.any_cad && !s.report.remeshed);
-    std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", s.seconds, t_layers,
-                seconds_since(t2));
+    print_layer_table(report);
+    print_coverage(report);
+    print_cells(report, !s.any_cad && !s.report.remeshed);
+    print_times(report);
     print_written(with_report(strata::volume_output_files(c.output), c.output));
     return 0;
 }
@@ -1028,26 +1073,25 @@ int run_mesh(const Common& c, const PlotOptions& po) {
             throw strata::InputError(e.what() + hint);
         }
     }();
+    strata::ReportNode report =
+        strata::mesh_run_report(&mesh, hr, &s.surface, &s.report, c.o, {{"surface", s.seconds}});
     const auto t1 = std::chrono::steady_clock::now();
     warn_if_short_of_space(c, mesh.points.size(), static_cast<std::size_t>(mesh.num_cells()));
     begin_writing();
     strata::OutputSet outputs;  // the mesh, its report and the plots' data, all or none
     strata::write_volume(mesh, c.output, s.msh_version, &terminal, &outputs);
-    strata::write_mesh_report(hr.coverage, mesh, hr.validation, strata::report_path(c.output), &outputs);
+    strata::write_report(report, strata::report_path(c.output), &outputs);
     if (!po.dir.empty())
-        strata::write_plot_data(hr.coverage, s.surface, mesh, strata::plot_data_path(c.output), cut_axis, cut_value,
-                                &outputs);
+        strata::write_plot_data(strata::node_layers(hr.coverage, s.surface.points.size()), s.surface, mesh,
+                                strata::plot_data_path(c.output), cut_axis, cut_value, &outputs);
     outputs.commit();
-    const double t_write = seconds_since(t1);
+    strata::set_time(report, "write", seconds_since(t1));
     if (!c.quiet) {
         print_surface_summary(s.surface, s.report, s.any_cad);
         print_wall_aspect_forecast(s.surface, s.report, s.any_cad, strata::resolve(hp.layers.distribution).first_height,
                                    c.o.surface.prepare.cad.max_aspect_ratio);
-        print_hybrid_summary(mesh, hr, !s.any_cad && !s.report.remeshed);
-        std::printf(
-            "time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f "
-            "s\n",
-            s.seconds, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
+        print_hybrid_summary(report, !s.any_cad && !s.report.remeshed);
+        print_times(report);
         std::vector<std::string> files = with_report(strata::volume_output_files(c.output), c.output);
         if (!po.dir.empty()) files.push_back(strata::plot_data_path(c.output));
         print_written(files);

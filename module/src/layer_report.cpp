@@ -21,4 +21,12 @@ Index LayerReport::no_fan_nodes(NoFan reason) const {
     return n;
 }
 
+std::vector<int> node_layers(const LayerReport& report, std::size_t nodes) {
+    std::vector<int> layers(nodes, report.layers);
+    for (const ShortNode& n : report.short_nodes)
+        if (n.node >= 0 && static_cast<std::size_t>(n.node) < nodes)
+            layers[static_cast<std::size_t>(n.node)] = n.layers;
+    return layers;
+}
+
 }  // namespace strata

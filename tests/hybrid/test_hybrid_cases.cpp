@@ -120,9 +120,10 @@ void expect_valid_case(const std::string& name, const SurfaceMesh& input, const 
     std::printf(
         "%s: %zu hex, %zu prisms, %zu pyramids, %zu tets; min scaled Jacobian %.2e (layers %.2e)\n", name.c_str(),
         m.hexes.size(), m.prisms.size(), m.pyramids.size(), m.tets.size(), rep.validation.min_scaled_jacobian,
-        std::min_element(rep.layers.stats.begin(), rep.layers.stats.end(), [](const LayerStats& a, const LayerStats& b) {
-            return a.min_scaled_jacobian < b.min_scaled_jacobian;
-        })->min_scaled_jacobian);
+        std::min_element(
+            rep.layers.stats.begin(), rep.layers.stats.end(),
+            [](const LayerStats& a, const LayerStats& b) { return a.min_scaled_jacobian < b.min_scaled_jacobian; })
+            ->min_scaled_jacobian);
     test::ScratchDir dir("case_" + name);
     test::expect_rereads_valid(m, dir, name);
 }

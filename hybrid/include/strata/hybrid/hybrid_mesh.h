@@ -28,8 +28,8 @@ struct HybridParams {
 
 /// What each stage produced and how long it took, for the CLI's summary.
 struct HybridReport {
-    LayerCounts layers;  ///< the final layers' figures (LayerMesh's)
-    int front_rounds = 0;              ///< rounds of lowering columns where the front intersected itself
+    LayerCounts layers;    ///< the final layers' figures (LayerMesh's)
+    int front_rounds = 0;  ///< rounds of lowering columns where the front intersected itself
     /// Per wall patch, the thickness reached and why not (layer_report), and the wall nodes left
     /// without a fan: its first cells would have been unusable (LayerMesh::fans_dropped) or its
     /// face on the layer top could not take a pyramid.

@@ -3,12 +3,12 @@
 /// The boundary-layer module: Poisson marching extrusion of prism and hexahedron layers
 /// (Thompson, Chalasani & Soni; ALGORITHM.md).
 
-#include <strata/module/layer_report.h>
 #include <strata/core/progress.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/core/volume_mesh.h>
 #include <strata/geometry/normals.h>
 #include <strata/module/distribution.h>
+#include <strata/module/layer_report.h>
 #include <strata/module/proximity.h>
 
 #include <algorithm>
