@@ -1,7 +1,15 @@
 // The report tree of a run: report.h.
 
 #include <strata/core/cell_quality.h>
+#include <strata/core/solver_checks.h>
 #include <strata/frontend/report.h>
+#include <strata/geometry/check.h>
+#include <strata/geometry/intersections.h>
+#include <strata/geometry/topology.h>
+#include <strata/module/distribution.h>
+
+#include <algorithm>
+#include <array>
 
 #include <type_traits>
 #include <variant>
@@ -65,6 +73,52 @@ ReportNode remesh_report(const RemeshReport& r) {
     n.set("needles_before", r.needles_before).set("needles_after", r.needles_after);
     n.set("sharpest_before_deg", r.sharpest_before_deg).set("sharpest_after_deg", r.sharpest_after_deg);
     return n;
+}
+
+/// The wall's needle faces (a corner under kNeedleCornerDeg), which cap the layer cells on them.
+ReportNode needles_report(const SurfaceMesh& mesh) {
+    const NeedleReport n = needle_faces(mesh, kNeedleCornerDeg, {PatchKind::Wall});
+    ReportNode r;
+    r.set("faces", n.needles).set("wall_faces", n.faces).set("corner_deg", kNeedleCornerDeg);
+    r.set("sharpest_deg", n.sharpest_deg);
+    if (n.needles == 0) return r;
+    r.set("worst_face", describe_face(mesh, n.worst_face));
+    const Index f = n.worst_face;
+    if (mesh.face_size(f) == 3) {  // its longest edge over its shortest height
+        const Vec3 &a = mesh.points[static_cast<std::size_t>(mesh.face_node(f, 0))],
+                   &b = mesh.points[static_cast<std::size_t>(mesh.face_node(f, 1))],
+                   &c = mesh.points[static_cast<std::size_t>(mesh.face_node(f, 2))];
+        const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+        const double twice_area = (b - a).cross(c - a).norm();
+        if (twice_area > 0.0) r.set("worst_aspect_ratio", longest * longest / twice_area);
+    }
+    return r;
+}
+
+/// A kept surface's wall faces against a first layer of height \p h: how many would make its
+/// cells' aspect ratio exceed \p max_aspect_ratio, and the worst.
+ReportNode wall_aspect_report(const SurfaceMesh& mesh, double h, double max_aspect_ratio) {
+    double worst = 0.0;
+    Index worst_face = kNone, over = 0, walls = 0;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        if (mesh.patches[static_cast<std::size_t>(mesh.face_patch[static_cast<std::size_t>(f)])].kind !=
+            PatchKind::Wall)
+            continue;
+        std::array<Vec3, 4> corners;
+        const int n = mesh.face_size(f);
+        for (int k = 0; k < n; ++k)
+            corners[static_cast<std::size_t>(k)] = mesh.points[static_cast<std::size_t>(mesh.face_node(f, k))];
+        const double ar = right_prism_aspect_ratio(corners.data(), n, h);
+        ++walls;
+        if (!(ar > max_aspect_ratio)) continue;
+        ++over;
+        if (ar > worst) worst = ar, worst_face = f;
+    }
+    ReportNode r;
+    r.set("first_height", h).set("max_aspect_ratio", max_aspect_ratio).set("walls", walls).set("over", over);
+    r.set("worst", worst);
+    if (over > 0) r.set("worst_face", describe_face(mesh, worst_face));
+    return r;
 }
 
 /// The coverage head: what was asked.
@@ -136,10 +190,20 @@ ReportNode tet_improve_report(const TetImproveReport& ti) {
     return n;
 }
 
-/// "surface" (when given), "times" and "provenance".
+/// "surface" (when given: with its walls against the first layer of \p options if the surface
+/// was kept as it is), "times" and "provenance".
 void set_run(ReportNode& n, const SurfaceMesh* surface, const PrepareReport* prepared, const Options& options,
              const StageTimes& times) {
-    if (surface && prepared) n.set("surface", surface_report(*surface, *prepared));
+    if (surface && prepared) {
+        const bool cad = any_cad_input(options.surface.inputs);
+        ReportNode s = surface_report(*surface, *prepared, cad);
+        const double max_aspect_ratio = options.surface.prepare.cad.max_aspect_ratio;
+        if (!cad && !prepared->remeshed && max_aspect_ratio > 0.0) {
+            const double h = resolve(layer_params(options.layers).distribution).first_height;
+            if (h > 0.0) s.set("wall_aspect", wall_aspect_report(*surface, h, max_aspect_ratio));
+        }
+        n.set("surface", std::move(s));
+    }
     ReportNode t;
     for (const auto& [stage, seconds] : times) t.set(stage, seconds);
     n.set("times", std::move(t)).set("provenance", provenance_report(options));
@@ -173,10 +237,21 @@ ReportNode provenance_report(const Options& options) {
     return n;
 }
 
-ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r) {
+ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r, bool cad_input) {
     ReportNode n;
     n.set("nodes", s.num_points()).set("triangles", s.num_triangles()).set("quads", s.num_quads());
-    n.set("patches", s.patches.size()).set("merged_nodes", r.merged_nodes).set("collapsed_faces", r.collapsed_faces);
+    n.set("patches", s.patches.size());
+    std::vector<Index> faces(s.patches.size(), 0);
+    for (const Index p : s.face_patch) ++faces[static_cast<std::size_t>(p)];
+    ReportValue::List table;
+    for (std::size_t i = 0; i < s.patches.size(); ++i) {
+        ReportNode p;
+        p.set("name", s.patches[i].name).set("kind", std::string(to_string(s.patches[i].kind))).set("faces", faces[i]);
+        table.emplace_back(std::move(p));
+    }
+    n.set("patch_table", std::move(table)).set("cad_input", cad_input);
+    n.set("open_loops", boundary_loops(s).rows());
+    n.set("merged_nodes", r.merged_nodes).set("collapsed_faces", r.collapsed_faces);
     n.set("duplicate_faces", r.duplicate_faces).set("t_junctions", r.t_junctions);
     n.set("flipped_faces", r.orient.flipped_faces).set("components", r.orient.components);
     n.set("closed_components", r.orient.closed_components).set("fused_components", r.fused_components);
@@ -196,6 +271,7 @@ ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r) {
     edges.set("where", point(e.where)).set("left", e.left);
     n.set("short_edges", std::move(edges));
     if (r.remeshed) n.set("remesh", remesh_report(r.remesh));
+    n.set("needles", needles_report(s));
     return n;
 }
 
@@ -239,7 +315,7 @@ ReportNode quality_report(const ValidationReport& v, const VolumeMesh* mesh) {
 
 ReportNode surface_run_report(const SurfaceMesh& surface, const PrepareReport& report, const Options& options,
                               const StageTimes& times) {
-    ReportNode n = surface_report(surface, report);
+    ReportNode n = surface_report(surface, report, any_cad_input(options.surface.inputs));
     set_run(n, nullptr, nullptr, options, times);
     return n;
 }

@@ -39,8 +39,11 @@ std::string strata_commit();
 /// (option_table) whose value in \p options differs from the default}.
 ReportNode provenance_report(const Options& options);
 
-/// "surface": what prepare_surfaces did (\p report) and the surface it gave (\p surface).
-ReportNode surface_report(const SurfaceMesh& surface, const PrepareReport& report);
+/// "surface": the surface (\p surface: its counts, "patch_table", "open_loops", its wall's
+/// "needles"), whether it came from CAD (\p cad_input) and what prepare_surfaces did (\p report).
+/// A layers or mesh run's also has "wall_aspect" where the surface was kept as it is: its wall
+/// faces against the first layer (--max-aspect-ratio).
+ReportNode surface_report(const SurfaceMesh& surface, const PrepareReport& report, bool cad_input);
 
 /// The mesh's figures: "nodes" (when \p mesh is given), "cells" per type, and "quality": per
 /// type with cells its "min_scaled_jacobian" (and "all"), "worst_cell", the "bin_edges" and
