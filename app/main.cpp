@@ -13,6 +13,7 @@
 #include <strata/core/validate.h>
 #include <strata/frontend/options.h>
 #include <strata/frontend/prepare_layers.h>
+#include <strata/frontend/report.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/prepare.h>
@@ -340,114 +341,124 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// A warning where the wall has needle faces, which cap the layers whatever the marching does,
-/// with what to do about them given how the surface came (\p any_cad: some input was CAD).
-void print_needles(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep, bool any_cad) {
-    const strata::NeedleReport n = strata::needle_faces(mesh, strata::kNeedleCornerDeg, {strata::PatchKind::Wall});
-    if (n.needles == 0) return;
-    // The worst face's aspect ratio: its longest edge over its shortest height.
-    std::string aspect;
-    const strata::Index f = n.worst_face;
-    if (mesh.face_size(f) == 3) {
-        const strata::Vec3 &a = mesh.points[static_cast<std::size_t>(mesh.face_node(f, 0))],
-                           &b = mesh.points[static_cast<std::size_t>(mesh.face_node(f, 1))],
-                           &c = mesh.points[static_cast<std::size_t>(mesh.face_node(f, 2))];
-        const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-        const double twice_area = (b - a).cross(c - a).norm();
-        if (twice_area > 0.0) aspect = ", aspect ratio " + strata::format_number(longest * longest / twice_area, 3);
-    }
-    const char* remedy = rep.remeshed ? "remesh finer (a smaller --remesh SIZE) or with a smaller --feature-angle"
-                         : any_cad    ? "mesh finer (--size, --size-min) or repair the CAD model's small faces"
-                                      : "add --remesh to rebuild the surface with Gmsh, or export a finer one";
+/// \p key of \p n, an integer of the report, as printf's %d takes it.
+int count(const strata::ReportNode& n, std::string_view key) {
+    return static_cast<int>(n.integer(key));
+}
+
+/// A point of the report ([x, y, z]) as format_point writes it.
+std::string point_at(const strata::ReportNode& n, std::string_view key) {
+    const auto& p = n.list(key);
+    return strata::format_point(strata::Vec3(p[0].number(), p[1].number(), p[2].number()));
+}
+
+/// A warning where the wall has needle faces (the surface report's "needles"), which cap the
+/// layers whatever the marching does, with what to do about them given how the surface came.
+void print_needles(const strata::ReportNode& s) {
+    const strata::ReportNode& n = s.node("needles");
+    if (n.integer("faces") == 0) return;
+    const std::string aspect = n.find("worst_aspect_ratio")
+                                   ? ", aspect ratio " + strata::format_number(n.number("worst_aspect_ratio"), 3)
+                                   : "";
+    const char* remedy = s.flag("remeshed") ? "remesh finer (a smaller --remesh SIZE) or with a smaller --feature-angle"
+                         : s.flag("cad_input") ? "mesh finer (--size, --size-min) or repair the CAD model's small faces"
+                                               : "add --remesh to rebuild the surface with Gmsh, or export a finer one";
     std::printf(
         "warning: %d of %d wall faces are needles (a corner under %g degrees; the sharpest, %.3g degrees%s, on %s): "
         "a layer cell on such a face has a scaled Jacobian of at most the sine of that corner (%.2g there); %s\n",
-        static_cast<int>(n.needles), static_cast<int>(n.faces), strata::kNeedleCornerDeg, n.sharpest_deg,
-        aspect.c_str(), strata::describe_face(mesh, n.worst_face).c_str(),
-        std::sin(n.sharpest_deg * 3.141592653589793 / 180.0), remedy);
+        count(n, "faces"), count(n, "wall_faces"), n.number("corner_deg"), n.number("sharpest_deg"), aspect.c_str(),
+        n.text("worst_face").c_str(), std::sin(n.number("sharpest_deg") * 3.141592653589793 / 180.0), remedy);
 }
 
 /// The unit the coordinates are in, and so every length option and figure.
-void print_units(const strata::PrepareReport& rep) {
+void print_units(const strata::ReportNode& s) {
+    const std::string &unit = s.text("units"), &declared = s.text("declared_units");
     std::string text;
-    if (rep.units.unit.empty())
+    if (unit.empty())
         text = "those of the file (it declares none)";
-    else if (rep.units.declared.empty())
-        text = rep.units.unit + " (the file declares no unit Strata knows: read as OpenCASCADE does, in mm)";
-    else if (rep.units.declared == rep.units.unit)
-        text = rep.units.unit + ", as the file declares";
+    else if (declared.empty())
+        text = unit + " (the file declares no unit Strata knows: read as OpenCASCADE does, in mm)";
+    else if (declared == unit)
+        text = unit + ", as the file declares";
     else
-        text = rep.units.unit + ", converted from the file's " + rep.units.declared + " (--units)";
-    if (rep.scale != 1.0) text += ", then scaled by " + strata::format_number(rep.scale) + " (--scale)";
+        text = unit + ", converted from the file's " + declared + " (--units)";
+    if (s.number("scale") != 1.0) text += ", then scaled by " + strata::format_number(s.number("scale")) + " (--scale)";
     std::printf("units: %s; every length below and every length option is in them\n", text.c_str());
 }
 
-/// What --sew-tolerance did to a CAD model's loose faces (nothing to say when all bound solids).
-void print_sewing(const strata::SewReport& s) {
-    if (s.written_twice > 0)
+/// What --sew-tolerance did to a CAD model's loose faces (the surface report's "sewn"; nothing
+/// to say when all bound solids).
+void print_sewing(const strata::ReportNode& s) {
+    if (s.integer("written_twice") > 0)
         std::printf(
             "repaired: %d faces of the CAD model written twice (the same place, area and side as another) "
             "removed, the first of each kept\n",
-            static_cast<int>(s.written_twice));
-    if (s.faces == 0) return;
-    if (s.rejected) {
+            count(s, "written_twice"));
+    if (s.integer("faces") == 0) return;
+    if (s.flag("rejected")) {
         std::printf(
             "warning: %d faces bound no solid, but sewing them (OpenCASCADE, tolerance %s) moved a face by %s, more "
             "than 1e-4 of the model's size: they are meshed as the file has them, unsewn (if the surface is then "
             "open, sew the model in the CAD tool)\n",
-            static_cast<int>(s.faces), strata::format_number(s.tolerance, 3).c_str(),
-            strata::format_number(s.moved, 3).c_str());
+            count(s, "faces"), strata::format_number(s.number("tolerance"), 3).c_str(),
+            strata::format_number(s.number("moved"), 3).c_str());
         return;
     }
-    const std::string raised =
-        s.first_tolerance > 0.0 ? " (" + strata::format_number(s.first_tolerance, 3) + " left edges apart)" : "";
+    const std::string raised = s.number("first_tolerance") > 0.0
+                                   ? " (" + strata::format_number(s.number("first_tolerance"), 3) + " left edges apart)"
+                                   : "";
     std::printf(
         "sewn: %d faces that bounded no solid (OpenCASCADE, tolerance %s%s; their edges' widest gap %s): "
         "free edges %d -> %d, %d solids made%s\n",
-        static_cast<int>(s.faces), strata::format_number(s.tolerance, 3).c_str(), raised.c_str(),
-        strata::format_number(s.gap_before, 3).c_str(), static_cast<int>(s.free_before), static_cast<int>(s.free_after),
-        static_cast<int>(s.solids),
-        s.renumbered ? "; the faces could not all be matched to the file's, so patches follow the new numbering" : "");
-    if (s.cracks > 0)
+        count(s, "faces"), strata::format_number(s.number("tolerance"), 3).c_str(), raised.c_str(),
+        strata::format_number(s.number("gap_before"), 3).c_str(), count(s, "free_edges_before"),
+        count(s, "free_edges_after"), count(s, "solids"),
+        s.flag("renumbered") ? "; the faces could not all be matched to the file's, so patches follow the new numbering"
+                             : "");
+    if (s.integer("cracks") > 0)
         std::printf(
             "warning: %d free edges of the CAD model still miss another edge by more than the sewing tolerance (the "
             "widest gap %s, at %s): --sew-tolerance %s sews them\n",
-            static_cast<int>(s.cracks), strata::format_number(s.widest_gap, 3).c_str(),
-            strata::format_point(s.gap_at).c_str(), strata::format_number(s.suggested_tolerance, 2).c_str());
+            count(s, "cracks"), strata::format_number(s.number("widest_gap"), 3).c_str(), point_at(s, "gap_at").c_str(),
+            strata::format_number(s.number("suggested_tolerance"), 2).c_str());
 }
 
-/// What --max-aspect-ratio did to the CAD walls (nothing to say when their first layer was fine),
-/// and the default size halved for a thin part.
-void print_wall_sizing(const strata::WallSizeReport& w) {
-    if (w.thin_size > 0.0)
+/// What --max-aspect-ratio did to the CAD walls (the surface report's "walls"; nothing to say
+/// when their first layer was fine), and the default size halved for a thin part.
+void print_wall_sizing(const strata::ReportNode& w) {
+    if (w.number("thin_size") > 0.0)
         std::printf(
             "size: the default size %s left a part thinner than it with its two sides meshed through the same "
             "nodes (edges of four faces); meshed at %s instead (--size sets it)\n",
-            strata::format_number(w.default_size, 3).c_str(), strata::format_number(w.thin_size, 3).c_str());
-    if (w.surfaces > 0 || w.curves > 0)
+            strata::format_number(w.number("default_size"), 3).c_str(),
+            strata::format_number(w.number("thin_size"), 3).c_str());
+    if (w.integer("surfaces") > 0 || w.integer("curves") > 0)
         std::printf(
             "walls: meshed again finer (%d surfaces, %d curves under fans; size %s) so that the first "
             "layer's aspect ratio stays under --max-aspect-ratio %s (OpenFOAM's checkMesh fails above 1000): worst "
             "%.4g before, %.4g after\n",
-            static_cast<int>(w.surfaces), static_cast<int>(w.curves), strata::format_number(w.cap, 3).c_str(),
-            strata::format_number(w.max_aspect_ratio).c_str(), w.worst_before, w.worst_after);
-    else if (w.over_budget)
+            count(w, "surfaces"), count(w, "curves"), strata::format_number(w.number("size"), 3).c_str(),
+            strata::format_number(w.number("max_aspect_ratio")).c_str(), w.number("worst_before"),
+            w.number("worst_after"));
+    else if (w.flag("over_budget"))
         std::printf(
             "warning: the first layer over the walls reaches an aspect ratio of %.4g, above --max-aspect-ratio "
             "%s; keeping it under needs wall faces of size %s, about %.3g of them, more than Strata makes unasked "
             "(%s): give --size %s, or a thicker first layer (--max-aspect-ratio 0 silences this)\n",
-            w.worst_before, strata::format_number(w.max_aspect_ratio).c_str(), strata::format_number(w.cap, 3).c_str(),
-            w.faces_estimate, strata::format_number(strata::CadParams{}.wall_faces_budget).c_str(),
-            strata::format_number(w.cap, 3).c_str());
+            w.number("worst_before"), strata::format_number(w.number("max_aspect_ratio")).c_str(),
+            strata::format_number(w.number("size"), 3).c_str(), w.number("faces_estimate"),
+            strata::format_number(strata::CadParams{}.wall_faces_budget).c_str(),
+            strata::format_number(w.number("size"), 3).c_str());
 }
 
-/// What --step-quality and the fans' first wedges (--max-aspect-ratio) did to the CAD walls
-/// (nothing to say when neither asked for finer walls).
-void print_step_sizing(const strata::StepSizeReport& st) {
+/// What --step-quality and the fans' first wedges (--max-aspect-ratio) did to the CAD walls (the
+/// surface report's "steps"; nothing to say when neither asked for finer walls).
+void print_step_sizing(const strata::ReportNode& st) {
     // What asked for finer walls: the steps, the fans' first wedges, or both.
-    const bool steps = st.points > 0, fans = st.fan_points > 0;
-    const std::string step_part = steps ? "the layers step low at " + std::to_string(st.points) + " wall nodes" : "",
-                      fan_part = fans ? "the fans' first wedges at " + std::to_string(st.fan_points) +
+    const int points = count(st, "points"), fan_points = count(st, "fan_points");
+    const bool steps = points > 0, fans = fan_points > 0;
+    const std::string step_part = steps ? "the layers step low at " + std::to_string(points) + " wall nodes" : "",
+                      fan_part = fans ? "the fans' first wedges at " + std::to_string(fan_points) +
                                             " wall nodes would exceed --max-aspect-ratio"
                                       : "";
     const auto joined = [](const std::string& a, const std::string& b) {
@@ -456,193 +467,182 @@ void print_step_sizing(const strata::StepSizeReport& st) {
     const std::string at = joined(step_part, fan_part),
                       why = joined(steps ? step_part + ", where the cells closing the steps would be nearly flat" : "",
                                    fan_part);
-    const std::string knob = steps ? "--step-quality " + strata::format_number(st.quality) : "their wedges";
-    if (!st.failure.empty())
+    const std::string quality = strata::format_number(st.number("quality"));
+    const std::string knob = steps ? "--step-quality " + quality : "their wedges";
+    if (!st.text("failure").empty())
         std::printf("warning: %s; meshing the walls finer there for %s failed, so the first surface is kept: %s\n",
-                    why.c_str(), knob.c_str(), st.failure.c_str());
-    else if (st.over_budget)
+                    why.c_str(), knob.c_str(), st.text("failure").c_str());
+    else if (st.flag("over_budget"))
         std::printf(
             "warning: %s; walls fine enough for %s there would take about %.3g faces, more than Strata makes "
             "unasked (%s times the surface's %d, at most %s): give a smaller --size there, or %s 0 to "
             "silence this\n",
-            why.c_str(), knob.c_str(), st.faces_estimate, strata::format_number(strata::kStepFacesGrowth).c_str(),
-            static_cast<int>(st.faces_before), strata::format_number(strata::CadParams{}.wall_faces_budget).c_str(),
+            why.c_str(), knob.c_str(), st.number("faces_estimate"),
+            strata::format_number(strata::kStepFacesGrowth).c_str(), count(st, "faces_before"),
+            strata::format_number(strata::CadParams{}.wall_faces_budget).c_str(),
             steps ? "--step-quality" : "--max-aspect-ratio");
-    else if (st.kept)
+    else if (st.flag("kept"))
         std::printf(
             "steps: %s; walls meshed finer there for %s were dropped, as their layers would reach %.1f %% of the "
             "thickness asked instead of %.1f %% (the gap, better resolved, limits the layers round it more)\n",
-            at.c_str(), knob.c_str(), 100.0 * st.thickness_after, 100.0 * st.thickness_before);
+            at.c_str(), knob.c_str(), 100.0 * st.number("thickness_after"), 100.0 * st.number("thickness_before"));
     else if (steps || fans) {
         std::string around, aim;
         if (steps) {
-            around = std::to_string(st.points) + " wall nodes where the layers step low";
-            aim = "a step's layer height is at least --step-quality " + strata::format_number(st.quality) +
-                  " of the wall spacing";
+            around = std::to_string(points) + " wall nodes where the layers step low";
+            aim = "a step's layer height is at least --step-quality " + quality + " of the wall spacing";
         }
         if (fans) {
-            around += std::string(steps ? " and " : "") + std::to_string(st.fan_points) + (steps ? "" : " wall nodes") +
+            around += std::string(steps ? " and " : "") + std::to_string(fan_points) + (steps ? "" : " wall nodes") +
                       " at the ends of fan edges and along them";
             aim += std::string(steps ? ", and " : "") + "the fans' first wedges stay under --max-aspect-ratio";
         }
         char seconds[32];
-        std::snprintf(seconds, sizeof seconds, "%.2f s", st.seconds);
+        std::snprintf(seconds, sizeof seconds, "%.2f s", st.number("seconds"));
         const std::string note = (steps ? std::string(fans ? "the cells closing a step" : "the cells closing it") +
                                               " reach about half of that; "
                                         : std::string()) +
                                  seconds;
+        const double raised = st.number("raised");
         std::printf(
             "steps: walls meshed again finer around %s (sizes down to %s%s), %d -> %d faces, so that %s "
             "(%s)\n",
-            around.c_str(), strata::format_number(st.smallest, 3).c_str(),
-            st.raised > 1.0 ? (", raised " + strata::format_number(st.raised, 3) + "-fold to stay within " +
-                               strata::format_number(strata::kStepFacesGrowth) + " times the faces")
-                                  .c_str()
-                            : "",
-            static_cast<int>(st.faces_before), static_cast<int>(st.faces_after), aim.c_str(), note.c_str());
+            around.c_str(), strata::format_number(st.number("smallest"), 3).c_str(),
+            raised > 1.0 ? (", raised " + strata::format_number(raised, 3) + "-fold to stay within " +
+                            strata::format_number(strata::kStepFacesGrowth) + " times the faces")
+                               .c_str()
+                         : "",
+            count(st, "faces_before"), count(st, "faces_after"), aim.c_str(), note.c_str());
     }
 }
 
-/// A surface mesh kept as it is (neither CAD nor --remesh, whose walls --max-aspect-ratio sizes):
-/// where its wall faces are too wide for a first layer of height \p h, say so (OpenFOAM's checkMesh
-/// fails cells over 1000) with the worst face and the remedy, before the solver does.
-void print_wall_aspect_forecast(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep, bool any_cad,
-                                double h, double max_aspect_ratio) {
-    if (any_cad || rep.remeshed || !(max_aspect_ratio > 0.0) || !(h > 0.0)) return;
-    double worst = 0.0;
-    strata::Index worst_face = strata::kNone, over = 0, walls = 0;
-    for (strata::Index f = 0; f < mesh.num_faces(); ++f) {
-        if (mesh.patches[static_cast<std::size_t>(mesh.face_patch[static_cast<std::size_t>(f)])].kind !=
-            strata::PatchKind::Wall)
-            continue;
-        std::array<strata::Vec3, 4> corners;
-        const int n = mesh.face_size(f);
-        for (int k = 0; k < n; ++k)
-            corners[static_cast<std::size_t>(k)] = mesh.points[static_cast<std::size_t>(mesh.face_node(f, k))];
-        const double ar = strata::right_prism_aspect_ratio(corners.data(), n, h);
-        ++walls;
-        if (!(ar > max_aspect_ratio)) continue;
-        ++over;
-        if (ar > worst) worst = ar, worst_face = f;
-    }
-    if (over == 0) return;
+/// A surface mesh kept as it is (the surface report's "wall_aspect"): where its wall faces are too
+/// wide for the first layer, say so (OpenFOAM's checkMesh fails cells over 1000) with the worst
+/// face and the remedy, before the solver does.
+void print_wall_aspect_forecast(const strata::ReportNode& s) {
+    const strata::ReportValue* forecast = s.find("wall_aspect");
+    if (!forecast || forecast->node().integer("over") == 0) return;
+    const strata::ReportNode& w = forecast->node();
     std::printf(
         "warning: %d of %d wall faces are too wide for the first layer (%s high): its cells on them reach an aspect "
         "ratio of %.4g (on %s), above --max-aspect-ratio %s (OpenFOAM's checkMesh fails cells over 1000); a "
         "surface mesh is kept as it is: add --remesh to mesh it again with the walls fine enough, or give a thicker "
         "first layer (--max-aspect-ratio 0 silences this)\n",
-        static_cast<int>(over), static_cast<int>(walls), strata::format_number(h, 3).c_str(), worst,
-        strata::describe_face(mesh, worst_face).c_str(), strata::format_number(max_aspect_ratio).c_str());
+        count(w, "over"), count(w, "walls"), strata::format_number(w.number("first_height"), 3).c_str(),
+        w.number("worst"), w.text("worst_face").c_str(), strata::format_number(w.number("max_aspect_ratio")).c_str());
 }
 
-void print_surface_summary(const strata::SurfaceMesh& mesh, const strata::PrepareReport& rep, bool any_cad) {
-    const strata::Csr loops = strata::boundary_loops(mesh);
-    std::printf("surface: %d nodes, %d triangles, %d quadrilaterals, %d patches\n", static_cast<int>(mesh.num_points()),
-                static_cast<int>(mesh.num_triangles()), static_cast<int>(mesh.num_quads()),
-                static_cast<int>(mesh.patches.size()));
-    std::vector<int> count(mesh.patches.size(), 0);
-    for (strata::Index p : mesh.face_patch) ++count[static_cast<std::size_t>(p)];
-    for (std::size_t i = 0; i < mesh.patches.size(); ++i)
-        std::printf("  patch %zu %-24s %-9s %d faces\n", i + 1, mesh.patches[i].name.c_str(),
-                    std::string(strata::to_string(mesh.patches[i].kind)).c_str(), count[i]);
+/// What remeshing did (the surface report's "remesh").
+void print_remesh(const strata::ReportNode& r) {
+    const double angle = r.number("feature_angle_deg"), asked = r.number("asked_feature_angle_deg");
+    std::printf(
+        "remeshed: %d faces%s -> %d on %d Gmsh surfaces, size %s%s, feature angle %s degrees%s; needle faces %d -> "
+        "%d (sharpest corner %.3g -> %.3g degrees)\n",
+        count(r, "faces_before"),
+        r.integer("split_edges") > 0
+            ? (" (bisected to edges no longer than the size, " + std::to_string(r.integer("split_edges")) +
+               " splits: as they were, every feature angle and size failed)")
+                  .c_str()
+            : "",
+        count(r, "faces_after"), count(r, "surfaces"), strata::format_number(r.number("size")).c_str(),
+        r.flag("size_halved") ? " (half the input's median edge: at the median every feature angle failed)" : "",
+        strata::format_number(angle).c_str(),
+        angle < asked   ? " (lowered: larger angles left folded faces)"
+        : angle > asked ? " (raised: at smaller angles Gmsh could not parametrize the surfaces or left folded faces)"
+                        : "",
+        count(r, "needles_before"), count(r, "needles_after"), r.number("sharpest_before_deg"),
+        r.number("sharpest_after_deg"));
+}
+
+/// The surface and what preparing it did (the report's "surface", surface_report).
+void print_surface_summary(const strata::ReportNode& s) {
+    std::printf("surface: %d nodes, %d triangles, %d quadrilaterals, %d patches\n", count(s, "nodes"),
+                count(s, "triangles"), count(s, "quads"), count(s, "patches"));
+    const auto& table = s.list("patch_table");
+    for (std::size_t i = 0; i < table.size(); ++i)
+        std::printf("  patch %zu %-24s %-9s %d faces\n", i + 1, table[i].node().text("name").c_str(),
+                    table[i].node().text("kind").c_str(), count(table[i].node(), "faces"));
     std::printf(
         "topology: %d connected components (%d closed), %d open boundary loops, %d merged nodes, %d faces "
         "re-oriented\n",
-        static_cast<int>(rep.orient.components), static_cast<int>(rep.orient.closed_components),
-        static_cast<int>(loops.rows()), static_cast<int>(rep.merged_nodes), static_cast<int>(rep.orient.flipped_faces));
-    if (rep.collapsed_faces > 0)
+        count(s, "components"), count(s, "closed_components"), count(s, "open_loops"), count(s, "merged_nodes"),
+        count(s, "flipped_faces"));
+    if (s.integer("collapsed_faces") > 0)
         std::printf("repaired: %d faces with a repeated node (no area) removed or made triangles\n",
-                    static_cast<int>(rep.collapsed_faces));
-    if (rep.t_junctions > 0)
+                    count(s, "collapsed_faces"));
+    if (s.integer("t_junctions") > 0)
         std::printf(
             "repaired: %d faces split where nodes of the faces beside them lay inside their edge (T-junctions)\n",
-            static_cast<int>(rep.t_junctions));
-    if (rep.holes.holes > 0)
+            count(s, "t_junctions"));
+    const strata::ReportNode& holes = s.node("holes");
+    if (holes.integer("filled") > 0)
         std::printf("repaired: %d holes closed with %d triangles (--fill-holes; the largest, %d edges, around %s)\n",
-                    static_cast<int>(rep.holes.holes), static_cast<int>(rep.holes.triangles),
-                    static_cast<int>(rep.holes.largest), strata::format_point(rep.holes.where).c_str());
-    if (rep.holes.max_edges > 0 && rep.holes.left > 0)
+                    count(holes, "filled"), count(holes, "triangles"), count(holes, "largest"),
+                    point_at(holes, "where").c_str());
+    if (holes.integer("max_edges") > 0 && holes.integer("left") > 0)
         std::printf("note: %d open loops left open by --fill-holes %d (the largest has %d edges)\n",
-                    static_cast<int>(rep.holes.left), static_cast<int>(rep.holes.max_edges),
-                    static_cast<int>(rep.holes.largest_left));
-    if (rep.duplicate_faces > 0)
+                    count(holes, "left"), count(holes, "max_edges"), count(holes, "largest_left"));
+    if (s.integer("duplicate_faces") > 0)
         std::printf(
             "repaired: %d faces written twice (the same nodes in the same order) removed, the first of each kept\n",
-            static_cast<int>(rep.duplicate_faces));
-    print_units(rep);
-    print_sewing(rep.sew);
-    if (rep.internal_flow)
+            count(s, "duplicate_faces"));
+    print_units(s);
+    print_sewing(s.node("sewn"));
+    if (s.flag("internal_flow"))
         std::printf("flow: inside the walls (--internal): the outermost closed surface points inward\n");
-    if (rep.touching_faces > 0)
+    if (s.integer("touching_faces") > 0)
         std::printf("fused: %d faces removed where bodies touch back to back along a common face (--fuse)\n",
-                    static_cast<int>(rep.touching_faces));
-    if (rep.fused_components > 0)
+                    count(s, "touching_faces"));
+    if (s.integer("fused_components") > 0)
         std::printf("fused: %d overlapping components replaced by their union (--fuse)%s\n",
-                    static_cast<int>(rep.fused_components),
-                    rep.fused_slivers > 0 ? ("; " + std::to_string(rep.fused_slivers) +
-                                             " flat slivers where their facets nearly coincide flipped away")
-                                                .c_str()
-                                          : "");
-    if (rep.short_edges.collapsed > 0) {
-        const strata::ShortEdgeReport& e = rep.short_edges;
+                    count(s, "fused_components"),
+                    s.integer("fused_slivers") > 0 ? ("; " + std::to_string(s.integer("fused_slivers")) +
+                                                      " flat slivers where their facets nearly coincide flipped away")
+                                                         .c_str()
+                                                   : "");
+    if (const strata::ReportNode& e = s.node("short_edges"); e.integer("collapsed") > 0)
         std::printf(
             "short edges: %d collapsed (shorter than --collapse-edges of the edges around them; the longest %s, %.3g "
             "of "
             "its neighbourhood, a node moved that far at %s)%s\n",
-            static_cast<int>(e.collapsed), strata::format_number(e.longest).c_str(), e.largest_share,
-            strata::format_point(e.where).c_str(),
-            e.left > 0 ? (", " + std::to_string(e.left) + " left where collapsing was not safe").c_str() : "");
-    }
-    if (rep.remeshed) {
-        const strata::RemeshReport& r = rep.remesh;
-        std::printf(
-            "remeshed: %d faces%s -> %d on %d Gmsh surfaces, size %s%s, feature angle %s degrees%s; needle faces %d -> "
-            "%d (sharpest corner %.3g -> %.3g degrees)\n",
-            static_cast<int>(r.faces_before),
-            r.split_edges > 0 ? (" (bisected to edges no longer than the size, " + std::to_string(r.split_edges) +
-                                 " splits: as they were, every feature angle and size failed)")
-                                    .c_str()
-                              : "",
-            static_cast<int>(r.faces_after), static_cast<int>(r.surfaces), strata::format_number(r.size).c_str(),
-            r.size_halved ? " (half the input's median edge: at the median every feature angle failed)" : "",
-            strata::format_number(r.feature_angle_deg).c_str(),
-            r.feature_angle_deg < r.asked_feature_angle_deg ? " (lowered: larger angles left folded faces)"
-            : r.feature_angle_deg > r.asked_feature_angle_deg
-                ? " (raised: at smaller angles Gmsh could not parametrize the surfaces or left folded faces)"
-                : "",
-            static_cast<int>(r.needles_before), static_cast<int>(r.needles_after), r.sharpest_before_deg,
-            r.sharpest_after_deg);
-    }
-    if (rep.recombination.folded)
+            count(e, "collapsed"), strata::format_number(e.number("longest")).c_str(), e.number("largest_share"),
+            point_at(e, "where").c_str(),
+            e.integer("left") > 0
+                ? (", " + std::to_string(e.integer("left")) + " left where collapsing was not safe").c_str()
+                : "");
+    if (s.flag("remeshed")) print_remesh(s.node("remesh"));
+    if (s.flag("blossom_folded"))
         std::printf(
             "quads: Gmsh's Blossom quads folded where the surface nearly touches itself (%s), so the surfaces were "
             "recombined with Gmsh's simple algorithm instead, which leaves more triangles\n",
-            rep.recombination.blossom_failure.c_str());
-    else if (!rep.recombination.blossom_failure.empty())
+            s.text("blossom_failure").c_str());
+    else if (!s.text("blossom_failure").empty())
         std::printf(
             "quads: Gmsh's Blossom recombination would have ended the process on this model (\"%s\"), so the surfaces "
             "were recombined with Gmsh's simple algorithm instead, which leaves more triangles\n",
-            rep.recombination.blossom_failure.c_str());
-    print_wall_sizing(rep.remeshed ? rep.remesh.walls : rep.walls);
-    print_step_sizing(rep.steps);
-    print_needles(mesh, rep, any_cad);
+            s.text("blossom_failure").c_str());
+    print_wall_sizing(s.node("walls"));
+    print_step_sizing(s.node("steps"));
+    print_needles(s);
 }
 
-/// Where layers were held back to stay valid (LayerParams::hold_back), so the user knows they are thinner there.
-void print_thinned(strata::Index nodes, double min_share) {
-    if (nodes == 0) return;
+/// Where layers were thinned (scaled down: proximity, front rounds), so the user knows they are thinner there.
+void print_thinned(const strata::ReportNode& r) {
+    if (r.integer("thinned_nodes") == 0) return;
     std::printf(
         "thinned: layers scaled down at %d wall nodes, down to %.1f %% of the thickness asked (the coverage table "
         "says why)\n",
-        static_cast<int>(nodes), 100.0 * min_share);
+        count(r, "thinned_nodes"), 100.0 * r.number("min_thickness_share"));
 }
 
-void print_held_back(const std::vector<strata::LayerStats>& stats) {
+/// Where layers were held back to stay valid (LayerParams::hold_back), per the report's layer_stats.
+void print_held_back(const strata::ReportNode& r) {
     int layers = 0, most = 0, first = 0;
+    const auto& stats = r.list("layer_stats");
     for (std::size_t k = 0; k < stats.size(); ++k) {
-        if (stats[k].held_nodes == 0) continue;
+        if (stats[k].node().integer("held_nodes") == 0) continue;
         if (layers++ == 0) first = static_cast<int>(k) + 1;
-        most = std::max(most, static_cast<int>(stats[k].held_nodes));
+        most = std::max(most, count(stats[k].node(), "held_nodes"));
     }
     if (layers > 0)
         std::printf(
@@ -651,91 +651,101 @@ void print_held_back(const std::vector<strata::LayerStats>& stats) {
             first, layers, most);
 }
 
-/// The fans at sharp convex edges, if any, and the wall nodes where none could be built (\p
-/// no_fan: its first cells would have been unusable, its face on the layer top could not take a
-/// pyramid, its cells had skewed faces, or its sharp edge's chain could not close into a loop),
-/// each reason with the first such node's position.
-void print_fans(strata::Index edges, strata::Index nodes, strata::Index corners, strata::Index on_plane,
-                const strata::LayerReport& no_fan) {
-    if (edges > 0)
+/// Why a wall node got no fan, as the summary says it.
+const char* no_fan_reason(strata::NoFan reason) {
+    switch (reason) {
+        case strata::NoFan::Unusable:
+            return "its first cells would have been unusable (a needle face or a narrow gap beside it)";
+        case strata::NoFan::Uncapped:
+            return "a fan's face on the layer top could not be capped with a pyramid (its columns twist: the wall "
+                   "there is small against the layers' thickness)";
+        case strata::NoFan::Skewed:
+            return "a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (a fan over a coarsely faceted "
+                   "wall; a finer wall keeps it)";
+        case strata::NoFan::Open:
+            return "their sharp edge's chain reaches the wall's open boundary where it cannot end (an open edge in no "
+                   "plane of a symmetry, outflow or box patch, a node where two such planes meet, or one with two "
+                   "sharp edges), and a fan's chain must close into a loop or end on such a plane: one column each, "
+                   "stopped at the wall on an edge sharper than --sharp-edge-stop (sharp)";
+        case strata::NoFan::Unclosed:
+            break;
+    }
+    return "their sharp edge's chain ends without closing into a loop (at a concave junction, or where a fan was "
+           "dropped): one column each, stopped at the wall on an edge sharper than --sharp-edge-stop (sharp)";
+}
+
+/// The fans at sharp convex edges, if any, and the wall nodes where none could be built (the
+/// report's no_fan_nodes), each reason with the first such node's position.
+void print_fans(const strata::ReportNode& r) {
+    if (r.integer("fan_edges") > 0) {
+        const int on_plane = count(r, "fan_plane_nodes");
         std::printf(
             "fans: %d sharp convex edges, %d wall nodes with a column per side and between (%d corners%s)\n",
-            static_cast<int>(edges), static_cast<int>(nodes), static_cast<int>(corners),
+            count(r, "fan_edges"), count(r, "fan_nodes"), count(r, "fan_corners"),
             on_plane > 0 ? (", " + std::to_string(on_plane) + " ending on a symmetry or other plane").c_str() : "");
-    for (const strata::NoFan reason : {strata::NoFan::Unusable, strata::NoFan::Uncapped, strata::NoFan::Skewed,
-                                       strata::NoFan::Open, strata::NoFan::Unclosed}) {
-        const strata::Index n = no_fan.no_fan_nodes(reason);
+    }
+    for (std::size_t k = 0; k < strata::kNoFanReasons; ++k) {
+        const auto reason = static_cast<strata::NoFan>(k);
+        const std::string name(strata::to_string(reason));
+        int n = 0;
+        const strata::ReportNode* first = nullptr;
+        for (const strata::ReportValue& v : r.list("no_fan_nodes"))
+            if (v.node().text("reason") == name) {
+                if (n++ == 0) first = &v.node();
+            }
         if (n == 0) continue;
-        const auto first = std::find_if(no_fan.no_fan.begin(), no_fan.no_fan.end(),
-                                        [&](const strata::NoFanNode& v) { return v.reason == reason; });
-        std::printf("note: no fan at %d wall nodes where %s;%s node %d at %s (in OUT.report.json with positions)\n",
-                    static_cast<int>(n),
-                    reason == strata::NoFan::Unusable
-                        ? "its first cells would have been unusable (a needle face or a narrow gap beside it)"
-                    : reason == strata::NoFan::Uncapped
-                        ? "a fan's face on the layer top could not be capped with a pyramid (its columns twist: the "
-                          "wall there is small against the layers' thickness)"
-                    : reason == strata::NoFan::Skewed
-                        ? "a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (a fan over a coarsely "
-                          "faceted wall; a finer wall keeps it)"
-                    : reason == strata::NoFan::Open
-                        ? "their sharp edge's chain reaches the wall's open boundary where it cannot end (an open "
-                          "edge in no plane of a symmetry, outflow or box patch, a node where two such planes meet, or "
-                          "one with two sharp edges), and a fan's chain must close into a loop or end on such a "
-                          "plane: one column each, stopped at the wall on an edge sharper than --sharp-edge-stop "
-                          "(sharp)"
-                        : "their sharp edge's chain ends without closing into a loop (at a concave junction, or "
-                          "where a fan was dropped): one column each, stopped at the wall on an edge sharper than "
-                          "--sharp-edge-stop (sharp)",
-                    n > 1 ? " the first," : "", static_cast<int>(first->node),
-                    strata::format_point(first->position).c_str());
+        const auto& p = first->list("position");
+        std::printf("note: no fan at %d wall nodes where %s;%s node %d at %s (in OUT.report.json with positions)\n", n,
+                    no_fan_reason(reason), n > 1 ? " the first," : "", count(*first, "node"),
+                    strata::format_point(strata::Vec3(p[0].number(), p[1].number(), p[2].number())).c_str());
     }
 }
 
-void print_layer_table(const strata::LayerMesh& lm, const strata::LayerReport& coverage) {
+void print_layer_table(const strata::ReportNode& r) {
     std::printf("layer  height       min SJ  mean SJ  max orth  mean orth  sweeps  columns  stopped  steps  step SJ\n");
-    for (std::size_t k = 0; k < lm.stats.size(); ++k) {
-        const strata::LayerStats& s = lm.stats[k];
-        std::printf("%5zu  %-11.4g  %6.3f  %7.3f  %7.1f°  %8.2f°  %6d  %7d  %7d  %5d  %7.3g\n", k + 1, s.height,
-                    s.min_scaled_jacobian, s.mean_scaled_jacobian, s.max_orthogonality_deg, s.mean_orthogonality_deg,
-                    s.sweeps, static_cast<int>(s.columns), static_cast<int>(s.stopped_nodes),
-                    static_cast<int>(s.transition_cells), s.transition_cells > 0 ? s.min_transition_jacobian : 1.0);
+    for (const strata::ReportValue& row : r.list("layer_stats")) {
+        const strata::ReportNode& s = row.node();
+        std::printf("%5d  %-11.4g  %6.3f  %7.3f  %7.1f°  %8.2f°  %6d  %7d  %7d  %5d  %7.3g\n", count(s, "layer"),
+                    s.number("height"), s.number("min_scaled_jacobian"), s.number("mean_scaled_jacobian"),
+                    s.number("max_orthogonality_deg"), s.number("mean_orthogonality_deg"), count(s, "sweeps"),
+                    count(s, "columns"), count(s, "stopped_nodes"), count(s, "transition_cells"),
+                    s.integer("transition_cells") > 0 ? s.number("min_transition_jacobian") : 1.0);
     }
     std::printf(
         "  (columns: wall nodes with the layer; stopped: columns ending below it; steps: cells closing the steps "
         "where they end, pyramids, side-on prisms, tetrahedra; their apex at a stopped column sees the step's thin "
         "side edge-on, hence step SJ about layer height / edge length)\n");
-    print_fans(lm.fan_edges, lm.fan_nodes, lm.fan_corners, lm.fan_plane_nodes, coverage);
-    if (lm.unsmoothed_nodes > 0)
+    print_fans(r);
+    if (r.integer("unsmoothed_nodes") > 0)
         std::printf(
             "note: %d nodes (sharp convex edges, corners of open edges, ends of needle triangles) were extruded along "
             "their normal without smoothing\n",
-            static_cast<int>(lm.unsmoothed_nodes));
-    print_held_back(lm.stats);
-    print_thinned(lm.thinned_nodes, lm.min_thickness_share);
+            count(r, "unsmoothed_nodes"));
+    print_held_back(r);
+    print_thinned(r);
 }
 
 /// The coverage table: per wall patch, the columns with every layer at full thickness, the
-/// layers reached and why the others fell short.
-void print_coverage(const strata::LayerReport& r) {
-    using strata::Shortfall;
+/// layers reached and why the others fell short (one column per reason, the report's "short").
+void print_coverage(const strata::ReportNode& r) {
     std::printf("coverage: %d layers asked, %.4g thick (first %.3g); per wall patch, what the columns reached:\n",
-                r.layers, r.thickness, r.first_height);
+                count(r, "layers"), r.number("thickness"), r.number("first_height"));
     std::printf("  %-20s %7s %7s %6s %6s %6s %6s %6s  short: %5s %5s %5s %5s %5s %5s %5s %5s %5s\n", "patch", "faces",
                 "nodes", "full", "all L", "mean L", "min L", "thick", "prox", "front", "held", "qual", "turn", "twist",
                 "nbrs", "nan", "sharp");
-    for (const strata::PatchCoverage& c : r.patches) {
-        const double n = c.nodes > 0 ? static_cast<double>(c.nodes) : 1.0;
-        std::printf(
-            "  %-20s %7d %7d %5.1f%% %5.1f%% %6.1f %6d %5.1f%%         %5d %5d %5d %5d %5d %5d %5d %5d %5d\n",
-            c.name.c_str(), static_cast<int>(c.faces), static_cast<int>(c.nodes),
-            100.0 * static_cast<double>(c.full_nodes) / n, 100.0 * static_cast<double>(c.all_layers) / n, c.mean_layers,
-            c.min_layers, 100.0 * c.mean_share, static_cast<int>(c.short_nodes(Shortfall::Proximity)),
-            static_cast<int>(c.short_nodes(Shortfall::Front)), static_cast<int>(c.short_nodes(Shortfall::HeldBack)),
-            static_cast<int>(c.short_nodes(Shortfall::Quality)), static_cast<int>(c.short_nodes(Shortfall::Turning)),
-            static_cast<int>(c.short_nodes(Shortfall::Twist)), static_cast<int>(c.short_nodes(Shortfall::Neighbours)),
-            static_cast<int>(c.short_nodes(Shortfall::NonFinite)),
-            static_cast<int>(c.short_nodes(Shortfall::SharpEdge)));
+    for (const strata::ReportValue& row : r.list("patches")) {
+        const strata::ReportNode& c = row.node();
+        const double n = c.integer("nodes") > 0 ? c.number("nodes") : 1.0;
+        std::string short_by;
+        for (const strata::ReportNode::Entry& e : c.node("short").entries()) {
+            char cell[24];
+            std::snprintf(cell, sizeof cell, " %5d", static_cast<int>(e.value.integer()));
+            short_by += cell;
+        }
+        std::printf("  %-20s %7d %7d %5.1f%% %5.1f%% %6.1f %6d %5.1f%%        %s\n", c.text("name").c_str(),
+                    count(c, "faces"), count(c, "nodes"), 100.0 * c.number("full_nodes") / n,
+                    100.0 * c.number("all_layers") / n, c.number("mean_layers"), count(c, "min_layers"),
+                    100.0 * c.number("mean_share"), short_by.c_str());
     }
     std::printf(
         "  (full: every layer at the thickness asked; all L: every layer; thick: mean thickness reached; short: "
@@ -746,19 +756,21 @@ void print_coverage(const strata::LayerReport& r) {
 /// Scaled Jacobian below which the summary warns that a solver may not use the cells.
 constexpr double kSolverQuality = 0.01;
 
-/// OpenFOAM checkMesh's figures, and what it would fail on.
+/// OpenFOAM checkMesh's figures (the report's quality.openfoam), and what it would fail on.
 /// \p kept_surface: the surface mesh was kept as it is (neither CAD nor --remesh), so a failure on
 /// the layers' aspect ratio has one more remedy.
-void print_solver_checks(const strata::SolverChecks& s, bool kept_surface) {
+void print_solver_checks(const strata::ReportNode& s, bool kept_surface) {
     std::printf(
         "openfoam: non-orthogonality max %.3g deg (mean %.3g, %d faces above %g), skewness max %.3g (%d faces above "
         "%g), aspect ratio max %.4g (%d cells above %g): checkMesh would %s\n",
-        s.max_non_orthogonality_deg, s.mean_non_orthogonality_deg, static_cast<int>(s.severely_non_orthogonal),
-        strata::kFoamNonOrthogonalDeg, s.max_skewness, static_cast<int>(s.skew_faces), strata::kFoamSkewness,
-        s.max_aspect_ratio, static_cast<int>(s.high_aspect_cells), strata::kFoamAspectRatio,
-        s.ok() ? "say \"Mesh OK\"" : "fail it");
-    for (const std::string& line : s.failures()) std::printf("warning: checkMesh would fail: %s\n", line.c_str());
-    if (kept_surface && s.high_aspect_cells > 0 && s.worst_aspect_type != strata::CellType::Tet)
+        s.number("max_non_orthogonality_deg"), s.number("mean_non_orthogonality_deg"),
+        count(s, "severely_non_orthogonal_faces"), strata::kFoamNonOrthogonalDeg, s.number("max_skewness"),
+        count(s, "skew_faces"), strata::kFoamSkewness, s.number("max_aspect_ratio"), count(s, "high_aspect_cells"),
+        strata::kFoamAspectRatio, s.flag("check_mesh_ok") ? "say \"Mesh OK\"" : "fail it");
+    for (const strata::ReportValue& line : s.list("failures"))
+        std::printf("warning: checkMesh would fail: %s\n", line.text().c_str());
+    if (kept_surface && s.integer("high_aspect_cells") > 0 &&
+        s.text("worst_aspect_type") != strata::to_string(strata::CellType::Tet))
         std::printf(
             "  the surface mesh was kept as it is: --remesh meshes it again, its walls fine enough for the first "
             "layer (--max-aspect-ratio)\n");
@@ -766,81 +778,103 @@ void print_solver_checks(const strata::SolverChecks& s, bool kept_surface) {
 
 /// The cells by type, the validation's figures, the worst cell of each type, and a warning
 /// below what a solver can use.
-void print_cells(const strata::VolumeMesh& mesh, const strata::ValidationReport& v, bool kept_surface) {
-    std::printf("cells: %zu hexahedra, %zu prisms, %zu pyramids, %zu tetrahedra (%d in all), %zu nodes\n",
-                mesh.hexes.size(), mesh.prisms.size(), mesh.pyramids.size(), mesh.tets.size(),
-                static_cast<int>(mesh.num_cells()), mesh.points.size());
-    std::printf("valid: min scaled Jacobian %.3g (%s), volume %.6g (boundary %.6g)\n", v.min_scaled_jacobian,
-                v.worst_cell.c_str(), v.cell_volume, v.boundary_volume);
+void print_cells(const strata::ReportNode& r, bool kept_surface) {
+    using strata::CellType;
+    const strata::ReportNode &cells = r.node("cells"), &q = r.node("quality");
+    const auto cells_of = [&](CellType t) { return count(cells, strata::to_string(t)); };
+    std::printf(
+        "cells: %d hexahedra, %d prisms, %d pyramids, %d tetrahedra (%d in all), %d nodes\n", cells_of(CellType::Hex),
+        cells_of(CellType::Prism), cells_of(CellType::Pyramid), cells_of(CellType::Tet),
+        cells_of(CellType::Hex) + cells_of(CellType::Prism) + cells_of(CellType::Pyramid) + cells_of(CellType::Tet),
+        count(r, "nodes"));
+    const strata::ReportNode &min_sj = q.node("min_scaled_jacobian"), &worst = q.node("worst_cell");
+    std::printf("valid: min scaled Jacobian %.3g (%s), volume %.6g (boundary %.6g)\n", min_sj.number("all"),
+                worst.text("all").c_str(), q.number("cell_volume"), q.number("boundary_volume"));
     // Per cell type, hexahedra first (the order of the cells line), the worst cell of each.
-    for (const strata::CellType t :
-         {strata::CellType::Hex, strata::CellType::Prism, strata::CellType::Pyramid, strata::CellType::Tet}) {
-        const auto& q = v.by_type[static_cast<std::size_t>(t)];
-        if (mesh.num_cells(t) == 0) continue;
-        std::printf("  %-12s min scaled Jacobian %.3g (%s)\n", (std::string(strata::to_string(t)) + ":").c_str(),
-                    q.min_scaled_jacobian, q.worst_cell.c_str());
+    for (const CellType t : {CellType::Hex, CellType::Prism, CellType::Pyramid, CellType::Tet}) {
+        if (cells_of(t) == 0) continue;
+        const std::string name(strata::to_string(t));
+        std::printf("  %-12s min scaled Jacobian %.3g (%s)\n", (name + ":").c_str(), min_sj.number(name),
+                    worst.text(name).c_str());
     }
-    if (v.min_scaled_jacobian < kSolverQuality)
+    if (min_sj.number("all") < kSolverQuality)
         std::printf(
             "warning: cells below a scaled Jacobian of %g, which a solver may reject or converge poorly on; "
             "the worst is %s\n",
-            kSolverQuality, v.worst_cell.c_str());
-    print_solver_checks(v.solver, kept_surface);
+            kSolverQuality, worst.text("all").c_str());
+    print_solver_checks(q.node("openfoam"), kept_surface);
 }
 
-void print_hybrid_summary(const strata::VolumeMesh& mesh, const strata::HybridReport& hr, bool kept_surface) {
-    double jmin = 1.0;
-    for (const strata::LayerStats& s : hr.layer_stats) jmin = std::min(jmin, s.min_scaled_jacobian);
-    std::printf("layers: %zu, min scaled Jacobian %.3f\n", hr.layer_stats.size(), jmin);
-    if (hr.internal_flow) std::printf("domain: inside the walls (internal flow), no farfield generated\n");
-    if (hr.closed_half_model)
-        std::printf("domain: a half model, closed by a generated half farfield and a symmetry plane\n");
-    print_fans(hr.fan_edges, hr.fan_nodes, hr.fan_corners, hr.fan_plane_nodes, hr.coverage);
-    print_held_back(hr.layer_stats);
-    print_thinned(hr.thinned_nodes, hr.min_thickness_share);
-    print_coverage(hr.coverage);
-    if (hr.front_rounds > 0)
-        std::printf(
-            "front: %d column lowerings in %d rounds where the layers folded, left no room for a pyramid or "
-            "their top intersected itself%s\n",
-            static_cast<int>(hr.front_lowered_nodes), hr.front_rounds,
-            hr.tet_retries > 0 ? (" (in " + std::to_string(hr.tet_retries) +
-                                  " of them TetGen failed recovering a layer-top face, and the columns around it were "
-                                  "lowered)")
-                                     .c_str()
-                               : "");
-    if (hr.split_quads > 0)
-        std::printf(
-            "quads: %d wall quads could take no pyramid on the layer top (too warped for an apex, their columns at the "
-            "wall or lowered for it before) and were split into two triangles, their columns prisms\n",
-            hr.split_quads);
-    if (const strata::TetImproveReport& ti = hr.tet_improve;
-        ti.flips + ti.edge_removals + ti.moved_nodes + ti.inserted_nodes > 0)
+/// What improve_tets did (the report's tet_improve), if anything.
+void print_tet_improve(const strata::ReportNode& ti) {
+    if (ti.integer("flips") + ti.integer("edge_removals") + ti.integer("moved_nodes") + ti.integer("inserted_nodes") >
+        0)
         std::printf(
             "tetrahedra improved: %lld flips, %lld edges removed, %lld interior nodes moved, %lld inserted; below a "
             "scaled Jacobian of %g: %lld -> %lld, the worst %.3g -> %.3g (%.2f s%s)\n",
-            static_cast<long long>(ti.flips), static_cast<long long>(ti.edge_removals),
-            static_cast<long long>(ti.moved_nodes), static_cast<long long>(ti.inserted_nodes), ti.below,
-            static_cast<long long>(ti.below_before), static_cast<long long>(ti.below_after), ti.min_before,
-            ti.min_after, ti.seconds, ti.budget_reached ? "; stopped at its work budget" : "");
-    if (const strata::TetImproveReport& ti = hr.tet_improve; ti.skewed_before + ti.skew_changes > 0)
+            static_cast<long long>(ti.integer("flips")), static_cast<long long>(ti.integer("edge_removals")),
+            static_cast<long long>(ti.integer("moved_nodes")), static_cast<long long>(ti.integer("inserted_nodes")),
+            ti.number("below"), static_cast<long long>(ti.integer("below_before")),
+            static_cast<long long>(ti.integer("below_after")), ti.number("min_before"), ti.number("min_after"),
+            ti.number("seconds"), ti.flag("budget_reached") ? "; stopped at its work budget" : "");
+    if (ti.integer("skewed_before") + ti.integer("skew_changes") > 0)
         std::printf(
             "tetrahedra de-skewed: %lld flips and edge removals for faces above a skewness of %g (checkMesh fails "
             "above 4); faces between tetrahedra above 4: %lld -> %lld\n",
-            static_cast<long long>(ti.skew_changes), strata::kTetSkewTarget, static_cast<long long>(ti.skewed_before),
-            static_cast<long long>(ti.skewed_after));
-    for (const auto& [p, planes] : hr.planes_of_patches)
+            static_cast<long long>(ti.integer("skew_changes")), strata::kTetSkewTarget,
+            static_cast<long long>(ti.integer("skewed_before")), static_cast<long long>(ti.integer("skewed_after")));
+}
+
+void print_hybrid_summary(const strata::ReportNode& r, bool kept_surface) {
+    double jmin = 1.0;
+    for (const strata::ReportValue& s : r.list("layer_stats"))
+        jmin = std::min(jmin, s.node().number("min_scaled_jacobian"));
+    std::printf("layers: %zu, min scaled Jacobian %.3f\n", r.list("layer_stats").size(), jmin);
+    if (r.flag("internal_flow")) std::printf("domain: inside the walls (internal flow), no farfield generated\n");
+    if (r.flag("closed_half_model"))
+        std::printf("domain: a half model, closed by a generated half farfield and a symmetry plane\n");
+    print_fans(r);
+    print_held_back(r);
+    print_thinned(r);
+    print_coverage(r);
+    if (const int retries = count(r, "tet_retries"); r.integer("front_rounds") > 0)
+        std::printf(
+            "front: %d column lowerings in %d rounds where the layers folded, left no room for a pyramid or "
+            "their top intersected itself%s\n",
+            count(r, "front_lowered_nodes"), count(r, "front_rounds"),
+            retries > 0 ? (" (in " + std::to_string(retries) +
+                           " of them TetGen failed recovering a layer-top face, and the columns around it were "
+                           "lowered)")
+                              .c_str()
+                        : "");
+    if (r.integer("split_quads") > 0)
+        std::printf(
+            "quads: %d wall quads could take no pyramid on the layer top (too warped for an apex, their columns at the "
+            "wall or lowered for it before) and were split into two triangles, their columns prisms\n",
+            count(r, "split_quads"));
+    print_tet_improve(r.node("tet_improve"));
+    for (const strata::ReportNode::Entry& e : r.node("planes_of_patches").entries())
         std::printf(
             "planes: patch '%s' is %d planes, the layers end on it; each was re-meshed round them as a "
             "plane, and it is one patch in the mesh\n",
-            mesh.boundary.patches[static_cast<std::size_t>(p)].name.c_str(), planes);
-    if (!hr.remeshed_patches.empty()) {
+            e.key.c_str(), static_cast<int>(e.value.integer()));
+    if (!r.list("remeshed_patches").empty()) {
         std::string names;
-        for (strata::Index p : hr.remeshed_patches)
-            names += (names.empty() ? "" : ", ") + mesh.boundary.patches[static_cast<std::size_t>(p)].name;
+        for (const strata::ReportValue& p : r.list("remeshed_patches")) names += (names.empty() ? "" : ", ") + p.text();
         std::printf("planes re-meshed around the layers' sides: %s\n", names.c_str());
     }
-    print_cells(mesh, hr.validation, kept_surface);
+    print_cells(r, kept_surface);
+}
+
+/// "time: " and each stage of the report's times with its seconds.
+void print_times(const strata::ReportNode& r) {
+    std::string line;
+    for (const strata::ReportNode::Entry& e : r.node("times").entries()) {
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.2f", e.value.number());
+        line += (line.empty() ? "" : ", ") + e.key + " " + seconds + " s";
+    }
+    std::printf("time: %s\n", line.c_str());
 }
 
 std::vector<std::string> with_report(std::vector<std::string> files, const std::string& output) {
@@ -977,7 +1011,7 @@ int run_surface(const Common& c) {
     begin_writing();
     strata::write_surface(s.surface, c.output, s.msh_version, &terminal);
     if (c.quiet) return 0;
-    print_surface_summary(s.surface, s.report, s.any_cad);
+    print_surface_summary(strata::surface_run_report(s.surface, s.report, c.o, {{"surface", s.seconds}}));
     std::printf("wrote %s (%.2f s)\n", c.output.c_str(), seconds_since(t0));
     return 0;
 }
@@ -992,22 +1026,24 @@ int run_layers(const Common& c) {
     const auto t2 = std::chrono::steady_clock::now();
     const strata::ValidationReport v =
         strata::require_valid_mesh(lm.mesh, c.o.surface.input, {.threads = lp.threads, .progress = &terminal});
-    const strata::LayerReport coverage = strata::layer_report(lm);
+    strata::ReportNode report =
+        strata::layers_run_report(lm, strata::layer_report(lm), v, &s.surface, &s.report, c.o,
+                                  {{"surface", s.seconds}, {"layers", t_layers}, {"validation", seconds_since(t2)}});
+    const auto t3 = std::chrono::steady_clock::now();
     warn_if_short_of_space(c, lm.mesh.points.size(), static_cast<std::size_t>(lm.mesh.num_cells()));
     begin_writing();
     strata::OutputSet outputs;  // the mesh and its report, both or neither
     strata::write_volume(lm.mesh, c.output, s.msh_version, &terminal, &outputs);
-    strata::write_mesh_report(coverage, lm.mesh, v, strata::report_path(c.output), &outputs);
+    strata::write_report(report, strata::report_path(c.output), &outputs);
     outputs.commit();
+    strata::set_time(report, "write", seconds_since(t3));
     if (c.quiet) return 0;
-    print_surface_summary(s.surface, s.report, s.any_cad);
-    print_wall_aspect_forecast(s.surface, s.report, s.any_cad, strata::resolve(lp.distribution).first_height,
-                               c.o.surface.prepare.cad.max_aspect_ratio);
-    print_layer_table(lm, coverage);
-    print_coverage(coverage);
-    print_cells(lm.mesh, v, !s.any_cad && !s.report.remeshed);
-    std::printf("time: surface %.2f s, layers %.2f s, check and write %.2f s\n", s.seconds, t_layers,
-                seconds_since(t2));
+    print_surface_summary(report.node("surface"));
+    print_wall_aspect_forecast(report.node("surface"));
+    print_layer_table(report);
+    print_coverage(report);
+    print_cells(report, !s.any_cad && !s.report.remeshed);
+    print_times(report);
     print_written(with_report(strata::volume_output_files(c.output), c.output));
     return 0;
 }
@@ -1028,26 +1064,24 @@ int run_mesh(const Common& c, const PlotOptions& po) {
             throw strata::InputError(e.what() + hint);
         }
     }();
+    strata::ReportNode report =
+        strata::mesh_run_report(&mesh, hr, &s.surface, &s.report, c.o, {{"surface", s.seconds}});
     const auto t1 = std::chrono::steady_clock::now();
     warn_if_short_of_space(c, mesh.points.size(), static_cast<std::size_t>(mesh.num_cells()));
     begin_writing();
     strata::OutputSet outputs;  // the mesh, its report and the plots' data, all or none
     strata::write_volume(mesh, c.output, s.msh_version, &terminal, &outputs);
-    strata::write_mesh_report(hr.coverage, mesh, hr.validation, strata::report_path(c.output), &outputs);
+    strata::write_report(report, strata::report_path(c.output), &outputs);
     if (!po.dir.empty())
-        strata::write_plot_data(hr.coverage, s.surface, mesh, strata::plot_data_path(c.output), cut_axis, cut_value,
-                                &outputs);
+        strata::write_plot_data(strata::node_layers(hr.coverage, s.surface.points.size()), s.surface, mesh,
+                                strata::plot_data_path(c.output), cut_axis, cut_value, &outputs);
     outputs.commit();
-    const double t_write = seconds_since(t1);
+    strata::set_time(report, "write", seconds_since(t1));
     if (!c.quiet) {
-        print_surface_summary(s.surface, s.report, s.any_cad);
-        print_wall_aspect_forecast(s.surface, s.report, s.any_cad, strata::resolve(hp.layers.distribution).first_height,
-                                   c.o.surface.prepare.cad.max_aspect_ratio);
-        print_hybrid_summary(mesh, hr, !s.any_cad && !s.report.remeshed);
-        std::printf(
-            "time: surface %.2f s, layers %.2f s, pyramids %.2f s, tetrahedra %.2f s, validation %.2f s, write %.2f "
-            "s\n",
-            s.seconds, hr.seconds_layers, hr.seconds_pyramids, hr.seconds_tets, hr.seconds_validate, t_write);
+        print_surface_summary(report.node("surface"));
+        print_wall_aspect_forecast(report.node("surface"));
+        print_hybrid_summary(report, !s.any_cad && !s.report.remeshed);
+        print_times(report);
         std::vector<std::string> files = with_report(strata::volume_output_files(c.output), c.output);
         if (!po.dir.empty()) files.push_back(strata::plot_data_path(c.output));
         print_written(files);

@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
 
         gmsh::write(output);
         std::printf("wrote %s: %zu layers, %d nodes kept unsmoothed, %.2f s layers, %.2f s tetrahedra\n",
-                    output.c_str(), report.layer_stats.size(), static_cast<int>(report.unsmoothed_nodes),
+                    output.c_str(), report.layers.stats.size(), static_cast<int>(report.layers.unsmoothed_nodes),
                     report.seconds_layers, report.seconds_tets);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "gmsh_api_example: %s\n", e.what());

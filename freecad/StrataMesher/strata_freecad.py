@@ -252,7 +252,8 @@ def _summary(m):
     r = m.report
     cells = ", ".join(f"{r['cells'].get(k, 0)} {k}" for k in ("hexahedron", "prism", "pyramid", "tetrahedron"))
     patches = ", ".join(m.patch_names)
-    return (f"{cells}; {len(m.points)} nodes; min scaled Jacobian {r['min_scaled_jacobian']['all']:.3g}; "
+    sj = r["quality"]["min_scaled_jacobian"]["all"]
+    return (f"{cells}; {len(m.points)} nodes; min scaled Jacobian {sj:.3g}; "
             f"patches: {patches}")
 
 

@@ -689,12 +689,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
     Rounds rounds = first_round(std::move(surface), has_outer, params);
     Stages stages = march_with_repairs(params, rounds, rep, progress);
     LayerMesh& lm = stages.lm;
-    rep.layer_stats = lm.stats;
-    rep.unsmoothed_nodes = lm.unsmoothed_nodes;
-    rep.fan_edges = lm.fan_edges, rep.fan_nodes = lm.fan_nodes, rep.fan_corners = lm.fan_corners;
-    rep.fan_plane_nodes = lm.fan_plane_nodes;
-    rep.thinned_nodes = lm.thinned_nodes;
-    rep.min_thickness_share = lm.min_thickness_share;
+    rep.layers = static_cast<const LayerCounts&>(lm);
     lm.fans_dropped.assign(rounds.unusable.begin(), rounds.unusable.end());
     lm.fans_skewed.assign(rounds.skewed.begin(), rounds.skewed.end());
     rep.coverage = layer_report(lm);

@@ -1,4 +1,4 @@
-// The layer coverage report as JSON: write_report.h.
+// A run's report as JSON, and the plots' data: write_report.h.
 
 #include <strata/core/cell_quality.h>
 #include <strata/core/error.h>
@@ -58,97 +58,70 @@ std::string short_number(double x) {
     return std::isfinite(x) ? format_number(x, 7) : "null";
 }
 
-/// "nodes", "cells" and "quality" (write_mesh_report), each line ending with ",\n".
-void write_figures(std::ostream& out, const VolumeMesh& mesh, const ValidationReport& v) {
-    out << "  \"nodes\": " << mesh.points.size() << ",\n  \"cells\": {";
-    for (std::size_t k = 0; k < kCellTypes.size(); ++k)
-        out << (k ? ", " : "") << quoted(std::string(to_string(kCellTypes[k]))) << ": "
-            << mesh.num_cells(kCellTypes[k]);
-    out << "},\n  \"quality\": {\n    \"min_scaled_jacobian\": {\"all\": " << number(v.min_scaled_jacobian);
-    for (const CellType t : kCellTypes)
-        if (mesh.num_cells(t) > 0)
-            out << ", " << quoted(std::string(to_string(t))) << ": "
-                << number(v.by_type[static_cast<std::size_t>(t)].min_scaled_jacobian);
-    out << "},\n    \"bin_edges\": [0";
-    for (int b = 0; b < kQualityBins; ++b) out << ", " << number(quality_bin_edge(b));
-    out << "],\n    \"histograms\": {";
-    bool first = true;
-    for (const CellType t : kCellTypes) {
-        if (mesh.num_cells(t) == 0) continue;
-        out << (first ? "\n      " : ",\n      ") << quoted(std::string(to_string(t))) << ": [";
-        first = false;
-        const auto& h = v.by_type[static_cast<std::size_t>(t)].histogram;
-        for (std::size_t b = 0; b < h.size(); ++b) out << (b ? ", " : "") << h[b];
-        out << "]";
+/// Whether \p v goes on one line: a scalar, a list of such lines, or a node of them that holds
+/// no more than one level of lists or nodes (a patch, a wall node with its position). A list of
+/// nodes is one per line, so a table reads as rows.
+bool one_line(const ReportValue& v, int depth = 0) {
+    switch (v.kind()) {
+        case ReportValue::Kind::List:
+            for (const ReportValue& e : v.list())
+                if (e.kind() == ReportValue::Kind::Node || !one_line(e, depth + 1)) return false;
+            return depth < 2;
+        case ReportValue::Kind::Node:
+            for (const ReportNode::Entry& e : v.node().entries())
+                if (!one_line(e.value, depth + 1)) return false;
+            return depth < 2;
+        default:
+            return true;
     }
-    out << (first ? "}" : "\n    }");
-    const SolverChecks& f = v.solver;
-    out << ",\n    \"openfoam\": {\"max_non_orthogonality_deg\": " << number(f.max_non_orthogonality_deg)
-        << ", \"mean_non_orthogonality_deg\": " << number(f.mean_non_orthogonality_deg)
-        << ", \"severely_non_orthogonal_faces\": " << f.severely_non_orthogonal
-        << ", \"non_orthogonality_errors\": " << f.non_orthogonality_errors
-        << ", \"worst_non_orthogonal\": " << quoted(f.worst_non_orthogonal)
-        << ",\n      \"max_skewness\": " << number(f.max_skewness) << ", \"skew_faces\": " << f.skew_faces
-        << ", \"worst_skew\": " << quoted(f.worst_skew)
-        << ",\n      \"max_aspect_ratio\": " << number(f.max_aspect_ratio)
-        << ", \"high_aspect_cells\": " << f.high_aspect_cells << ", \"worst_aspect\": " << quoted(f.worst_aspect)
-        << ",\n      \"negative_pyramids\": " << f.negative_pyramids
-        << ", \"check_mesh_ok\": " << (f.ok() ? "true" : "false") << ", \"failures\": [";
-    const std::vector<std::string> fails = f.failures();
-    for (std::size_t i = 0; i < fails.size(); ++i) out << (i ? ", " : "") << quoted(fails[i]);
-    out << "]}\n  },\n";
 }
 
-void write_report(const LayerReport& r, const std::string& path, const VolumeMesh* mesh,
-                  const ValidationReport* quality, OutputSet* outputs) {
-    OutputSet own;
-    AtomicFile& file = (outputs ? *outputs : own).file(path);
-    {
-        std::ostringstream out;
-        out << "{\n  \"layers\": " << r.layers << ",\n  \"first_height\": " << number(r.first_height)
-            << ",\n  \"thickness\": " << number(r.thickness) << ",\n";
-        if (mesh && quality) write_figures(out, *mesh, *quality);
-        out << "  \"layer_stats\": [";
-        for (std::size_t i = 0; i < r.per_layer.size(); ++i) {
-            const LayerFigures& l = r.per_layer[i];
-            out << (i ? ",\n" : "\n") << "    {\"layer\": " << i + 1 << ", \"height\": " << number(l.height)
-                << ", \"min_scaled_jacobian\": " << number(l.min_scaled_jacobian)
-                << ", \"mean_scaled_jacobian\": " << number(l.mean_scaled_jacobian)
-                << ", \"max_orthogonality_deg\": " << number(l.max_orthogonality_deg) << ", \"columns\": " << l.columns
-                << ", \"stopped_nodes\": " << l.stopped_nodes << ", \"held_nodes\": " << l.held_nodes << "}";
-        }
-        out << (r.per_layer.empty() ? "],\n" : "\n  ],\n") << "  \"patches\": [";
-        for (std::size_t i = 0; i < r.patches.size(); ++i) {
-            const PatchCoverage& c = r.patches[i];
-            out << (i ? ",\n" : "\n") << "    {\"name\": " << quoted(c.name) << ", \"faces\": " << c.faces
-                << ", \"nodes\": " << c.nodes << ", \"full_nodes\": " << c.full_nodes
-                << ", \"all_layers\": " << c.all_layers << ", \"mean_share\": " << number(c.mean_share)
-                << ", \"min_share\": " << number(c.min_share) << ", \"mean_layers\": " << number(c.mean_layers)
-                << ", \"min_layers\": " << c.min_layers << ", \"short\": {";
-            for (std::size_t k = 1; k < kShortfalls; ++k)  // every reason but None, by name
-                out << (k > 1 ? ", " : "") << quoted(std::string(to_string(static_cast<Shortfall>(k)))) << ": "
-                    << c.short_by[k];
-            out << "}}";
-        }
-        out << (r.patches.empty() ? "],\n" : "\n  ],\n") << "  \"short_nodes\": [";
-        for (std::size_t i = 0; i < r.short_nodes.size(); ++i) {
-            const ShortNode& n = r.short_nodes[i];
-            out << (i ? ",\n" : "\n") << "    {\"node\": " << n.node << ", \"position\": [" << number(n.position.x())
-                << ", " << number(n.position.y()) << ", " << number(n.position.z())
-                << "], \"share\": " << number(n.share) << ", \"layers\": " << n.layers
-                << ", \"reason\": " << quoted(std::string(to_string(n.reason))) << "}";
-        }
-        out << (r.short_nodes.empty() ? "],\n" : "\n  ],\n") << "  \"no_fan_nodes\": [";
-        for (std::size_t i = 0; i < r.no_fan.size(); ++i) {
-            const NoFanNode& n = r.no_fan[i];
-            out << (i ? ",\n" : "\n") << "    {\"node\": " << n.node << ", \"position\": [" << number(n.position.x())
-                << ", " << number(n.position.y()) << ", " << number(n.position.z())
-                << "], \"reason\": " << quoted(std::string(to_string(n.reason))) << "}";
-        }
-        out << (r.no_fan.empty() ? "]\n}\n" : "\n  ]\n}\n");
-        write_whole_file(file.temp_path(), path, out.str());
+void write_json(std::ostream& out, const ReportValue& v, int indent) {
+    const bool inline_children = one_line(v);
+    const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
+    const auto open = [&](bool first) {
+        if (!first) out << ",";
+        if (inline_children)
+            out << (first ? "" : " ");
+        else
+            out << "\n" << pad;
+    };
+    const auto close = [&](bool empty, char bracket) {
+        if (!inline_children && !empty) out << "\n" << std::string(static_cast<std::size_t>(indent), ' ');
+        out << bracket;
+    };
+    switch (v.kind()) {
+        case ReportValue::Kind::Flag:
+            out << (v.flag() ? "true" : "false");
+            break;
+        case ReportValue::Kind::Integer:
+            out << v.integer();
+            break;
+        case ReportValue::Kind::Number:
+            out << number(v.number());
+            break;
+        case ReportValue::Kind::Text:
+            out << quoted(v.text());
+            break;
+        case ReportValue::Kind::List:
+            out << "[";
+            for (std::size_t i = 0; i < v.list().size(); ++i) {
+                open(i == 0);
+                write_json(out, v.list()[i], indent + 2);
+            }
+            close(v.list().empty(), ']');
+            break;
+        case ReportValue::Kind::Node:
+            out << "{";
+            for (std::size_t i = 0; i < v.node().entries().size(); ++i) {
+                const ReportNode::Entry& e = v.node().entries()[i];
+                open(i == 0);
+                out << quoted(e.key) << ": ";
+                write_json(out, e.value, indent + 2);
+            }
+            close(v.node().empty(), '}');
+            break;
     }
-    if (!outputs) own.commit();
 }
 
 }  // namespace
@@ -160,13 +133,18 @@ std::string report_path(const std::string& mesh_path) {
     return p + ".report.json";
 }
 
-void write_layer_report(const LayerReport& r, const std::string& path, OutputSet* outputs) {
-    write_report(r, path, nullptr, nullptr, outputs);
+std::string report_json(const ReportNode& report) {
+    std::ostringstream out;
+    write_json(out, ReportValue(report), 0);
+    out << "\n";
+    return out.str();
 }
 
-void write_mesh_report(const LayerReport& r, const VolumeMesh& mesh, const ValidationReport& quality,
-                       const std::string& path, OutputSet* outputs) {
-    write_report(r, path, &mesh, &quality, outputs);
+void write_report(const ReportNode& report, const std::string& path, OutputSet* outputs) {
+    OutputSet own;
+    AtomicFile& file = (outputs ? *outputs : own).file(path);
+    write_whole_file(file.temp_path(), path, report_json(report));
+    if (!outputs) own.commit();
 }
 
 std::string plot_data_path(const std::string& mesh_path) {
@@ -175,8 +153,8 @@ std::string plot_data_path(const std::string& mesh_path) {
     return p + ".plot.json";
 }
 
-void write_plot_data(const LayerReport& r, const SurfaceMesh& surface, const VolumeMesh& mesh, const std::string& path,
-                     int cut_axis, double cut_value, OutputSet* outputs) {
+void write_plot_data(const std::vector<int>& node_layers, const SurfaceMesh& surface, const VolumeMesh& mesh,
+                     const std::string& path, int cut_axis, double cut_value, OutputSet* outputs) {
     // The wall: its faces, and its points renumbered in surface order.
     std::vector<Index> faces;
     std::vector<Index> point_of(surface.points.size(), kNone);
@@ -192,10 +170,9 @@ void write_plot_data(const LayerReport& r, const SurfaceMesh& surface, const Vol
             point_of[i] = static_cast<Index>(points.size());
             points.push_back(static_cast<Index>(i));
         }
-    std::vector<int> layers(surface.points.size(), r.layers);
-    for (const ShortNode& n : r.short_nodes)
-        if (n.node >= 0 && static_cast<std::size_t>(n.node) < layers.size())
-            layers[static_cast<std::size_t>(n.node)] = n.layers;
+    if (node_layers.size() != surface.points.size())
+        throw Error("write_plot_data: " + std::to_string(node_layers.size()) + " layer counts for " +
+                    std::to_string(surface.points.size()) + " surface nodes");
     Vec3 lo = Vec3::Constant(0.0), hi = Vec3::Constant(0.0);
     for (std::size_t i = 0; i < points.size(); ++i) {
         const Vec3& p = surface.points[static_cast<std::size_t>(points[i])];
@@ -241,7 +218,7 @@ void write_plot_data(const LayerReport& r, const SurfaceMesh& surface, const Vol
         for (std::size_t i = 0; i < faces.size(); ++i) out << (i ? "," : "") << surface.face_patch[faces[i]];
         out << "],\n\"layers\": [";
         for (std::size_t i = 0; i < points.size(); ++i)
-            out << (i ? "," : "") << layers[static_cast<std::size_t>(points[i])];
+            out << (i ? "," : "") << node_layers[static_cast<std::size_t>(points[i])];
         const char* names = "xyz";
         out << "]},\n\"cut\": {\"axis\": \"" << names[axis] << "\", \"value\": " << short_number(value) << ", \"u\": \""
             << names[u] << "\", \"v\": \"" << names[v] << "\", \"window\": [" << short_number(window[0]) << ", "

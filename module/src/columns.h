@@ -3,7 +3,7 @@
 // min_quality, max_turn_deg, the proximity limit), the faces they stand on, and the cells,
 // boundary and front of a ragged LayerMesh. ALGORITHM.md, "Local stopping", says why.
 
-#include <strata/core/layer_report.h>
+#include <strata/module/layer_report.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/module/layers.h>
 

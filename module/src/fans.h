@@ -11,7 +11,7 @@
 // a corner; above, they are ordinary prisms and hexahedra.
 
 #include <strata/core/cell_quality.h>
-#include <strata/core/layer_report.h>
+#include <strata/module/layer_report.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/core/types.h>
 

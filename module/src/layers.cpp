@@ -1193,9 +1193,6 @@ LayerReport layer_report(const LayerMesh& lm) {
     r.layers = lm.layers();
     r.first_height = lm.stats.empty() ? 0.0 : lm.stats.front().height;
     r.thickness = lm.asked_thickness;
-    for (const LayerStats& st : lm.stats)
-        r.per_layer.push_back({st.height, st.min_scaled_jacobian, st.mean_scaled_jacobian, st.max_orthogonality_deg,
-                               st.columns, st.stopped_nodes, st.held_nodes});
     const Index nw = lm.wall_nodes();
     // Thickness reached: the length of each column; why it fell short: it stopped, else it
     // was held back, else it was thinned. A wall node with a fan (several columns) counts once,

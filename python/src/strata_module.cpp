@@ -24,6 +24,7 @@
 #include <strata/core/validate.h>
 #include <strata/frontend/options.h>
 #include <strata/frontend/prepare_layers.h>
+#include <strata/frontend/report.h>
 #include <strata/geometry/check.h>
 #include <strata/gmsh_api/gmsh_api.h>
 #include <strata/hybrid/hybrid_mesh.h>
@@ -375,137 +376,36 @@ py::list patch_kinds(const SurfaceMesh& s) {
     return l;
 }
 
-py::dict surface_report(const SurfaceMesh& s, const PrepareReport& r, double seconds) {
-    const WallSizeReport& w = r.remeshed ? r.remesh.walls : r.walls;
-    return py::dict(
-        "nodes"_a = s.num_points(), "triangles"_a = s.num_triangles(), "quads"_a = s.num_quads(),
-        "patches"_a = s.patches.size(), "merged_nodes"_a = r.merged_nodes, "collapsed_faces"_a = r.collapsed_faces,
-        "duplicate_faces"_a = r.duplicate_faces, "t_junctions"_a = r.t_junctions,
-        "flipped_faces"_a = r.orient.flipped_faces, "components"_a = r.orient.components,
-        "closed_components"_a = r.orient.closed_components, "fused_components"_a = r.fused_components,
-        "touching_faces"_a = r.touching_faces, "remeshed"_a = r.remeshed, "internal_flow"_a = r.internal_flow,
-        "units"_a = r.units.unit, "scale"_a = r.scale, "seconds"_a = seconds,
-        "blossom_failure"_a = r.recombination.blossom_failure, "blossom_folded"_a = r.recombination.folded,
-        "walls"_a =
-            py::dict("max_aspect_ratio"_a = w.max_aspect_ratio, "worst_before"_a = w.worst_before,
-                     "worst_after"_a = w.worst_after, "size"_a = w.cap, "surfaces"_a = w.surfaces,
-                     "curves"_a = w.curves, "faces_estimate"_a = w.faces_estimate, "over_budget"_a = w.over_budget,
-                     "thin_size"_a = w.thin_size, "default_size"_a = w.default_size),
-        "holes"_a = py::dict("filled"_a = r.holes.holes, "triangles"_a = r.holes.triangles,
-                             "largest"_a = r.holes.largest, "left"_a = r.holes.left),
-        "sewn"_a =
-            py::dict("faces"_a = r.sew.faces, "written_twice"_a = r.sew.written_twice, "tolerance"_a = r.sew.tolerance,
-                     "free_edges_before"_a = r.sew.free_before, "free_edges_after"_a = r.sew.free_after,
-                     "solids"_a = r.sew.solids, "cracks"_a = r.sew.cracks, "widest_gap"_a = r.sew.widest_gap,
-                     "suggested_tolerance"_a = r.sew.suggested_tolerance, "renumbered"_a = r.sew.renumbered,
-                     "moved"_a = r.sew.moved, "rejected"_a = r.sew.rejected, "gap_before"_a = r.sew.gap_before,
-                     "first_tolerance"_a = r.sew.first_tolerance),
-        "steps"_a =
-            py::dict("quality"_a = r.steps.quality, "points"_a = r.steps.points, "fan_points"_a = r.steps.fan_points,
-                     "smallest"_a = r.steps.smallest, "faces_before"_a = r.steps.faces_before,
-                     "faces_after"_a = r.steps.faces_after, "faces_estimate"_a = r.steps.faces_estimate,
-                     "raised"_a = r.steps.raised, "over_budget"_a = r.steps.over_budget, "failure"_a = r.steps.failure,
-                     "thickness_before"_a = r.steps.thickness_before, "thickness_after"_a = r.steps.thickness_after,
-                     "kept"_a = r.steps.kept, "seconds"_a = r.steps.seconds));
-}
-
-py::dict coverage_report(const LayerReport& r) {
-    py::dict patches;
-    for (const PatchCoverage& c : r.patches) {
-        py::dict short_by;
-        for (std::size_t k = 1; k < kShortfalls; ++k)
-            short_by[py::str(std::string(to_string(static_cast<Shortfall>(k))))] = c.short_by[k];
-        patches[py::str(c.name)] =
-            py::dict("faces"_a = c.faces, "nodes"_a = c.nodes, "full_nodes"_a = c.full_nodes,
-                     "full"_a = c.nodes > 0 ? static_cast<double>(c.full_nodes) / static_cast<double>(c.nodes) : 1.0,
-                     "all_layers"_a = c.all_layers, "mean_share"_a = c.mean_share, "min_share"_a = c.min_share,
-                     "mean_layers"_a = c.mean_layers, "min_layers"_a = c.min_layers, "short"_a = short_by);
+/// A report's value as Python's: a flag a bool, an integer an int, a number a float, a text a
+/// str, a list a list, a node a dict in the node's order.
+py::object to_python(const ReportValue& v) {
+    switch (v.kind()) {
+        case ReportValue::Kind::Flag:
+            return py::bool_(v.flag());
+        case ReportValue::Kind::Integer:
+            return py::int_(v.integer());
+        case ReportValue::Kind::Number:
+            return py::float_(v.number());
+        case ReportValue::Kind::Text:
+            return py::str(v.text());
+        case ReportValue::Kind::List: {
+            py::list l;
+            for (const ReportValue& e : v.list()) l.append(to_python(e));
+            return l;
+        }
+        case ReportValue::Kind::Node: {
+            py::dict d;
+            for (const ReportNode::Entry& e : v.node().entries()) d[py::str(e.key)] = to_python(e.value);
+            return d;
+        }
     }
-    // The wall nodes that fell short and those without a fan, as OUT.report.json lists them.
-    py::list short_nodes, no_fan;
-    for (const ShortNode& n : r.short_nodes)
-        short_nodes.append(
-            py::dict("node"_a = n.node, "position"_a = py::make_tuple(n.position.x(), n.position.y(), n.position.z()),
-                     "share"_a = n.share, "layers"_a = n.layers, "reason"_a = std::string(to_string(n.reason))));
-    for (const NoFanNode& n : r.no_fan)
-        no_fan.append(py::dict("node"_a = n.node,
-                               "position"_a = py::make_tuple(n.position.x(), n.position.y(), n.position.z()),
-                               "reason"_a = std::string(to_string(n.reason))));
-    return py::dict("layers"_a = r.layers, "first_height"_a = r.first_height, "thickness"_a = r.thickness,
-                    "patches"_a = patches, "short_nodes"_a = short_nodes, "no_fan_nodes"_a = no_fan);
+    return py::none();
 }
 
-/// OpenFOAM checkMesh's figures (solver_checks.h), keyed as in OUT.report.json.
-py::dict openfoam_report(const SolverChecks& f) {
-    return py::dict("max_non_orthogonality_deg"_a = f.max_non_orthogonality_deg,
-                    "mean_non_orthogonality_deg"_a = f.mean_non_orthogonality_deg,
-                    "severely_non_orthogonal_faces"_a = f.severely_non_orthogonal,
-                    "non_orthogonality_errors"_a = f.non_orthogonality_errors,
-                    "worst_non_orthogonal"_a = f.worst_non_orthogonal, "max_skewness"_a = f.max_skewness,
-                    "skew_faces"_a = f.skew_faces, "worst_skew"_a = f.worst_skew,
-                    "max_aspect_ratio"_a = f.max_aspect_ratio, "high_aspect_cells"_a = f.high_aspect_cells,
-                    "worst_aspect"_a = f.worst_aspect, "negative_pyramids"_a = f.negative_pyramids,
-                    "check_mesh_ok"_a = f.ok(), "failures"_a = f.failures());
-}
-
-py::dict quality_report(const VolumeMesh& mesh, const ValidationReport& v) {
-    py::dict cells, min_sj, worst, histograms;
-    for (const CellType t : kCellTypes) {
-        const std::string name(to_string(t));
-        cells[py::str(name)] = mesh.num_cells(t);
-        if (mesh.num_cells(t) == 0) continue;
-        const auto& q = v.by_type[static_cast<std::size_t>(t)];
-        min_sj[py::str(name)] = q.min_scaled_jacobian;
-        worst[py::str(name)] = q.worst_cell;
-        histograms[py::str(name)] = py::list(py::cast(std::vector<Index>(q.histogram.begin(), q.histogram.end())));
-    }
-    std::vector<double> edges{0.0};  // the bins' edges, as in OUT.report.json
-    for (int b = 0; b < kQualityBins; ++b) edges.push_back(quality_bin_edge(b));
-    min_sj["all"] = v.min_scaled_jacobian;
-    worst["all"] = v.worst_cell;
-    py::dict d("cells"_a = cells, "nodes"_a = mesh.points.size(), "min_scaled_jacobian"_a = min_sj,
-               "worst_cell"_a = worst, "histograms"_a = histograms, "bin_edges"_a = edges,
-               "cell_volume"_a = v.cell_volume, "boundary_volume"_a = v.boundary_volume);
-    d["openfoam"] = openfoam_report(v.solver);
-    return d;
-}
-
-py::list layer_table(const std::vector<LayerStats>& stats) {
-    py::list l;
-    for (const LayerStats& s : stats)
-        l.append(py::dict("height"_a = s.height, "min_scaled_jacobian"_a = s.min_scaled_jacobian,
-                          "mean_scaled_jacobian"_a = s.mean_scaled_jacobian,
-                          "max_orthogonality_deg"_a = s.max_orthogonality_deg, "sweeps"_a = s.sweeps,
-                          "columns"_a = s.columns, "stopped_nodes"_a = s.stopped_nodes, "held_nodes"_a = s.held_nodes));
-    return l;
-}
-
-/// The hybrid report as a dict (without the surface's part).
-py::dict hybrid_report(const VolumeMesh& mesh, const HybridReport& hr) {
-    py::dict d = quality_report(mesh, hr.validation);
-    d["coverage"] = coverage_report(hr.coverage);
-    d["layers"] = layer_table(hr.layer_stats);
-    d["internal_flow"] = hr.internal_flow;
-    d["closed_half_model"] = hr.closed_half_model;
-    d["front_rounds"] = hr.front_rounds;
-    d["tet_retries"] = hr.tet_retries;
-    d["split_quads"] = hr.split_quads;
-    py::dict planes;  // patch name → the planes it was re-meshed as
-    for (const auto& [p, n] : hr.planes_of_patches)
-        planes[py::str(mesh.boundary.patches[static_cast<std::size_t>(p)].name)] = n;
-    d["planes_of_patches"] = planes;
-    const TetImproveReport& ti = hr.tet_improve;
-    d["tet_improve"] =
-        py::dict("below"_a = ti.below, "flips"_a = ti.flips, "edge_removals"_a = ti.edge_removals,
-                 "moved_nodes"_a = ti.moved_nodes, "inserted_nodes"_a = ti.inserted_nodes,
-                 "below_before"_a = ti.below_before, "below_after"_a = ti.below_after, "min_before"_a = ti.min_before,
-                 "min_after"_a = ti.min_after, "skew_changes"_a = ti.skew_changes, "skewed_before"_a = ti.skewed_before,
-                 "skewed_after"_a = ti.skewed_after, "seconds"_a = ti.seconds, "budget_reached"_a = ti.budget_reached);
-    d["thinned_nodes"] = hr.thinned_nodes;
-    d["fan_edges"] = hr.fan_edges;
-    d["times"] = py::dict("layers"_a = hr.seconds_layers, "pyramids"_a = hr.seconds_pyramids,
-                          "tetrahedra"_a = hr.seconds_tets, "validation"_a = hr.seconds_validate);
-    return d;
+/// The report tree (frontend/report.h) as a dict: the keys of OUT.report.json, and "times"'s
+/// "write".
+py::dict report_dict(const ReportNode& report) {
+    return to_python(ReportValue(report));
 }
 
 /// A surface result: the oriented surface mesh with patches.
@@ -573,7 +473,7 @@ py::object run_surface(const py::object& input, const py::dict& kwargs, const st
         Prepared p = prepare(inputs, o, progress);
         if (output) write_surface(p.surface, *output, version, progress);
         auto result = std::make_unique<PySurface>();
-        result->report = surface_report(p.surface, p.report, p.seconds);
+        result->report = report_dict(surface_run_report(p.surface, p.report, o, {{"surface", p.seconds}}));
         result->mesh = std::move(p.surface);
         return py::cast(std::move(result));
     });
@@ -595,22 +495,19 @@ py::object run_layers(const py::object& input, const py::dict& kwargs, const std
         const ValidationReport v =
             require_valid_mesh(lm.mesh, o.surface.input, {.threads = lp.threads, .progress = progress});
         const double t_validate = seconds_since(t);
-        const LayerReport coverage = layer_report(lm);
+        ReportNode report =
+            layers_run_report(lm, layer_report(lm), v, &p.surface, &p.report, o,
+                              {{"surface", p.seconds}, {"layers", t_layers}, {"validation", t_validate}});
         t = std::chrono::steady_clock::now();
         if (output) {
             OutputSet outputs;  // the mesh and its report, both or neither
             write_volume(lm.mesh, *output, version, progress, &outputs);
-            write_mesh_report(coverage, lm.mesh, v, report_path(*output), &outputs);
+            write_report(report, report_path(*output), &outputs);
             outputs.commit();
         }
         auto result = std::make_unique<PyMesh>();
-        py::dict r = quality_report(lm.mesh, v);
-        r["coverage"] = coverage_report(coverage);
-        r["layers"] = layer_table(lm.stats);
-        r["surface"] = surface_report(p.surface, p.report, p.seconds);
-        r["times"] = py::dict("surface"_a = p.seconds, "layers"_a = t_layers, "validation"_a = t_validate,
-                              "write"_a = seconds_since(t));
-        result->report = r;
+        set_time(report, "write", seconds_since(t));
+        result->report = report_dict(report);
         result->mesh = std::move(lm.mesh);
         return py::cast(std::move(result));
     });
@@ -634,18 +531,16 @@ py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::
             if (hint.empty()) throw;
             throw InputError(e.what() + hint);
         }
+        ReportNode report = mesh_run_report(&result->mesh, hr, &p.surface, &p.report, o, {{"surface", p.seconds}});
         const auto t = std::chrono::steady_clock::now();
         if (output) {
             OutputSet outputs;  // the mesh and its report, both or neither
             write_volume(result->mesh, *output, version, progress, &outputs);
-            write_mesh_report(hr.coverage, result->mesh, hr.validation, report_path(*output), &outputs);
+            write_report(report, report_path(*output), &outputs);
             outputs.commit();
         }
-        py::dict r = hybrid_report(result->mesh, hr);
-        r["surface"] = surface_report(p.surface, p.report, p.seconds);
-        r["times"]["surface"] = p.seconds;
-        r["times"]["write"] = seconds_since(t);
-        result->report = r;
+        set_time(report, "write", seconds_since(t));
+        result->report = report_dict(report);
         return py::cast(std::move(result));
     });
 }
@@ -658,26 +553,11 @@ py::dict run_gmsh_model(const py::dict& kwargs, const py::object& callback, cons
     return with_progress(callback, timeout, [&](Progress* progress) {
         const auto t0 = std::chrono::steady_clock::now();
         const HybridReport hr = mesh_current_gmsh_model(hp, pp, progress);
-        // The report's cell counts come from the model's new mesh through the report's validation.
-        py::dict d;
-        d["coverage"] = coverage_report(hr.coverage);
-        d["layers"] = layer_table(hr.layer_stats);
-        py::dict min_sj;
-        for (const CellType t : kCellTypes)
-            if (!hr.validation.by_type[static_cast<std::size_t>(t)].worst_cell.empty())
-                min_sj[py::str(std::string(to_string(t)))] =
-                    hr.validation.by_type[static_cast<std::size_t>(t)].min_scaled_jacobian;
-        min_sj["all"] = hr.validation.min_scaled_jacobian;
-        d["min_scaled_jacobian"] = min_sj;
-        d["worst_cell"] = hr.validation.worst_cell;
-        d["cells"] = hr.validation.cells;
-        d["cell_volume"] = hr.validation.cell_volume;
-        d["openfoam"] = openfoam_report(hr.validation.solver);
-        d["internal_flow"] = hr.internal_flow;
-        d["closed_half_model"] = hr.closed_half_model;
-        d["times"] = py::dict("layers"_a = hr.seconds_layers, "pyramids"_a = hr.seconds_pyramids,
-                              "tetrahedra"_a = hr.seconds_tets, "validation"_a = hr.seconds_validate,
-                              "total"_a = seconds_since(t0));
+        // The model's mesh is Gmsh's now: the report has its cells (from the validation) but not
+        // its nodes or patch names.
+        ReportNode report = mesh_run_report(nullptr, hr, nullptr, nullptr, o, {});
+        set_time(report, "total", seconds_since(t0));
+        py::dict d = report_dict(report);
         return d;
     });
 }

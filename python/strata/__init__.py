@@ -5,7 +5,7 @@
     m.points            # (n, 3) float64, a read-only view into the mesh
     m.prisms, m.tets    # (n, 6), (n, 4) node ids; m.cells: every type
     m.patch_names, m.faces("farfield")["triangle"]
-    m.report["min_scaled_jacobian"], m.report["coverage"]["patches"]
+    m.report["quality"]["min_scaled_jacobian"], m.report["patches"]   # OUT.report.json's keys
     m.write("sphere.cgr")   # or output="sphere.cgr" in the call
 
 surface(), layers() and mesh() are the strata program's subcommands. Their keywords are the

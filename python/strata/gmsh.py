@@ -48,7 +48,8 @@ def _setup():
         "gmsh",
         "mesh_current_model(...) -> dict: replace the current Gmsh model's surface mesh (its triangles and "
         "quadrangles, one patch per 2D physical group) by a hybrid volume mesh built on it; returns the report "
-        "(cells, min_scaled_jacobian per type, coverage per patch, times). gmsh.initialize() first: "
+        "(OUT.report.json's keys: cells and quality per type, coverage per patch, times, provenance; no nodes, "
+        "and re-meshed patches by number). gmsh.initialize() first: "
         "strata.InputError otherwise. If meshing fails, the model is left as it was. timeout=SECONDS: "
         "TimeoutError at the first check after that long (at least every 0.1 s; TetGen's child process is "
         "killed), the model left as it was.")

@@ -115,20 +115,21 @@ def options_from_parameters():
 
 def coverage_lines(report):
     """The report as lines for Gmsh's message console."""
-    cells = report["cells"]
-    sj = report["min_scaled_jacobian"]
-    lines = [f"Strata: {cells} cells, min scaled Jacobian {sj['all']:.3g} ({report['worst_cell']})"]
+    cells = sum(report["cells"].values())
+    q = report["quality"]
+    sj = q["min_scaled_jacobian"]
+    lines = [f"Strata: {cells} cells, min scaled Jacobian {sj['all']:.3g} ({q['worst_cell']['all']})"]
     for kind in ("hexahedron", "prism", "pyramid", "tetrahedron"):
         if kind in sj:
             lines.append(f"Strata:   {kind:12s} min scaled Jacobian {sj[kind]:.3g}")
-    cov = report["coverage"]
-    lines.append(f"Strata: coverage, {cov['layers']} layers asked, {cov['thickness']:.4g} thick "
-                 f"(first {cov['first_height']:.3g}):")
-    for name, c in cov["patches"].items():
-        lines.append(f"Strata:   {name:20s} {c['nodes']:7d} nodes, {100 * c['full']:5.1f}% full, "
+    lines.append(f"Strata: coverage, {report['layers']} layers asked, {report['thickness']:.4g} thick "
+                 f"(first {report['first_height']:.3g}):")
+    for c in report["patches"]:
+        full = c["full_nodes"] / c["nodes"] if c["nodes"] else 1.0
+        lines.append(f"Strata:   {c['name']:20s} {c['nodes']:7d} nodes, {100 * full:5.1f}% full, "
                      f"mean {c['mean_layers']:.1f} layers, min {c['min_layers']}, "
                      f"thickness {100 * c['mean_share']:.1f}%")
-    foam = report["openfoam"]
+    foam = q["openfoam"]
     lines.append(f"Strata: OpenFOAM checkMesh would {'say Mesh OK' if foam['check_mesh_ok'] else 'fail it'}: "
                  f"non-orthogonality max {foam['max_non_orthogonality_deg']:.3g} deg, "
                  f"skewness max {foam['max_skewness']:.3g}, aspect ratio max {foam['max_aspect_ratio']:.4g}")

@@ -216,8 +216,8 @@ def test_mesh_shape_hemisphere_cylinder():
         v = smesh_volume(xyz)
         check((v > 0).all(), f"{(v <= 0).sum()} of {len(xyz)} {k}-node volumes not positive for SMESH")
         total_volume += v.sum()
-    check(abs(total_volume - direct.report["cell_volume"]) < 1e-6 * total_volume,
-          f"volume {total_volume} != Strata's {direct.report['cell_volume']}")
+    check(abs(total_volume - direct.report["quality"]["cell_volume"]) < 1e-6 * total_volume,
+          f"volume {total_volume} != Strata's {direct.report['quality']['cell_volume']}")
     inp = abaqus_elements(fm)
     check(sorted(inp) == ["C3D4", "C3D6", "C3D8"], f"Abaqus types {sorted(inp)}")
     check(len(inp["C3D4"]) == cells["tetrahedron"] and len(inp["C3D6"]) == cells["prism"]

@@ -107,7 +107,7 @@ TEST(GmshApi, SphereMeshedInPlaceThenWrittenAndReadBack) {
     ASSERT_EQ(count_elements(kQuad4), 0u);
 
     const HybridReport report = mesh_current_gmsh_model(ten_layers());
-    EXPECT_EQ(report.layer_stats.size(), 10u);
+    EXPECT_EQ(report.layers.stats.size(), 10u);
     EXPECT_TRUE(report.validation.ok());
     EXPECT_GT(report.validation.min_scaled_jacobian, 0.0);
 

@@ -120,9 +120,10 @@ void expect_valid_case(const std::string& name, const SurfaceMesh& input, const 
     std::printf(
         "%s: %zu hex, %zu prisms, %zu pyramids, %zu tets; min scaled Jacobian %.2e (layers %.2e)\n", name.c_str(),
         m.hexes.size(), m.prisms.size(), m.pyramids.size(), m.tets.size(), rep.validation.min_scaled_jacobian,
-        std::min_element(rep.layer_stats.begin(), rep.layer_stats.end(), [](const LayerStats& a, const LayerStats& b) {
-            return a.min_scaled_jacobian < b.min_scaled_jacobian;
-        })->min_scaled_jacobian);
+        std::min_element(
+            rep.layers.stats.begin(), rep.layers.stats.end(),
+            [](const LayerStats& a, const LayerStats& b) { return a.min_scaled_jacobian < b.min_scaled_jacobian; })
+            ->min_scaled_jacobian);
     test::ScratchDir dir("case_" + name);
     test::expect_rereads_valid(m, dir, name);
 }
@@ -259,7 +260,7 @@ TEST(HybridCases, TwoSpheresWithAGapOfATenthOfTheLayers) {
     const SurfaceMesh s = prepare_surface(example_data("two_spheres_narrow_gap.geo"), pp);
     HybridReport rep;
     const VolumeMesh m = build_hybrid_mesh(s, params(30, 1e-4), nullptr, &rep);
-    EXPECT_DOUBLE_EQ(rep.layer_stats.front().height, 1e-4);
+    EXPECT_DOUBLE_EQ(rep.layers.stats.front().height, 1e-4);
     EXPECT_GT(short_by(rep, Shortfall::Proximity), 0);
     // Neighbouring columns differ by at most one layer: from the gap's 6 or so layers to the
     // 30 asked takes some 24 rings of nodes, about half of each sphere (measured 1429 of 3168).

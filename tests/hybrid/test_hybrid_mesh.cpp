@@ -256,9 +256,9 @@ TEST(HybridMesh, LayersInANarrowGapAreThinnedUntilTheFrontIsClear) {
     HybridReport r;
     const VolumeMesh m = build_hybrid_mesh(s, p, nullptr, &r);
     EXPECT_TRUE(validate_mesh(m).ok());
-    EXPECT_GT(r.thinned_nodes, 0);
-    EXPECT_LT(r.min_thickness_share, 0.25);          // 0.45 of the 0.1 gap is 0.045 of the 0.2 asked
-    EXPECT_LT(r.thinned_nodes, s.num_points() / 4);  // only around the gap
+    EXPECT_GT(r.layers.thinned_nodes, 0);
+    EXPECT_LT(r.layers.min_thickness_share, 0.25);          // 0.45 of the 0.1 gap is 0.045 of the 0.2 asked
+    EXPECT_LT(r.layers.thinned_nodes, s.num_points() / 4);  // only around the gap
     // The coverage report: per sphere, most columns full, the short ones thinned by proximity
     // or lowered for the front, each listed once with its place.
     ASSERT_EQ(r.coverage.patches.size(), 2u);

@@ -217,7 +217,7 @@ TEST(OuterBoundary, LayersTallerThanTheDomainStopBelowTheLidOrAreRefused) {
     const VolumeMesh m = build_hybrid_mesh(s, box_params(), nullptr, &rep);
     ASSERT_TRUE(rep.validation.ok());
     EXPECT_NEAR(rep.validation.cell_volume, 0.05, 1e-9);
-    EXPECT_EQ(rep.layer_stats.front().height, 0.005);
+    EXPECT_EQ(rep.layers.stats.front().height, 0.005);
     Index by_proximity = 0;
     int fewest = 8;
     for (const PatchCoverage& c : rep.coverage.patches) {

@@ -56,9 +56,9 @@ def test_action_meshes_the_open_model_with_the_panel_values(session):
     stages = []
     report = gmsh_gui.run_action(progress=lambda s, f: stages.append(s))
     cells = elements(3)
-    triangles = report["coverage"]["patches"]
+    triangles = report["patches"]
     assert cells.get(PRISM, 0) > 0 and cells.get(TET, 0) > 0
-    assert report["coverage"]["layers"] == 3 and abs(report["coverage"]["first_height"] - 0.01) < 1e-12
+    assert report["layers"] == 3 and abs(report["first_height"] - 0.01) < 1e-12
     assert "tetrahedra" in stages and triangles
     log = "\n".join(gmsh.logger.get())
     assert "Strata:" in log and "coverage" in log and "min scaled Jacobian" in log

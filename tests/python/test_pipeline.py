@@ -2,6 +2,8 @@
 errors as Python exceptions, progress and Ctrl-C."""
 
 import inspect
+import json
+import math
 import os
 import signal
 
@@ -68,22 +70,22 @@ def test_mesh_sphere_arrays_and_report(tmp_path):
     assert 0.5e-3 < np.median(h) < 2e-3
     r = m.report
     assert r["cells"]["prism"] == len(m.prisms) and r["cells"]["tetrahedron"] == len(m.tets)
-    assert 0 < r["min_scaled_jacobian"]["all"] <= r["min_scaled_jacobian"]["prism"] <= 1
-    assert abs(r["cell_volume"] - r["boundary_volume"]) < 1e-6 * r["boundary_volume"]
+    q = r["quality"]
+    assert 0 < q["min_scaled_jacobian"]["all"] <= q["min_scaled_jacobian"]["prism"] <= 1
+    assert abs(q["cell_volume"] - q["boundary_volume"]) < 1e-6 * q["boundary_volume"]
     # OpenFOAM checkMesh's figures (tests/openfoam/check_figures.sh compares them with checkMesh)
-    foam = r["openfoam"]
+    foam = q["openfoam"]
     assert 0 < foam["max_non_orthogonality_deg"] < 70 and 0 < foam["max_skewness"] < 4, foam
     assert foam["check_mesh_ok"] and foam["failures"] == [] and foam["negative_pyramids"] == 0, foam
-    cov = r["coverage"]
-    assert cov["layers"] == 4 and cov["patches"], cov
-    for name, c in cov["patches"].items():
-        assert c["nodes"] > 0 and 0.0 <= c["full"] <= 1.0
+    assert r["layers"] == 4 and r["patches"], r["patches"]
+    for c in r["patches"]:
+        assert c["nodes"] > 0 and 0 <= c["full_nodes"] <= c["nodes"]
     assert set(r["times"]) >= {"surface", "layers", "pyramids", "tetrahedra", "validation", "write"}
     # the tetrahedra improved after TetGen: never a worse worst, fewer below the bound
     ti = r["tet_improve"]
     assert ti["below"] == 0.2 and ti["min_after"] >= ti["min_before"] > 0, ti
     assert ti["below_after"] <= ti["below_before"], ti
-    assert r["min_scaled_jacobian"]["tetrahedron"] <= ti["min_after"] + 1e-12, ti
+    assert q["min_scaled_jacobian"]["tetrahedron"] <= ti["min_after"] + 1e-12, ti
     # patches: the sphere's wall and the generated farfield, with their boundary faces
     assert "farfield" in m.patch_names
     assert m.patch_kinds[m.patch_names.index("farfield")] == "farfield"
@@ -98,15 +100,49 @@ def test_mesh_sphere_arrays_and_report(tmp_path):
     assert all(0.0 <= f <= 1.0 for _, f in stages)
 
 
+def _same(a, b, at="report"):
+    """a (the report dict) and b (its JSON) hold the same tree: the same keys in the same order,
+    the same values (a number JSON cannot write, null)."""
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and list(a) == list(b), (at, list(a), b)
+        for k in a:
+            _same(a[k], b[k], at + "/" + k)
+    elif isinstance(a, list):
+        assert isinstance(b, list) and len(a) == len(b), at
+        for i, (x, y) in enumerate(zip(a, b)):
+            _same(x, y, "%s/%d" % (at, i))
+    elif isinstance(a, float) and not math.isfinite(a):
+        assert b is None, at
+    else:
+        assert a == b and isinstance(a, bool) == isinstance(b, bool), (at, a, b)
+
+
+def test_the_report_dict_and_the_json_are_one_tree(tmp_path):
+    # One builder (frontend/report.h) makes the report: the dict and OUT.report.json hold the
+    # same keys and values, whatever a new field is; only the time of writing the files (known
+    # after the JSON is written) is the dict's alone.
+    for run, name in ((strata.mesh, "m.msh"), (strata.layers, "l.msh")):
+        out = tmp_path / name
+        r = run(SPHERE_STL, output=str(out), **SMALL).report
+        with open(str(out) + ".report.json") as f:
+            written = json.load(f)
+        assert r["times"].pop("write") >= 0
+        _same(r, written)
+        assert {"fan_plane_nodes", "unsmoothed_nodes", "layer_stats", "surface"} <= set(written)
+        p = written["provenance"]
+        assert p["inputs"] == [SPHERE_STL] and p["options"]["layers"] == 4 and "sweeps" not in p["options"]
+        assert p["strata_version"] and p["git_commit"]
+
+
 def test_coverage_lists_the_short_nodes_with_their_positions():
     # Two spheres whose gap is a tenth of the layers: the columns facing it get fewer layers
     # (proximity), each listed with where and why, as in OUT.report.json.
     geo = os.path.join(os.path.dirname(SPHERE_STL), "two_spheres_narrow_gap.geo")
     lm = strata.layers(geo, size=0.05, layers=30, first_height=1e-4, growth=1.2)
-    cov = lm.report["coverage"]
+    cov = lm.report
     short = cov["short_nodes"]
     assert short, "no short node beside the gap"
-    assert len(short) == sum(sum(c["short"].values()) for c in cov["patches"].values())
+    assert len(short) == sum(sum(c["short"].values()) for c in cov["patches"])
     assert {n["reason"] for n in short} == {"proximity"}
     for n in short:
         assert len(n["position"]) == 3 and 0.0 < n["share"] < 1.0 and 0 <= n["layers"] <= 30
@@ -123,8 +159,8 @@ def test_surface_and_layers(tmp_path):
     assert s.patch_kinds == ["wall"]
     lm = strata.layers(SPHERE_STL, **SMALL)
     assert len(lm.prisms) == 4 * s.report["triangles"]  # every column full on a sphere
-    assert len(lm.tets) == 0 and lm.report["coverage"]["layers"] == 4
-    assert len(lm.report["layers"]) == 4
+    assert len(lm.tets) == 0 and lm.report["layers"] == 4
+    assert len(lm.report["layer_stats"]) == 4
 
 
 def test_patches_keyword(tmp_path):
@@ -323,10 +359,10 @@ def test_walls_are_meshed_finer_where_the_layers_step_at_a_gap():
     steps = m.report["surface"]["steps"]
     assert steps["quality"] == 0.1 and steps["points"] > 0 and not steps["over_budget"], steps
     assert steps["faces_after"] > 2 * steps["faces_before"], steps
-    assert m.report["min_scaled_jacobian"]["pyramid"] > 0.03
+    assert m.report["quality"]["min_scaled_jacobian"]["pyramid"] > 0.03
     kept = strata.mesh(two, step_quality=0, **args)
     assert kept.report["surface"]["steps"]["points"] == 0
-    assert kept.report["min_scaled_jacobian"]["pyramid"] < 0.03
+    assert kept.report["quality"]["min_scaled_jacobian"]["pyramid"] < 0.03
 
 
 def test_quads_where_blossom_would_end_the_python_process():

@@ -28,13 +28,8 @@ struct HybridParams {
 
 /// What each stage produced and how long it took, for the CLI's summary.
 struct HybridReport {
-    std::vector<LayerStats> layer_stats;
-    Index unsmoothed_nodes = 0;
-    Index fan_edges = 0, fan_nodes = 0, fan_corners = 0;  ///< LayerMesh's: the fans at sharp convex edges
-    Index fan_plane_nodes = 0;                            ///< LayerMesh's: fan nodes on a plane the chain ends on
-    Index thinned_nodes = 0;           ///< nodes whose layers were scaled down (proximity, front rounds)
-    double min_thickness_share = 1.0;  ///< the smallest share of the asked thickness a node got
-    int front_rounds = 0;              ///< rounds of lowering columns where the front intersected itself
+    LayerCounts layers;    ///< the final layers' figures (LayerMesh's)
+    int front_rounds = 0;  ///< rounds of lowering columns where the front intersected itself
     /// Per wall patch, the thickness reached and why not (layer_report), and the wall nodes left
     /// without a fan: its first cells would have been unusable (LayerMesh::fans_dropped) or its
     /// face on the layer top could not take a pyramid.

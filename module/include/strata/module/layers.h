@@ -3,12 +3,12 @@
 /// The boundary-layer module: Poisson marching extrusion of prism and hexahedron layers
 /// (Thompson, Chalasani & Soni; ALGORITHM.md).
 
-#include <strata/core/layer_report.h>
 #include <strata/core/progress.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/core/volume_mesh.h>
 #include <strata/geometry/normals.h>
 #include <strata/module/distribution.h>
+#include <strata/module/layer_report.h>
 #include <strata/module/proximity.h>
 
 #include <algorithm>
@@ -127,13 +127,27 @@ struct LayerStats {
     double min_transition_jacobian = 1.0;  ///< their smallest scaled Jacobian
 };
 
+/// The layers' figures a report carries: LayerMesh's own, kept by HybridReport as they are.
+struct LayerCounts {
+    std::vector<LayerStats> stats;  ///< one per layer asked
+    /// Nodes extruded along their normal without smoothing (sharp convex edges, open-edge
+    /// corners, degenerate stencils: ends of needle triangles).
+    Index unsmoothed_nodes = 0;
+    Index thinned_nodes = 0;           ///< nodes whose layers were scaled down (proximity, front rounds)
+    double min_thickness_share = 1.0;  ///< the smallest share of the asked thickness a node got
+    Index fan_edges = 0;               ///< edges of the input wall with a fan (LayerParams::fan_angle_deg)
+    Index fan_nodes = 0;               ///< nodes of the input wall split into a fan's columns
+    Index fan_corners = 0;             ///< of those, corners: three or more fan edges, or two turning sharply
+    Index fan_plane_nodes = 0;         ///< of those, on a plane the chain ends on (a symmetry plane)
+};
+
 /// The layers: a volume mesh of prisms (on triangles) and hexahedra (on quads) over the wall
 /// faces, level by level, columns of different heights where they stopped (LayerParams::
 /// min_quality, proximity). Other stages reach its nodes through the accessors, never through
 /// the numbering itself. The numbering: level 0 is the wall (node i is wall node i), then each
 /// level holds the nodes of the columns that reach it, in wall order, so full columns give
 /// level_node(k, i) = k × wall_nodes() + i.
-class LayerMesh {
+class LayerMesh : public LayerCounts {
 public:
     LayerMesh() = default;
     /// Layers over \p wall_nodes wall nodes, \p layers levels above the wall, every column full.
@@ -145,22 +159,13 @@ public:
     /// column (top.points[i] = mesh.points[top_node(i)]), on the wall's patches.
     SurfaceMesh top;
     std::vector<int> face_layers;         ///< per face of top, the layers of cells over it
-    std::vector<LayerStats> stats;        ///< one per layer asked
     std::vector<Index> input_node;        ///< wall node → node of the input surface
     Index top_patch = kNone;              ///< the patch of mesh.boundary ("layer_top") holding the outermost level
-    Index unsmoothed_nodes = 0;           ///< nodes extruded along their normal without smoothing (sharp convex edges,
-                                          ///< open-edge corners, degenerate stencils: ends of needle triangles)
-    Index thinned_nodes = 0;              ///< nodes whose layers were scaled down by the proximity limit
-    double min_thickness_share = 1.0;     ///< the smallest share of the asked thickness a node got
     double asked_thickness = 0.0;         ///< the sum of the layer heights
     std::vector<double> height_scale;     ///< per wall node, the share of the layer heights it marched
     std::vector<Shortfall> scale_reason;  ///< per wall node, why that share is below 1 (Proximity or Front)
     std::vector<Shortfall> stop_reason;   ///< per wall node, why its column stopped below layers() (None: it did not)
     std::vector<char> held_back;          ///< per wall node, 1 if some layer held it back (hold_back)
-    Index fan_edges = 0;                  ///< edges of the input wall with a fan (LayerParams::fan_angle_deg)
-    Index fan_nodes = 0;                  ///< nodes of the input wall split into a fan's columns
-    Index fan_corners = 0;                ///< of those, corners: three or more fan edges, or two turning sharply
-    Index fan_plane_nodes = 0;            ///< of those, on a plane the chain ends on (a symmetry plane)
     std::vector<char> fan_column;         ///< empty, or per wall node 1 for a column of a fan
     /// Nodes of the input surface with no fan because its first cells would have been unusable
     /// (ascending; layer_report lists them with their positions).

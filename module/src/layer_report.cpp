@@ -1,5 +1,5 @@
 #include <strata/core/enum_names.h>
-#include <strata/core/layer_report.h>
+#include <strata/module/layer_report.h>
 
 namespace strata {
 
@@ -19,6 +19,14 @@ Index LayerReport::no_fan_nodes(NoFan reason) const {
     Index n = 0;
     for (const NoFanNode& v : no_fan) n += v.reason == reason ? 1 : 0;
     return n;
+}
+
+std::vector<int> node_layers(const LayerReport& report, std::size_t nodes) {
+    std::vector<int> layers(nodes, report.layers);
+    for (const ShortNode& n : report.short_nodes)
+        if (n.node >= 0 && static_cast<std::size_t>(n.node) < nodes)
+            layers[static_cast<std::size_t>(n.node)] = n.layers;
+    return layers;
 }
 
 }  // namespace strata

@@ -2,8 +2,8 @@
 /// \file
 /// The coverage report of the boundary layers: per wall patch, what was asked and what the
 /// columns reached, and every wall node that fell short, with where and why. The layer
-/// module fills it (layer_report), the program prints it, io writes it as JSON
-/// (write_layer_report) next to the mesh.
+/// module fills it (layer_report); the report tree (frontend/report.h) carries it to the JSON,
+/// Python and the CLI.
 
 #include <strata/core/types.h>
 
@@ -78,27 +78,19 @@ struct NoFanNode {
     NoFan reason = NoFan::Unusable;
 };
 
-/// The figures of one layer (LayerStats' own, for the report).
-struct LayerFigures {
-    double height = 0.0;  ///< the layer's height asked, model units
-    double min_scaled_jacobian = 0.0;
-    double mean_scaled_jacobian = 0.0;
-    double max_orthogonality_deg = 0.0;
-    Index columns = 0;        ///< wall nodes that have this layer
-    Index stopped_nodes = 0;  ///< columns that stopped below it (had the one before)
-    Index held_nodes = 0;     ///< nodes held back in it
-};
-
 struct LayerReport {
-    int layers = 0;                       ///< layers asked
-    double first_height = 0.0;            ///< asked
-    double thickness = 0.0;               ///< asked: the sum of the layer heights
-    std::vector<LayerFigures> per_layer;  ///< one per layer asked, wall side first
+    int layers = 0;             ///< layers asked
+    double first_height = 0.0;  ///< asked
+    double thickness = 0.0;     ///< asked: the sum of the layer heights
     std::vector<PatchCoverage> patches;
     std::vector<ShortNode> short_nodes;  ///< every limited node, by wall node id
     std::vector<NoFanNode> no_fan;       ///< wall nodes with no fan (LayerParams::fan_angle_deg), by node id
     /// The wall nodes of no_fan with \p reason.
     Index no_fan_nodes(NoFan reason) const;
 };
+
+/// The layers each of the \p nodes nodes of the surface the layers stand on reached:
+/// \p report's short nodes theirs, every other node report.layers.
+std::vector<int> node_layers(const LayerReport& report, std::size_t nodes);
 
 }  // namespace strata
