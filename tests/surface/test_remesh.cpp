@@ -7,9 +7,9 @@
 #include <strata/core/face_geometry.h>
 #include <strata/core/solver_checks.h>
 #include <strata/geometry/check.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/primitives.h>
-#include <strata/geometry/remesh.h>
+#include <strata/surface/prepare.h>
+#include <strata/surface/remesh.h>
 
 #include <gtest/gtest.h>
 
