@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
-# strata::core builds and runs with neither Gmsh nor TetGen (docs/ARCHITECTURE.md): no core
-# source nor core test includes gmsh.h or tetgen.h (the compiler's dependency files say what
-# each object really included), no core test executable links libgmsh or libtet (ldd), and none
-# holds a Gmsh or TetGen symbol (nm).
-#   check_core_dependencies.sh DEPFILE_DIR... -- EXECUTABLE...
+# A library that builds and runs with neither Gmsh nor TetGen (docs/ARCHITECTURE.md: core, and
+# module with what it stands on): no object includes gmsh.h or tetgen.h (the compiler's
+# dependency files say what each object really included), no test executable's link line names
+# libgmsh, libtet or a Strata library that links them (CMake's link.txt beside the objects), none
+# links them at run time (ldd), and none holds a Gmsh or TetGen symbol (nm).
+#   check_dependencies.sh LABEL DEPFILE_DIR... -- EXECUTABLE...
 set -uo pipefail
+label=$1
+shift
 dirs=()
 while [ $# -gt 0 ] && [ "$1" != "--" ]; do dirs+=("$1"); shift; done
 shift
@@ -20,6 +23,14 @@ for d in $depfiles; do
     status=1
   fi
 done
+links=$(find "${dirs[@]}" -name link.txt 2>/dev/null)
+forbidden='libgmsh|-lgmsh|libtet|-ltet|libstrata_(io|surface|hybrid|gmsh_api|frontend)\.a'
+for l in $links; do
+  if grep -Eq "$forbidden" "$l"; then
+    echo "$l: the link line names $(grep -Eo "[^ ]*($forbidden)[^ ]*" "$l" | sort -u | tr '\n' ' ')"
+    status=1
+  fi
+done
 for exe in "$@"; do
   if ldd "$exe" | grep -Eq 'libgmsh|libtet'; then
     echo "$exe links: $(ldd "$exe" | grep -Eo 'lib(gmsh|tet)[^ ]*' | tr '\n' ' ')"
@@ -30,5 +41,5 @@ for exe in "$@"; do
     status=1
   fi
 done
-[ $status -eq 0 ] && echo "core: $(echo "$depfiles" | wc -l) objects and $# executables free of Gmsh and TetGen"
+[ $status -eq 0 ] && echo "$label: $(echo "$depfiles" | wc -l) objects, $(echo "$links" | grep -c .) link lines and $# executables free of Gmsh and TetGen"
 exit $status
