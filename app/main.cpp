@@ -16,7 +16,6 @@
 #include <strata/frontend/report.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/intersections.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/io/files.h>
@@ -26,6 +25,7 @@
 #include <strata/io/write_volume.h>
 #include <strata/module/distribution.h>
 #include <strata/module/layers.h>
+#include <strata/surface/prepare.h>
 
 #include <CLI/CLI.hpp>
 

@@ -3,8 +3,8 @@
 
 #include <strata/core/error.h>
 #include <strata/geometry/check.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
+#include <strata/surface/prepare.h>
 
 #include "fuzz_support.h"
 #include "surface_chain.h"

@@ -4,7 +4,7 @@
 /// target "surface" and everything after reading a surface, on any mesh.
 
 #include <strata/core/surface_mesh.h>
-#include <strata/geometry/prepare.h>
+#include <strata/surface/prepare.h>
 
 #include <cstddef>
 #include <cstdint>

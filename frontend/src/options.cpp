@@ -6,7 +6,7 @@
 #include <strata/core/error.h>
 #include <strata/core/format.h>
 #include <strata/core/parallel.h>
-#include <strata/geometry/cad.h>
+#include <strata/surface/cad.h>
 
 #include <algorithm>
 #include <cctype>

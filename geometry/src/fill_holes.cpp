@@ -3,7 +3,7 @@
 #include <strata/geometry/fill_holes.h>
 #include <strata/geometry/topology.h>
 
-#include "cgal_kernel.h"
+#include <strata/geometry/cgal_kernel.h>
 
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 

@@ -1,7 +1,7 @@
 // The union of overlapping closed components: fuse.h. CGAL's corefinement works on its own
 // Surface_mesh; a face property carries each face's patch through the cuts and copies.
 
-#include "cgal_kernel.h"
+#include <strata/geometry/cgal_kernel.h>
 
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>

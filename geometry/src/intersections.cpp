@@ -13,7 +13,7 @@
 //   three  a repeated triangle.
 // All predicates exact (Epick), so a touching pair counts and a gap of one ulp does not.
 
-#include "cgal_kernel.h"
+#include <strata/geometry/cgal_kernel.h>
 
 #include <strata/core/format.h>
 #include <strata/core/parallel.h>

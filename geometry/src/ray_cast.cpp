@@ -1,6 +1,6 @@
 // First hits of rays from surface nodes: ray_cast.h.
 
-#include "cgal_kernel.h"
+#include <strata/geometry/cgal_kernel.h>
 
 #include <strata/core/parallel.h>
 #include <strata/geometry/intersections.h>

@@ -1,6 +1,6 @@
 // Faces where closed bodies touch along a common face: touching.h.
 
-#include "cgal_kernel.h"
+#include <strata/geometry/cgal_kernel.h>
 
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/intersections.h>

@@ -1,11 +1,11 @@
 // End-to-end tests of the `strata` program: real inputs succeed and write what they claim;
 // every bad input gives one line on stderr, a non-zero exit and no output file.
 
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/io/read_surface.h>
 #include <strata/io/write_volume.h>
+#include <strata/surface/prepare.h>
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-"""Source of cad_box_loose_faces_1e-7.brep and cad_box_loose_faces_3e-5.brep (tests/geometry/test_cad.cpp).
+"""Source of cad_box_loose_faces_1e-7.brep and cad_box_loose_faces_3e-5.brep (tests/surface/test_cad.cpp).
 
 A 1 x 0.5 x 0.3 box written as six separate faces, each with its own edges, whose corners are
 moved by up to GAP in each coordinate (a surface model as CAD tools export it: faces that miss

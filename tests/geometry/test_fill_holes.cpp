@@ -5,8 +5,8 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/geometry/fill_holes.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
+#include <strata/surface/prepare.h>
 
 #include <gtest/gtest.h>
 

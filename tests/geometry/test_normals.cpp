@@ -1,9 +1,9 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
-#include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/normals.h>
 #include <strata/geometry/topology.h>
+#include <strata/surface/cad.h>
 
 #include "test_support.h"
 

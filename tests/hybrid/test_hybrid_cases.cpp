@@ -6,8 +6,8 @@
 // nothing; these checks are independent of it.)
 
 #include <strata/core/cell_quality.h>
-#include <strata/geometry/prepare.h>
 #include <strata/hybrid/hybrid_mesh.h>
+#include <strata/surface/prepare.h>
 
 #include <gtest/gtest.h>
 

@@ -5,11 +5,11 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/core/validate.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/primitives.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/io/write_volume.h>
+#include <strata/surface/prepare.h>
 
 #include <gtest/gtest.h>
 

@@ -2,10 +2,10 @@
 // layers' corners on the planes' common edges; the inputs that cannot work are refused.
 
 #include <strata/core/error.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/hybrid/outer_boundary.h>
+#include <strata/surface/prepare.h>
 
 #include <gtest/gtest.h>
 

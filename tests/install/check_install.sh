@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install this build into a scratch prefix, then configure, build and run a separate CMake
-# project that finds it with find_package(strata) and links strata::hybrid: the exported
-# targets carry their dependencies (Eigen, OpenMP, nanoflann, Gmsh, TetGen's header).
+# project that finds it with find_package(strata) and links strata::hybrid and strata::surface:
+# the exported targets carry their dependencies (Eigen, OpenMP, nanoflann, Gmsh, TetGen's header).
 #   check_install.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$1
@@ -16,13 +16,14 @@ project(consumer CXX)
 set(CMAKE_CXX_STANDARD 20)
 find_package(strata REQUIRED)
 add_executable(consumer main.cpp)
-target_link_libraries(consumer PRIVATE strata::hybrid)
+target_link_libraries(consumer PRIVATE strata::hybrid strata::surface)
 CMAKE
 cat >"$scratch/consumer/main.cpp" <<'CPP'
 // A closed sphere surface through the installed headers and libraries: layers, tetrahedra,
-// validation (build_hybrid_mesh throws if the mesh is not valid).
+// validation (build_hybrid_mesh throws if the mesh is not valid); the surface stage's header.
 #include <strata/geometry/primitives.h>
 #include <strata/hybrid/hybrid_mesh.h>
+#include <strata/surface/prepare.h>
 #include <cstdio>
 int main() {
     const strata::SurfaceMesh wall = strata::icosphere(strata::Vec3::Zero(), 1.0, 2, {"wall", strata::PatchKind::Wall});

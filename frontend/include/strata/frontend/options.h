@@ -8,8 +8,8 @@
 /// Messages name the CLI's flags (--size, --remesh); a front-end with other names translates
 /// them (translate_names).
 
-#include <strata/geometry/prepare.h>
 #include <strata/hybrid/hybrid_mesh.h>
+#include <strata/surface/prepare.h>
 
 #include <string>
 #include <utility>

@@ -3,8 +3,8 @@
 /// The surface for a hybrid mesh: prepare_surfaces, then, for CAD input, the walls meshed
 /// again finer where the layers would step low (CadParams::step_quality).
 
-#include <strata/geometry/prepare.h>
 #include <strata/hybrid/hybrid_mesh.h>
+#include <strata/surface/prepare.h>
 
 #include <string>
 #include <vector>

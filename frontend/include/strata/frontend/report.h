@@ -15,7 +15,7 @@
 #include <strata/core/validate.h>
 #include <strata/core/volume_mesh.h>
 #include <strata/frontend/options.h>
-#include <strata/geometry/prepare.h>
+#include <strata/surface/prepare.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/module/layer_report.h>
 #include <strata/module/layers.h>

@@ -13,8 +13,8 @@
 ///     gmsh::write("sphere_hybrid.msh");
 
 #include <strata/core/progress.h>
-#include <strata/geometry/prepare.h>
 #include <strata/hybrid/hybrid_mesh.h>
+#include <strata/surface/prepare.h>
 
 namespace strata {
 

@@ -61,7 +61,7 @@ enum class NodeOrder {
 /// or other 2D types are an InputError naming the surface; points, lines and volume elements
 /// are ignored), patches as the file comment says, faces in Gmsh element-tag order, only the
 /// nodes the faces use, numbered as \p order says. As stored: no merging, no orientation
-/// (geometry/prepare.h). \p face_surface, if given, receives the Gmsh surface entity of each
+/// (surface/prepare.h). \p face_surface, if given, receives the Gmsh surface entity of each
 /// face. \p context names the model in errors ("'wing.msh'", "Gmsh model 'sphere'"); InputError
 /// "<context> holds no triangles or quadrangles: ..." if it has none.
 SurfaceMesh surface_from_gmsh_model(const std::string& context, NodeOrder order = NodeOrder::Tags,

@@ -6,14 +6,14 @@
 #include <strata/geometry/check.h>
 #include <strata/geometry/feature_cuts.h>
 #include <strata/geometry/intersections.h>
-#include <strata/geometry/remesh.h>
 #include <strata/geometry/topology.h>
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
+#include <strata/surface/remesh.h>
 
 #include "wall_size.h"
 
-#include "cgal_kernel.h"
+#include <strata/geometry/cgal_kernel.h>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>

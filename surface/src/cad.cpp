@@ -1,10 +1,9 @@
 // CAD input and surface meshing through Gmsh. This file is the Gmsh adapter for CAD: Gmsh's
 // 1-based size_t node tags and int entity tags stay in here; the caller gets a SurfaceMesh.
-#include <strata/geometry/cad.h>
+#include <strata/surface/cad.h>
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/io/cad_content.h>
 #include <strata/io/cad_units.h>
@@ -13,6 +12,7 @@
 #include <strata/io/gmsh_model.h>
 #include <strata/io/gmsh_session.h>
 #include <strata/io/input_file.h>
+#include <strata/surface/prepare.h>
 
 #include "wall_size.h"
 

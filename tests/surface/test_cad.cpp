@@ -4,10 +4,10 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/core/solver_checks.h>
-#include <strata/geometry/cad.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/io/gmsh_session.h>
+#include <strata/surface/cad.h>
+#include <strata/surface/prepare.h>
 
 #include "test_support.h"
 

@@ -5,12 +5,12 @@
 
 #include <strata/core/progress.h>
 #include <strata/core/surface_mesh.h>
-#include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/fill_holes.h>
 #include <strata/geometry/fuse.h>
-#include <strata/geometry/remesh.h>
 #include <strata/geometry/short_edges.h>
+#include <strata/surface/cad.h>
+#include <strata/surface/remesh.h>
 
 #include <string>
 #include <utility>

@@ -8,7 +8,7 @@
 /// triangulation is not.
 
 #include <strata/core/surface_mesh.h>
-#include <strata/geometry/cad.h>
+#include <strata/surface/cad.h>
 
 #include <string>
 

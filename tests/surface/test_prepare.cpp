@@ -2,10 +2,10 @@
 
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/primitives.h>
 #include <strata/geometry/topology.h>
 #include <strata/io/read_surface.h>
+#include <strata/surface/prepare.h>
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
 #include <strata/core/error.h>
 #include <strata/core/format.h>
-#include <strata/geometry/cad.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/intersections.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/topology.h>
 #include <strata/geometry/touching.h>
 #include <strata/io/files.h>
 #include <strata/io/input_file.h>
 #include <strata/io/read_surface.h>
+#include <strata/surface/cad.h>
+#include <strata/surface/prepare.h>
 
 #include <algorithm>
 #include <array>

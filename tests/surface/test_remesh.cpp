@@ -1,4 +1,4 @@
-// A surface mesh made again with Gmsh (geometry/remesh.h): a box of needle triangles comes back
+// A surface mesh made again with Gmsh (surface/remesh.h): a box of needle triangles comes back
 // as well-shaped faces on the same six planes with its edges kept; a sphere split into two
 // patches keeps both, split where they were, and its outward orientation; the size asked is
 // the size given; the same input gives the same mesh; bad parameters are refused.
@@ -7,9 +7,9 @@
 #include <strata/core/face_geometry.h>
 #include <strata/core/solver_checks.h>
 #include <strata/geometry/check.h>
-#include <strata/geometry/prepare.h>
 #include <strata/geometry/primitives.h>
-#include <strata/geometry/remesh.h>
+#include <strata/surface/prepare.h>
+#include <strata/surface/remesh.h>
 
 #include <gtest/gtest.h>
 

@@ -3,8 +3,8 @@
 // (inside a GmshSession).
 
 #include <strata/core/surface_mesh.h>
-#include <strata/geometry/cad.h>
 #include <strata/geometry/point_sizes.h>
+#include <strata/surface/cad.h>
 
 #include <functional>
 #include <map>
