@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -35,7 +36,8 @@ Options two_spheres() {
     return o;
 }
 
-/// The mesh, its Cobalt60 patch map and its report, as bytes.
+/// The mesh, its Cobalt60 patch map (which names the grid file: each door writes mesh.cgr in a
+/// directory of its own) and its report, as bytes.
 std::vector<std::string> outputs_of(const std::string& cgr) {
     std::vector<std::string> bytes;
     for (const std::string& f : output_files(Job::Mesh, cgr)) bytes.push_back(test::slurp(f));
@@ -46,6 +48,7 @@ std::vector<std::string> outputs_of(const std::string& cgr) {
 
 TEST(Pipeline, EveryDoorGivesTheSameBytesWhereTheWallsAreMeshedAgain) {
     const test::ScratchDir dir("pipeline_doors");
+    for (const char* door : {"cpp", "cli", "py"}) std::filesystem::create_directories(dir.path() / door);
     const Result r = run(make_request(Job::Mesh, two_spheres()));
     // The case is one prepare_for_layers changes: its finer walls kept.
     const StepSizeReport& steps = r.prepare.steps;
@@ -56,26 +59,26 @@ TEST(Pipeline, EveryDoorGivesTheSameBytesWhereTheWallsAreMeshedAgain) {
     EXPECT_GT(r.mesh.num_cells(CellType::Pyramid), 0);
     {
         OutputSet outputs;
-        write_outputs(r, dir.file("cpp.cgr"), 4.1, nullptr, outputs);
+        write_outputs(r, dir.file("cpp/mesh.cgr"), 4.1, nullptr, outputs);
         outputs.commit();
     }
-    const std::vector<std::string> cpp = outputs_of(dir.file("cpp.cgr"));
+    const std::vector<std::string> cpp = outputs_of(dir.file("cpp/mesh.cgr"));
     ASSERT_EQ(cpp.size(), 3u);  // .cgr, .bc, .report.json
     for (const std::string& b : cpp) EXPECT_FALSE(b.empty());
 
     const test::CliResult cli = test::run_program(
-        dir, STRATA_CLI, "mesh '" + test::example_data("two_spheres_narrow_gap.geo") + "' -o cli.cgr -q" + kArgs);
+        dir, STRATA_CLI, "mesh '" + test::example_data("two_spheres_narrow_gap.geo") + "' -o cli/mesh.cgr -q" + kArgs);
     ASSERT_EQ(cli.code, 0) << cli.err;
-    EXPECT_TRUE(outputs_of(dir.file("cli.cgr")) == cpp) << "the CLI's mesh differs from run()'s";
+    EXPECT_TRUE(outputs_of(dir.file("cli/mesh.cgr")) == cpp) << "the CLI's mesh differs from run()'s";
 
     if (std::string(STRATA_TEST_PYTHON).empty()) GTEST_SKIP() << "no Python package in this build";
     const std::string script = "import strata; strata.mesh(\"" + test::example_data("two_spheres_narrow_gap.geo") +
-                               "\", output=\"py.cgr\", size=0.1, layers=12, first_height=1e-3, growth=1.2)";
+                               "\", output=\"py/mesh.cgr\", size=0.1, layers=12, first_height=1e-3, growth=1.2)";
     const test::CliResult py = test::run_program(
         dir, "env",
         std::string("PYTHONPATH='") + STRATA_TEST_PYTHON_PATH + "' '" + STRATA_TEST_PYTHON + "' -c '" + script + "'");
     ASSERT_EQ(py.code, 0) << py.err;
-    EXPECT_TRUE(outputs_of(dir.file("py.cgr")) == cpp) << "Python's mesh differs from run()'s";
+    EXPECT_TRUE(outputs_of(dir.file("py/mesh.cgr")) == cpp) << "Python's mesh differs from run()'s";
 }
 
 TEST(Pipeline, ASurfaceGivenGoesThroughTheStagesOfItsFile) {
