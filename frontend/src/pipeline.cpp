@@ -64,11 +64,13 @@ void run_mesh(const Request& request, Result& r, Progress* progress) {
 Request make_request(Job job, const Options& options) {
     Request r;
     r.job = job;
-    r.inputs = options.surface.inputs;
-    r.source = options.surface.input;
+    SurfaceOptions surface = options.surface;
+    if (surface.input.empty()) surface.input = input_name(surface.inputs);
+    r.inputs = surface.inputs;
+    r.source = surface.input;
     if (job == Job::Layers) r.mesh.layers = layer_params(options.layers);
     if (job == Job::Mesh) r.mesh = hybrid_params(options.layers, options.mesh);
-    r.prepare = prepare_params(options.surface, job == Job::Surface ? nullptr : &r.mesh.layers);
+    r.prepare = prepare_params(surface, job == Job::Surface ? nullptr : &r.mesh.layers);
     return r;
 }
 

@@ -86,7 +86,6 @@ TEST(Pipeline, ASurfaceGivenGoesThroughTheStagesOfItsFile) {
     // the file gives: the same preparation, layers and tetrahedra.
     Options o;
     o.surface.inputs = {test::example_data("sphere.stl")};
-    o.surface.input = input_name(o.surface.inputs);
     o.layers.params.distribution.layers = 4;
     o.layers.params.distribution.first_height = 1e-3;
     const Request from_file = make_request(Job::Mesh, o);
@@ -107,10 +106,11 @@ TEST(Pipeline, ASurfaceGivenGoesThroughTheStagesOfItsFile) {
 TEST(Pipeline, LayersAreCheckedAndASurfaceJobStopsAtTheSurface) {
     Options o;
     o.surface.inputs = {test::example_data("sphere.stl")};
-    o.surface.input = input_name(o.surface.inputs);
     o.layers.params.distribution.layers = 3;
     o.layers.params.distribution.first_height = 1e-3;
-    const Result layers = run(make_request(Job::Layers, o));
+    const Request request = make_request(Job::Layers, o);
+    EXPECT_EQ(request.source, o.surface.inputs[0]);  // the inputs' name where the options give none
+    const Result layers = run(request);
     EXPECT_EQ(layers.volume().num_cells(CellType::Prism), 3 * static_cast<std::size_t>(layers.surface.num_faces()));
     EXPECT_EQ(layers.volume().num_cells(CellType::Tet), 0u);
     EXPECT_TRUE(layers.volume_validation().ok());

@@ -4,14 +4,14 @@
 /// from files, or given: a Gmsh model's), the walls prepared for the layers (prepare_for_layers),
 /// the layers, the hybrid mesh, the validation. The strata program, the Python package (and
 /// through it FreeCAD) and the Gmsh-API entry call run() and nothing else of the stages, so the
-/// same input and parameters give the same mesh through every door.
+/// same files and options give the same mesh through every door, and a surface given (a Gmsh
+/// model's) goes through the same stages as a file's.
 ///
-///     strata::Request request;
-///     request.inputs = {"wing.step"};
-///     request.mesh.layers.distribution.layers = 20;
-///     request.mesh.layers.distribution.first_height = 1e-4;
-///     request.prepare.cad.first_height = 1e-4;  // or make_request(Job::Mesh, options)
-///     const strata::Result result = strata::run(request);
+///     strata::Options options;  // the CLI's flags and Python's keywords, as fields
+///     options.surface.inputs = {"wing.step"};
+///     options.layers.params.distribution.layers = 20;
+///     options.layers.params.distribution.first_height = 1e-4;
+///     const strata::Result result = strata::run(strata::make_request(strata::Job::Mesh, options));
 ///     strata::write_volume(result.volume(), "wing.cgr");
 
 #include <strata/core/progress.h>
@@ -56,7 +56,8 @@ struct Request {
 };
 
 /// The request the front-ends' \p options ask for \p job, with their checks (prepare_params,
-/// layer_params, hybrid_params: InputError for a refused combination or value).
+/// layer_params, hybrid_params: InputError for a refused combination or value). The inputs'
+/// name in messages is options.surface.input, or input_name of the inputs where it is empty.
 Request make_request(Job job, const Options& options);
 
 /// Seconds each stage took.
