@@ -12,6 +12,7 @@
 #include <strata/core/solver_checks.h>
 #include <strata/core/validate.h>
 #include <strata/frontend/options.h>
+#include <strata/frontend/pipeline.h>
 #include <strata/frontend/prepare_layers.h>
 #include <strata/frontend/report.h>
 #include <strata/geometry/check.h>
@@ -946,26 +947,15 @@ int run_report_script(const std::string& report, const std::string& dir, bool qu
 // ---------------------------------------------------------------------------------------
 // The subcommands.
 
-/// What every subcommand starts with: the output checked (a typo in its name should not cost a
-/// meshing run), then the surface read, checked and oriented.
-struct Start {
-    double msh_version = 4.1;
-    strata::SurfaceMesh surface;
-    strata::PrepareReport report;
-    bool any_cad = false;  ///< some input is a CAD file
-    double seconds = 0.0;
-};
-
-enum class Output { Surface, Volume };
-
-/// Every file a run writes for -o OUT: the mesh (and Cobalt60's .bc), then for a volume the
-/// report and, with \p plots, the plots' data.
-std::vector<std::string> run_outputs(const Common& c, Output output, bool plots = false) {
-    if (output == Output::Surface) return {c.output};
-    std::vector<std::string> files = strata::volume_output_files(c.output);
-    files.push_back(strata::report_path(c.output));
-    if (plots) files.push_back(strata::plot_data_path(c.output));
-    return files;
+/// Before the work: the output's format, and every output can be created and none replaces an
+/// input (a typo in its name should not cost a meshing run). \p plots: the run writes the plots'
+/// data too. The MSH version asked.
+double check_run_outputs(const Common& c, strata::Job job, bool plots = false) {
+    const double msh_version = strata::parse_msh_version(c.msh_version);
+    std::vector<std::string> extra;
+    if (plots) extra.push_back(strata::plot_data_path(c.output));
+    strata::check_outputs(job, c.output, msh_version, c.o.surface.inputs, extra);
+    return msh_version;
 }
 
 /// Before writing: a warning when the file system of the output has less free space than the
@@ -980,108 +970,67 @@ void warn_if_short_of_space(const Common& c, std::size_t nodes, std::size_t cell
                  after_bar(), c.output.c_str(), static_cast<double>(free) / 1e6, static_cast<double>(need) / 1e6);
 }
 
-/// \p mesh: the surface is for that hybrid mesh (prepare_for_layers: CAD walls finer where the
-/// layers would step low). \p plots: the run writes the plots' data too.
-Start start(const Common& c, const strata::PrepareParams& params, Output output, Terminal& terminal,
-            const strata::HybridParams* mesh = nullptr, bool plots = false) {
-    const auto t0 = std::chrono::steady_clock::now();
-    Start s;
-    s.msh_version = strata::parse_msh_version(c.msh_version);
-    if (output == Output::Surface)
-        strata::check_surface_output(c.output, s.msh_version);
-    else
-        strata::check_volume_output(c.output, s.msh_version);
-    // Before the work: no output replaces an input, and every output can be created (a run that
-    // takes minutes should not end on a name that cannot be written).
-    const std::vector<std::string> outputs = run_outputs(c, output, plots);
-    strata::check_outputs_are_not_inputs(outputs, c.o.surface.inputs);
-    for (std::size_t i = 1; i < outputs.size(); ++i) strata::check_output_path(outputs[i]);
-    s.surface = mesh ? strata::prepare_for_layers(c.o.surface.inputs, params, *mesh, &s.report, &terminal)
-                     : strata::prepare_surfaces(c.o.surface.inputs, params, &s.report, &terminal);
-    s.any_cad = strata::any_cad_input(c.o.surface.inputs);
-    s.seconds = seconds_since(t0);
-    return s;
-}
-
 int run_surface(const Common& c) {
     const auto t0 = std::chrono::steady_clock::now();
     Terminal terminal(c.quiet, c.o.surface.input);
-    const Start s = start(c, strata::prepare_params(c.o.surface), Output::Surface, terminal);
-    warn_if_short_of_space(c, s.surface.points.size(), static_cast<std::size_t>(s.surface.num_faces()));
+    const strata::Request request = strata::make_request(strata::Job::Surface, c.o);
+    const double msh_version = check_run_outputs(c, request.job);
+    const strata::Result r = strata::run(request, &terminal);
+    warn_if_short_of_space(c, r.surface.points.size(), static_cast<std::size_t>(r.surface.num_faces()));
     begin_writing();
-    strata::write_surface(s.surface, c.output, s.msh_version, &terminal);
+    strata::OutputSet outputs;
+    strata::write_outputs(r, c.output, msh_version, &terminal, outputs);
+    outputs.commit();
     if (c.quiet) return 0;
-    print_surface_summary(strata::surface_run_report(s.surface, s.report, c.o, {{"surface", s.seconds}}));
+    print_surface_summary(r.report);
     std::printf("wrote %s (%.2f s)\n", c.output.c_str(), seconds_since(t0));
     return 0;
 }
 
 int run_layers(const Common& c) {
-    const strata::LayerParams lp = strata::layer_params(c.o.layers);
+    const strata::Request request = strata::make_request(strata::Job::Layers, c.o);
     Terminal terminal(c.quiet, c.o.surface.input);
-    const Start s = start(c, strata::prepare_params(c.o.surface, &lp), Output::Volume, terminal);
+    const double msh_version = check_run_outputs(c, request.job);
+    strata::Result r = strata::run(request, &terminal);
     const auto t1 = std::chrono::steady_clock::now();
-    const strata::LayerMesh lm = strata::extrude_layers(s.surface, lp, &terminal);
-    const double t_layers = seconds_since(t1);
-    const auto t2 = std::chrono::steady_clock::now();
-    const strata::ValidationReport v =
-        strata::require_valid_mesh(lm.mesh, c.o.surface.input, {.threads = lp.threads, .progress = &terminal});
-    strata::ReportNode report =
-        strata::layers_run_report(lm, strata::layer_report(lm), v, &s.surface, &s.report, c.o,
-                                  {{"surface", s.seconds}, {"layers", t_layers}, {"validation", seconds_since(t2)}});
-    const auto t3 = std::chrono::steady_clock::now();
-    warn_if_short_of_space(c, lm.mesh.points.size(), static_cast<std::size_t>(lm.mesh.num_cells()));
+    warn_if_short_of_space(c, r.layers.mesh.points.size(), static_cast<std::size_t>(r.layers.mesh.num_cells()));
     begin_writing();
     strata::OutputSet outputs;  // the mesh and its report, both or neither
-    strata::write_volume(lm.mesh, c.output, s.msh_version, &terminal, &outputs);
-    strata::write_report(report, strata::report_path(c.output), &outputs);
+    strata::write_outputs(r, c.output, msh_version, &terminal, outputs);
     outputs.commit();
-    strata::set_time(report, "write", seconds_since(t3));
+    strata::set_time(r.report, "write", seconds_since(t1));
     if (c.quiet) return 0;
-    print_surface_summary(report.node("surface"));
-    print_wall_aspect_forecast(report.node("surface"));
-    print_layer_table(report);
-    print_coverage(report);
-    print_cells(report, !s.any_cad && !s.report.remeshed);
-    print_times(report);
+    print_surface_summary(r.report.node("surface"));
+    print_wall_aspect_forecast(r.report.node("surface"));
+    print_layer_table(r.report);
+    print_coverage(r.report);
+    print_cells(r.report, !r.any_cad && !r.prepare.remeshed);
+    print_times(r.report);
     print_written(with_report(strata::volume_output_files(c.output), c.output));
     return 0;
 }
 
 int run_mesh(const Common& c, const PlotOptions& po) {
-    const strata::HybridParams hp = strata::hybrid_params(c.o.layers, c.o.mesh);
+    const strata::Request request = strata::make_request(strata::Job::Mesh, c.o);
     const auto [cut_axis, cut_value] = parse_cut(po.cut);
     Terminal terminal(c.quiet, c.o.surface.input);
-    const Start s =
-        start(c, strata::prepare_params(c.o.surface, &hp.layers), Output::Volume, terminal, &hp, !po.dir.empty());
-    strata::HybridReport hr;
-    const strata::VolumeMesh mesh = [&] {
-        try {
-            return strata::build_hybrid_mesh(s.surface, hp, &terminal, &hr);
-        } catch (const strata::InputError& e) {
-            const std::string hint = strata::sewing_hint(s.report.sew);
-            if (hint.empty()) throw;
-            throw strata::InputError(e.what() + hint);
-        }
-    }();
-    strata::ReportNode report =
-        strata::mesh_run_report(&mesh, hr, &s.surface, &s.report, c.o, {{"surface", s.seconds}});
+    const double msh_version = check_run_outputs(c, request.job, !po.dir.empty());
+    strata::Result r = strata::run(request, &terminal);
     const auto t1 = std::chrono::steady_clock::now();
-    warn_if_short_of_space(c, mesh.points.size(), static_cast<std::size_t>(mesh.num_cells()));
+    warn_if_short_of_space(c, r.mesh.points.size(), static_cast<std::size_t>(r.mesh.num_cells()));
     begin_writing();
     strata::OutputSet outputs;  // the mesh, its report and the plots' data, all or none
-    strata::write_volume(mesh, c.output, s.msh_version, &terminal, &outputs);
-    strata::write_report(report, strata::report_path(c.output), &outputs);
+    strata::write_outputs(r, c.output, msh_version, &terminal, outputs);
     if (!po.dir.empty())
-        strata::write_plot_data(strata::node_layers(hr.coverage, s.surface.points.size()), s.surface, mesh,
+        strata::write_plot_data(strata::node_layers(r.hybrid.coverage, r.surface.points.size()), r.surface, r.mesh,
                                 strata::plot_data_path(c.output), cut_axis, cut_value, &outputs);
     outputs.commit();
-    strata::set_time(report, "write", seconds_since(t1));
+    strata::set_time(r.report, "write", seconds_since(t1));
     if (!c.quiet) {
-        print_surface_summary(report.node("surface"));
-        print_wall_aspect_forecast(report.node("surface"));
-        print_hybrid_summary(report, !s.any_cad && !s.report.remeshed);
-        print_times(report);
+        print_surface_summary(r.report.node("surface"));
+        print_wall_aspect_forecast(r.report.node("surface"));
+        print_hybrid_summary(r.report, !r.any_cad && !r.prepare.remeshed);
+        print_times(r.report);
         std::vector<std::string> files = with_report(strata::volume_output_files(c.output), c.output);
         if (!po.dir.empty()) files.push_back(strata::plot_data_path(c.output));
         print_written(files);

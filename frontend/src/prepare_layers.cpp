@@ -7,61 +7,54 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <optional>
+#include <utility>
 
 namespace strata {
+namespace {
 
-SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const PrepareParams& params,
-                               const HybridParams& mesh, PrepareReport* report, Progress* progress) {
-    if (!(params.cad.step_quality >= 0.0 && params.cad.step_quality < 1.0))
-        throw InputError("CadParams::step_quality = " + format_number(params.cad.step_quality) +
-                         ": need a scaled Jacobian in [0, 1) for the cells closing the layers' steps (0: off)");
-    PrepareReport first_report;
-    SurfaceMesh surface = prepare_surfaces(inputs, params, &first_report, progress);
-    // Blossom's quads can fold where the surface nearly touches itself (the winglet's junction
-    // under --fuse --quads, the plate's holes remeshed in quads), and no layer can grow on a
-    // surface that intersects itself; Gmsh's simple recombination pairs fewer triangles and may
-    // not fold there. Kept if it does not.
-    PrepareParams chosen = params;
-    const bool cad_blossom = !params.remesh && params.cad.elements != SurfaceElements::Triangles &&
-                             !params.cad.simple_recombination && any_cad_input(inputs);
+/// A surface and how it was made.
+struct Made {
+    SurfaceMesh mesh;
+    PrepareReport report;
+    PrepareParams params;
+};
+
+/// The first surface. Blossom's quads can fold where the surface nearly touches itself (the
+/// winglet's junction under --fuse --quads, the plate's holes remeshed in quads), and no layer
+/// can grow on a surface that intersects itself; Gmsh's simple recombination pairs fewer
+/// triangles and may not fold there. Kept if it does not.
+Made first_surface(const SurfaceSource& source, bool cad, const PrepareParams& params, int threads) {
+    Made made{{}, {}, params};
+    made.mesh = source(params, &made.report);
+    const bool cad_blossom =
+        !params.remesh && params.cad.elements != SurfaceElements::Triangles && !params.cad.simple_recombination && cad;
     const bool remesh_blossom = params.remesh && params.remeshing.quads && !params.remeshing.simple_recombination;
-    if ((cad_blossom || remesh_blossom) && first_report.recombination.blossom_failure.empty()) {
-        const std::vector<FacePair> folds = self_intersections(surface, 1, mesh.threads);
-        if (!folds.empty()) {
-            PrepareParams simple = params;
-            simple.cad.simple_recombination = cad_blossom;
-            simple.remeshing.simple_recombination = remesh_blossom;
-            PrepareReport simple_report;
-            try {
-                SurfaceMesh again = prepare_surfaces(inputs, simple, &simple_report, progress);
-                if (self_intersections(again, 1, mesh.threads).empty()) {
-                    simple_report.recombination.folded = true;
-                    simple_report.recombination.blossom_failure = describe_pair(surface, folds[0]);
-                    surface = std::move(again);
-                    first_report = std::move(simple_report);
-                    chosen = std::move(simple);
-                }
-            } catch (const Error&) {  // Blossom's surface stays; build_hybrid_mesh names its fold
-            }
+    if (!(cad_blossom || remesh_blossom) || !made.report.recombination.blossom_failure.empty()) return made;
+    const std::vector<FacePair> folds = self_intersections(made.mesh, 1, threads);
+    if (folds.empty()) return made;
+    PrepareParams simple = params;
+    simple.cad.simple_recombination = cad_blossom;
+    simple.remeshing.simple_recombination = remesh_blossom;
+    PrepareReport simple_report;
+    try {
+        SurfaceMesh again = source(simple, &simple_report);
+        if (self_intersections(again, 1, threads).empty()) {
+            simple_report.recombination.folded = true;
+            simple_report.recombination.blossom_failure = describe_pair(made.mesh, folds[0]);
+            return {std::move(again), std::move(simple_report), std::move(simple)};
         }
+    } catch (const Error&) {  // Blossom's surface stays; build_hybrid_mesh names its fold
     }
-    StepSizeReport steps;
-    const auto t0 = std::chrono::steady_clock::now();
-    const bool planned = (params.cad.step_quality > 0.0 || params.cad.max_aspect_ratio > 0.0) && any_cad_input(inputs);
-    const auto done = [&](SurfaceMesh result, const PrepareReport& r) {
-        if (planned) steps.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        if (report) {
-            *report = r;
-            report->steps = steps;
-        }
-        return result;
-    };
-    if (!planned) return done(std::move(surface), first_report);
-    steps.quality = params.cad.step_quality;
-    steps.faces_before = steps.faces_after = surface.num_faces();
+    return made;
+}
 
+/// The sizes the layers' steps and fans ask on \p surface (step_plan), raised until the surface
+/// stays within the faces budget; empty where none is asked or the budget cannot be met
+/// (\p steps says which). \p share_before: the share of the thickness the plan keeps.
+std::vector<SizePoint> step_points(const SurfaceMesh& surface, const PrepareParams& params, const HybridParams& mesh,
+                                   StepSizeReport& steps, double& share_before) {
     std::vector<SizePoint> points;
-    double share_before = 1.0;
     try {
         StepPlan plan = step_plan(surface, mesh, params.cad.step_quality, params.cad.max_aspect_ratio);
         points = std::move(plan.points);
@@ -70,9 +63,9 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
         points.insert(points.end(), plan.fans.points.begin(), plan.fans.points.end());
         share_before = plan.thickness_share;
     } catch (const Error&) {  // the layers cannot be planned (an open surface): build_hybrid_mesh says why
-        return done(std::move(surface), first_report);
+        return {};
     }
-    if (points.empty()) return done(std::move(surface), first_report);
+    if (points.empty()) return {};
 
     // Within the faces budget, and at most kStepFacesGrowth times the faces the surface has:
     // the sizes raised (×1.25 at a time, up to 100-fold) until the estimate fits.
@@ -86,51 +79,86 @@ SurfaceMesh prepare_for_layers(const std::vector<std::string>& inputs, const Pre
         if (estimate <= budget) break;
         if (steps.raised * 1.25 > 100.0) {
             steps.over_budget = true;
-            return done(std::move(surface), first_report);
+            return {};
         }
         steps.raised *= 1.25;
         for (SizePoint& q : points) q.size *= 1.25;
     }
     steps.smallest = points.front().size;
     for (const SizePoint& q : points) steps.smallest = std::min(steps.smallest, q.size);
+    return points;
+}
 
-    PrepareParams again = chosen;
-    again.cad.size_points = points;
-    for (SizePoint& q : again.cad.size_points) {  // the CAD's unit: before PrepareParams::scale
-        q.at /= params.scale;
-        q.size /= params.scale;
+/// \p first made again with \p points as CadParams::size_points; nothing where Gmsh fails on
+/// them, where the finer surface folds and the first did not, or where its plan keeps less of
+/// the thickness (\p steps says which).
+std::optional<Made> finer_surface(const SurfaceSource& source, const Made& first, std::vector<SizePoint> points,
+                                  double share_before, const HybridParams& mesh, StepSizeReport& steps) {
+    Made finer{{}, {}, first.params};
+    const double scale = first.params.scale;
+    for (SizePoint& q : points) {  // the CAD's unit: before PrepareParams::scale
+        q.at /= scale;
+        q.size /= scale;
     }
-    PrepareReport second_report;
-    SurfaceMesh finer;
+    finer.params.cad.size_points = std::move(points);
     try {
-        finer = prepare_surfaces(inputs, again, &second_report, progress);
+        finer.mesh = source(finer.params, &finer.report);
     } catch (const BackendError& e) {
         // The finer walls are an improvement, not the surface asked for: Gmsh failing on their
         // sizes (quads it cannot make there) leaves the first surface, which it could mesh.
         steps.failure = e.what();
-        return done(std::move(surface), first_report);
+        return std::nullopt;
     }
     // Nor a fold the first surface did not have (quads recombined across a narrow junction).
-    if (const std::vector<FacePair> folds = self_intersections(finer, 1, mesh.threads);
-        !folds.empty() && self_intersections(surface, 1, mesh.threads).empty()) {
-        steps.failure = "the finer surface intersects itself: " + describe_pair(finer, folds[0]);
-        return done(std::move(surface), first_report);
+    if (const std::vector<FacePair> folds = self_intersections(finer.mesh, 1, mesh.threads);
+        !folds.empty() && self_intersections(first.mesh, 1, mesh.threads).empty()) {
+        steps.failure = "the finer surface intersects itself: " + describe_pair(finer.mesh, folds[0]);
+        return std::nullopt;
     }
-    second_report.recombination = first_report.recombination;  // the choice made on the first surface
+    finer.report.recombination = first.report.recombination;  // the choice made on the first surface
     // The finer walls must not cost layers: they resolve the gap better, and its limits, spread
     // along the walls, took 60.9 % of the thickness to 14.5 % on a slotted wing's main element.
     steps.thickness_before = share_before;
     try {
-        steps.thickness_after = step_plan(finer, mesh, params.cad.step_quality).thickness_share;
+        steps.thickness_after = step_plan(finer.mesh, mesh, first.params.cad.step_quality).thickness_share;
     } catch (const Error&) {
         steps.thickness_after = 0.0;
     }
     if (steps.thickness_after < share_before - kStepThicknessLoss) {
         steps.kept = true;
-        return done(std::move(surface), first_report);
+        return std::nullopt;
     }
-    steps.faces_after = finer.num_faces();
-    return done(std::move(finer), second_report);
+    steps.faces_after = finer.mesh.num_faces();
+    return finer;
+}
+
+}  // namespace
+
+SurfaceMesh prepare_for_layers(const SurfaceSource& source, bool cad, const PrepareParams& params,
+                               const HybridParams& mesh, PrepareReport* report) {
+    if (!(params.cad.step_quality >= 0.0 && params.cad.step_quality < 1.0))
+        throw InputError("CadParams::step_quality = " + format_number(params.cad.step_quality) +
+                         ": need a scaled Jacobian in [0, 1) for the cells closing the layers' steps (0: off)");
+    Made first = first_surface(source, cad, params, mesh.threads);
+    StepSizeReport steps;
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool planned = (params.cad.step_quality > 0.0 || params.cad.max_aspect_ratio > 0.0) && cad;
+    const auto done = [&](Made& made) {
+        if (planned) steps.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (report) {
+            *report = std::move(made.report);
+            report->steps = steps;
+        }
+        return std::move(made.mesh);
+    };
+    if (!planned) return done(first);
+    steps.quality = params.cad.step_quality;
+    steps.faces_before = steps.faces_after = first.mesh.num_faces();
+    double share_before = 1.0;
+    std::vector<SizePoint> points = step_points(first.mesh, params, mesh, steps, share_before);
+    if (points.empty()) return done(first);
+    std::optional<Made> finer = finer_surface(source, first, std::move(points), share_before, mesh, steps);
+    return finer ? done(*finer) : done(first);
 }
 
 }  // namespace strata

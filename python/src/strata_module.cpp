@@ -23,7 +23,7 @@
 #include <strata/core/progress.h>
 #include <strata/core/validate.h>
 #include <strata/frontend/options.h>
-#include <strata/frontend/prepare_layers.h>
+#include <strata/frontend/pipeline.h>
 #include <strata/frontend/report.h>
 #include <strata/geometry/check.h>
 #include <strata/gmsh_api/gmsh_api.h>
@@ -420,38 +420,6 @@ struct PyMesh {
     py::dict report;
 };
 
-struct Prepared {
-    SurfaceMesh surface;
-    PrepareReport report;
-    double seconds = 0.0;
-};
-
-/// The inputs read and prepared as the CLI does (strata::prepare_params, prepare_surfaces; for
-/// a hybrid mesh \p mesh, prepare_for_layers).
-Prepared prepare(const std::vector<std::string>& inputs, Options& o, Progress* progress,
-                 const LayerParams* layers = nullptr, const HybridParams* mesh = nullptr) {
-    const auto t0 = std::chrono::steady_clock::now();
-    if (inputs.empty()) throw InputError("no input: give a CAD or surface-mesh file, or a list of them");
-    o.surface.inputs = inputs;
-    o.surface.input = input_name(inputs);
-    Prepared p;
-    PrepareParams params = prepare_params(o.surface, layers);
-    p.surface = mesh ? prepare_for_layers(inputs, params, *mesh, &p.report, progress)
-                     : prepare_surfaces(inputs, params, &p.report, progress);
-    p.seconds = seconds_since(t0);
-    return p;
-}
-
-/// Before the work: the volume output \p output, its Cobalt60 patch map and its report can be
-/// written and none of them is an input.
-void check_volume_outputs(const std::string& output, double version, const std::vector<std::string>& inputs) {
-    check_volume_output(output, version);
-    std::vector<std::string> files = volume_output_files(output);
-    files.push_back(report_path(output));
-    check_outputs_are_not_inputs(files, inputs);
-    for (std::size_t i = 1; i < files.size(); ++i) check_output_path(files[i]);
-}
-
 std::vector<std::string> as_inputs(const py::handle& input) {
     if (py::isinstance<py::str>(input) || py::hasattr(input, "__fspath__"))
         return {py::str(py::module_::import("os").attr("fspath")(input)).cast<std::string>()};
@@ -460,89 +428,57 @@ std::vector<std::string> as_inputs(const py::handle& input) {
     return out;
 }
 
+/// The Python objects of a pipeline's \p r; \p write_seconds: writing its outputs took that.
+py::object result_object(Result r, double write_seconds) {
+    set_time(r.report, "write", write_seconds);
+    if (r.job == Job::Surface) {
+        auto result = std::make_unique<PySurface>();
+        result->report = report_dict(r.report);
+        result->mesh = std::move(r.surface);
+        return py::cast(std::move(result));
+    }
+    auto result = std::make_unique<PyMesh>();
+    result->report = report_dict(r.report);
+    result->mesh = r.job == Job::Layers ? std::move(r.layers.mesh) : std::move(r.mesh);
+    return py::cast(std::move(result));
+}
+
+/// surface(), layers() and mesh(): the pipeline's \p job on \p input with the keywords
+/// \p kwargs; \p output, if given, checked before the work and written after it.
+py::object run_job(Job job, const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
+                   const std::string& msh_version, const py::object& callback, const py::object& timeout) {
+    Options o = options_from(kwargs);
+    o.surface.inputs = as_inputs(input);
+    if (o.surface.inputs.empty()) throw InputError("no input: give a CAD or surface-mesh file, or a list of them");
+    o.surface.input = input_name(o.surface.inputs);
+    const Request request = make_request(job, o);
+    const double version = parse_msh_version(msh_version);
+    if (output) check_outputs(job, *output, version, request.inputs);
+    return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
+        Result r = run(request, progress);
+        const auto t = std::chrono::steady_clock::now();
+        if (output) {
+            OutputSet outputs;  // the mesh and its report, both or neither
+            write_outputs(r, *output, version, progress, outputs);
+            outputs.commit();
+        }
+        return result_object(std::move(r), seconds_since(t));
+    });
+}
+
 py::object run_surface(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
                        const std::string& msh_version, const py::object& callback, const py::object& timeout) {
-    Options o = options_from(kwargs);
-    const std::vector<std::string> inputs = as_inputs(input);
-    const double version = parse_msh_version(msh_version);
-    if (output) {
-        check_surface_output(*output, version);
-        check_outputs_are_not_inputs({*output}, inputs);
-    }
-    return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
-        Prepared p = prepare(inputs, o, progress);
-        if (output) write_surface(p.surface, *output, version, progress);
-        auto result = std::make_unique<PySurface>();
-        result->report = report_dict(surface_run_report(p.surface, p.report, o, {{"surface", p.seconds}}));
-        result->mesh = std::move(p.surface);
-        return py::cast(std::move(result));
-    });
+    return run_job(Job::Surface, input, kwargs, output, msh_version, callback, timeout);
 }
 
 py::object run_layers(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
                       const std::string& msh_version, const py::object& callback, const py::object& timeout) {
-    Options o = options_from(kwargs);
-    const LayerParams lp = layer_params(o.layers);
-    const std::vector<std::string> inputs = as_inputs(input);
-    const double version = parse_msh_version(msh_version);
-    if (output) check_volume_outputs(*output, version, inputs);
-    return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
-        Prepared p = prepare(inputs, o, progress, &lp);
-        auto t = std::chrono::steady_clock::now();
-        LayerMesh lm = extrude_layers(p.surface, lp, progress);
-        const double t_layers = seconds_since(t);
-        t = std::chrono::steady_clock::now();
-        const ValidationReport v =
-            require_valid_mesh(lm.mesh, o.surface.input, {.threads = lp.threads, .progress = progress});
-        const double t_validate = seconds_since(t);
-        ReportNode report =
-            layers_run_report(lm, layer_report(lm), v, &p.surface, &p.report, o,
-                              {{"surface", p.seconds}, {"layers", t_layers}, {"validation", t_validate}});
-        t = std::chrono::steady_clock::now();
-        if (output) {
-            OutputSet outputs;  // the mesh and its report, both or neither
-            write_volume(lm.mesh, *output, version, progress, &outputs);
-            write_report(report, report_path(*output), &outputs);
-            outputs.commit();
-        }
-        auto result = std::make_unique<PyMesh>();
-        set_time(report, "write", seconds_since(t));
-        result->report = report_dict(report);
-        result->mesh = std::move(lm.mesh);
-        return py::cast(std::move(result));
-    });
+    return run_job(Job::Layers, input, kwargs, output, msh_version, callback, timeout);
 }
 
 py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
                     const std::string& msh_version, const py::object& callback, const py::object& timeout) {
-    Options o = options_from(kwargs);
-    const HybridParams hp = hybrid_params(o.layers, o.mesh);
-    const std::vector<std::string> inputs = as_inputs(input);
-    const double version = parse_msh_version(msh_version);
-    if (output) check_volume_outputs(*output, version, inputs);
-    return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
-        Prepared p = prepare(inputs, o, progress, &hp.layers, &hp);
-        HybridReport hr;
-        auto result = std::make_unique<PyMesh>();
-        try {
-            result->mesh = build_hybrid_mesh(p.surface, hp, progress, &hr);
-        } catch (const InputError& e) {
-            const std::string hint = sewing_hint(p.report.sew);
-            if (hint.empty()) throw;
-            throw InputError(e.what() + hint);
-        }
-        ReportNode report = mesh_run_report(&result->mesh, hr, &p.surface, &p.report, o, {{"surface", p.seconds}});
-        const auto t = std::chrono::steady_clock::now();
-        if (output) {
-            OutputSet outputs;  // the mesh and its report, both or neither
-            write_volume(result->mesh, *output, version, progress, &outputs);
-            write_report(report, report_path(*output), &outputs);
-            outputs.commit();
-        }
-        set_time(report, "write", seconds_since(t));
-        result->report = report_dict(report);
-        return py::cast(std::move(result));
-    });
+    return run_job(Job::Mesh, input, kwargs, output, msh_version, callback, timeout);
 }
 
 py::dict run_gmsh_model(const py::dict& kwargs, const py::object& callback, const py::object& timeout) {
@@ -593,38 +529,8 @@ void register_exceptions(py::module_& m) {
     py::register_exception_translator(&translate_exception);
 }
 
-}  // namespace
-}  // namespace strata
-
-PYBIND11_MODULE(_strata, m) {
-    using namespace strata;
-    m.doc() = "Strata's C++ pipeline; use the package strata (strata.mesh, strata.layers, strata.surface).";
-
-    register_exceptions(m);
-
-    m.def(
-        "keywords",
-        [] {
-            const Options defaults;
-            py::list l;
-            for (const Keyword& k : keywords()) {
-                py::list takes;
-                if (k.takes & kSurface) takes.append("surface");
-                if (k.takes & kLayers) takes.append("layers");
-                if (k.takes & kMesh) takes.append("mesh");
-                if (k.takes & kGmshModel) takes.append("gmsh");
-                l.append(py::dict("name"_a = k.name, "default"_a = k.get(defaults), "param"_a = k.param,
-                                  "takes"_a = takes, "doc"_a = k.doc));
-            }
-            return l;
-        },
-        "The keywords of surface(), layers(), mesh() and gmsh.mesh_current_model(): name, default (from a "
-        "default-constructed Params struct), the library parameter it sets, which functions take it, and a line "
-        "of help.");
-    m.def(
-        "translate", [](const std::string& message) { return translate_names(message, keyword_of_name()); },
-        "A library message with its parameter names and CLI flags in Python keywords.");
-
+/// The class Surface: a surface result's arrays (views), report and writer.
+void bind_surface(py::module_& m) {
     py::class_<PySurface>(m, "Surface", "A checked, oriented surface mesh with patches (strata.surface).")
         .def_property_readonly(
             "points", [](py::object self) { return points_view(self.cast<PySurface&>().mesh.points, self); },
@@ -655,7 +561,10 @@ PYBIND11_MODULE(_strata, m) {
                    std::to_string(s.mesh.num_faces()) + " faces, " + std::to_string(s.mesh.patches.size()) +
                    " patches>";
         });
+}
 
+/// The class Mesh: a volume result's arrays (views), report and writer.
+void bind_mesh(py::module_& m) {
     auto cells = [](py::object self, CellType t) {
         const VolumeMesh& mesh = self.cast<PyMesh&>().mesh;
         return mesh.with_cells(t, [&](const auto& block) { return view(block, self); });
@@ -711,6 +620,42 @@ PYBIND11_MODULE(_strata, m) {
                    " pyramids, " + std::to_string(s.mesh.prisms.size()) + " prisms, " +
                    std::to_string(s.mesh.hexes.size()) + " hexahedra>";
         });
+}
+
+}  // namespace
+}  // namespace strata
+
+PYBIND11_MODULE(_strata, m) {
+    using namespace strata;
+    m.doc() = "Strata's C++ pipeline; use the package strata (strata.mesh, strata.layers, strata.surface).";
+
+    register_exceptions(m);
+
+    m.def(
+        "keywords",
+        [] {
+            const Options defaults;
+            py::list l;
+            for (const Keyword& k : keywords()) {
+                py::list takes;
+                if (k.takes & kSurface) takes.append("surface");
+                if (k.takes & kLayers) takes.append("layers");
+                if (k.takes & kMesh) takes.append("mesh");
+                if (k.takes & kGmshModel) takes.append("gmsh");
+                l.append(py::dict("name"_a = k.name, "default"_a = k.get(defaults), "param"_a = k.param,
+                                  "takes"_a = takes, "doc"_a = k.doc));
+            }
+            return l;
+        },
+        "The keywords of surface(), layers(), mesh() and gmsh.mesh_current_model(): name, default (from a "
+        "default-constructed Params struct), the library parameter it sets, which functions take it, and a line "
+        "of help.");
+    m.def(
+        "translate", [](const std::string& message) { return translate_names(message, keyword_of_name()); },
+        "A library message with its parameter names and CLI flags in Python keywords.");
+
+    bind_surface(m);
+    bind_mesh(m);
 
     const char* run_doc = "(input, options: dict, output, msh_version, progress, timeout); see strata.";
     m.def("check_geo_script", &check_geo_script, py::arg("path"),

@@ -10,7 +10,9 @@
 Debian's python3-gmsh loads the same libgmsh.so.4.8 that Strata is linked against, so both
 see one Gmsh state: Strata reads the model's surface mesh and puts the hybrid volume back into
 it (strata::mesh_current_gmsh_model: one discrete volume with a physical group "fluid", one
-discrete surface and 2D physical group per patch). TetGen runs from libtet loaded privately
+discrete surface and 2D physical group per patch). A model whose surfaces are all CAD has its
+walls meshed again finer where the layers would step at a gap or fan at a sharp edge, as
+strata.mesh does on a CAD file (step_quality=0 and max_aspect_ratio=0 keep the model's mesh). TetGen runs from libtet loaded privately
 (dlopen with RTLD_DEEPBIND, hybrid/src/tetgen_library.cpp), not from the modified copy of it
 inside libgmsh: tests/python/test_gmsh_inprocess.py checks both in one process.
 """

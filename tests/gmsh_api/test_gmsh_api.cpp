@@ -7,6 +7,7 @@
 #include "test_support.h"
 
 #include <strata/core/error.h>
+#include <strata/core/progress.h>
 #include <strata/core/validate.h>
 #include <strata/gmsh_api/gmsh_api.h>
 #include <strata/io/gmsh_model.h>
@@ -21,6 +22,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace strata {
@@ -202,6 +204,85 @@ TEST(GmshApi, FailuresLeaveTheUsersModelAsItWas) {
     EXPECT_EQ(count_elements(kTriangle3), triangles);
     EXPECT_EQ(count_elements(kTet4) + count_elements(kPrism6), 0u);
     EXPECT_EQ(groups(2).count("hull"), 1u);
+}
+
+/// Two OCC spheres 0.0118 apart (examples/data/two_spheres_narrow_gap.geo) meshed in 2D at 0.1.
+void two_spheres_surface_mesh() {
+    gmsh::model::add("two_spheres");
+    gmsh::model::occ::addSphere(0, 0, 0, 0.5);
+    gmsh::model::occ::addSphere(1.0118, 0, 0, 0.5);
+    gmsh::model::occ::synchronize();
+    gmsh::option::setNumber("Mesh.MeshSizeMax", 0.1);
+    gmsh::model::mesh::generate(2);
+}
+
+/// 12 layers from 1e-3: they step at the spheres' gap.
+HybridParams twelve_layers() {
+    HybridParams p;
+    p.layers.distribution.layers = 12;
+    p.layers.distribution.first_height = 1e-3;
+    p.layers.distribution.growth = 1.2;
+    return p;
+}
+
+/// Triangles on the 2D physical groups other than "farfield": the walls'.
+std::size_t wall_triangles() {
+    std::size_t n = 0;
+    for (const auto& [name, entities] : groups(2)) {
+        if (name == "farfield") continue;
+        for (const int e : entities) {
+            std::vector<std::size_t> tags, nodes;
+            gmsh::model::mesh::getElementsByType(kTriangle3, tags, nodes, e);
+            n += tags.size();
+        }
+    }
+    return n;
+}
+
+/// Cancels the run once the layers start: after the walls were prepared.
+class CancelAtLayers : public Progress {
+public:
+    void report(std::string_view stage, double) override { stop_ = stop_ || stage == "layers"; }
+    bool cancelled() const override { return stop_; }
+
+private:
+    bool stop_ = false;
+};
+
+TEST(GmshApi, CadWallsAreMeshedAgainWhereTheLayersStepAtAGap) {
+    // As the strata program does on the .geo: the walls facing the gap meshed finer for the
+    // layers' steps there (prepare_for_layers); without steps or aspect limits, the user's mesh.
+    std::size_t user = 0, kept = 0, finer = 0;
+    {
+        UserGmsh gmsh_user;
+        two_spheres_surface_mesh();
+        user = count_elements(kTriangle3);
+        PrepareParams as_given;
+        as_given.cad.step_quality = 0.0;
+        as_given.cad.max_aspect_ratio = 0.0;
+        EXPECT_TRUE(mesh_current_gmsh_model(twelve_layers(), as_given).validation.ok());
+        kept = wall_triangles();
+    }
+    {
+        UserGmsh gmsh_user;
+        two_spheres_surface_mesh();
+        const HybridReport report = mesh_current_gmsh_model(twelve_layers());
+        EXPECT_TRUE(report.validation.ok());
+        finer = wall_triangles();
+    }
+    EXPECT_EQ(kept, user);
+    EXPECT_GT(finer, 2 * user);
+}
+
+TEST(GmshApi, AFailureAfterTheWallsWereMeshedAgainPutsTheUsersMeshBack) {
+    UserGmsh gmsh_user;
+    two_spheres_surface_mesh();
+    const std::size_t triangles = count_elements(kTriangle3), lines = count_elements(1);
+    CancelAtLayers cancel;
+    EXPECT_THROW(mesh_current_gmsh_model(twelve_layers(), {}, &cancel), Cancelled);
+    EXPECT_EQ(count_elements(kTriangle3), triangles);
+    EXPECT_EQ(count_elements(1), lines);
+    EXPECT_EQ(count_elements(kTet4) + count_elements(kPrism6), 0u);
 }
 
 TEST(GmshApi, AddVolumeNextToAnExistingMeshOffsetsEveryTag) {
