@@ -4,6 +4,7 @@
 #include <strata/core/face_geometry.h>
 #include <strata/core/solver_checks.h>
 #include <strata/core/surface_mesh.h>
+#include <strata/core/volume_mesh.h>
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include <unistd.h>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -70,6 +72,14 @@ void expect_error(F&& f, const std::vector<std::string>& parts) {
     const std::string msg = error_message<E>(std::forward<F>(f));
     for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << "message is not one line: " << msg;
+}
+
+/// \p a and \p b have the same cells, type by type, node for node.
+inline void expect_same_cells(const VolumeMesh& a, const VolumeMesh& b) {
+    EXPECT_EQ(a.tets, b.tets);
+    EXPECT_EQ(a.pyramids, b.pyramids);
+    EXPECT_EQ(a.prisms, b.prisms);
+    EXPECT_EQ(a.hexes, b.hexes);
 }
 
 /// A fresh empty directory for one test, removed when the object goes.
@@ -185,6 +195,35 @@ inline SurfaceMesh merged(SurfaceMesh a, const SurfaceMesh& b) {
         a.add_face(v.data(), static_cast<Index>(v.size()), b.face_patch[f] + np);
     }
     return a;
+}
+
+/// The eight corners of the unit cube moved by \p offset (node id = x + 2y + 4z) and one "wall"
+/// patch, for a test to add the faces it needs.
+inline SurfaceMesh cube_corners(const Vec3& offset = Vec3::Zero()) {
+    SurfaceMesh m;
+    m.patches.push_back({"wall", PatchKind::Wall});
+    for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 2; ++x) m.points.push_back(Vec3(x, y, z) + offset);
+    return m;
+}
+
+/// A Möbius strip of 12 quads round the z axis (radius 3, width 1), patch "strip": it passes
+/// check_surface but cannot be oriented. Nodes 2i (top) and 2i + 1 (bottom) at angle i.
+inline SurfaceMesh moebius_strip() {
+    SurfaceMesh m;
+    m.patches.push_back({"strip", PatchKind::Wall});
+    const int n = 12;
+    for (int i = 0; i < n; ++i) {
+        const double th = 2.0 * std::numbers::pi * i / n, tw = th / 2.0;
+        const Vec3 c(3.0 * std::cos(th), 3.0 * std::sin(th), 0.0);
+        const Vec3 d = std::cos(tw) * Vec3(std::cos(th), std::sin(th), 0.0) + std::sin(tw) * Vec3::UnitZ();
+        m.points.push_back(c + 0.5 * d);
+        m.points.push_back(c - 0.5 * d);
+    }
+    for (Index i = 0; i + 1 < n; ++i) m.add_face({2 * i, 2 * i + 1, 2 * i + 3, 2 * i + 2}, 0);
+    m.add_face({2 * (n - 1), 2 * (n - 1) + 1, 0, 1}, 0);  // the half twist: bottom joins top
+    return m;
 }
 
 /// Structured nx × ny grid of unit quads in the z = 0 plane, one "wall" patch, normals +z.

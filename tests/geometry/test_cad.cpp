@@ -820,24 +820,35 @@ std::string write_blade(const ScratchDir& dir) {
                       "Extrude {0, 1, 0} { Surface{1}; }\n");
 }
 
+/// \p geo meshed by mesh_cad at size 0.15 with the first height \p first_height and the fan angle
+/// \p fan_angle_deg (0: no fans), the walls' report in \p r.
+SurfaceMesh mesh_blade(const std::string& geo, double first_height, double fan_angle_deg, WallSizeReport& r) {
+    CadParams p;
+    p.size = 0.15;
+    p.first_height = first_height;
+    p.fan_angle_deg = fan_angle_deg;
+    return mesh_cad(geo, p, nullptr, &r);
+}
+
+/// \p m is a closed surface whose worst forecast wall cell, above \p before, was brought to 1000.
+void expect_walls_refined(const SurfaceMesh& m, const WallSizeReport& r, double before) {
+    expect_well_formed(m);
+    EXPECT_TRUE(closed(m));
+    EXPECT_GT(r.worst_before, before);
+    EXPECT_LE(r.worst_after, 1000.0);
+}
+
 TEST(MeshCadWalls, FanEdgesAreMeshedFinerAlongTheirCurve) {
     // A blade with a 20-degree edge along y (its faces turn by 160 degrees: a fan at the default
     // 150) at size 0.15: the fan's first wedge is about twice the edge over h, 2 * 0.14 / 1.5e-4
     // = 1900, while a prism on a face is near 500. Only the edge's curve is refined.
     const ScratchDir dir("mesh_cad_fan");
     const std::string geo = write_blade(dir);
-    CadParams p;
-    p.size = 0.15;
-    p.first_height = 1.5e-4;
     WallSizeReport r;
-    SurfaceMesh m = mesh_cad(geo, p, nullptr, &r);
+    SurfaceMesh m = mesh_blade(geo, 1.5e-4, 0.0, r);
     EXPECT_EQ(r.surfaces + r.curves, 0);  // no fan angle given: no fan is predicted
-    p.fan_angle_deg = 150.0;
-    m = mesh_cad(geo, p, nullptr, &r);
-    expect_well_formed(m);
-    EXPECT_TRUE(closed(m));
-    EXPECT_GT(r.worst_before, 1500.0);
-    EXPECT_LE(r.worst_after, 1000.0);
+    m = mesh_blade(geo, 1.5e-4, 150.0, r);
+    expect_walls_refined(m, r, 1500.0);
     EXPECT_EQ(r.surfaces, 0);
     EXPECT_EQ(r.curves, 1);
     // The edge at x = 0 is now in segments of at most about r.cap.
@@ -861,20 +872,12 @@ TEST(MeshCadWalls, StepCellsAtASharpEdgeWithoutAFanAreMeshedFinerToo) {
     // and the surfaces beside the edge meshed finer for them.
     const ScratchDir dir("mesh_cad_steps");
     const std::string geo = write_blade(dir);
-    CadParams p;
-    p.size = 0.15;
-    p.first_height = 1.2e-4;
-    p.fan_angle_deg = 0.0;
     WallSizeReport r;
-    const SurfaceMesh m = mesh_cad(geo, p, nullptr, &r);
-    expect_well_formed(m);
-    EXPECT_TRUE(closed(m));
-    EXPECT_GT(r.worst_before, 1100.0);
-    EXPECT_LE(r.worst_after, 1000.0);
+    const SurfaceMesh m = mesh_blade(geo, 1.2e-4, 0.0, r);
+    expect_walls_refined(m, r, 1100.0);
     EXPECT_GE(r.surfaces, 2);
     // A first layer the faces allow: nothing to do.
-    p.first_height = 2e-4;
-    (void)mesh_cad(geo, p, nullptr, &r);
+    (void)mesh_blade(geo, 2e-4, 0.0, r);
     EXPECT_LT(r.worst_before, 1000.0);
     EXPECT_EQ(r.surfaces + r.curves, 0);
 }
@@ -894,12 +897,8 @@ TEST(MeshCadWalls, AFanEdgeEndingOnAConcaveJunctionIsNotMeshedFinerForAFan) {
                                        "Curve Loop(101) = {101, 102, 103};\nPlane Surface(101) = {101};\n"
                                        "v() = Extrude {0, 0, 1} { Surface{101}; };\n"
                                        "BooleanUnion{ Volume{1}; Delete; }{ Volume{v(1)}; Delete; }\n");
-    CadParams p;
-    p.size = 0.15;
-    p.first_height = 1.5e-4;
-    p.fan_angle_deg = 150.0;
     WallSizeReport r;
-    const SurfaceMesh m = mesh_cad(geo, p, nullptr, &r);
+    const SurfaceMesh m = mesh_blade(geo, 1.5e-4, 150.0, r);
     expect_well_formed(m);
     EXPECT_TRUE(closed(m));
     EXPECT_EQ(r.curves, 0);

@@ -100,6 +100,15 @@ std::size_t quads_here() {
     return quads.size();
 }
 
+/// A unit box, quads asked with Blossom at size 0.3 (Blossom meshes it).
+void box_with_blossom(GmshOptionScope& options) {
+    gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
+    gmsh::model::occ::synchronize();
+    options.set("Mesh.MeshSizeMax", 0.3);
+    options.set("Mesh.RecombineAll", 1);
+    options.set("Mesh.RecombinationAlgorithm", 1);
+}
+
 TEST(GenerateSurfacesInChild, BlossomsAbortFoundInAChildAndTheSimpleAlgorithmMeshesIt) {
     GmshSession session("blossom_aborts");
     GmshOptionScope options;
@@ -120,11 +129,7 @@ TEST(GenerateSurfacesInChild, BlossomsAbortFoundInAChildAndTheSimpleAlgorithmMes
 TEST(GenerateSurfacesInChild, BlossomsMeshIsBroughtBackMadeOnce) {
     GmshSession session("blossom_ok");
     GmshOptionScope options;
-    gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
-    gmsh::model::occ::synchronize();
-    options.set("Mesh.MeshSizeMax", 0.3);
-    options.set("Mesh.RecombineAll", 1);
-    options.set("Mesh.RecombinationAlgorithm", 1);
+    box_with_blossom(options);
     int here = 0;  // calls of generate in this process: none, the child's mesh is taken
     const pid_t parent = getpid();
     EXPECT_EQ(generate_surfaces_in_child("box", true, options,
@@ -143,11 +148,7 @@ TEST(GenerateSurfacesInChild, ACrashOfBlossomFallsBackToTheSimpleAlgorithm) {
     // mirror on a thin stalk: test_cad); where the simple recombination goes through, it is used.
     GmshSession session("blossom_crashes");
     GmshOptionScope options;
-    gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
-    gmsh::model::occ::synchronize();
-    options.set("Mesh.MeshSizeMax", 0.3);
-    options.set("Mesh.RecombineAll", 1);
-    options.set("Mesh.RecombinationAlgorithm", 1);
+    box_with_blossom(options);
     const auto crashes_with_blossom = [] {
         if (option("Mesh.RecombinationAlgorithm") == 1.0) std::raise(SIGSEGV);
         gmsh::model::mesh::generate(2);
