@@ -66,11 +66,16 @@ std::string error_message(F&& f) {
     return {};
 }
 
+/// \p text contains every one of \p parts (a failure names the part and shows \p text).
+inline void expect_contains(const std::string& text, const std::vector<std::string>& parts) {
+    for (const std::string& p : parts) EXPECT_NE(text.find(p), std::string::npos) << "'" << p << "' not in: " << text;
+}
+
 /// \p f throws an E whose one-line message contains every one of \p parts.
 template <class E, class F>
 void expect_error(F&& f, const std::vector<std::string>& parts) {
     const std::string msg = error_message<E>(std::forward<F>(f));
-    for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
+    expect_contains(msg, parts);
     EXPECT_EQ(msg.find('\n'), std::string::npos) << "message is not one line: " << msg;
 }
 

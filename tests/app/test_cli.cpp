@@ -153,13 +153,12 @@ TEST(Cli, FiveStlPartsThatOverlapAreFusedIntoOneBody) {
     const std::string layers = " --layers 5 --first-height 1e-3 --msh-version 2.2";
     CliResult r = strata_cli(dir, "mesh" + parts + " -o apart.msh" + layers);
     EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.err.find("the surface intersects itself"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("--fuse"), std::string::npos) << r.err;
+    test::expect_contains(r.err, {"the surface intersects itself", "--fuse"});
     EXPECT_TRUE(files_in(dir).empty());
     r = strata_cli(dir, "mesh" + parts + " -o fused.msh --fuse" + layers);
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("fused: 5 overlapping components replaced by their union"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("1 connected components (1 closed)"), std::string::npos) << r.out;
+    test::expect_contains(
+        r.out, {"fused: 5 overlapping components replaced by their union", "1 connected components (1 closed)"});
     const VolumeMesh m = read_volume_msh((dir.path() / "fused.msh").string());
     EXPECT_GT(m.prisms.size(), 0u);
     EXPECT_GT(m.tets.size(), 0u);
@@ -273,10 +272,8 @@ TEST(Cli, NeedleStlGivesAValidMeshAndSaysRemesh) {
     CliResult r = strata_cli(dir, "mesh '" + example_data("onera_m6_brepmesh_needles.stl") +
                                       "' -o m6.cgr --layers 20 --first-height 0.1 --growth 1.2");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("short edges: 10 collapsed"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("201 of 998 wall faces are needles"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("aspect ratio 496"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("add --remesh"), std::string::npos) << r.out;
+    test::expect_contains(
+        r.out, {"short edges: 10 collapsed", "201 of 998 wall faces are needles", "aspect ratio 496", "add --remesh"});
     EXPECT_NE(r.out.find("valid: "), std::string::npos);
     EXPECT_TRUE(fs::exists(dir.file("m6.cgr")));
 }
@@ -301,8 +298,7 @@ TEST(Cli, RemeshRebuildsANeedleStlIntoAValidMesh) {
     CliResult r = strata_cli(dir, "mesh --remesh '" + example_data("onera_m6_brepmesh_needles.stl") +
                                       "' -o m6.msh --layers 20 --first-height 0.1 --growth 1.2");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("remeshed: 1018 faces -> "), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("needle faces 220 -> "), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"remeshed: 1018 faces -> ", "needle faces 220 -> "});
     const int after = needles_after_remesh(r.out);
     EXPECT_GE(after, 0);
     EXPECT_LT(after, 15) << r.out;
@@ -358,10 +354,8 @@ TEST(Cli, TouchingBodiesOfATessellatedStlAreJoinedAndRemeshed) {
     test::ScratchDir dir("cli_touching");
     CliResult r = strata_cli(dir, "mesh " + stl + " -o fused.msh --fuse" + layers);
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("fused: 64 faces removed where bodies touch back to back"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("1 connected components (1 closed)"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("add --remesh"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("valid: "), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"fused: 64 faces removed where bodies touch back to back",
+                                  "1 connected components (1 closed)", "add --remesh", "valid: "});
     r = strata_cli(dir, "mesh " + stl + " -o remeshed.msh --fuse --remesh" + layers);
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("remeshed: 1860 faces -> "), std::string::npos) << r.out;
@@ -416,8 +410,7 @@ TEST(Cli, WallsAreMeshedFinerWhereTheLayersStepAtAGap) {
                              "' --size 0.1 --layers 12 --first-height 1e-3 --growth 1.2 -o ";
     CliResult r = strata_cli(dir, args + "on.msh");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("steps: walls meshed again finer around "), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("where the layers step low"), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"steps: walls meshed again finer around ", "where the layers step low"});
     const std::string on = slurp(dir.file("on.msh.report.json")), on_out = r.out;
     EXPECT_GT(report_min_quality(on, "pyramid"), 0.03) << r.out;
     EXPECT_GT(report_min_quality(on, "tetrahedron"), 0.03) << r.out;
@@ -457,9 +450,8 @@ TEST(Cli, TetGenStoppingOnAnInternalCheckLowersTheColumnsThere) {
     const CliResult r = strata_cli(
         dir, "mesh '" + test_data("cli_wingbody_tangent.stl") + "' --layers 20 --first-height 1.5e-3 -o m.msh");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("short edges: 6 collapsed"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("of them TetGen failed recovering a layer-top face"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("valid: "), std::string::npos) << r.out;
+    test::expect_contains(r.out,
+                          {"short edges: 6 collapsed", "of them TetGen failed recovering a layer-top face", "valid: "});
     // Nothing of TetGen's trace reached stdout.
     EXPECT_EQ(r.out.find("Recover subface"), std::string::npos);
     const VolumeMesh m = read_volume_msh(dir.file("m.msh"));
@@ -717,8 +709,7 @@ TEST(Cli, AWallQuadNoPyramidCanCapIsSplitIntoTwoTriangles) {
     const auto line = r.out.rfind("quads: ", at);
     ASSERT_NE(line, std::string::npos) << r.out;
     EXPECT_GE(std::atoi(r.out.c_str() + line + 7), 1) << r.out;
-    EXPECT_NE(r.out.find("valid: "), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"valid: ", "checkMesh would say \"Mesh OK\""});
     EXPECT_TRUE(fs::exists(dir.path() / "p.msh"));
 }
 
@@ -766,8 +757,7 @@ TEST(Cli, ADeltaWingKeepsItsLeadingEdgeFansAndTheirWedgesPassCheckMesh) {
                                             "' --layers 25 --growth 1.15 --first-height 5e-5 -o d.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out.find("no fan at"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("at the ends of fan edges and along them"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"at the ends of fan edges and along them", "checkMesh would say \"Mesh OK\""});
     const std::string rep = slurp(dir.file("d.msh.report.json"));
     EXPECT_NE(rep.find("\"short_nodes\": []"), std::string::npos) << "every column has every layer";
     EXPECT_GT(report_min_quality(rep, "pyramid"), 0.1) << r.out;
@@ -836,8 +826,7 @@ TEST(Cli, AHalfModelStlFacingIntoTheBodyIsTurnedOutward) {
     const CliResult r = strata_cli(dir, "mesh inward.stl --layers 5 --first-height 1e-3 -o w.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find(std::to_string(n) + " faces re-oriented"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("domain: a half model"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"domain: a half model", "checkMesh would say \"Mesh OK\""});
 }
 
 TEST(Cli, AFanWhoseCellsCheckMeshFindsSkewedIsDropped) {
@@ -868,8 +857,7 @@ TEST(Cli, AFarfieldOfSeveralPlanesTheLayersEndOnIsMeshedPlaneByPlane) {
     const CliResult r = strata_cli(dir, "mesh '" + test_data("cli_tunnel_one_farfield.geo") +
                                             "' --layers 10 --growth 1.2 --first-height 1e-3 -o t.msh");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("planes: patch 'farfield' is 5 planes"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"planes: patch 'farfield' is 5 planes", "checkMesh would say \"Mesh OK\""});
     std::ifstream msh(dir.path() / "t.msh");
     const std::string text((std::istreambuf_iterator<char>(msh)), std::istreambuf_iterator<char>());
     const auto names = text.find("$PhysicalNames");
@@ -947,8 +935,7 @@ TEST(Cli, QuadsRoundATinyHoleWhereBlossomWouldAbort) {
     const bool crashed = r.out.find("with its simple recombination Gmsh crashes (signal ") != std::string::npos;
     const bool aborted = r.out.find("with its simple recombination Gmsh aborts (") != std::string::npos;
     EXPECT_TRUE(crashed || aborted) << r.out;
-    EXPECT_NE(r.out.find("were split into two triangles"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"were split into two triangles", "checkMesh would say \"Mesh OK\""});
 }
 
 /// The summary's smallest scaled Jacobian of \p type ("tetrahedron", ...); NaN if absent.
@@ -1016,8 +1003,7 @@ TEST(Cli, FighterHalfModelWithInletDuct) {
         strata_cli(dir, "mesh '" + example_data("../fighter/fighter.geo") +
                             "' -o fighter.msh --first-height 1e-3 --growth 1.2 --layers " + std::to_string(layers));
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("planes re-meshed around the layers' sides: symmetry"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("valid: "), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"planes re-meshed around the layers' sides: symmetry", "valid: "});
     // Coverage, share of wall nodes with every layer (measured: inlet 100 %, fuselage 96.8 %,
     // wing 84.3 %; the rest of the wing's, the tails' and the fuselage's nodes are at the
     // sharp edges, whose columns stop at the wall: 73 of the wing's for --sharp-edge-stop).
@@ -1096,9 +1082,7 @@ TEST(Cli, WallSizingPredictsTheColumnsLeaningOverEdges) {
     const CliResult r = strata_cli(dir, "mesh '" + example_data("../sweep/winglet_brepmesh.stl") +
                                             "' --fuse --remesh --layers 30 --growth 1.2 --first-height 3e-4 -o w.msh");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("walls: meshed again finer"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("worst 1190 before"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"walls: meshed again finer", "worst 1190 before", "checkMesh would say \"Mesh OK\""});
 }
 
 // A surface mesh is kept as it is: where its walls are too wide for the first layer the
@@ -1109,11 +1093,9 @@ TEST(Cli, SurfaceMeshTooCoarseForTheFirstLayerIsForecast) {
     const std::string sphere = "layers '" + example_data("sphere.stl") + "' --layers 2 --first-height 1e-7 ";
     CliResult r = strata_cli(dir, sphere + "-o thin.msh");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("wall faces are too wide for the first layer (1e-07 high)"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("(on face "), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("add --remesh to mesh it again"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("cells with an aspect ratio above 1000"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("the surface mesh was kept as it is: --remesh meshes it again"), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"wall faces are too wide for the first layer (1e-07 high)", "(on face ",
+                                  "add --remesh to mesh it again", "cells with an aspect ratio above 1000",
+                                  "the surface mesh was kept as it is: --remesh meshes it again"});
     r = strata_cli(dir, sphere + "--max-aspect-ratio 0 -o silent.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out.find("too wide for the first layer"), std::string::npos) << r.out;
@@ -1131,8 +1113,7 @@ TEST(Cli, LooseCadFacesAreSewnAndWiderGapsNamedWithTheirRemedy) {
     test::ScratchDir dir("cli_sewing");
     CliResult r = strata_cli(dir, "surface '" + test_data("cad_box_loose_faces_1e-7.brep") + "' -o s.msh");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("sewn: 6 faces that bounded no solid"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("free edges 24 -> 0, 1 solids made"), std::string::npos) << r.out;
+    test::expect_contains(r.out, {"sewn: 6 faces that bounded no solid", "free edges 24 -> 0, 1 solids made"});
     const std::string wide =
         "mesh '" + test_data("cad_box_loose_faces_3e-5.brep") + "' --layers 2 --first-height 0.01 ";
     expect_clean_failure(wide + "-o out.msh", "--sew-tolerance 6.7e-05 sews them", "sewing");
@@ -1296,8 +1277,7 @@ TEST(Cli, ACrashEndsWithOneLineNamingTheStage) {
                             0),
               0u)
         << message;
-    EXPECT_NE(message.find("--size"), std::string::npos) << message;
-    EXPECT_NE(message.find("nothing was written"), std::string::npos) << message;
+    test::expect_contains(message, {"--size", "nothing was written"});
     EXPECT_EQ(files_in(dir), std::vector<std::string>{"ball.geo"});
 }
 

@@ -128,8 +128,7 @@ TEST(Prepare, PatchKindsFromNamesAndMappings) {
         FAIL() << "unknown patch accepted";
     } catch (const InputError& e) {
         const std::string msg = e.what();
-        EXPECT_NE(msg.find("model.msh"), std::string::npos) << msg;
-        EXPECT_NE(msg.find("'Wing'"), std::string::npos) << msg;
+        test::expect_contains(msg, {"model.msh", "'Wing'"});
         EXPECT_NE(msg.find("SymmetryPlane"), std::string::npos) << msg;  // lists what exists
     }
 }

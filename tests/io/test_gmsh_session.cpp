@@ -24,6 +24,14 @@ using test::example_data;
     throw std::runtime_error("out of the loop");
 }
 
+/// \p p ran and ended only as \p how says (returned, threw or aborted), with \p message.
+void expect_ended(const GmshProbe& p, bool GmshProbe::*how, const std::string& message) {
+    ASSERT_TRUE(p.ran);
+    for (bool GmshProbe::*flag : {&GmshProbe::returned, &GmshProbe::threw, &GmshProbe::aborted})
+        EXPECT_EQ(p.*flag, flag == how);
+    EXPECT_EQ(p.message, message);
+}
+
 TEST(GmshProbe, AReturnIsReturned) {
     GmshSession session("probe_returns");
     int touched = 0;
@@ -45,22 +53,15 @@ TEST(GmshProbe, AReturnIsReturned) {
 
 TEST(GmshProbe, AnExceptionIsItsText) {
     GmshSession session("probe_throws");
-    const GmshProbe p = gmsh_probe([] { throw std::string("Gmsh's words"); });
-    ASSERT_TRUE(p.ran);
-    EXPECT_TRUE(p.threw);
-    EXPECT_FALSE(p.returned || p.aborted);
-    EXPECT_EQ(p.message, "Gmsh's words");
+    expect_ended(gmsh_probe([] { throw std::string("Gmsh's words"); }), &GmshProbe::threw, "Gmsh's words");
 }
 
 TEST(GmshProbe, AnAbortIsItsTextAndThisProcessLivesOn) {
     // As Gmsh 4.8 does: an exception out of a region no exception may leave (an OpenMP loop;
     // here a noexcept function) ends the process through std::terminate.
     GmshSession session("probe_aborts");
-    const GmshProbe p = gmsh_probe([] { []() noexcept { throw_out_of_the_loop(); }(); });
-    ASSERT_TRUE(p.ran);
-    EXPECT_TRUE(p.aborted);
-    EXPECT_FALSE(p.returned || p.threw);
-    EXPECT_EQ(p.message, "out of the loop");
+    expect_ended(gmsh_probe([] { []() noexcept { throw_out_of_the_loop(); }(); }), &GmshProbe::aborted,
+                 "out of the loop");
 }
 
 TEST(GmshProbe, ACrashIsItsSignal) {

@@ -238,9 +238,7 @@ TEST(Layers, InvertedCellIsReportedWithItsLocation) {
         FAIL() << "plain extrusion into the concave corner should fold";
     } catch (const LocalTopologyError& e) {
         const std::string msg = e.what();
-        EXPECT_NE(msg.find("layer "), std::string::npos) << msg;
-        EXPECT_NE(msg.find("would invert"), std::string::npos) << msg;
-        EXPECT_NE(msg.find(" at ("), std::string::npos) << msg;
+        test::expect_contains(msg, {"layer ", "would invert", " at ("});
         // The folding cell's corners, as nodes of the surface given, and how far the layers got.
         ASSERT_GE(e.nodes().size(), 3u);
         std::vector<char> on_wall(static_cast<std::size_t>(wall.num_points()), 0);
