@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -22,6 +23,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -86,6 +88,34 @@ inline void expect_same_cells(const VolumeMesh& a, const VolumeMesh& b) {
     EXPECT_EQ(a.prisms, b.prisms);
     EXPECT_EQ(a.hexes, b.hexes);
 }
+
+/// A thread that writes \p bytes into the named pipe \p fifo: it waits for a reader to open it.
+inline std::thread fill_fifo(const std::string& fifo, std::string bytes) {
+    return std::thread([fifo, bytes = std::move(bytes)] {
+        std::FILE* f = std::fopen(fifo.c_str(), "wb");
+        if (!f) return;
+        std::fwrite(bytes.data(), 1, bytes.size(), f);
+        std::fclose(f);
+    });
+}
+
+/// \p program and \p args as the null-terminated argv of exec and posix_spawn, the strings held
+/// here.
+class Argv {
+public:
+    Argv(std::string program, const std::vector<std::string>& args) : words_{std::move(program)} {
+        words_.insert(words_.end(), args.begin(), args.end());
+        for (std::string& w : words_) pointers_.push_back(w.data());
+        pointers_.push_back(nullptr);
+    }
+    Argv(const Argv&) = delete;
+    Argv& operator=(const Argv&) = delete;
+    char** data() { return pointers_.data(); }
+
+private:
+    std::vector<std::string> words_;
+    std::vector<char*> pointers_;
+};
 
 /// A fresh empty directory for one test, removed when the object goes.
 class ScratchDir {

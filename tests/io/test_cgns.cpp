@@ -87,7 +87,9 @@ protected:
                                           : faces_of[m.boundary.face_patch[f]].second) += 1;
     }
     void TearDown() override {
-        if (open) EXPECT_EQ(cg_close(fn), CG_OK) << cg_get_error();
+        if (open) {
+            EXPECT_EQ(cg_close(fn), CG_OK) << cg_get_error();
+        }
     }
 
     /// One base of dimensions 3, one unstructured zone of the mesh's nodes and cells.

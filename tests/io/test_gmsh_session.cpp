@@ -101,13 +101,24 @@ std::size_t quads_here() {
     return quads.size();
 }
 
-/// A unit box, quads asked with Blossom at size 0.3 (Blossom meshes it).
-void box_with_blossom(GmshOptionScope& options) {
-    gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
-    gmsh::model::occ::synchronize();
-    options.set("Mesh.MeshSizeMax", 0.3);
-    options.set("Mesh.RecombineAll", 1);
-    options.set("Mesh.RecombinationAlgorithm", 1);
+/// In a session of its own, a unit box, quads asked with Blossom at size 0.3 (Blossom meshes it).
+struct BlossomBox {
+    GmshSession session;
+    GmshOptionScope options;
+    explicit BlossomBox(const std::string& name) : session(name) {
+        gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
+        gmsh::model::occ::synchronize();
+        options.set("Mesh.MeshSizeMax", 0.3);
+        options.set("Mesh.RecombineAll", 1);
+        options.set("Mesh.RecombinationAlgorithm", 1);
+    }
+};
+
+/// The current model's mesh has more than \p quads quadrilaterals, and recombination algorithm
+/// \p algorithm is Gmsh's setting (1: Blossom, 0: the simple one).
+void expect_quads(double algorithm, std::size_t quads) {
+    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), algorithm);
+    EXPECT_GT(quads_here(), quads);
 }
 
 TEST(GenerateSurfacesInChild, BlossomsAbortFoundInAChildAndTheSimpleAlgorithmMeshesIt) {
@@ -122,41 +133,35 @@ TEST(GenerateSurfacesInChild, BlossomsAbortFoundInAChildAndTheSimpleAlgorithmMes
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
     const std::string failure = generate_surfaces_in_child("spiky", true, options, generate);
     EXPECT_NE(failure.find("Perfect Match failed"), std::string::npos) << failure;
-    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
     // The simple algorithm's quads are brought back here.
-    EXPECT_GT(quads_here(), 100u);
+    expect_quads(0.0, 100u);
 }
 
 TEST(GenerateSurfacesInChild, BlossomsMeshIsBroughtBackMadeOnce) {
-    GmshSession session("blossom_ok");
-    GmshOptionScope options;
-    box_with_blossom(options);
+    BlossomBox box("blossom_ok");
     int here = 0;  // calls of generate in this process: none, the child's mesh is taken
     const pid_t parent = getpid();
-    EXPECT_EQ(generate_surfaces_in_child("box", true, options,
+    EXPECT_EQ(generate_surfaces_in_child("box", true, box.options,
                                          [&] {
                                              if (getpid() == parent) ++here;
                                              gmsh::model::mesh::generate(2);
                                          }),
               "");
     EXPECT_EQ(here, 0);
-    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
-    EXPECT_GT(quads_here(), 20u);
+    expect_quads(1.0, 20u);
 }
 
 TEST(GenerateSurfacesInChild, ACrashOfBlossomFallsBackToTheSimpleAlgorithm) {
     // Blossom also crashes without words of its own (a segmentation fault on a body with a
     // mirror on a thin stalk: test_cad); where the simple recombination goes through, it is used.
-    GmshSession session("blossom_crashes");
-    GmshOptionScope options;
-    box_with_blossom(options);
+    BlossomBox box("blossom_crashes");
+    GmshOptionScope& options = box.options;
     const auto crashes_with_blossom = [] {
         if (option("Mesh.RecombinationAlgorithm") == 1.0) std::raise(SIGSEGV);
         gmsh::model::mesh::generate(2);
     };
     EXPECT_EQ(generate_surfaces_in_child("the model", true, options, crashes_with_blossom), "crashes (signal 11)");
-    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
-    EXPECT_GT(quads_here(), 20u);
+    expect_quads(0.0, 20u);
     // Where the simple one crashes too, one error says both, and nothing ends this process.
     options.set("Mesh.RecombinationAlgorithm", 1);
     test::expect_error<BackendError>(

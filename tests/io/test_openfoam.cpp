@@ -246,13 +246,11 @@ TEST(WritePolyMesh, FilesAsOpenFoamWritesThem) {
     EXPECT_EQ(test::dir_entries(path), (std::vector<std::string>{"boundary", "faces", "neighbour", "owner", "points"}));
 
     const std::string owner = slurp(path + "/owner");
-    EXPECT_NE(owner.find("    class       labelList;\n"
-                         "    note        \"nPoints:12  nCells:4  nFaces:17  nInternalFaces:3\";\n"
-                         "    location    \"constant/polyMesh\";\n"
-                         "    object      owner;\n"),
-              std::string::npos)
-        << owner;
-    EXPECT_NE(owner.find("\n\n\n17\n(\n0\n1\n2\n2\n3\n0\n"), std::string::npos) << owner;
+    test::expect_contains(owner, {"    class       labelList;\n"
+                                  "    note        \"nPoints:12  nCells:4  nFaces:17  nInternalFaces:3\";\n"
+                                  "    location    \"constant/polyMesh\";\n"
+                                  "    object      owner;\n",
+                                  "\n\n\n17\n(\n0\n1\n2\n2\n3\n0\n"});
     const std::string neighbour = slurp(path + "/neighbour");
     EXPECT_NE(neighbour.find("object      neighbour;"), std::string::npos);
     EXPECT_NE(neighbour.find("\n3\n(\n1\n3\n3\n)\n"), std::string::npos) << neighbour;
