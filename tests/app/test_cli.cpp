@@ -47,6 +47,17 @@ CliResult mesh_sweep(const test::ScratchDir& dir, const std::string& shape, cons
     return strata_cli(dir, "mesh '" + example_data("../sweep/" + shape) + "' " + args);
 }
 
+/// `strata mesh` on \p shape of examples/sweep with \p args, run in a scratch directory
+/// \p scratch: it succeeds, its summary says each of \p says and that checkMesh passes the mesh.
+void expect_sweep_passes(const std::string& scratch, const std::string& shape, const std::string& args,
+                         std::vector<std::string> says) {
+    test::ScratchDir dir(scratch);
+    const CliResult r = mesh_sweep(dir, shape, args);
+    ASSERT_EQ(r.code, 0) << r.err;
+    says.push_back("checkMesh would say \"Mesh OK\"");
+    test::expect_contains(r.out, says);
+}
+
 /// Files in \p dir (after the runner removed its own capture files).
 std::vector<std::string> files_in(const test::ScratchDir& dir) {
     std::vector<std::string> names;
@@ -381,6 +392,23 @@ double report_min_quality(const std::string& json, const std::string& type) {
     return std::strtod(json.c_str() + key + type.size() + 4, nullptr);
 }
 
+/// A run with a setting at its default (on) and one with it off, and their JSON reports.
+struct OnAndOff {
+    CliResult on, off;
+    std::string on_report, off_report;
+};
+
+/// `strata ARGS on.msh` and `strata ARGS off.msh OFF` run in \p dir (\p args ends with "-o "),
+/// both of which must succeed.
+OnAndOff mesh_on_and_off(const test::ScratchDir& dir, const std::string& args, const std::string& off) {
+    OnAndOff r{strata_cli(dir, args + "on.msh"), strata_cli(dir, args + "off.msh " + off), {}, {}};
+    EXPECT_EQ(r.on.code, 0) << r.on.err;
+    EXPECT_EQ(r.off.code, 0) << r.off.err;
+    r.on_report = slurp(dir.file("on.msh.report.json"));
+    r.off_report = slurp(dir.file("off.msh.report.json"));
+    return r;
+}
+
 TEST(Cli, ShortEdgesOfAFusedCadModelAreCollapsed) {
     // OpenCASCADE's union of wing_fuselage.step leaves curves of 3.5e-5 m where the wing's
     // leading edge meets the fuselage, among faces of 0.04 m: Gmsh gives each a mesh edge, the
@@ -391,16 +419,11 @@ TEST(Cli, ShortEdgesOfAFusedCadModelAreCollapsed) {
                              "' --fuse --layers 30 --first-height 1e-4 --growth 1.2 --tet-improve 0 -o ";
     // (Without the tetrahedra improved after TetGen, which lift the uncollapsed worst to 3.4e-5
     // on their own: this is the collapse's part.)
-    CliResult r = strata_cli(dir, args + "on.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("short edges: 4 collapsed"), std::string::npos) << r.out;
-    const double on = report_min_quality(slurp(dir.file("on.msh.report.json")), "tetrahedron");
-    EXPECT_GT(on, 1e-5) << r.out;
-    r = strata_cli(dir, args + "off.msh --collapse-edges 0");
-    ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_EQ(r.out.find("short edges:"), std::string::npos) << r.out;
-    const double off = report_min_quality(slurp(dir.file("off.msh.report.json")), "tetrahedron");
-    EXPECT_LT(off, 1e-7) << r.out;
+    const OnAndOff r = mesh_on_and_off(dir, args, "--collapse-edges 0");
+    EXPECT_NE(r.on.out.find("short edges: 4 collapsed"), std::string::npos) << r.on.out;
+    EXPECT_GT(report_min_quality(r.on_report, "tetrahedron"), 1e-5) << r.on.out;
+    EXPECT_EQ(r.off.out.find("short edges:"), std::string::npos) << r.off.out;
+    EXPECT_LT(report_min_quality(r.off_report, "tetrahedron"), 1e-7) << r.off.out;
     expect_clean_failure(args + "x.msh --collapse-edges 0.7", "--collapse-edges", "collapse_range");
 }
 
@@ -413,17 +436,12 @@ TEST(Cli, WallsAreMeshedFinerWhereTheLayersStepAtAGap) {
     test::ScratchDir dir("cli_step_sizes");
     const std::string args = "mesh '" + example_data("two_spheres_narrow_gap.geo") +
                              "' --size 0.1 --layers 12 --first-height 1e-3 --growth 1.2 -o ";
-    CliResult r = strata_cli(dir, args + "on.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    test::expect_contains(r.out, {"steps: walls meshed again finer around ", "where the layers step low"});
-    const std::string on = slurp(dir.file("on.msh.report.json")), on_out = r.out;
-    EXPECT_GT(report_min_quality(on, "pyramid"), 0.03) << r.out;
-    EXPECT_GT(report_min_quality(on, "tetrahedron"), 0.03) << r.out;
-    r = strata_cli(dir, args + "off.msh --step-quality 0");
-    ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_EQ(r.out.find("steps:"), std::string::npos) << r.out;
-    const std::string off = slurp(dir.file("off.msh.report.json"));
-    EXPECT_LT(report_min_quality(off, "pyramid"), 0.03) << r.out;
+    const OnAndOff runs = mesh_on_and_off(dir, args, "--step-quality 0");
+    test::expect_contains(runs.on.out, {"steps: walls meshed again finer around ", "where the layers step low"});
+    EXPECT_GT(report_min_quality(runs.on_report, "pyramid"), 0.03) << runs.on.out;
+    EXPECT_GT(report_min_quality(runs.on_report, "tetrahedron"), 0.03) << runs.on.out;
+    EXPECT_EQ(runs.off.out.find("steps:"), std::string::npos) << runs.off.out;
+    EXPECT_LT(report_min_quality(runs.off_report, "pyramid"), 0.03) << runs.off.out;
     // The sizes go to the CAD in its own unit: the model scaled by 2 (--scale, and the first
     // height with it) gets the same walls.
     const auto faces = [](const std::string& out) {
@@ -431,8 +449,9 @@ TEST(Cli, WallsAreMeshedFinerWhereTheLayersStepAtAGap) {
         const auto from = out.rfind("-> ", at);
         return at == std::string::npos || from == std::string::npos ? std::string() : out.substr(from, at - from);
     };
-    const std::string unscaled = faces(on_out);
-    r = strata_cli(dir, "mesh '" + example_data("two_spheres_narrow_gap.geo") +
+    const std::string unscaled = faces(runs.on.out);
+    const CliResult r =
+        strata_cli(dir, "mesh '" + example_data("two_spheres_narrow_gap.geo") +
                             "' --size 0.1 --scale 2 --layers 12 --first-height 2e-3 --growth 1.2 -o scaled.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_FALSE(unscaled.empty());
@@ -867,14 +886,10 @@ TEST(Cli, QuadsWhereBlossomWouldAbortTheProcess) {
     // Gmsh's OpenMP loop on a cone, and the run stopped with "Gmsh aborted the process
     // (Perfect Match failed in quadrangulation ...)". Tried first in a child, the surfaces are
     // recombined with Gmsh's simple algorithm instead, the summary says so, and the mesh passes.
-    test::ScratchDir dir("cli_blossom_aborts");
-    const CliResult r =
-        mesh_sweep(dir, "spiky.geo", "--fuse --quads --layers 15 --growth 1.2 --first-height 8e-4 -o s.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    test::expect_contains(r.out,
-                          {"quads: Gmsh's Blossom recombination would have ended the process on this model (\"Perfect "
-                           "Match failed",
-                           "checkMesh would say \"Mesh OK\""});
+    expect_sweep_passes("cli_blossom_aborts", "spiky.geo",
+                        "--fuse --quads --layers 15 --growth 1.2 --first-height 8e-4 -o s.msh",
+                        {"quads: Gmsh's Blossom recombination would have ended the process on this model (\"Perfect "
+                         "Match failed"});
 }
 
 TEST(Cli, QuadsWhereBlossomsFoldAreMadeWithTheSimpleAlgorithm) {
@@ -882,24 +897,18 @@ TEST(Cli, QuadsWhereBlossomsFoldAreMadeWithTheSimpleAlgorithm) {
     // meets the wing (two faces of the surface intersect), and the run stopped with "the
     // surface intersects itself". Gmsh's simple recombination does not fold there: the surfaces
     // are made with it, the summary names the fold, and the mesh passes.
-    test::ScratchDir dir("cli_blossom_folds");
-    const CliResult r =
-        mesh_sweep(dir, "winglet.geo", "--fuse --quads --layers 15 --growth 1.2 --first-height 1.5e-3 -o w.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    test::expect_contains(r.out, {"quads: Gmsh's Blossom quads folded where the surface nearly touches itself (face ",
-                                  "checkMesh would say \"Mesh OK\""});
+    expect_sweep_passes("cli_blossom_folds", "winglet.geo",
+                        "--fuse --quads --layers 15 --growth 1.2 --first-height 1.5e-3 -o w.msh",
+                        {"quads: Gmsh's Blossom quads folded where the surface nearly touches itself (face "});
 }
 
 TEST(Cli, RemeshedQuadsWhereBlossomsFoldAreMadeWithTheSimpleAlgorithm) {
     // The sweep's plate with holes as a CAD tool's STL, remeshed in quads: Blossom's quads fold
     // at a hole (two faces intersect) and the run stopped with "the surface intersects itself".
     // Remeshed with the simple recombination (RemeshParams::simple_recombination) it passes.
-    test::ScratchDir dir("cli_remesh_blossom_folds");
-    const CliResult r = mesh_sweep(dir, "holes_brepmesh.stl",
-                                   "--remesh --quads --fuse --layers 15 --growth 1.2 --first-height 1e-3 -o p.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    test::expect_contains(r.out, {"quads: Gmsh's Blossom quads folded where the surface nearly touches itself (face ",
-                                  "checkMesh would say \"Mesh OK\""});
+    expect_sweep_passes("cli_remesh_blossom_folds", "holes_brepmesh.stl",
+                        "--remesh --quads --fuse --layers 15 --growth 1.2 --first-height 1e-3 -o p.msh",
+                        {"quads: Gmsh's Blossom quads folded where the surface nearly touches itself (face "});
 }
 
 TEST(Cli, QuadsRoundATinyHoleWhereBlossomWouldAbort) {
@@ -1065,11 +1074,9 @@ TEST(Cli, WallsAreMeshedFinerForTheFirstLayersAspectRatio) {
 // STL of the sweep, remeshed, under 3e-4: 955 predicted for a right prism, 1192 made (checkMesh
 // failed it); now 1190 predicted, its walls meshed finer, and checkMesh passes.
 TEST(Cli, WallSizingPredictsTheColumnsLeaningOverEdges) {
-    test::ScratchDir dir("cli_lean");
-    const CliResult r = mesh_sweep(dir, "winglet_brepmesh.stl",
-                                   "--fuse --remesh --layers 30 --growth 1.2 --first-height 3e-4 -o w.msh");
-    ASSERT_EQ(r.code, 0) << r.err;
-    test::expect_contains(r.out, {"walls: meshed again finer", "worst 1190 before", "checkMesh would say \"Mesh OK\""});
+    expect_sweep_passes("cli_lean", "winglet_brepmesh.stl",
+                        "--fuse --remesh --layers 30 --growth 1.2 --first-height 3e-4 -o w.msh",
+                        {"walls: meshed again finer", "worst 1190 before"});
 }
 
 // A surface mesh is kept as it is: where its walls are too wide for the first layer the
