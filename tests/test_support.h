@@ -273,6 +273,28 @@ inline SurfaceMesh quad_grid(int nx, int ny, double h = 1.0) {
     return m;
 }
 
+/// \p q with each quad split into two triangles of its patch, along its first diagonal (0-2),
+/// or with \p alternate every other quad along the other (1-3) so that nodes get valences 4, 6
+/// and 8 on a grid; triangles kept as they are.
+inline SurfaceMesh split_into_triangles(const SurfaceMesh& q, bool alternate) {
+    SurfaceMesh t;
+    t.points = q.points;
+    t.patches = q.patches;
+    for (Index f = 0; f < q.num_faces(); ++f) {
+        const Index* v = q.face_begin(f);
+        if (q.face_size(f) != 4) {
+            t.add_face(v, q.face_size(f), q.face_patch[f]);
+            continue;
+        }
+        const bool other = alternate && f % 2 == 1;
+        const std::array<Index, 6> halves = other ? std::array<Index, 6>{v[0], v[1], v[3], v[1], v[2], v[3]}
+                                                  : std::array<Index, 6>{v[0], v[1], v[2], v[0], v[2], v[3]};
+        t.add_face(halves.data(), 3, q.face_patch[f]);
+        t.add_face(halves.data() + 3, 3, q.face_patch[f]);
+    }
+    return t;
+}
+
 /// A blade along y (0..1, \p ny segments): its section a triangle of apex angle \p apex_deg
 /// with the sharp edge at x = 1 and the blunt base at x = 0, closed by triangular end caps;
 /// triangles, normals out of the blade.

@@ -294,13 +294,12 @@ TEST(Cli, NeedleStlGivesAValidMeshAndSaysRemesh) {
     EXPECT_TRUE(fs::exists(dir.file("m6.cgr")));
 }
 
-/// The count after "needle faces N -> " in a remesh summary line; -1 if there is none.
-int needles_after_remesh(const std::string& out) {
-    const std::string key = "needle faces ";
-    const std::size_t at = out.find(key);
-    if (at == std::string::npos) return -1;
-    const std::size_t arrow = out.find("-> ", at);
-    return arrow == std::string::npos ? -1 : std::atoi(out.c_str() + arrow + 3);
+/// The summary \p out has a remesh line "needle faces N -> M" with M under \p limit.
+void expect_needles_after_remesh_below(const std::string& out, int limit) {
+    const std::size_t at = out.find("needle faces ");
+    const std::size_t arrow = at == std::string::npos ? at : out.find("-> ", at);
+    ASSERT_NE(arrow, std::string::npos) << out;
+    EXPECT_LT(std::atoi(out.c_str() + arrow + 3), limit) << out;
 }
 
 TEST(Cli, RemeshRebuildsANeedleStlIntoAValidMesh) {
@@ -315,9 +314,7 @@ TEST(Cli, RemeshRebuildsANeedleStlIntoAValidMesh) {
                                       "' -o m6.msh --layers 20 --first-height 0.1 --growth 1.2");
     ASSERT_EQ(r.code, 0) << r.err;
     test::expect_contains(r.out, {"remeshed: 1018 faces -> ", "needle faces 220 -> "});
-    const int after = needles_after_remesh(r.out);
-    EXPECT_GE(after, 0);
-    EXPECT_LT(after, 15) << r.out;
+    expect_needles_after_remesh_below(r.out, 15);
     EXPECT_NE(r.out.find("feature angle 40 degrees;"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("valid: "), std::string::npos);
     EXPECT_NE(r.out.find("checkMesh would say \"Mesh OK\""), std::string::npos) << r.out;
@@ -375,9 +372,7 @@ TEST(Cli, TouchingBodiesOfATessellatedStlAreJoinedAndRemeshed) {
     r = strata_cli(dir, "mesh " + stl + " -o remeshed.msh --fuse --remesh" + layers);
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("remeshed: 1860 faces -> "), std::string::npos) << r.out;
-    const int after = needles_after_remesh(r.out);
-    EXPECT_GE(after, 0);
-    EXPECT_LT(after, 20) << r.out;
+    expect_needles_after_remesh_below(r.out, 20);
     const VolumeMesh m = read_volume_msh(dir.file("remeshed.msh"));
     EXPECT_GT(m.prisms.size(), 0u);
     EXPECT_GT(m.tets.size(), 0u);
@@ -492,9 +487,7 @@ TEST(Cli, RemeshAfterFuseClearsTheCutsNeedles) {
     CliResult r = strata_cli(dir, "mesh" + parts + " -o m.msh --fuse --remesh --layers 5 --first-height 1e-3");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("needle faces 222 -> "), std::string::npos) << r.out;
-    const int after = needles_after_remesh(r.out);
-    EXPECT_GE(after, 0);
-    EXPECT_LT(after, 10) << r.out;
+    expect_needles_after_remesh_below(r.out, 10);
     const VolumeMesh m = read_volume_msh(dir.file("m.msh"));
     for (const char* patch : {"Created by Gmsh", "Created by Gmsh (fin1.stl)", "Created by Gmsh (fin4.stl)"})
         EXPECT_NE(find_patch(m.boundary, patch), kNone) << patch;

@@ -385,14 +385,7 @@ TEST(Merge, ExplodedGridAndCubeMergeBack) {
 
     // STL-like cube: 12 triangles, 36 nodes → 8.
     const SurfaceMesh cube = unit_cube();
-    SurfaceMesh tri;
-    tri.patches = cube.patches;
-    for (Index f = 0; f < cube.num_faces(); ++f) {
-        const Index* v = cube.face_begin(f);
-        tri.add_face({v[0], v[1], v[2]}, 0);
-        tri.add_face({v[0], v[2], v[3]}, 0);
-    }
-    tri.points = cube.points;
+    const SurfaceMesh tri = test::split_into_triangles(cube, false);
     const SurfaceMesh stl = exploded(tri);
     ASSERT_EQ(stl.num_points(), 36);
     const SurfaceMesh c = merge_coincident_nodes(stl);
