@@ -4,6 +4,7 @@
 /// meshes (fuzz_surface.cpp's soup, fuzz_writers.cpp's volume mesh), the oracles' failure and a
 /// scratch directory for the targets that go through files.
 
+#include <strata/core/surface_mesh.h>
 #include <strata/core/types.h>
 
 #include <array>
@@ -13,6 +14,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace strata::fuzz {
 
@@ -84,6 +86,48 @@ inline bool decode_point(Bytes& in, Vec3& x) {
         return true;
     }
     return in.raw_double(x.x()) && in.raw_double(x.y()) && in.raw_double(x.z());
+}
+
+/// A count byte N and N nodes (decode_point) appended to \p points, fewer where the input ends
+/// first. False if there is no count byte.
+inline bool decode_points(Bytes& in, std::vector<Vec3>& points) {
+    std::uint8_t count = 0;
+    if (!in.byte(count)) return false;
+    for (unsigned i = 0; i < count; ++i) {
+        Vec3 x;
+        if (!decode_point(in, x)) break;
+        points.push_back(x);
+    }
+    return true;
+}
+
+/// \p k node ids into \p v, a byte each: as they are with \p raw (or no nodes, \p n = 0), else
+/// modulo \p n. False if the input ends first.
+inline bool decode_ids(Bytes& in, int k, bool raw, Index n, Index* v) {
+    for (int i = 0; i < k; ++i) {
+        std::uint8_t id = 0;
+        if (!in.byte(id)) return false;
+        v[i] = raw || n == 0 ? Index{id} : Index{id} % n;
+    }
+    return true;
+}
+
+/// Break \p m's face arrays the way a caller's own code might (\p which: 0 the CSR offsets from
+/// position \p at on shifted by \p value - 128, all but the last; 1 a patch entry too few or too
+/// many; 2 a negative node id at \p at).
+inline void corrupt_faces(SurfaceMesh& m, unsigned which, std::size_t at, std::uint8_t value) {
+    switch (which) {
+        case 0:
+            for (std::size_t i = at % m.face_offsets.size(); i + 1 < m.face_offsets.size(); ++i)
+                m.face_offsets[i] += Index{value} - 128;
+            break;
+        case 1:
+            m.face_patch.resize(value % (m.face_patch.size() + 2));
+            break;
+        default:
+            if (!m.face_nodes.empty()) m.face_nodes[at % m.face_nodes.size()] = Index{value} - 256;
+            break;
+    }
 }
 
 /// An oracle: a property every result must have. Its failure is a finding, so it is not a

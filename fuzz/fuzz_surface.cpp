@@ -20,22 +20,10 @@ constexpr std::array<const char*, 4> kPatchNames = {"wall", "farfield", "symmetr
 /// Break the arrays the way a caller's own code might (what: bits 0-1 which array, bits 2-7 a
 /// position; value: the new value): every piece must refuse the mesh, not index through it.
 void corrupt(SurfaceMesh& m, std::uint8_t what, std::uint8_t value) {
-    const std::size_t at = what >> 2;
-    switch (what & 3) {
-        case 0:  // malformed CSR: the offsets from one on shifted by value - 128, all but the last
-            for (std::size_t i = at % m.face_offsets.size(); i + 1 < m.face_offsets.size(); ++i)
-                m.face_offsets[i] += Index{value} - 128;
-            break;
-        case 1:  // a patch entry too few or too many
-            m.face_patch.resize(value % (m.face_patch.size() + 2));
-            break;
-        case 2:  // a negative node id
-            if (!m.face_nodes.empty()) m.face_nodes[at % m.face_nodes.size()] = Index{value} - 256;
-            break;
-        default:  // nodes dropped from the end
-            m.points.resize(value % (m.points.size() + 1));
-            break;
-    }
+    if ((what & 3) == 3)  // nodes dropped from the end
+        m.points.resize(value % (m.points.size() + 1));
+    else  // malformed CSR, a patch entry too few or too many, a negative node id
+        corrupt_faces(m, what & 3, what >> 2, value);
 }
 
 }  // namespace
@@ -62,7 +50,7 @@ Soup decode_soup(const std::uint8_t* data, std::size_t size) {
     Soup soup;
     SurfaceMesh& m = soup.mesh;
     Bytes in(data, size);
-    std::uint8_t flags = 0, what = 0, value = 0, count = 0;
+    std::uint8_t flags = 0, what = 0, value = 0;
     if (!in.byte(flags)) return soup;
     const bool corrupted = (flags & 0x80) && in.byte(what) && in.byte(value);
     soup.params.internal_flow = flags & 1;
@@ -72,24 +60,13 @@ Soup decode_soup(const std::uint8_t* data, std::size_t size) {
     for (unsigned p = 0; p < num_patches; ++p) m.patches.push_back({kPatchNames[p], PatchKind::Wall});
     if (flags & 0x40) soup.params.scale = 1000.0;
 
-    if (!in.byte(count)) return soup;
-    for (unsigned i = 0; i < count; ++i) {
-        Vec3 x;
-        if (!decode_point(in, x)) break;
-        m.points.push_back(x);
-    }
+    if (!decode_points(in, m.points)) return soup;
     const auto n = static_cast<Index>(m.points.size());
 
     for (std::uint8_t h = 0; in.byte(h);) {
         const Index k = (h & 1) ? 4 : 3;
         std::array<Index, 4> v{};
-        bool whole = true;
-        for (Index i = 0; i < k && whole; ++i) {
-            std::uint8_t id = 0;
-            whole = in.byte(id);
-            v[static_cast<std::size_t>(i)] = (h & 8) || n == 0 ? Index{id} : Index{id} % n;
-        }
-        if (!whole) break;
+        if (!decode_ids(in, k, h & 8, n, v.data())) break;
         const Index patch = (h & 16) ? Index{h >> 5} - 1 : Index{(h >> 1) & 3} % static_cast<Index>(num_patches);
         m.add_face(v.data(), k, patch);
     }

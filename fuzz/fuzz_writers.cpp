@@ -15,6 +15,7 @@
 #include <strata/core/mesh_check.h>
 #include <strata/io/cgns.h>
 #include <strata/io/cobalt.h>
+#include <strata/io/files.h>
 
 #include "cobalt_reader.h"
 #include "fuzz_support.h"
@@ -30,7 +31,6 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -121,7 +121,8 @@ void check_cobalt(const VolumeMesh& m, const std::string& path) {
         if (number[p] == 0) continue;
         number[p] = ++numbered;
         const auto at = static_cast<std::size_t>(numbered - 1);
-        require(at < bc.size() && bc[at].number == numbered && bc[at].name == cobalt_name(b.patches[p].name, numbered) &&
+        require(at < bc.size() && bc[at].number == numbered &&
+                    bc[at].name == cobalt_name(b.patches[p].name, numbered) &&
                     bc[at].kind == to_string(b.patches[p].kind),
                 "the .bc map names patch " + std::to_string(p) + " '" + b.patches[p].name + "'");
     }
@@ -223,19 +224,10 @@ std::vector<Section> expected_sections(const VolumeMesh& m, std::vector<PatchSec
     return out;
 }
 
-CGNS_ENUMT(BCType_t) expected_bc(PatchKind kind) {
-    switch (kind) {
-        case PatchKind::Wall:
-            return CGNS_ENUMV(BCWall);
-        case PatchKind::Symmetry:
-            return CGNS_ENUMV(BCSymmetryPlane);
-        case PatchKind::Farfield:
-            return CGNS_ENUMV(BCFarfield);
-        case PatchKind::Other:
-            break;
-    }
-    return CGNS_ENUMV(BCTypeUserDefined);
-}
+/// The boundary condition each patch kind must get, in PatchKind's order (wall, symmetry,
+/// farfield, other).
+constexpr std::array<CGNS_ENUMT(BCType_t), 4> kExpectedBc{CGNS_ENUMV(BCWall), CGNS_ENUMV(BCSymmetryPlane),
+                                                          CGNS_ENUMV(BCFarfield), CGNS_ENUMV(BCTypeUserDefined)};
 
 /// Per patch with faces, in patch order, a boundary condition named as its first section, over
 /// its elements (PointRange, FaceCenter), of its kind's BC type (cgns.h), with a family of that
@@ -279,7 +271,7 @@ void check_cgns_patches(const VolumeMesh& m, int fn, const std::vector<std::pair
         int normal_index[3] = {}, ndataset = 0;
         cg(cg_boco_info(fn, 1, 1, bc, name, &type, &ptset, &npnts, normal_index, &normal_size, &normal_type, &ndataset),
            "cg_boco_info");
-        require(name == section && type == expected_bc(m.boundary.patches[p].kind) &&
+        require(name == section && type == kExpectedBc[static_cast<std::size_t>(m.boundary.patches[p].kind)] &&
                     ptset == CGNS_ENUMV(PointRange) && npnts == 2,
                 what + " is named as its section, of its kind, a point range");
         std::array<cgsize_t, 2> got{};
@@ -291,7 +283,8 @@ void check_cgns_patches(const VolumeMesh& m, int fn, const std::vector<std::pair
                     family_bc.count(family) && family_bc[family] == type,
                 what + " spans its elements at face centres, with its family");
     }
-    require(bc == nbocos && nfamilies == bc, "the CGNS file has a boundary condition and a family per patch with faces");
+    require(bc == nbocos && nfamilies == bc,
+            "the CGNS file has a boundary condition and a family per patch with faces");
 }
 
 /// The CGNS file at \p path holds \p m: the zone's sizes, the coordinates bit for bit, the
@@ -343,13 +336,6 @@ std::vector<std::string> entries(const fs::path& dir) {
     return names;
 }
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 /// One writer over \p files (its output first, then its companions, sorted), each holding
 /// kPrevious beforehand in an otherwise empty directory: it writes them all and nothing else,
 /// and \p check reads them back; or it refuses with strata::Error, only if not \p writable, and
@@ -371,7 +357,8 @@ void round_trip(const std::string& format, const std::vector<std::string>& files
     require(entries(dir) == files, format + ": the directory holds the output and nothing else");
     if (!refusal.empty()) {
         require(!writable, format + " refuses a mesh it can write: " + refusal);
-        for (const std::string& f : files) require(slurp(dir / f) == kPrevious, format + ": a refused write leaves " + f);
+        for (const std::string& f : files)
+            require(read_whole_file((dir / f).string()) == kPrevious, format + ": a refused write leaves " + f);
         return;
     }
     require(writable, format + " writes a mesh with unsound arrays or unmatched faces");

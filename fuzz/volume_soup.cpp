@@ -61,11 +61,8 @@ void corrupt(VolumeMesh& m, std::uint8_t what, std::uint8_t value) {
             for (int k = 0; k < cell_corners(t); ++k) corners.push_back(const_cast<Index*>(m.cell(t, i)) + k);
     switch (what & 7) {
         case 0:  // malformed CSR: the offsets from one on shifted by value - 128, all but the last
-            for (std::size_t i = at % b.face_offsets.size(); i + 1 < b.face_offsets.size(); ++i)
-                b.face_offsets[i] += Index{value} - 128;
-            break;
         case 1:  // a patch entry too few or too many
-            b.face_patch.resize(value % (b.face_patch.size() + 2));
+            corrupt_faces(b, what & 7, at, value);
             break;
         case 2:  // a negative cell corner
             if (!corners.empty()) *corners[at % corners.size()] = Index{value} - 256;
@@ -77,7 +74,7 @@ void corrupt(VolumeMesh& m, std::uint8_t what, std::uint8_t value) {
             b.patches.resize(value % (b.patches.size() + 1));
             break;
         case 5:  // a negative boundary node
-            if (!b.face_nodes.empty()) b.face_nodes[at % b.face_nodes.size()] = Index{value} - 256;
+            corrupt_faces(b, 2, at, value);
             break;
         case 6:  // a cell corner set to value, in range or not
             if (!corners.empty()) *corners[at % corners.size()] = Index{value};
@@ -112,7 +109,7 @@ void corrupt(VolumeMesh& m, std::uint8_t what, std::uint8_t value) {
 VolumeMesh decode_volume(const std::uint8_t* data, std::size_t size) {
     VolumeMesh m;
     Bytes in(data, size);
-    std::uint8_t flags = 0, what = 0, value = 0, count = 0;
+    std::uint8_t flags = 0, what = 0, value = 0;
     if (!in.byte(flags)) return m;
     const bool corrupted = (flags & 0x80) && in.byte(what) && in.byte(value);
     const unsigned num_patches = (flags & 3u) + 1;
@@ -120,12 +117,7 @@ VolumeMesh decode_volume(const std::uint8_t* data, std::size_t size) {
     for (unsigned p = 0; p < num_patches; ++p)
         m.boundary.patches.push_back({names[(flags & 0x40) ? 0 : p], kKinds[(p + ((flags >> 4) & 3u)) % 4]});
 
-    if (!in.byte(count)) return m;
-    for (unsigned i = 0; i < count; ++i) {
-        Vec3 x;
-        if (!decode_point(in, x)) break;
-        m.points.push_back(x);
-    }
+    if (!decode_points(in, m.points)) return m;
     const auto n = static_cast<Index>(m.points.size());
 
     for (std::uint8_t h = 0; in.byte(h);) {
@@ -133,13 +125,7 @@ VolumeMesh decode_volume(const std::uint8_t* data, std::size_t size) {
         const CellType type = kCellTypes[h & 3u];
         const int k = face ? 3 + (h & 1) : cell_corners(type);
         std::array<Index, 8> v{};
-        bool whole = true;
-        for (int i = 0; i < k && whole; ++i) {
-            std::uint8_t id = 0;
-            whole = in.byte(id);
-            v[static_cast<std::size_t>(i)] = (h & 8) || n == 0 ? Index{id} : Index{id} % n;
-        }
-        if (!whole) break;
+        if (!decode_ids(in, k, h & 8, n, v.data())) break;
         if (face) {
             const Index patch = (h & 8) ? Index{h >> 4} - 1 : Index{h >> 4} % static_cast<Index>(num_patches);
             m.boundary.add_face(v.data(), k, patch);

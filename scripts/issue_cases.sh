@@ -11,11 +11,9 @@
 # Exit status 0 whatever the meshes are like: this measures, the tests assert.
 set -euo pipefail
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-build=$(cd "${1:-$root/build}" && pwd)
-work=${2:-$(mktemp -d)}
-mkdir -p "$work"
-strata=$build/app/strata
+# shellcheck source=lib.sh
+source "$(dirname "$0")/lib.sh"
+measure_setup "$@"
 data=$root/examples/data
 
 cases=(

@@ -9,11 +9,9 @@
 # Exit status 0 whatever the meshes are like (a failed row says so): this measures, the tests assert.
 set -euo pipefail
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-build=$(cd "${1:-$root/build}" && pwd)
-work=${2:-$(mktemp -d)}
-mkdir -p "$work"
-strata=$build/app/strata
+# shellcheck source=lib.sh
+source "$(dirname "$0")/lib.sh"
+measure_setup "$@"
 d=$root/examples/data
 
 # "input shown|options shown|arguments" (the arguments' paths relative to examples/data)

@@ -19,11 +19,9 @@
 # minutes on two cores.
 set -euo pipefail
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-build=$(cd "${1:-$root/build}" && pwd)
-work=${2:-$(mktemp -d)}
-mkdir -p "$work"
-strata=$build/app/strata
+# shellcheck source=lib.sh
+source "$(dirname "$0")/lib.sh"
+measure_setup "$@"
 s=$root/examples/sweep
 d=$root/examples/data
 

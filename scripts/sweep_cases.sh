@@ -9,10 +9,9 @@
 # Exit status 0 whatever the meshes are like: this measures, the tests assert.
 set -euo pipefail
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-build=$(cd "${1:-$root/build}" && pwd)
-work=${2:-$(mktemp -d)}
-mkdir -p "$work"
+# shellcheck source=lib.sh
+source "$(dirname "$0")/lib.sh"
+measure_setup "$@"
 s=$root/examples/sweep
 L="--layers 30 --growth 1.2"
 
@@ -59,4 +58,4 @@ cases=(
 
 # shellcheck source=case_table.sh
 source "$root/scripts/case_table.sh"
-case_table "$build/app/strata" "$work" "${cases[@]}"
+case_table "$strata" "$work" "${cases[@]}"

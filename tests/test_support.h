@@ -4,6 +4,7 @@
 #include <strata/core/face_geometry.h>
 #include <strata/core/solver_checks.h>
 #include <strata/core/surface_mesh.h>
+#include <strata/core/volume_mesh.h>
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,8 @@
 #include <unistd.h>
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -20,6 +23,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -64,13 +68,54 @@ std::string error_message(F&& f) {
     return {};
 }
 
+/// \p text contains every one of \p parts (a failure names the part and shows \p text).
+inline void expect_contains(const std::string& text, const std::vector<std::string>& parts) {
+    for (const std::string& p : parts) EXPECT_NE(text.find(p), std::string::npos) << "'" << p << "' not in: " << text;
+}
+
 /// \p f throws an E whose one-line message contains every one of \p parts.
 template <class E, class F>
 void expect_error(F&& f, const std::vector<std::string>& parts) {
     const std::string msg = error_message<E>(std::forward<F>(f));
-    for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
+    expect_contains(msg, parts);
     EXPECT_EQ(msg.find('\n'), std::string::npos) << "message is not one line: " << msg;
 }
+
+/// \p a and \p b have the same cells, type by type, node for node.
+inline void expect_same_cells(const VolumeMesh& a, const VolumeMesh& b) {
+    EXPECT_EQ(a.tets, b.tets);
+    EXPECT_EQ(a.pyramids, b.pyramids);
+    EXPECT_EQ(a.prisms, b.prisms);
+    EXPECT_EQ(a.hexes, b.hexes);
+}
+
+/// A thread that writes \p bytes into the named pipe \p fifo: it waits for a reader to open it.
+inline std::thread fill_fifo(const std::string& fifo, std::string bytes) {
+    return std::thread([fifo, bytes = std::move(bytes)] {
+        std::FILE* f = std::fopen(fifo.c_str(), "wb");
+        if (!f) return;
+        std::fwrite(bytes.data(), 1, bytes.size(), f);
+        std::fclose(f);
+    });
+}
+
+/// \p program and \p args as the null-terminated argv of exec and posix_spawn, the strings held
+/// here.
+class Argv {
+public:
+    Argv(std::string program, const std::vector<std::string>& args) : words_{std::move(program)} {
+        words_.insert(words_.end(), args.begin(), args.end());
+        for (std::string& w : words_) pointers_.push_back(w.data());
+        pointers_.push_back(nullptr);
+    }
+    Argv(const Argv&) = delete;
+    Argv& operator=(const Argv&) = delete;
+    char** data() { return pointers_.data(); }
+
+private:
+    std::vector<std::string> words_;
+    std::vector<char*> pointers_;
+};
 
 /// A fresh empty directory for one test, removed when the object goes.
 class ScratchDir {
@@ -187,6 +232,35 @@ inline SurfaceMesh merged(SurfaceMesh a, const SurfaceMesh& b) {
     return a;
 }
 
+/// The eight corners of the unit cube moved by \p offset (node id = x + 2y + 4z) and one "wall"
+/// patch, for a test to add the faces it needs.
+inline SurfaceMesh cube_corners(const Vec3& offset = Vec3::Zero()) {
+    SurfaceMesh m;
+    m.patches.push_back({"wall", PatchKind::Wall});
+    for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 2; ++x) m.points.push_back(Vec3(x, y, z) + offset);
+    return m;
+}
+
+/// A Möbius strip of 12 quads round the z axis (radius 3, width 1), patch "strip": it passes
+/// check_surface but cannot be oriented. Nodes 2i (top) and 2i + 1 (bottom) at angle i.
+inline SurfaceMesh moebius_strip() {
+    SurfaceMesh m;
+    m.patches.push_back({"strip", PatchKind::Wall});
+    const int n = 12;
+    for (int i = 0; i < n; ++i) {
+        const double th = 2.0 * std::numbers::pi * i / n, tw = th / 2.0;
+        const Vec3 c(3.0 * std::cos(th), 3.0 * std::sin(th), 0.0);
+        const Vec3 d = std::cos(tw) * Vec3(std::cos(th), std::sin(th), 0.0) + std::sin(tw) * Vec3::UnitZ();
+        m.points.push_back(c + 0.5 * d);
+        m.points.push_back(c - 0.5 * d);
+    }
+    for (Index i = 0; i + 1 < n; ++i) m.add_face({2 * i, 2 * i + 1, 2 * i + 3, 2 * i + 2}, 0);
+    m.add_face({2 * (n - 1), 2 * (n - 1) + 1, 0, 1}, 0);  // the half twist: bottom joins top
+    return m;
+}
+
 /// Structured nx × ny grid of unit quads in the z = 0 plane, one "wall" patch, normals +z.
 inline SurfaceMesh quad_grid(int nx, int ny, double h = 1.0) {
     SurfaceMesh m;
@@ -197,6 +271,28 @@ inline SurfaceMesh quad_grid(int nx, int ny, double h = 1.0) {
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) m.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}, 0);
     return m;
+}
+
+/// \p q with each quad split into two triangles of its patch, along its first diagonal (0-2),
+/// or with \p alternate every other quad along the other (1-3) so that nodes get valences 4, 6
+/// and 8 on a grid; triangles kept as they are.
+inline SurfaceMesh split_into_triangles(const SurfaceMesh& q, bool alternate) {
+    SurfaceMesh t;
+    t.points = q.points;
+    t.patches = q.patches;
+    for (Index f = 0; f < q.num_faces(); ++f) {
+        const Index* v = q.face_begin(f);
+        if (q.face_size(f) != 4) {
+            t.add_face(v, q.face_size(f), q.face_patch[f]);
+            continue;
+        }
+        const bool other = alternate && f % 2 == 1;
+        const std::array<Index, 6> halves = other ? std::array<Index, 6>{v[0], v[1], v[3], v[1], v[2], v[3]}
+                                                  : std::array<Index, 6>{v[0], v[1], v[2], v[0], v[2], v[3]};
+        t.add_face(halves.data(), 3, q.face_patch[f]);
+        t.add_face(halves.data() + 3, 3, q.face_patch[f]);
+    }
+    return t;
 }
 
 /// A blade along y (0..1, \p ny segments): its section a triangle of apex angle \p apex_deg

@@ -243,19 +243,15 @@ double face_skewness(const Vec3* p, const Index* v, int n, const Vec3& owner, co
     return skewness_of(p, v, n, face_geometry(p, v, n), owner, neighbour);
 }
 
-SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads,
-                           std::vector<std::uint64_t>* skewed) {
-    SolverChecks r;
-    if (skewed) skewed->clear();
-    const FaceSlots& slots = match.slots;
-    const CellNumbering& cells = slots.cells();
-    const std::vector<Vec3>& p = mesh.points;
-    const std::int64_t nc = cells.count();
-    if (nc == 0) return r;
+namespace {
 
-    // Cell centres and volumes, and the aspect ratios (each cell from its own faces).
-    std::vector<Vec3> centre(static_cast<std::size_t>(nc));
-    std::vector<double> aspect(static_cast<std::size_t>(nc), 0.0);
+/// Each cell's centre (as OpenFOAM computes it) and checkMesh aspect ratio, from its own faces.
+void cell_centres_and_aspects(const FaceSlots& slots, const std::vector<Vec3>& p, int threads,
+                              std::vector<Vec3>& centre, std::vector<double>& aspect) {
+    const CellNumbering& cells = slots.cells();
+    const std::int64_t nc = cells.count();
+    centre.assign(static_cast<std::size_t>(nc), Vec3::Zero());
+    aspect.assign(static_cast<std::size_t>(nc), 0.0);
 #pragma omp parallel for schedule(static) num_threads(thread_count(threads))
     for (std::int64_t g = 0; g < nc; ++g) {
         // A cell's faces are consecutive slots (face_match.h).
@@ -271,11 +267,14 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
         Vec3 mag = Vec3::Zero();
         double vol3 = 0.0;
         centre[static_cast<std::size_t>(g)] = cell_centre(fg, static_cast<int>(s1 - s0), mag, vol3);
-        const double v = std::max(kRootVSmall, vol3 / 3.0);
-        aspect[static_cast<std::size_t>(g)] =
-            std::max(mag.maxCoeff() / (mag.minCoeff() + kRootVSmall), mag.sum() / 6.0 / std::pow(v, 2.0 / 3.0));
+        aspect[static_cast<std::size_t>(g)] = aspect_ratio_of(mag, vol3 / 3.0);
     }
-    for (std::int64_t g = 0; g < nc; ++g) {
+}
+
+/// The cells above checkMesh's aspect ratio counted into \p r, and the worst named.
+void count_high_aspect(const VolumeMesh& mesh, const CellNumbering& cells, const std::vector<double>& aspect,
+                       SolverChecks& r) {
+    for (std::int64_t g = 0; g < cells.count(); ++g) {
         const double a = aspect[static_cast<std::size_t>(g)];
         if (a > kFoamAspectRatio) ++r.high_aspect_cells;
         if (a > r.max_aspect_ratio) {
@@ -285,72 +284,75 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
             r.worst_aspect_type = c.type;
         }
     }
+}
 
-    // Faces: each interior face once (from its lower slot), each boundary face from its cell.
-    const std::uint64_t ns = slots.count();
-    const auto chunks = static_cast<std::int64_t>((ns + kChunk - 1) / kChunk);
-    std::vector<Partial> part(static_cast<std::size_t>(chunks));
+/// The faces of the slots [\p begin, \p end) checked into \p q: each interior face once (from
+/// its lower slot), each boundary face from its cell; \p centre the cells' centres.
+void check_faces(const FaceMatch& match, const std::vector<Vec3>& p, const std::vector<Vec3>& centre,
+                 std::uint64_t begin, std::uint64_t end, bool keep_skewed, Partial& q) {
+    const FaceSlots& slots = match.slots;
     const double severe_cos = std::cos(kFoamNonOrthogonalDeg * std::numbers::pi / 180.0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(thread_count(threads))
-    for (std::int64_t k = 0; k < chunks; ++k) {
-        Partial& q = part[static_cast<std::size_t>(k)];
-        // The pyramid from a face (outward area \p area, centre \p fc) to a cell centre \p cc,
-        // inverted below checkMesh's -1e-15.
-        auto pyramid = [&q](const Vec3& area, const Vec3& fc, const Vec3& cc, std::uint64_t s) {
-            if (!inverted_pyramid(area, fc, cc)) return;
-            ++q.pyramids;
-            if (!q.has_pyramid) q.first_pyramid = s, q.has_pyramid = true;
-        };
-        const auto end = std::min<std::uint64_t>(ns, static_cast<std::uint64_t>(k + 1) * kChunk);
-        for (auto s = static_cast<std::uint64_t>(k) * kChunk; s < end; ++s) {
-            const std::int64_t other = match.across[s];
-            if (other == FaceMatch::kUnmatched) continue;
-            const bool interior = other >= 0;
-            if (interior && static_cast<std::uint64_t>(other) < s) continue;
-            Index v[4];
-            const int n = slots.nodes(s, v);
-            const FaceGeometry f = face_geometry(p.data(), v, n);  // outward from the owner, cell(s)
-            const Vec3& co = centre[static_cast<std::size_t>(slots.cell(s))];
-            double skew = 0.0;
-            if (interior) {
-                const Vec3& cn = centre[static_cast<std::size_t>(slots.cell(static_cast<std::uint64_t>(other)))];
-                const Vec3 d = cn - co;
-                const double cos = d.dot(f.area) / (d.norm() * f.area.norm() + kRootVSmall);
-                ++q.faces;
-                q.sum_cos += cos;
-                if (cos < severe_cos) ++(cos > 1e-15 ? q.severe : q.errors);
-                if (cos < q.min_cos) q.min_cos = cos, q.worst_ortho = s, q.has_ortho = true;
-                skew = skewness_of(p.data(), v, n, f, co, &cn);
-                pyramid(-f.area, f.centre, cn, s);  // the neighbour's: its outward area is -area
-            } else {
-                skew = skewness_of(p.data(), v, n, f, co, nullptr);
-            }
-            if (skew > kFoamSkewness) {
-                ++q.skew;
-                if (skewed) q.skewed.push_back(s);
-            }
-            if (skew > q.max_skew) q.max_skew = skew, q.worst_skew = s, q.has_skew = true;
-            pyramid(f.area, f.centre, co, s);
+    auto pyramid = [&q](const Vec3& area, const Vec3& fc, const Vec3& cc, std::uint64_t s) {
+        if (!inverted_pyramid(area, fc, cc)) return;
+        ++q.pyramids;
+        if (!q.has_pyramid) q.first_pyramid = s, q.has_pyramid = true;
+    };
+    for (auto s = begin; s < end; ++s) {
+        const std::int64_t other = match.across[s];
+        if (other == FaceMatch::kUnmatched) continue;
+        const bool interior = other >= 0;
+        if (interior && static_cast<std::uint64_t>(other) < s) continue;
+        Index v[4];
+        const int n = slots.nodes(s, v);
+        const FaceGeometry f = face_geometry(p.data(), v, n);  // outward from the owner, cell(s)
+        const Vec3& co = centre[static_cast<std::size_t>(slots.cell(s))];
+        double skew = 0.0;
+        if (interior) {
+            const Vec3& cn = centre[static_cast<std::size_t>(slots.cell(static_cast<std::uint64_t>(other)))];
+            const Vec3 d = cn - co;
+            const double cos = d.dot(f.area) / (d.norm() * f.area.norm() + kRootVSmall);
+            ++q.faces;
+            q.sum_cos += cos;
+            if (cos < severe_cos) ++(cos > 1e-15 ? q.severe : q.errors);
+            if (cos < q.min_cos) q.min_cos = cos, q.worst_ortho = s, q.has_ortho = true;
+            skew = skewness_of(p.data(), v, n, f, co, &cn);
+            pyramid(-f.area, f.centre, cn, s);  // the neighbour's: its outward area is -area
+        } else {
+            skew = skewness_of(p.data(), v, n, f, co, nullptr);
         }
+        if (skew > kFoamSkewness) {
+            ++q.skew;
+            if (keep_skewed) q.skewed.push_back(s);
+        }
+        if (skew > q.max_skew) q.max_skew = skew, q.worst_skew = s, q.has_skew = true;
+        pyramid(f.area, f.centre, co, s);
     }
+}
 
-    // Merged in chunk order: the first face with the extreme value wins ties.
-    double min_cos = 2.0, max_skew = -1.0, sum_cos = 0.0;
-    std::uint64_t worst_ortho = 0, worst_skew = 0, first_pyramid = 0;
-    bool has_ortho = false, has_skew = false, has_pyramid = false;
-    Index faces = 0;
+/// The chunks' partials merged in chunk order (the first face with the extreme value wins ties);
+/// the counts into \p r, the skewed faces' slots appended to \p skewed if given.
+Partial merge_partials(const std::vector<Partial>& part, SolverChecks& r, std::vector<std::uint64_t>* skewed) {
+    Partial all;
     for (const Partial& q : part) {
-        faces += q.faces;
-        sum_cos += q.sum_cos;
+        all.faces += q.faces;
+        all.sum_cos += q.sum_cos;
         r.severely_non_orthogonal += q.severe;
         r.non_orthogonality_errors += q.errors;
         r.skew_faces += q.skew;
         if (skewed) skewed->insert(skewed->end(), q.skewed.begin(), q.skewed.end());
         r.negative_pyramids += q.pyramids;
-        if (q.has_ortho && q.min_cos < min_cos) min_cos = q.min_cos, worst_ortho = q.worst_ortho, has_ortho = true;
-        if (q.has_skew && q.max_skew > max_skew) max_skew = q.max_skew, worst_skew = q.worst_skew, has_skew = true;
-        if (q.has_pyramid && !has_pyramid) first_pyramid = q.first_pyramid, has_pyramid = true;
+        if (q.has_ortho && q.min_cos < all.min_cos)
+            all.min_cos = q.min_cos, all.worst_ortho = q.worst_ortho, all.has_ortho = true;
+        if (q.has_skew && q.max_skew > all.max_skew)
+            all.max_skew = q.max_skew, all.worst_skew = q.worst_skew, all.has_skew = true;
+        if (q.has_pyramid && !all.has_pyramid) all.first_pyramid = q.first_pyramid, all.has_pyramid = true;
     }
+    return all;
+}
+
+/// The worst faces of \p all into \p r: their figures and names.
+void name_worst_faces(const FaceMatch& match, const std::vector<Vec3>& p, const Partial& all, SolverChecks& r) {
+    const FaceSlots& slots = match.slots;
     auto face_name = [&](std::uint64_t s) {
         Index v[4];
         const int n = slots.nodes(s, v);
@@ -361,16 +363,41 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
         return "the face at " + format_point(f.centre) + " of " + who;
     };
     auto degrees = [](double c) { return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi; };
-    if (has_ortho) {
-        r.max_non_orthogonality_deg = degrees(min_cos);
-        r.mean_non_orthogonality_deg = degrees(sum_cos / static_cast<double>(faces));
-        r.worst_non_orthogonal = face_name(worst_ortho);
+    if (all.has_ortho) {
+        r.max_non_orthogonality_deg = degrees(all.min_cos);
+        r.mean_non_orthogonality_deg = degrees(all.sum_cos / static_cast<double>(all.faces));
+        r.worst_non_orthogonal = face_name(all.worst_ortho);
     }
-    if (has_skew) {
-        r.max_skewness = max_skew;
-        r.worst_skew = face_name(worst_skew);
+    if (all.has_skew) {
+        r.max_skewness = all.max_skew;
+        r.worst_skew = face_name(all.worst_skew);
     }
-    if (has_pyramid) r.worst_pyramid = face_name(first_pyramid);
+    if (all.has_pyramid) r.worst_pyramid = face_name(all.first_pyramid);
+}
+
+}  // namespace
+
+SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads,
+                           std::vector<std::uint64_t>* skewed) {
+    SolverChecks r;
+    if (skewed) skewed->clear();
+    const FaceSlots& slots = match.slots;
+    if (slots.cells().count() == 0) return r;
+    std::vector<Vec3> centre;
+    std::vector<double> aspect;
+    cell_centres_and_aspects(slots, mesh.points, threads, centre, aspect);
+    count_high_aspect(mesh, slots.cells(), aspect, r);
+    const std::uint64_t ns = slots.count();
+    const auto chunks = static_cast<std::int64_t>((ns + kChunk - 1) / kChunk);
+    std::vector<Partial> part(static_cast<std::size_t>(chunks));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(thread_count(threads))
+    for (std::int64_t k = 0; k < chunks; ++k) {
+        const auto end = std::min<std::uint64_t>(ns, static_cast<std::uint64_t>(k + 1) * kChunk);
+        check_faces(match, mesh.points, centre, static_cast<std::uint64_t>(k) * kChunk, end, skewed != nullptr,
+                    part[static_cast<std::size_t>(k)]);
+    }
+    const Partial all = merge_partials(part, r, skewed);
+    name_worst_faces(match, mesh.points, all, r);
     return r;
 }
 

@@ -91,27 +91,42 @@ public:
         }
     }
 
+    /// Tetrahedron \p t is gone or no longer below the bound.
+    bool done_with(Index t) const {
+        return !alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_;
+    }
+
+    /// \p visit(t) for each tetrahedron still below the bound when its turn comes, in the order
+    /// of worst_first(\p fixed_only), until the time budget runs out; cancellation checked
+    /// whenever the count of those looked at has none of the bits of \p check_mask set.
+    template <class Visit>
+    void for_each_below(bool fixed_only, unsigned check_mask, const Progress* progress, Visit&& visit) {
+        std::size_t done = 0;
+        for (const Index t : worst_first(fixed_only)) {
+            if ((++done & check_mask) == 0) check_cancelled(progress);
+            if (over_budget()) break;
+            if (done_with(t)) continue;
+            visit(t);
+        }
+    }
+
     /// One pass over the tetrahedra below the bound, worst first; true if anything changed.
     bool pass(TetImproveReport& rep, const Progress* progress) {
         bool changed = false;
-        std::size_t done = 0;
-        for (const Index t : worst_first(false)) {
-            if ((++done & 1023u) == 0) check_cancelled(progress);
-            if (over_budget()) break;
-            if (!alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_) continue;
-            if (!changed_since(tets_[static_cast<std::size_t>(t)], tried_[static_cast<std::size_t>(t)])) continue;
+        for_each_below(false, 1023u, progress, [&](Index t) {
+            if (!changed_since(tets_[static_cast<std::size_t>(t)], tried_[static_cast<std::size_t>(t)])) return;
             if (flip_or_remove(t, rep)) {
                 changed = true;
-                continue;
+                return;
             }
             tried_[static_cast<std::size_t>(t)] = ++clock_;
             for (const Index v : tets_[static_cast<std::size_t>(t)])
                 if (move_node(v)) {
                     ++rep.moved_nodes;
                     changed = true;
-                    if (!alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_) break;
+                    if (done_with(t)) break;
                 }
-        }
+        });
         return changed;
     }
 
@@ -121,16 +136,12 @@ public:
     /// during the passes, did worse (docs/ALGORITHM.md, "Tetrahedra improved after TetGen").
     bool insertion_pass(TetImproveReport& rep, const Progress* progress) {
         bool changed = false;
-        std::size_t done = 0;
-        for (const Index t : worst_first(true)) {
-            if ((++done & 255u) == 0) check_cancelled(progress);
-            if (over_budget()) break;
-            if (!alive_[static_cast<std::size_t>(t)] || q_[static_cast<std::size_t>(t)] >= below_) continue;
+        for_each_below(true, 255u, progress, [&](Index t) {
             if (insert_point(t)) {
                 ++rep.inserted_nodes;
                 changed = true;
             }
-        }
+        });
         return changed;
     }
 
@@ -228,8 +239,12 @@ public:
     }
 
     /// The work allowed, in tetrahedron qualities computed.
-    void set_budget(std::uint64_t b) { budget_ = b; }
-    bool over_budget() const { return evaluations_ > budget_; }
+    void set_budget(std::uint64_t b) {
+        budget_ = b;
+    }
+    bool over_budget() const {
+        return evaluations_ > budget_;
+    }
 
 private:
     /// The tetrahedra below the bound (\p fixed_only: whose corners are all boundary nodes),

@@ -5,6 +5,7 @@
 // files are exact and depend on nothing but the mesh.
 
 #include <strata/core/error.h>
+#include <strata/core/types.h>
 #include <strata/io/files.h>
 
 #include <unistd.h>
@@ -57,6 +58,15 @@ public:
     void put(double v) {
         reserve(kMaxNumber);
         n_ = static_cast<std::size_t>(std::to_chars(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
+    }
+
+    /// \p x's three coordinates as put(double) writes them, a space between each.
+    void put_point(const Vec3& x) {
+        put(x.x());
+        put(' ');
+        put(x.y());
+        put(' ');
+        put(x.z());
     }
 
     /// Flush, fsync and close; throws OutputError if anything could not be written (disk full,

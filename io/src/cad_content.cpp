@@ -3,6 +3,7 @@
 #include <strata/io/input_file.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <string>
 
@@ -79,36 +80,38 @@ bool holds_brep(std::string_view s) {
     return line.find("CASCADE Topology") != std::string_view::npos;
 }
 
-const char* name_of(CadContent kind) {
-    switch (kind) {
-        case CadContent::Step:
-            return "STEP";
-        case CadContent::Iges:
-            return "IGES";
-        case CadContent::Brep:
-            return "BREP";
-    }
-    return "CAD";
+/// A CAD format: its name and the test of a file's opening bytes.
+struct CadFormat {
+    CadContent kind;
+    const char* name;
+    bool (*holds)(std::string_view head);
+};
+
+constexpr std::array<CadFormat, 3> kFormats{{
+    {CadContent::Step, "STEP", holds_step},
+    {CadContent::Iges, "IGES", holds_iges},
+    {CadContent::Brep, "BREP", holds_brep},
+}};
+
+/// \p kind's entry of kFormats; null for a value outside the enumeration.
+const CadFormat* format_of(CadContent kind) {
+    for (const CadFormat& f : kFormats)
+        if (f.kind == kind) return &f;
+    return nullptr;
 }
 
 }  // namespace
 
 bool holds_cad_content(std::string_view head, CadContent kind) {
-    switch (kind) {
-        case CadContent::Step:
-            return holds_step(head);
-        case CadContent::Iges:
-            return holds_iges(head);
-        case CadContent::Brep:
-            return holds_brep(head);
-    }
-    return false;
+    const CadFormat* format = format_of(kind);
+    return format && format->holds(head);
 }
 
 void check_cad_content(const std::string& path, CadContent kind) {
     const std::string head = read_input_head(path, kHead);
     if (holds_cad_content(head, kind)) return;
-    const std::string name = name_of(kind);
+    const CadFormat* format = format_of(kind);
+    const std::string name = format ? format->name : "CAD";
     throw InputError("'" + path + "' is not " + (kind == CadContent::Iges ? "an " : "a ") + name + " file: it " +
                      describe_content(head) + "; export the model again as " + name +
                      ", or give the file the extension of its format (.step, .iges, .brep)");

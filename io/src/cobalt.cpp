@@ -94,11 +94,7 @@ void write_grid(BufferedFile& out, const VolumeMesh& mesh, const std::vector<Ind
     out.put(quads ? " 4" : " 3");
     out.put(hexes ? " 6\n" : quads ? " 5\n" : " 4\n");
     for (const Vec3& x : mesh.points) {
-        out.put(x.x());
-        out.put(' ');
-        out.put(x.y());
-        out.put(' ');
-        out.put(x.z());
+        out.put_point(x);
         out.put('\n');
     }
     std::uint64_t slot = 0;

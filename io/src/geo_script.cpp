@@ -4,6 +4,7 @@
 #include <strata/io/geo_script.h>
 
 #include <strata/core/error.h>
+#include <strata/io/files.h>
 
 #include <gmsh.h>
 
@@ -16,7 +17,6 @@
 #include <fstream>
 #include <mutex>
 #include <set>
-#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -55,13 +55,6 @@ std::mutex& defined_mutex() {
 std::set<std::string>& defined_names() {
     static std::set<std::string> names;
     return names;
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 /// A token of a .geo script as Gmsh 4.8's lexer (Parser/Gmsh.l) reads it.
@@ -180,7 +173,7 @@ void collect_hazards(const std::filesystem::path& file, const std::string& read_
     const fs::path canonical = fs::weakly_canonical(file, ec);
     if (!seen.insert(ec ? file.string() : canonical.string()).second) return;
     if (!fs::is_regular_file(file, ec)) return;  // Gmsh cannot read it either
-    const GeoScan scan = scan_geo_text(read_text(file.string()));
+    const GeoScan scan = scan_geo_text(read_whole_file(file.string()));
     for (GeoHazard h : scan.hazards) {
         h.file = file.string();
         h.read_from = read_from;
@@ -320,7 +313,7 @@ std::string rename_geo_macros(const std::string& text, const std::string& suffix
 
 void merge_geo_script(const std::string& path, bool trusted) {
     if (!trusted) check_geo_script(path);
-    const std::string text = read_text(path);
+    const std::string text = read_whole_file(path);
     const std::vector<std::string> names = geo_macro_names(text);
     std::lock_guard<std::mutex> lock(defined_mutex());
     std::set<std::string>& defined = defined_names();

@@ -157,26 +157,27 @@ void write_through_gmsh(const std::string& path, double msh_version, const char*
     if (!outputs) own.commit();
 }
 
-}  // namespace
-
-SurfaceMesh read_msh(const std::string& path) {
-    GmshSession session("read_msh");
+/// \p path merged into a Gmsh session named \p session_name and converted by \p convert (given the
+/// path quoted, for its messages); running out of memory is an InputError naming the file.
+template <class Convert>
+auto from_msh_file(const char* session_name, const std::string& path, Convert&& convert) {
+    GmshSession session(session_name);
     merge_msh_file(path);
     try {
-        return surface_from_gmsh_model("'" + path + "'");
+        return convert("'" + path + "'");
     } catch (const std::bad_alloc&) {
         throw out_of_memory(path);
     }
 }
 
+}  // namespace
+
+SurfaceMesh read_msh(const std::string& path) {
+    return from_msh_file("read_msh", path, [](const std::string& context) { return surface_from_gmsh_model(context); });
+}
+
 VolumeMesh read_volume_msh(const std::string& path) {
-    GmshSession session("read_volume_msh");
-    merge_msh_file(path);
-    try {
-        return volume_from_gmsh_model("'" + path + "'");
-    } catch (const std::bad_alloc&) {
-        throw out_of_memory(path);
-    }
+    return from_msh_file("read_volume_msh", path, volume_from_gmsh_model);
 }
 
 void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_version, Progress* progress,

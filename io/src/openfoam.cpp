@@ -142,11 +142,7 @@ void write_points(BufferedFile& out, const VolumeMesh& mesh) {
     out.put("\n(\n");
     for (const Vec3& x : mesh.points) {
         out.put('(');
-        out.put(x.x());
-        out.put(' ');
-        out.put(x.y());
-        out.put(' ');
-        out.put(x.z());
+        out.put_point(x);
         out.put(")\n");
     }
     out.put(")\n\n\n");

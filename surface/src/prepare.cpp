@@ -121,9 +121,10 @@ void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::stri
     }
 }
 
-SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source, PrepareReport* report,
-                         Progress* progress) {
-    strata::report(progress, "surface", 0.6);
+namespace {
+
+/// InputError naming \p source unless \p params' numbers are in their ranges.
+void check_prepare_params(const PrepareParams& params, const std::string& source) {
     if (!(params.scale > 0.0) || !std::isfinite(params.scale))
         throw InputError(source + ": PrepareParams::scale = " + format_number(params.scale) +
                          ": need a positive, finite factor");
@@ -137,35 +138,36 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
         throw InputError(source + ": PrepareParams::merge_tolerance = " + format_number(params.merge_tolerance) +
                          ": need a share of the model's size in [0, 0.001] (nodes closer than it are one; a larger "
                          "one would merge the nodes of real features)");
-    if (params.scale != 1.0)
-        for (Vec3& x : raw.points) x *= params.scale;
-    assign_patch_kinds(raw, params.patch_kinds, source);
-    // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
-    if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
+}
+
+/// \p raw with coincident nodes merged, faces with a repeated node and copies of faces removed,
+/// and T-junctions split; \p rep counts each.
+SurfaceMesh clean_faces(const SurfaceMesh& raw, const PrepareParams& params, const std::string& source,
+                        PrepareReport& rep) {
     SurfaceMesh merged = naming(source, [&] { return merge_coincident_nodes(raw, params.merge_tolerance); });
-    const Index merged_nodes = raw.num_points() - merged.num_points();
-    Index collapsed = 0, duplicates = 0, t_junctions = 0;
-    merged = remove_collapsed_faces(merged, &collapsed);
-    {
-        // One edge table for both (the surface is the same unless a copy went).
-        const EdgeTable edges = edge_table(merged);
-        merged = remove_duplicate_faces(merged, edges, &duplicates);
-        merged =
-            duplicates > 0 ? split_t_junctions(merged, &t_junctions) : split_t_junctions(merged, edges, &t_junctions);
-    }
-    raw = SurfaceMesh{};  // the input copy is no longer needed
-    strata::report(progress, "surface", 0.7);
-    Index touching = 0;
-    if (params.fuse) {
-        // Bodies touching along a common face: the walls between them are not the union's.
-        const std::vector<Index> back_to_back = touching_faces(merged);
-        if (!back_to_back.empty()) {
-            std::vector<char> drop(static_cast<std::size_t>(merged.num_faces()), 0);
-            for (const Index f : back_to_back) drop[static_cast<std::size_t>(f)] = 1;
-            merged = remove_faces(merged, drop);
-            touching = static_cast<Index>(back_to_back.size());
-        }
-    }
+    rep.merged_nodes = raw.num_points() - merged.num_points();
+    merged = remove_collapsed_faces(merged, &rep.collapsed_faces);
+    // One edge table for both (the surface is the same unless a copy went).
+    const EdgeTable edges = edge_table(merged);
+    merged = remove_duplicate_faces(merged, edges, &rep.duplicate_faces);
+    merged = rep.duplicate_faces > 0 ? split_t_junctions(merged, &rep.t_junctions)
+                                     : split_t_junctions(merged, edges, &rep.t_junctions);
+    return merged;
+}
+
+/// Bodies touching along a common face: the walls between them are not the union's, so removed
+/// from \p mesh. The number removed.
+Index remove_touching_faces(SurfaceMesh& mesh) {
+    const std::vector<Index> back_to_back = touching_faces(mesh);
+    if (back_to_back.empty()) return 0;
+    std::vector<char> drop(static_cast<std::size_t>(mesh.num_faces()), 0);
+    for (const Index f : back_to_back) drop[static_cast<std::size_t>(f)] = 1;
+    mesh = remove_faces(mesh, drop);
+    return static_cast<Index>(back_to_back.size());
+}
+
+/// check_surface; without fusing, its TopologyError says where bodies touch back to back.
+void check_merged_surface(const SurfaceMesh& merged, const PrepareParams& params, const std::string& source) {
     try {
         check_surface(merged, source);
     } catch (const TopologyError& e) {
@@ -177,79 +179,120 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
                             describe_face(merged, back_to_back.front()) +
                             "); fusing the bodies into one (--fuse) removes them");
     }
-    HoleReport holes;
-    if (params.fill_holes > 0) merged = naming(source, [&] { return fill_holes(merged, params.fill_holes, &holes); });
-    strata::report(progress, "surface", 0.8);
-    OrientReport orient;
-    SurfaceMesh oriented = naming(source, [&] { return orient_surface(merged, &orient, params.internal_flow); });
+}
+
+/// \p oriented with its overlapping bodies replaced by their union (fuse_components), then
+/// merged, cleaned, checked and oriented again; \p rep counts what that did.
+SurfaceMesh fuse_bodies(SurfaceMesh oriented, const PrepareParams& params, const std::string& source,
+                        PrepareReport& rep) {
     FuseReport fuse;
-    if (params.fuse) {
-        SurfaceMesh fused = naming(source, [&] { return fuse_components(oriented, &fuse); });
-        if (fuse.fused > 0) {
-            // The union's faces with the untouched components: checked and oriented again.
-            fused = naming(source, [&] { return merge_coincident_nodes(fused, params.merge_tolerance); });
-            // The union's cuts can pass within the merge tolerance of a node (a cone's faceted
-            // side across a sphere's vertex): merged, the sliver faces between repeat a node.
-            Index reduced = 0;
-            fused = remove_collapsed_faces(fused, &reduced);
-            collapsed += reduced;
-            // And where two bodies' facets nearly coincide, flat slivers (a cap, its apex on its
-            // longest edge): flipped away.
-            Index flipped = 0;
-            fused = flip_flat_triangles(fused, 1e-6, &flipped);
-            fuse.flipped_slivers = flipped;
-            try {
-                check_surface(fused, source + " (fused)", params.remesh);
-            } catch (const TopologyError& e) {
-                // The union's cuts where two bodies' facets nearly coincide (a cylinder and a cone
-                // tessellated apart, meeting at one circle) can leave faces far smaller than
-                // the mesh: remeshing rebuilds the surface over them.
-                if (params.remesh) throw;
-                throw TopologyError(std::string(e.what()) +
-                                    " (the union of the bodies left it where their facets nearly coincide: --remesh "
-                                    "rebuilds the united surface)");
-            }
-            oriented = naming(source, [&] { return orient_surface(fused, &orient, params.internal_flow); });
-        }
+    SurfaceMesh fused = naming(source, [&] { return fuse_components(oriented, &fuse); });
+    rep.fused_components = fuse.fused;
+    if (fuse.fused == 0) return oriented;
+    // The union's faces with the untouched components: checked and oriented again.
+    fused = naming(source, [&] { return merge_coincident_nodes(fused, params.merge_tolerance); });
+    // The union's cuts can pass within the merge tolerance of a node (a cone's faceted
+    // side across a sphere's vertex): merged, the sliver faces between repeat a node.
+    Index reduced = 0;
+    fused = remove_collapsed_faces(fused, &reduced);
+    rep.collapsed_faces += reduced;
+    // And where two bodies' facets nearly coincide, flat slivers (a cap, its apex on its
+    // longest edge): flipped away.
+    Index flipped = 0;
+    fused = flip_flat_triangles(fused, 1e-6, &flipped);
+    rep.fused_slivers = flipped;
+    try {
+        check_surface(fused, source + " (fused)", params.remesh);
+    } catch (const TopologyError& e) {
+        // The union's cuts where two bodies' facets nearly coincide (a cylinder and a cone
+        // tessellated apart, meeting at one circle) can leave faces far smaller than
+        // the mesh: remeshing rebuilds the surface over them.
+        if (params.remesh) throw;
+        throw TopologyError(std::string(e.what()) +
+                            " (the union of the bodies left it where their facets nearly coincide: --remesh "
+                            "rebuilds the united surface)");
     }
+    return naming(source, [&] { return orient_surface(fused, &rep.orient, params.internal_flow); });
+}
+
+/// \p oriented remeshed (remesh_surface), merged, checked and oriented again.
+SurfaceMesh remesh_oriented(const SurfaceMesh& oriented, const PrepareParams& params, const std::string& source,
+                            PrepareReport& rep) {
+    SurfaceMesh remeshed = remesh_surface(oriented, params.remeshing, source, &rep.remesh);
+    remeshed = naming(source, [&] { return merge_coincident_nodes(remeshed, params.merge_tolerance); });
+    check_surface(remeshed, source + " (remeshed)");
+    OrientReport again;
+    SurfaceMesh out = naming(source, [&] { return orient_surface(remeshed, &again, params.internal_flow); });
+    rep.orient.flipped_faces += again.flipped_faces;
+    return out;
+}
+
+/// The fields of \p rep that prepare_mesh fills, copied to \p report.
+void copy_prepare_report(const PrepareReport& rep, const PrepareParams& params, PrepareReport& report) {
+    report.short_edges = rep.short_edges;
+    report.remeshed = params.remesh;
+    report.remesh = rep.remesh;
+    report.recombination = rep.remesh.recombination;
+    report.scale = params.scale;
+    report.fused_components = rep.fused_components;
+    report.fused_slivers = rep.fused_slivers;
+    report.touching_faces = rep.touching_faces;
+    report.internal_flow = params.internal_flow;
+    report.merged_nodes = rep.merged_nodes;
+    report.collapsed_faces = rep.collapsed_faces;
+    report.duplicate_faces = rep.duplicate_faces;
+    report.t_junctions = rep.t_junctions;
+    report.holes = rep.holes;
+    report.orient = rep.orient;
+}
+
+/// What reading the inputs reported, copied to \p report (the recombination only where
+/// prepare_mesh's remeshing left none).
+void copy_read_reports(const CadUnits& units, const WallSizeReport& walls, const SewReport& sew,
+                       const RecombinationReport& recombination, PrepareReport& report) {
+    report.units = units;
+    report.walls = walls;
+    report.sew = sew;
+    if (report.recombination.blossom_failure.empty()) report.recombination = recombination;
+}
+
+}  // namespace
+
+SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std::string& source, PrepareReport* report,
+                         Progress* progress) {
+    strata::report(progress, "surface", 0.6);
+    check_prepare_params(params, source);
+    if (params.scale != 1.0)
+        for (Vec3& x : raw.points) x *= params.scale;
+    assign_patch_kinds(raw, params.patch_kinds, source);
+    // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
+    if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
+    PrepareReport rep;
+    SurfaceMesh merged = clean_faces(raw, params, source, rep);
+    raw = SurfaceMesh{};  // the input copy is no longer needed
+    strata::report(progress, "surface", 0.7);
+    if (params.fuse) rep.touching_faces = remove_touching_faces(merged);
+    check_merged_surface(merged, params, source);
+    if (params.fill_holes > 0)
+        merged = naming(source, [&] { return fill_holes(merged, params.fill_holes, &rep.holes); });
+    strata::report(progress, "surface", 0.8);
+    SurfaceMesh oriented = naming(source, [&] { return orient_surface(merged, &rep.orient, params.internal_flow); });
+    if (params.fuse) oriented = fuse_bodies(std::move(oriented), params, source, rep);
     // Not before remeshing, which rebuilds the surface from the input's own edges: given the
     // collapsed glider STL, Gmsh's surfaces kept 148 needles instead of 4.
-    ShortEdgeReport short_edges;
     if (params.collapse_ratio > 0.0 && !params.remesh) {
         SurfaceMesh shorter =
-            naming(source, [&] { return collapse_short_edges(oriented, params.collapse_ratio, &short_edges); });
-        if (short_edges.collapsed > 0) {
+            naming(source, [&] { return collapse_short_edges(oriented, params.collapse_ratio, &rep.short_edges); });
+        if (rep.short_edges.collapsed > 0) {
             check_surface(shorter, source + " (short edges collapsed)");
             oriented = std::move(shorter);
         }
     }
-    RemeshReport remesh;
     if (params.remesh) {
         strata::report(progress, "surface", 0.9);
-        SurfaceMesh remeshed = remesh_surface(oriented, params.remeshing, source, &remesh);
-        remeshed = naming(source, [&] { return merge_coincident_nodes(remeshed, params.merge_tolerance); });
-        check_surface(remeshed, source + " (remeshed)");
-        OrientReport again;
-        oriented = naming(source, [&] { return orient_surface(remeshed, &again, params.internal_flow); });
-        orient.flipped_faces += again.flipped_faces;
+        oriented = remesh_oriented(oriented, params, source, rep);
     }
-    if (report) {
-        report->short_edges = short_edges;
-        report->remeshed = params.remesh;
-        report->remesh = remesh;
-        report->recombination = remesh.recombination;
-        report->scale = params.scale;
-        report->fused_components = fuse.fused;
-        report->fused_slivers = fuse.flipped_slivers;
-        report->touching_faces = touching;
-        report->internal_flow = params.internal_flow;
-        report->merged_nodes = merged_nodes;
-        report->collapsed_faces = collapsed;
-        report->duplicate_faces = duplicates;
-        report->t_junctions = t_junctions;
-        report->holes = holes;
-        report->orient = orient;
-    }
+    if (report) copy_prepare_report(rep, params, *report);
     strata::report(progress, "surface", 1.0);
     return oriented;
 }
@@ -297,12 +340,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
         source += (source.empty() ? "" : " + ") + path;
     }
     SurfaceMesh out = prepare_mesh(std::move(all), params, source, report, progress);
-    if (report) {
-        report->units = units;
-        report->walls = walls;
-        report->sew = sew;
-        if (report->recombination.blossom_failure.empty()) report->recombination = recombination;
-    }
+    if (report) copy_read_reports(units, walls, sew, recombination, *report);
     return out;
 }
 
@@ -327,12 +365,7 @@ SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params
                             "an edge, sewing cannot tell them apart: export the bodies as solids, STEP or BREP, "
                             "and give --fuse)");
     }
-    if (report) {
-        report->units = units;
-        report->walls = walls;
-        report->sew = sew;
-        if (report->recombination.blossom_failure.empty()) report->recombination = recombination;
-    }
+    if (report) copy_read_reports(units, walls, sew, recombination, *report);
     return out;
 }
 

@@ -43,13 +43,18 @@ void expect_refused(const CliResult& r, const std::string& message) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
+/// `strata surface NAME -o out.msh` in \p dir is refused with \p message and leaves only NAME.
+void expect_surface_refused(const test::ScratchDir& dir, const std::string& name, const std::string& message) {
+    expect_refused(strata_cli(dir, "surface " + name + " -o out.msh"), message);
+    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{name});
+}
+
 TEST(CliBadInput, PngNamedIges) {
     test::ScratchDir dir("cli_bad_png");
     std::ofstream(dir.file("wing.iges"), std::ios::binary) << std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16);
-    expect_refused(strata_cli(dir, "surface wing.iges -o out.msh"),
-                   "'wing.iges' is not an IGES file: it looks like a PNG image; export the model again as IGES, or "
-                   "give the file the extension of its format (.step, .iges, .brep)");
-    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"wing.iges"});
+    expect_surface_refused(dir, "wing.iges",
+                           "'wing.iges' is not an IGES file: it looks like a PNG image; export the model again as "
+                           "IGES, or give the file the extension of its format (.step, .iges, .brep)");
 }
 
 TEST(CliBadInput, MshClaimingBillionsOfNodes) {
@@ -58,10 +63,9 @@ TEST(CliBadInput, MshClaimingBillionsOfNodes) {
         "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3000000000 1 3000000000\n2 1 0 3000000000\n1\n0 0 0\n"
         "$EndNodes\n";
     std::ofstream(dir.file("huge.msh"), std::ios::binary) << text;
-    expect_refused(
-        strata_cli(dir, "surface huge.msh -o out.msh"),
+    expect_surface_refused(
+        dir, "huge.msh",
         "'huge.msh' claims 3000000000 nodes but the file has only " + std::to_string(text.size()) + " bytes");
-    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"huge.msh"});
 }
 
 TEST(CliBadInput, MshThatCrashesGmshsReaderIsAnError) {
@@ -71,18 +75,15 @@ TEST(CliBadInput, MshThatCrashesGmshsReaderIsAnError) {
     fs::copy_file(
         std::string(STRATA_EXAMPLES_DATA) + "/../../fuzz/regressions/msh/msh22_binary_nodes_garbled_segv_1.msh",
         dir.file("damaged.msh"));
-    expect_refused(strata_cli(dir, "surface damaged.msh -o out.msh"),
-                   "reading 'damaged.msh': Gmsh's MSH reader crashes (signal 11) on it: the file is damaged or not "
-                   "MSH 2.2 or 4.1; write it again");
-    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"damaged.msh"});
+    expect_surface_refused(dir, "damaged.msh",
+                           "reading 'damaged.msh': Gmsh's MSH reader crashes (signal 11) on it: the file is damaged "
+                           "or not MSH 2.2 or 4.1; write it again");
 }
 
 TEST(CliBadInput, DeviceNamedStl) {
     test::ScratchDir dir("cli_bad_device");
     fs::create_symlink("/dev/zero", dir.file("x.stl"));
-    expect_refused(strata_cli(dir, "surface x.stl -o out.msh"),
-                   "'x.stl' is a device, not a file; give the STL file itself");
-    EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"x.stl"});
+    expect_surface_refused(dir, "x.stl", "'x.stl' is a device, not a file; give the STL file itself");
 }
 
 TEST(CliBadInput, PipeNamedMshOrStepIsRefusedWithoutWaiting) {
@@ -100,13 +101,8 @@ TEST(CliBadInput, PipeNamedStlIsReadToItsEnd) {
     test::ScratchDir dir("cli_fifo_stl");
     const std::string fifo = dir.file("sphere.stl");
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    const std::string bytes = slurp(example_data("sphere.stl"));
-    std::thread writer([&] {
-        std::FILE* f = std::fopen(fifo.c_str(), "wb");  // waits for the program to open it
-        if (!f) return;
-        std::fwrite(bytes.data(), 1, bytes.size(), f);
-        std::fclose(f);
-    });
+    std::thread writer =
+        test::fill_fifo(fifo, slurp(example_data("sphere.stl")));  // it waits for the program to open it
     const CliResult r = strata_cli(dir, "surface sphere.stl -o out.msh");
     writer.join();
     ASSERT_EQ(r.code, 0) << r.err;

@@ -178,11 +178,7 @@ TEST(CliOutputs, TimeoutAndItsValuesAreChecked) {
 /// Run `strata ARGS` in \p dir, and when its first temporary output has data (the writers have
 /// started), stop it (SIGSTOP), send \p sig, and let it go on: its exit code, stderr in \p err.
 int signalled_while_writing(const ScratchDir& dir, const std::vector<std::string>& args, int sig, std::string* err) {
-    std::vector<std::string> argv_s{STRATA_CLI};
-    argv_s.insert(argv_s.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& a : argv_s) argv.push_back(a.data());
-    argv.push_back(nullptr);
+    test::Argv argv(STRATA_CLI, args);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
@@ -191,7 +187,7 @@ int signalled_while_writing(const ScratchDir& dir, const std::vector<std::string
     const fs::path cwd = fs::current_path();
     fs::current_path(dir.path());
     pid_t pid = -1;
-    const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    const int spawned = posix_spawn(&pid, argv.data()[0], &actions, nullptr, argv.data(), environ);
     fs::current_path(cwd);
     posix_spawn_file_actions_destroy(&actions);
     if (spawned != 0) return -2;

@@ -251,11 +251,7 @@ TEST(OrientSurface, InwardSphereBecomesOutward) {
 
 TEST(OrientSurface, QuadCubeFlipKeepsTheFirstNode) {
     // Unit cube of inward quads; orient reverses each as a,b,c,d → a,d,c,b.
-    SurfaceMesh m;
-    m.patches.push_back({"wall", PatchKind::Wall});
-    for (int z = 0; z < 2; ++z)
-        for (int y = 0; y < 2; ++y)
-            for (int x = 0; x < 2; ++x) m.points.emplace_back(x, y, z);
+    SurfaceMesh m = test::cube_corners();
     m.add_face({0, 1, 3, 2}, 0);
     m.add_face({4, 6, 7, 5}, 0);
     m.add_face({0, 4, 5, 1}, 0);
@@ -367,24 +363,12 @@ TEST(OrientSurface, InternalFlowNeedsAClosedSurface) {
     open.face_nodes.resize(static_cast<std::size_t>(open.face_offsets.back()));
     open.face_patch.pop_back();
     const std::string msg = message_of<InputError>([&] { orient_surface(open, nullptr, true); });
-    EXPECT_NE(msg.find("internal flow"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("no part of the surface is closed"), std::string::npos) << msg;
+    test::expect_contains(msg, {"internal flow", "no part of the surface is closed"});
     EXPECT_NO_THROW(orient_surface(open));
 }
 
 TEST(OrientSurface, MoebiusStripIsNotOrientable) {
-    SurfaceMesh m;
-    m.patches.push_back({"strip", PatchKind::Wall});
-    const int n = 12;
-    for (int i = 0; i < n; ++i) {
-        const double th = 2.0 * std::numbers::pi * i / n, tw = th / 2.0;
-        const Vec3 c(3.0 * std::cos(th), 3.0 * std::sin(th), 0.0);
-        const Vec3 d = std::cos(tw) * Vec3(std::cos(th), std::sin(th), 0.0) + std::sin(tw) * Vec3::UnitZ();
-        m.points.push_back(c + 0.5 * d);  // top    2i
-        m.points.push_back(c - 0.5 * d);  // bottom 2i+1
-    }
-    for (Index i = 0; i + 1 < n; ++i) m.add_face({2 * i, 2 * i + 1, 2 * i + 3, 2 * i + 2}, 0);
-    m.add_face({2 * (n - 1), 2 * (n - 1) + 1, 0, 1}, 0);  // half twist: bottom joins top
+    const SurfaceMesh m = test::moebius_strip();
     ASSERT_NO_THROW(check_surface(m, "strip"));
     const std::string msg = message_of<TopologyError>([&] { orient_surface(m); });
     EXPECT_TRUE(contains(msg, "not orientable")) << msg;
@@ -416,11 +400,7 @@ TEST(OrientSurface, AHalfModelPointsOutOfTheBodyItsCutCloses) {
     // The inward unit cube of quads without its face y = 0: a half model open on its symmetry
     // plane, as a CAD tool exports the fluid's boundary (into the body). Its cut is closed by the
     // plane, so it is a body, and it is turned outward, off the file's consistent orientation.
-    SurfaceMesh m;
-    m.patches.push_back({"wall", PatchKind::Wall});
-    for (int z = 0; z < 2; ++z)
-        for (int y = 0; y < 2; ++y)
-            for (int x = 0; x < 2; ++x) m.points.emplace_back(x + 5.0, y, z - 3.0);
+    SurfaceMesh m = test::cube_corners(Vec3(5.0, 0.0, -3.0));
     m.add_face({0, 1, 3, 2}, 0);
     m.add_face({4, 6, 7, 5}, 0);
     m.add_face({2, 3, 7, 6}, 0);  // y = 1

@@ -166,11 +166,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 /// Unit cube [0,1]³ of 6 outward quads; node id = x + 2y + 4z.
 SurfaceMesh unit_cube() {
-    SurfaceMesh m;
-    m.patches.push_back({"wall", PatchKind::Wall});
-    for (int z = 0; z < 2; ++z)
-        for (int y = 0; y < 2; ++y)
-            for (int x = 0; x < 2; ++x) m.points.emplace_back(x, y, z);
+    SurfaceMesh m = test::cube_corners();
     m.add_face({0, 2, 3, 1}, 0);  // z = 0, normal -z
     m.add_face({4, 5, 7, 6}, 0);  // z = 1, +z
     m.add_face({0, 1, 5, 4}, 0);  // y = 0, -y
@@ -389,14 +385,7 @@ TEST(Merge, ExplodedGridAndCubeMergeBack) {
 
     // STL-like cube: 12 triangles, 36 nodes → 8.
     const SurfaceMesh cube = unit_cube();
-    SurfaceMesh tri;
-    tri.patches = cube.patches;
-    for (Index f = 0; f < cube.num_faces(); ++f) {
-        const Index* v = cube.face_begin(f);
-        tri.add_face({v[0], v[1], v[2]}, 0);
-        tri.add_face({v[0], v[2], v[3]}, 0);
-    }
-    tri.points = cube.points;
+    const SurfaceMesh tri = test::split_into_triangles(cube, false);
     const SurfaceMesh stl = exploded(tri);
     ASSERT_EQ(stl.num_points(), 36);
     const SurfaceMesh c = merge_coincident_nodes(stl);
@@ -493,11 +482,7 @@ TEST(TJunctions, ATriangleIsSplitWhereTheFacesBesideItHaveANodeOnItsEdge) {
     // The unit cube in triangles, one of its side's two triangles replaced by two meeting at the
     // midpoint m of the edge it shares with the top (an exporter that meshed that edge twice): the
     // top's triangle on that edge has m inside its open edge. Split there, the cube is closed.
-    SurfaceMesh m;
-    m.patches.push_back({"wall", PatchKind::Wall});
-    for (int z = 0; z < 2; ++z)
-        for (int y = 0; y < 2; ++y)
-            for (int x = 0; x < 2; ++x) m.points.emplace_back(x, y, z);
+    SurfaceMesh m = test::cube_corners();
     m.points.emplace_back(0.5, 0.0, 1.0);  // node 8, on edge 4-5
     const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& q : quads) {

@@ -92,6 +92,14 @@ void expect_input_error(F&& f, const std::string& part) {
     test::expect_error<InputError>(std::forward<F>(f), {part});
 }
 
+/// A 1D physical group \p tag on the current model's first curve.
+void group_on_first_curve(int tag) {
+    gmsh::vectorpair curves;
+    gmsh::model::getEntities(curves, 1);
+    ASSERT_FALSE(curves.empty());
+    gmsh::model::addPhysicalGroup(1, {curves.front().second}, tag);
+}
+
 TEST(GmshApi, SphereMeshedInPlaceThenWrittenAndReadBack) {
     test::ScratchDir dir("gmsh_api_sphere");
     UserGmsh user;
@@ -100,10 +108,7 @@ TEST(GmshApi, SphereMeshedInPlaceThenWrittenAndReadBack) {
     // the replacement must remove with the old mesh.
     gmsh::model::addPhysicalGroup(2, {1}, 7);
     gmsh::model::setPhysicalName(2, 7, "hull");
-    gmsh::vectorpair curves;
-    gmsh::model::getEntities(curves, 1);
-    ASSERT_FALSE(curves.empty());
-    gmsh::model::addPhysicalGroup(1, {curves.front().second}, 3);
+    ASSERT_NO_FATAL_FAILURE(group_on_first_curve(3));
     const std::size_t wall_triangles = count_elements(kTriangle3);
     ASSERT_GT(wall_triangles, 100u);
     ASSERT_EQ(count_elements(kQuad4), 0u);
@@ -307,10 +312,7 @@ TEST(GmshApi, AddVolumeNextToAnExistingMeshOffsetsEveryTag) {
     // new group), the patch gets the name; a 1D group of that name keeps it.
     gmsh::model::addPhysicalGroup(2, {1}, 5);
     gmsh::model::setPhysicalName(2, 5, "box");
-    gmsh::vectorpair curves;
-    gmsh::model::getEntities(curves, 1);
-    ASSERT_FALSE(curves.empty());
-    gmsh::model::addPhysicalGroup(1, {curves.front().second}, 4);
+    ASSERT_NO_FATAL_FAILURE(group_on_first_curve(4));
     gmsh::model::setPhysicalName(1, 4, "box");
     expect_input_error([&] { add_volume_to_gmsh_model(tet); }, "2D physical group named 'box'");
     EXPECT_EQ(count_elements(kTet4), 0u);

@@ -443,15 +443,11 @@ TEST(Pyramids, SideCrossingAFaceShortens) {
 
 TEST(Pyramids, ImpossibleGapThrowsNamingTheQuad) {
     const SurfaceMesh top = facing_plates(3, 0.01);
-    try {
-        build_pyramids(top, {0.5, 0.1});
-        FAIL() << "expected TopologyError";
-    } catch (const TopologyError& e) {
-        const std::string what = e.what();
-        EXPECT_NE(what.find("quad "), std::string::npos) << what;
-        EXPECT_NE(what.find("centroid ("), std::string::npos) << what;
-        EXPECT_NE(what.find("fewer layers"), std::string::npos) << what;
-    }
+    test::expect_error<TopologyError>(
+        [&] {
+            build_pyramids(top, {0.5, 0.1});
+        },
+        {"quad ", "centroid (", "fewer layers"});
 }
 
 TEST(Pyramids, EveryQuadThatCannotBeCappedIsNamedAtOnce) {
@@ -473,8 +469,7 @@ TEST(Pyramids, EveryQuadThatCannotBeCappedIsNamedAtOnce) {
     } catch (const LocalTopologyError& e) {
         EXPECT_EQ(e.nodes(), (std::vector<Index>{0, 1, 2, 3, 4, 5, 6, 7}));
         const std::string what = e.what();
-        EXPECT_NE(what.find("quad 0 "), std::string::npos) << what;
-        EXPECT_NE(what.find("and 1 other quads of the layer top cannot be capped either"), std::string::npos) << what;
+        test::expect_contains(what, {"quad 0 ", "and 1 other quads of the layer top cannot be capped either"});
     }
 }
 

@@ -171,6 +171,14 @@ TEST(WriteWholeFile, AFullDiskIsAnOutputErrorNamingTheTarget) {
     EXPECT_EQ(slurp(full.file("small")), "fits");
 }
 
+TEST(ReadWholeFile, EveryByteAndNothingForAMissingFile) {
+    ScratchDir dir("files_read_whole");
+    const std::string bytes = std::string("a\0b\r\n\xff", 6) + std::string(100000, 'x');
+    std::ofstream(dir.file("f.bin"), std::ios::binary) << bytes;
+    EXPECT_EQ(read_whole_file(dir.file("f.bin")), bytes);
+    EXPECT_EQ(read_whole_file(dir.file("missing.bin")), "");
+}
+
 TEST(RemoveTemporaries, RemovesUncommittedFilesAndDirectoriesAtOnce) {
     ScratchDir dir("files_remove_temporaries");
     std::ofstream(dir.file("kept")) << "old";

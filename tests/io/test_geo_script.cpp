@@ -43,9 +43,8 @@ TEST(GeoScript, MacroNamesAreThoseDefinedBareOrQuoted) {
 
 TEST(GeoScript, RenamingTouchesTheDefinitionsAndCallsOnly) {
     const std::string r = rename_geo_macros(kScript, "_s1");
-    EXPECT_NE(r.find("Macro Bore_s1\n"), std::string::npos) << r;
-    EXPECT_NE(r.find("Function \"Old_s1\"\n"), std::string::npos) << r;
-    EXPECT_NE(r.find("Call Bore_s1;\nx = 1;\nCall \"Bore_s1\";\nCall Old_s1;\n"), std::string::npos) << r;
+    test::expect_contains(
+        r, {"Macro Bore_s1\n", "Function \"Old_s1\"\n", "Call Bore_s1;\nx = 1;\nCall \"Bore_s1\";\nCall Old_s1;\n"});
     EXPECT_NE(r.find("Bores = 2; CallBore = 3;"), std::string::npos) << r;  // other words stay
     EXPECT_EQ(rename_geo_macros("Call Other;\n", "_s1"), "Call Other;\n");  // another script's Macro
 }

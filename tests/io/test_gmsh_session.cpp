@@ -24,6 +24,14 @@ using test::example_data;
     throw std::runtime_error("out of the loop");
 }
 
+/// \p p ran and ended only as \p how says (returned, threw or aborted), with \p message.
+void expect_ended(const GmshProbe& p, bool GmshProbe::*how, const std::string& message) {
+    ASSERT_TRUE(p.ran);
+    for (bool GmshProbe::*flag : {&GmshProbe::returned, &GmshProbe::threw, &GmshProbe::aborted})
+        EXPECT_EQ(p.*flag, flag == how);
+    EXPECT_EQ(p.message, message);
+}
+
 TEST(GmshProbe, AReturnIsReturned) {
     GmshSession session("probe_returns");
     int touched = 0;
@@ -45,22 +53,15 @@ TEST(GmshProbe, AReturnIsReturned) {
 
 TEST(GmshProbe, AnExceptionIsItsText) {
     GmshSession session("probe_throws");
-    const GmshProbe p = gmsh_probe([] { throw std::string("Gmsh's words"); });
-    ASSERT_TRUE(p.ran);
-    EXPECT_TRUE(p.threw);
-    EXPECT_FALSE(p.returned || p.aborted);
-    EXPECT_EQ(p.message, "Gmsh's words");
+    expect_ended(gmsh_probe([] { throw std::string("Gmsh's words"); }), &GmshProbe::threw, "Gmsh's words");
 }
 
 TEST(GmshProbe, AnAbortIsItsTextAndThisProcessLivesOn) {
     // As Gmsh 4.8 does: an exception out of a region no exception may leave (an OpenMP loop;
     // here a noexcept function) ends the process through std::terminate.
     GmshSession session("probe_aborts");
-    const GmshProbe p = gmsh_probe([] { []() noexcept { throw_out_of_the_loop(); }(); });
-    ASSERT_TRUE(p.ran);
-    EXPECT_TRUE(p.aborted);
-    EXPECT_FALSE(p.returned || p.threw);
-    EXPECT_EQ(p.message, "out of the loop");
+    expect_ended(gmsh_probe([] { []() noexcept { throw_out_of_the_loop(); }(); }), &GmshProbe::aborted,
+                 "out of the loop");
 }
 
 TEST(GmshProbe, ACrashIsItsSignal) {
@@ -100,6 +101,26 @@ std::size_t quads_here() {
     return quads.size();
 }
 
+/// In a session of its own, a unit box, quads asked with Blossom at size 0.3 (Blossom meshes it).
+struct BlossomBox {
+    GmshSession session;
+    GmshOptionScope options;
+    explicit BlossomBox(const std::string& name) : session(name) {
+        gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
+        gmsh::model::occ::synchronize();
+        options.set("Mesh.MeshSizeMax", 0.3);
+        options.set("Mesh.RecombineAll", 1);
+        options.set("Mesh.RecombinationAlgorithm", 1);
+    }
+};
+
+/// The current model's mesh has more than \p quads quadrilaterals, and recombination algorithm
+/// \p algorithm is Gmsh's setting (1: Blossom, 0: the simple one).
+void expect_quads(double algorithm, std::size_t quads) {
+    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), algorithm);
+    EXPECT_GT(quads_here(), quads);
+}
+
 TEST(GenerateSurfacesInChild, BlossomsAbortFoundInAChildAndTheSimpleAlgorithmMeshesIt) {
     GmshSession session("blossom_aborts");
     GmshOptionScope options;
@@ -112,49 +133,35 @@ TEST(GenerateSurfacesInChild, BlossomsAbortFoundInAChildAndTheSimpleAlgorithmMes
     EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
     const std::string failure = generate_surfaces_in_child("spiky", true, options, generate);
     EXPECT_NE(failure.find("Perfect Match failed"), std::string::npos) << failure;
-    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
     // The simple algorithm's quads are brought back here.
-    EXPECT_GT(quads_here(), 100u);
+    expect_quads(0.0, 100u);
 }
 
 TEST(GenerateSurfacesInChild, BlossomsMeshIsBroughtBackMadeOnce) {
-    GmshSession session("blossom_ok");
-    GmshOptionScope options;
-    gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
-    gmsh::model::occ::synchronize();
-    options.set("Mesh.MeshSizeMax", 0.3);
-    options.set("Mesh.RecombineAll", 1);
-    options.set("Mesh.RecombinationAlgorithm", 1);
+    BlossomBox box("blossom_ok");
     int here = 0;  // calls of generate in this process: none, the child's mesh is taken
     const pid_t parent = getpid();
-    EXPECT_EQ(generate_surfaces_in_child("box", true, options,
+    EXPECT_EQ(generate_surfaces_in_child("box", true, box.options,
                                          [&] {
                                              if (getpid() == parent) ++here;
                                              gmsh::model::mesh::generate(2);
                                          }),
               "");
     EXPECT_EQ(here, 0);
-    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 1.0);
-    EXPECT_GT(quads_here(), 20u);
+    expect_quads(1.0, 20u);
 }
 
 TEST(GenerateSurfacesInChild, ACrashOfBlossomFallsBackToTheSimpleAlgorithm) {
     // Blossom also crashes without words of its own (a segmentation fault on a body with a
     // mirror on a thin stalk: test_cad); where the simple recombination goes through, it is used.
-    GmshSession session("blossom_crashes");
-    GmshOptionScope options;
-    gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
-    gmsh::model::occ::synchronize();
-    options.set("Mesh.MeshSizeMax", 0.3);
-    options.set("Mesh.RecombineAll", 1);
-    options.set("Mesh.RecombinationAlgorithm", 1);
+    BlossomBox box("blossom_crashes");
+    GmshOptionScope& options = box.options;
     const auto crashes_with_blossom = [] {
         if (option("Mesh.RecombinationAlgorithm") == 1.0) std::raise(SIGSEGV);
         gmsh::model::mesh::generate(2);
     };
     EXPECT_EQ(generate_surfaces_in_child("the model", true, options, crashes_with_blossom), "crashes (signal 11)");
-    EXPECT_EQ(option("Mesh.RecombinationAlgorithm"), 0.0);
-    EXPECT_GT(quads_here(), 20u);
+    expect_quads(0.0, 20u);
     // Where the simple one crashes too, one error says both, and nothing ends this process.
     options.set("Mesh.RecombinationAlgorithm", 1);
     test::expect_error<BackendError>(

@@ -198,13 +198,7 @@ TEST(ReadStl, PipeReadToItsEndDeviceRefused) {
     test::ScratchDir dir("io_stl_pipe");
     const std::string fifo = dir.file("sphere.stl");
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    const std::string bytes = slurp(example_data("sphere.stl"));
-    std::thread writer([&] {
-        std::FILE* f = std::fopen(fifo.c_str(), "wb");  // waits for the reader
-        if (!f) return;
-        std::fwrite(bytes.data(), 1, bytes.size(), f);
-        std::fclose(f);
-    });
+    std::thread writer = test::fill_fifo(fifo, slurp(example_data("sphere.stl")));  // it waits for the reader
     const SurfaceMesh m = read_stl(fifo);
     writer.join();
     EXPECT_EQ(m.num_triangles(), 606);

@@ -21,6 +21,7 @@
 
 using namespace strata;
 using strata::test::CubeSplit;
+using strata::test::expect_same_cells;
 using strata::test::ScratchDir;
 
 namespace {
@@ -73,13 +74,6 @@ std::string read_text(const std::string& path) {
     std::stringstream s;
     s << in.rdbuf();
     return s.str();
-}
-
-void expect_same_cells(const VolumeMesh& a, const VolumeMesh& b) {
-    EXPECT_EQ(a.tets, b.tets);
-    EXPECT_EQ(a.pyramids, b.pyramids);
-    EXPECT_EQ(a.prisms, b.prisms);
-    EXPECT_EQ(a.hexes, b.hexes);
 }
 
 }  // namespace
@@ -252,12 +246,5 @@ TEST(ReadVolumeMsh, SecondOrderElementsAreRejected) {
                            "1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 0.5 0 0\n6 0.5 0.5 0\n7 0 0.5 0\n"
                            "8 0 0 0.5\n9 0 0.5 0.5\n10 0.5 0 0.5\n$EndNodes\n$Elements\n1\n"
                            "1 11 2 1 1 1 2 3 4 5 6 7 8 9 10\n$EndElements\n";
-    try {
-        read_volume_msh(path);
-        FAIL() << "no throw";
-    } catch (const InputError& e) {
-        const std::string what = e.what();
-        EXPECT_NE(what.find("tet10.msh"), std::string::npos) << what;
-        EXPECT_NE(what.find("Gmsh type 11"), std::string::npos) << what;
-    }
+    test::expect_error<InputError>([&] { read_volume_msh(path); }, {"tet10.msh", "Gmsh type 11"});
 }

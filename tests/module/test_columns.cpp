@@ -25,15 +25,7 @@ namespace {
 SurfaceMesh plate(bool triangles) {
     SurfaceMesh q = test::quad_grid(10, 10, 0.1);
     if (!triangles) return q;
-    SurfaceMesh t;
-    t.patches = q.patches;
-    t.points = q.points;
-    for (Index f = 0; f < q.num_faces(); ++f) {
-        const Index* v = q.face_begin(f);
-        t.add_face({v[0], v[1], v[2]}, 0);
-        t.add_face({v[0], v[2], v[3]}, 0);
-    }
-    return t;
+    return test::split_into_triangles(q, false);
 }
 
 /// 8 layers of 0.01 (0.08 in all), front limits spread at 0.25.

@@ -56,6 +56,18 @@ TEST(Distribution, GeometricIsH1TimesQToTheK) {
 
 // ---------------------------------------------------------------- thickness
 
+/// \p d: the heights of \p kind (Thickness or Tanh, which ignore \p growth) for \p n layers from
+/// \p h1 to the thickness \p t: n + 1 of them, the first n summing to t, the first h1 within
+/// \p h1_tolerance × h1.
+void heights_of_thickness(std::vector<double>& d, Distribution kind, int n, double h1, double growth, double t,
+                          double h1_tolerance) {
+    d = layer_heights(params(kind, n, h1, growth, t));
+    ASSERT_EQ(d.size(), sz(n) + 1);
+    EXPECT_NEAR(total(d, n), t, 1e-12 * t);
+    EXPECT_NEAR(d[0], h1, h1_tolerance * h1);
+}
+
+/// A distribution to a thickness (Thickness, Tanh): n layers from h1 to t.
 struct ThicknessCase {
     int n;
     double h1, t;
@@ -65,10 +77,8 @@ class Thickness : public ::testing::TestWithParam<ThicknessCase> {};
 
 TEST_P(Thickness, SumsToTheThicknessWithConstantRatio) {
     const auto [n, h1, t] = GetParam();
-    const std::vector<double> d = layer_heights(params(Distribution::Thickness, n, h1, 99.0 /* ignored */, t));
-    ASSERT_EQ(d.size(), sz(n) + 1);
-    EXPECT_NEAR(total(d, n), t, 1e-12 * t);
-    EXPECT_NEAR(d[0], h1, 1e-14 * h1);
+    std::vector<double> d;
+    ASSERT_NO_FATAL_FAILURE(heights_of_thickness(d, Distribution::Thickness, n, h1, 99.0, t, 1e-14));
     const double q = n >= 2 ? d[1] / d[0] : d[1] / d[0];
     EXPECT_GE(q, 1.0 - 1e-15);
     for (int k = 0; k < n; ++k) EXPECT_NEAR(d[sz(k) + 1] / d[sz(k)], q, 1e-12 * q) << "k " << k;
@@ -95,19 +105,12 @@ TEST(Distribution, OneLayerThicknessIsH1) {
 
 // ---------------------------------------------------------------- tanh
 
-struct TanhCase {
-    int n;
-    double h1, t;
-};
-
-class Tanh : public ::testing::TestWithParam<TanhCase> {};
+class Tanh : public ::testing::TestWithParam<ThicknessCase> {};
 
 TEST_P(Tanh, SumsToTheThicknessFromH1Increasing) {
     const auto [n, h1, t] = GetParam();
-    const std::vector<double> d = layer_heights(params(Distribution::Tanh, n, h1, 1.2, t));
-    ASSERT_EQ(d.size(), sz(n) + 1);
-    EXPECT_NEAR(total(d, n), t, 1e-12 * t);
-    EXPECT_NEAR(d[0], h1, 1e-10 * h1);
+    std::vector<double> d;
+    ASSERT_NO_FATAL_FAILURE(heights_of_thickness(d, Distribution::Tanh, n, h1, 1.2, t, 1e-10));
     for (int k = 0; k < n; ++k) EXPECT_GT(d[sz(k) + 1], d[sz(k)]) << "k " << k << " of " << n;
     for (double v : d) EXPECT_TRUE(std::isfinite(v) && v > 0.0);
     // The extra level (reference mesh of the last layer) continues the last ratio.
@@ -117,10 +120,11 @@ TEST_P(Tanh, SumsToTheThicknessFromH1Increasing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, Tanh,
-                         ::testing::Values(TanhCase{30, 1e-3, 1.0}, TanhCase{20, 1e-4, 0.05}, TanhCase{2, 0.1, 1.0},
-                                           TanhCase{10, 0.0999, 1.0},  // nearly uniform
-                                           TanhCase{40, 1e-7, 1.0},    // y+ ~ 1 scale
-                                           TanhCase{60, 2e-9, 0.3}, TanhCase{200, 1e-6, 10.0}));
+                         ::testing::Values(ThicknessCase{30, 1e-3, 1.0}, ThicknessCase{20, 1e-4, 0.05},
+                                           ThicknessCase{2, 0.1, 1.0},
+                                           ThicknessCase{10, 0.0999, 1.0},  // nearly uniform
+                                           ThicknessCase{40, 1e-7, 1.0},    // y+ ~ 1 scale
+                                           ThicknessCase{60, 2e-9, 0.3}, ThicknessCase{200, 1e-6, 10.0}));
 
 TEST(Distribution, TanhIsTheOneSidedTanhStretching) {
     // x_k = T (1 + tanh(β (k/N − 1)) / tanh β), β fixed by x_1 = h1; check x at every k for

@@ -23,24 +23,6 @@ using test::closed_manifold;
 using test::geometric;
 using test::level_heights;
 
-SurfaceMesh split_into_triangles(const SurfaceMesh& q) {
-    SurfaceMesh t;
-    t.points = q.points;
-    t.patches = q.patches;
-    for (Index f = 0; f < q.num_faces(); ++f) {
-        const Index* v = q.face_begin(f);
-        // Alternate the diagonal so nodes get valences 4, 6 and 8.
-        if (f % 2 == 0) {
-            t.add_face({v[0], v[1], v[2]}, 0);
-            t.add_face({v[0], v[2], v[3]}, 0);
-        } else {
-            t.add_face({v[0], v[1], v[3]}, 0);
-            t.add_face({v[1], v[2], v[3]}, 0);
-        }
-    }
-    return t;
-}
-
 /// \p corner_jacobian: the scaled Jacobian of the wall faces' sharpest corner (1 for
 /// rectangles, 1/√2 for right isosceles triangles), which orthogonal layers keep exactly.
 void expect_flat_plate_exact(const SurfaceMesh& wall, const LayerParams& p, double corner_jacobian) {
@@ -69,7 +51,7 @@ TEST(Layers, FlatPlateQuadsGeometric) {
 }
 
 TEST(Layers, FlatPlateTrianglesAllDistributions) {
-    const SurfaceMesh wall = split_into_triangles(test::quad_grid(8, 8, 0.1));
+    const SurfaceMesh wall = test::split_into_triangles(test::quad_grid(8, 8, 0.1), true);
     expect_flat_plate_exact(wall, geometric(12, 1e-3, 1.2), std::sqrt(0.5));
     LayerParams t = geometric(12, 1e-3, 0.0);  // no growth ratio: the thickness determines it
     t.distribution.kind = Distribution::Thickness;

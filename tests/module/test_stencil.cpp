@@ -77,6 +77,19 @@ std::vector<StencilPoint> checked_row_of_node_0(const Stencils& s, const Surface
     return row(s, 0);
 }
 
+/// \p m's node rings, its stencils (no planes, no mirrors) and node 0's row (checked_row_of_node_0).
+struct NodeZeroStencil {
+    NodeRings rings;
+    Stencils s;
+    std::vector<StencilPoint> pts;
+};
+NodeZeroStencil node_0_stencil(const SurfaceMesh& m) {
+    NodeZeroStencil z{node_rings(m), {}, {}};
+    z.s = build_stencils(m, z.rings, {}, {});
+    z.pts = checked_row_of_node_0(z.s, m);
+    return z;
+}
+
 /// Array sizes, and for every valid node: the weights annihilate constants (the centre
 /// weights are minus the sum of the others). Invalid nodes have empty rows.
 void check_layout(const Stencils& s, const SurfaceMesh& m) {
@@ -401,9 +414,7 @@ SurfaceMesh three_triangles(bool outer) {
 
 TEST(Stencil, ThreeTrianglesTakeFarVerticesAsDiagonals) {
     const SurfaceMesh m = three_triangles(true);
-    const NodeRings rings = node_rings(m);
-    const Stencils s = build_stencils(m, rings, {}, {});
-    const auto pts = checked_row_of_node_0(s, m);
+    const auto [rings, s, pts] = node_0_stencil(m);
     ASSERT_EQ(pts.size(), 6u);
     for (std::size_t k = 0; k < 3; ++k) {
         const Index a = rings.neighbours.values[k];
@@ -450,9 +461,7 @@ SurfaceMesh plus_ring(std::array<bool, 4> quad, std::array<bool, 4> outer) {
 
 TEST(Stencil, FourTrianglesTakeFarVerticesAsDiagonals) {
     const SurfaceMesh m = plus_ring({false, false, false, false}, {true, true, true, true});
-    const NodeRings rings = node_rings(m);
-    const Stencils s = build_stencils(m, rings, {}, {});
-    const auto pts = checked_row_of_node_0(s, m);
+    const auto [rings, s, pts] = node_0_stencil(m);
     ASSERT_EQ(pts.size(), 8u);
     for (std::size_t k = 0; k < 4; ++k) {
         const Index a = rings.neighbours.values[k];
@@ -563,9 +572,7 @@ TEST(Stencil, MixedRingM4) {
     const Index q = static_cast<Index>(m.points.size());
     m.points.emplace_back(1.5, -0.2, 0.0);
     m.add_face({1, 4, se, q}, 0);  // E, S, SE, Q: across the outer edge S→E
-    const NodeRings rings = node_rings(m);
-    const Stencils s = build_stencils(m, rings, {}, {});
-    const auto pts = checked_row_of_node_0(s, m);
+    const auto [rings, s, pts] = node_0_stencil(m);
     ASSERT_EQ(pts.size(), 8u);
     const Frame fr = frame_of(s, m, kNoPlanes, 0);
     for (std::size_t k = 0; k < 4; ++k) {

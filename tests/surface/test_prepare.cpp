@@ -99,18 +99,7 @@ TEST(Prepare, CoordinatesSpanningBeyondADoubleNameTheFile) {
 TEST(Prepare, ErrorsAfterTheCheckNameTheFile) {
     // A Moebius strip passes check_surface but cannot be oriented: orient_surface's error
     // names faces and an edge, prepare_mesh adds the file.
-    SurfaceMesh strip;
-    strip.patches.push_back({"strip", PatchKind::Wall});
-    const int n = 12;
-    for (int i = 0; i < n; ++i) {
-        const double th = 2.0 * std::numbers::pi * i / n, tw = th / 2.0;
-        const Vec3 c(3.0 * std::cos(th), 3.0 * std::sin(th), 0.0);
-        const Vec3 d = std::cos(tw) * Vec3(std::cos(th), std::sin(th), 0.0) + std::sin(tw) * Vec3::UnitZ();
-        strip.points.push_back(c + 0.5 * d);
-        strip.points.push_back(c - 0.5 * d);
-    }
-    for (Index i = 0; i + 1 < n; ++i) strip.add_face({2 * i, 2 * i + 1, 2 * i + 3, 2 * i + 2}, 0);
-    strip.add_face({2 * (n - 1), 2 * (n - 1) + 1, 0, 1}, 0);  // the half twist
+    const SurfaceMesh strip = test::moebius_strip();
     test::expect_error<TopologyError>([&] { prepare_mesh(strip, {}, "strip.stl"); },
                                       {"strip.stl: orient_surface: surface component 0", "not orientable"});
     // Internal flow inside a surface with a hole: orient_surface's InputError, with the file.
@@ -139,8 +128,7 @@ TEST(Prepare, PatchKindsFromNamesAndMappings) {
         FAIL() << "unknown patch accepted";
     } catch (const InputError& e) {
         const std::string msg = e.what();
-        EXPECT_NE(msg.find("model.msh"), std::string::npos) << msg;
-        EXPECT_NE(msg.find("'Wing'"), std::string::npos) << msg;
+        test::expect_contains(msg, {"model.msh", "'Wing'"});
         EXPECT_NE(msg.find("SymmetryPlane"), std::string::npos) << msg;  // lists what exists
     }
 }

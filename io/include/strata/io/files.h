@@ -77,6 +77,10 @@ void remove_temporaries() noexcept;
 /// The extension of \p path in lower case, with its dot (".step"); "" if it has none.
 std::string lower_extension(const std::string& path);
 
+/// The bytes of the file at \p path, "" if it cannot be opened (check_input_file first where
+/// that must be an error).
+std::string read_whole_file(const std::string& path);
+
 /// Write-then-rename, so a failed or interrupted write never leaves a partial output file:
 /// a temporary path next to \p target with the same extension (writers such as Gmsh pick the
 /// format from it), ".<stem>.tmp<pid><ext>" (the stem shortened, with a hash of the name, where
