@@ -448,6 +448,7 @@ std::vector<std::pair<std::string, std::string>> names_for(bool keywords) {
     // Parameters several options set, or no option alone.
     n.emplace_back("CadParams::elements", keywords ? "quads/mixed" : "--quads/--mixed");
     n.emplace_back("HybridParams::threads", keywords ? "threads" : "--threads");
+    n.emplace_back("PrepareParams::remesh", keywords ? "remesh" : "--remesh");
     if (keywords)
         for (const OptionSpec& o : option_table())
             if (!o.keyword.empty() && !o.flag.empty()) n.emplace_back(o.flag, o.keyword);

@@ -78,7 +78,7 @@ void check_surface(const SurfaceMesh& mesh, const std::string& source, bool smal
                             (bad > 1 ? " (" + std::to_string(bad - 1) + " more such edges)" : std::string()) +
                             "; an edge may bound at most two faces: fix the surface in the CAD tool or merge "
                             "the duplicate faces (meshed from CAD, a part thinner than the size gets its two "
-                            "sides meshed through the same nodes: give a smaller --size)");
+                            "sides meshed through the same nodes: give a smaller CadParams::size)");
     }
 }
 

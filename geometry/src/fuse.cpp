@@ -197,7 +197,7 @@ void check_union_span(const SurfaceMesh& mesh, const Components& comps, const st
             describe_face(mesh, comps.faces_of(root).front()) +
             " does not span what they span (CGAL's corefinement gave " + std::to_string(result.number_of_faces()) +
             " faces); check that each body is closed and its faces consistent, or mesh the "
-            "CAD model with --fuse instead of its STL");
+            "CAD model with CadParams::fuse instead of its STL");
 }
 
 /// Appends \p result to \p out in an order of the geometry alone: CGAL's corefinement visits the

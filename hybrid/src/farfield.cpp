@@ -178,7 +178,7 @@ std::string describe_loops(const SurfaceMesh& walls, const Csr& open) {
             }
     if (gap < 1e-4 * diag)
         s += "; two of their nodes are " + format_number(gap, 3) + " apart at " + format_point(where) +
-             ", a crack: --merge-tolerance " + format_number(std::min(1e-3, 2.0 * gap / diag), 2) +
+             ", a crack: PrepareParams::merge_tolerance " + format_number(std::min(1e-3, 2.0 * gap / diag), 2) +
              " (a share of the model's size) welds nodes that close";
     return s;
 }
@@ -201,7 +201,7 @@ std::string fill_hint(const SurfaceMesh& walls, const Csr& open) {
             cut.push_back(walls.points[static_cast<std::size_t>(*v)]);
         if (fit_plane(cut).deviation <= 1e-6 * bounding_box(walls.points).diagonal()) k = sizes[1];
     }
-    return "; if they are holes (faces missing from the file), --fill-holes " + std::to_string(k) +
+    return "; if they are holes (faces missing from the file), PrepareParams::fill_holes " + std::to_string(k) +
            " closes every open loop of up to " + std::to_string(k) + " edges";
 }
 

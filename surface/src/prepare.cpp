@@ -177,7 +177,7 @@ void check_merged_surface(const SurfaceMesh& merged, const PrepareParams& params
         throw TopologyError(std::string(e.what()) + ". Bodies touch there: " + std::to_string(back_to_back.size()) +
                             " faces lie back to back on another body's (the first, " +
                             describe_face(merged, back_to_back.front()) +
-                            "); fusing the bodies into one (--fuse) removes them");
+                            "); fusing the bodies into one (CadParams::fuse) removes them");
     }
 }
 
@@ -209,7 +209,7 @@ SurfaceMesh fuse_bodies(SurfaceMesh oriented, const PrepareParams& params, const
         // the mesh: remeshing rebuilds the surface over them.
         if (params.remesh) throw;
         throw TopologyError(std::string(e.what()) +
-                            " (the union of the bodies left it where their facets nearly coincide: --remesh "
+                            " (the union of the bodies left it where their facets nearly coincide: PrepareParams::remesh "
                             "rebuilds the united surface)");
     }
     return naming(source, [&] { return orient_surface(fused, &rep.orient, params.internal_flow); });
@@ -363,7 +363,7 @@ SurfaceMesh prepare_surface(const std::string& path, const PrepareParams& params
                             std::to_string(sew.faces) +
                             " faces bound no solid and were sewn here, and where several bodies touch or share "
                             "an edge, sewing cannot tell them apart: export the bodies as solids, STEP or BREP, "
-                            "and give --fuse)");
+                            "and give CadParams::fuse)");
     }
     if (report) copy_read_reports(units, walls, sew, recombination, *report);
     return out;

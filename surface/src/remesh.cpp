@@ -593,7 +593,7 @@ SurfaceMesh remesh_surface(const SurfaceMesh& mesh, const RemeshParams& params, 
         }
     }
     throw BackendError(source + ": remeshing failed: " + failures.text +
-                       ". Try another feature angle (--feature-angle) or size, or repair the surface in a CAD tool");
+                       ". Try another feature angle (RemeshParams::feature_angle_deg) or size, or repair the surface in a CAD tool");
 }
 
 }  // namespace strata

@@ -199,7 +199,7 @@ TEST(HybridMesh, AHoleOrACrackIsNotTakenForAHalfModel) {
     cracked.points.push_back(cracked.points[static_cast<std::size_t>(v)] + Vec3(1e-5, 0, 0));
     cracked.face_nodes[static_cast<std::size_t>(cracked.face_offsets[7])] = cracked.num_points() - 1;
     test::expect_error<InputError>([&] { (void)build_hybrid_mesh(cracked, sphere_params()); },
-                                   {"two of their nodes are 1e-05 apart", "a crack: --merge-tolerance"});
+                                   {"two of their nodes are 1e-05 apart", "a crack: PrepareParams::merge_tolerance"});
 }
 
 TEST(HybridMesh, ANegativeThreadCountIsRefusedByName) {
