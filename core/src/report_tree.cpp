@@ -3,6 +3,14 @@
 #include <strata/core/report_tree.h>
 
 namespace strata {
+
+ReportNode::ReportNode() = default;
+ReportNode::~ReportNode() = default;
+ReportNode::ReportNode(const ReportNode&) = default;
+ReportNode::ReportNode(ReportNode&&) noexcept = default;
+ReportNode& ReportNode::operator=(const ReportNode&) = default;
+ReportNode& ReportNode::operator=(ReportNode&&) noexcept = default;
+
 namespace {
 
 [[noreturn]] void wrong_kind(ReportValue::Kind has, ReportValue::Kind asked) {

@@ -97,7 +97,7 @@ std::string sewing_hint(const SewReport& sew) {
     if (sew.cracks == 0) return "";
     return "; better for this CAD model: its faces were sewn with a tolerance of " + format_number(sew.tolerance, 3) +
            ", but " + std::to_string(sew.cracks) + " of their edges still miss another by up to " +
-           format_number(sew.widest_gap, 3) + " (at " + format_point(sew.gap_at) + "): --sew-tolerance " +
+           format_number(sew.widest_gap, 3) + " (at " + format_point(sew.gap_at) + "): CadParams::sew_tolerance " +
            format_number(sew.suggested_tolerance, 2) + " sews them";
 }
 
@@ -117,6 +117,18 @@ HybridParams hybrid_params(const LayerOptions& layers, const MeshOptions& mesh) 
     hp.threads = hp.layers.threads;
     hp.farfield.shape = parse_farfield_shape(mesh.farfield);
     return hp;
+}
+
+Options options_of(const HybridParams& mesh, const PrepareParams& prepare) {
+    Options o;
+    o.surface.prepare = prepare;
+    o.layers.params = mesh.layers;
+    o.layers.distribution = to_string(mesh.layers.distribution.kind);
+    o.layers.normals = to_string(mesh.layers.normals);
+    o.layers.proximity = to_string(mesh.layers.proximity);
+    o.mesh.params = mesh;
+    o.mesh.farfield = to_string(mesh.farfield.shape);
+    return o;
 }
 
 namespace {

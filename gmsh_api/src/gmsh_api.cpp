@@ -75,6 +75,7 @@ HybridReport mesh_current_gmsh_model(const HybridParams& params, const PreparePa
     request.source = source;
     request.prepare = prepare;
     request.mesh = params;
+    request.options = options_of(params, prepare);
     std::vector<char> user_mesh;
     if (model_is_cad(source))
         request.remesh = [&](const std::vector<SizePoint>& points, double growth) {

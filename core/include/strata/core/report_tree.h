@@ -21,6 +21,15 @@ class ReportNode {
 public:
     struct Entry;
 
+    // Out of line, where Entry is complete (a vector of an incomplete type cannot be built or
+    // destroyed here).
+    ReportNode();
+    ~ReportNode();
+    ReportNode(const ReportNode&);
+    ReportNode(ReportNode&&) noexcept;
+    ReportNode& operator=(const ReportNode&);
+    ReportNode& operator=(ReportNode&&) noexcept;
+
     /// Set \p key to \p value: replaced in place if the node has it, else added at the end.
     ReportNode& set(std::string key, ReportValue value);
     /// The value of \p key, or nullptr.

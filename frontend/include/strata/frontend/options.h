@@ -77,6 +77,11 @@ struct Options {
     MeshOptions mesh;
 };
 
+/// The options that give \p mesh and \p prepare (their names for the enums: layer_params and
+/// hybrid_params of them give the same values): a library caller's parameters as a front-end's,
+/// for the report's provenance.
+Options options_of(const HybridParams& mesh, const PrepareParams& prepare);
+
 /// Where an option applies: how the surface is made (every CLI command; Python's surface(),
 /// layers() and mesh()), the patches and orientation (those, and a Gmsh model meshed in
 /// place: Python's gmsh.mesh_current_model()), the layers (layers and mesh, and a Gmsh
