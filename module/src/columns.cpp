@@ -248,9 +248,37 @@ double closing_quality(CellType type, bool full, const std::array<Vec3, 8>& p, d
     return all;
 }
 
+/// Whether cell \p p of \p type has corners at one position (a fan's columns on the wall, where
+/// they all start at their node) and, if so, in \p valid whether the standard cell of its
+/// distinct corners (collapse_cell) has every corner positive.
+bool collapsed(CellType type, const std::array<Vec3, 8>& p, bool& valid) {
+    const int n = type == CellType::Tet ? 4 : type == CellType::Pyramid ? 5 : type == CellType::Prism ? 6 : 8;
+    std::array<Index, 8> id{};
+    bool any = false;
+    for (int c = 0; c < n; ++c) {
+        id[static_cast<std::size_t>(c)] = c;
+        for (int d = 0; d < c && id[static_cast<std::size_t>(c)] == c; ++d)
+            if (p[static_cast<std::size_t>(d)] == p[static_cast<std::size_t>(c)]) id[static_cast<std::size_t>(c)] = d;
+        any |= id[static_cast<std::size_t>(c)] != c;
+    }
+    if (!any) return false;
+    CellType t = type;
+    valid = collapse_cell(t, id);
+    if (!valid) return true;
+    std::array<Vec3, 8> q{};
+    const int m = t == CellType::Tet ? 4 : t == CellType::Pyramid ? 5 : t == CellType::Prism ? 6 : 8;
+    for (int c = 0; c < m; ++c)
+        q[static_cast<std::size_t>(c)] = p[static_cast<std::size_t>(id[static_cast<std::size_t>(c)])];
+    valid = min_scaled_jacobian(q.data(), t) > 0.0;
+    return true;
+}
+
 /// Whether the closing cell of \p type at \p p is usable: every corner positive, the corners of
 /// moving columns at least min_quality times \p face_quality (the best a cell on the face can be).
+/// A cell over a fan's face on the wall, whose columns start at one node, is judged as the cell
+/// it collapses to, and only on being valid: such a face has no area, so nothing to be relative to.
 bool usable(CellType type, bool full, const std::array<Vec3, 8>& p, double face_quality, const StopRules& rules) {
+    if (bool valid = false; !full && collapsed(type, p, valid)) return valid;
     double moving_min = 0.0;
     const double all = closing_quality(type, full, p, moving_min);
     if (!(all > 0.0) || moving_min < rules.min_quality * face_quality) return false;

@@ -91,12 +91,13 @@ Vec3 into_face(const SurfaceMesh& m, Index f, Index a, Index b) {
 
 namespace {
 
-/// Drop the fan edges at nodes with only one (such a node cannot be split) until none is left:
-/// the graph's 2-core, but for the plane nodes (\p anchor non-zero), which may end a chain.
-/// Returns the fan edges per node.
+/// Drop the fan edges at nodes with only one until none is left, but for the nodes where a
+/// chain may end (\p ends: a plane node, whose open ring splits into two sectors, or a terminal,
+/// whose columns the chain's last quads close onto: fans.h), then the edges whose two nodes are
+/// both terminals with that one edge (nothing there splits). Returns the fan edges per node.
 std::vector<std::vector<Index>> prune(const EdgeTable& et, std::size_t un, const std::vector<Vec3>& anchor,
-                                      std::vector<char>& keep) {
-    auto loose = [&](std::size_t i) { return i >= anchor.size() || anchor[i] == Vec3::Zero(); };
+                                      const std::vector<char>& ends, std::vector<char>& keep) {
+    auto loose = [&](std::size_t i) { return i >= ends.size() || !ends[i]; };
     const auto ne = et.nodes.size();
     std::vector<std::vector<Index>> at(un);
     for (std::size_t e = 0; e < ne; ++e)
@@ -117,12 +118,24 @@ std::vector<std::vector<Index>> prune(const EdgeTable& et, std::size_t un, const
                     queue.push_back(v);
         }
     }
+    auto lone_terminal = [&](Index v) {
+        const auto u = static_cast<std::size_t>(v);
+        return degree[u] == 1 && (u >= anchor.size() || anchor[u] == Vec3::Zero());
+    };
+    for (std::size_t e = 0; e < ne; ++e)
+        if (keep[e] && lone_terminal(et.nodes[e][0]) && lone_terminal(et.nodes[e][1])) keep[e] = 0;
     for (std::size_t i = 0; i < un; ++i) {
         auto& a = at[i];
         a.erase(std::remove_if(a.begin(), a.end(), [&](Index e) { return !keep[static_cast<std::size_t>(e)]; }),
                 a.end());
     }
     return at;
+}
+
+/// Whether node \p i ends its chain with one fan edge and no plane (\p at per node): its one
+/// sector's column is the end of every column of its fan edge.
+bool terminal(const std::vector<std::vector<Index>>& at, const std::vector<Vec3>& anchor, std::size_t i) {
+    return at[i].size() == 1 && (i >= anchor.size() || anchor[i] == Vec3::Zero());
 }
 
 /// What assemble builds the fan wall from: the wall, its edge table, the fan edges (\p keep, a
@@ -295,6 +308,12 @@ Sectors split_sectors(const FanEdges& in, const Csr& vf, const Lean& lean, FanWa
         out.corners += in.at[static_cast<std::size_t>(i)].size() > 2 ? 1 : 0;
         out.plane_nodes += in.anchor[static_cast<std::size_t>(i)] != Vec3::Zero() ? 1 : 0;
         split_node(in, vf, lean, i, s, out);
+        // A terminal's one column stops at the wall (FanWall::terminals); as a ghost it is smoothed
+        // like any other node.
+        if (terminal(in.at, in.anchor, static_cast<std::size_t>(i))) {
+            out.direction[static_cast<std::size_t>(i)] = Vec3::Zero();
+            out.terminals.push_back(i);
+        }
     }
     return s;
 }
@@ -369,6 +388,8 @@ public:
         const auto [f, g] = edge_sides(in_, e);
         const Index sf = s_.node.at({i, f}), sg = s_.node.at({i, g});
         const int w = wedges_[static_cast<std::size_t>(e)];
+        if (terminal(in_.at, in_.anchor, static_cast<std::size_t>(i)))
+            return std::vector<Index>(static_cast<std::size_t>(w) + 1, sf);  // one sector: sf is sg
         std::vector<Index> run{sf};
         if (!cornered(i)) {
             std::vector<Index> mid = shared(i, std::min(sf, sg), std::max(sf, sg), w);
@@ -448,7 +469,13 @@ CornerEdges add_faces(const FanEdges& in, const Sectors& s, ColumnRuns& runs, Fa
         const std::vector<Index> ra = runs(a, static_cast<Index>(e)), rb = runs(b, static_cast<Index>(e));
         const Index f = edge_sides(in, static_cast<Index>(e)).first;
         for (std::size_t q = 0; q + 1 < ra.size(); ++q) {
-            out.mesh.add_face({rb[q], ra[q], ra[q + 1], rb[q + 1]}, wall.face_patch[f]);
+            // A terminal's run is its one column repeated: its quads are triangles.
+            if (ra[q] == ra[q + 1])
+                out.mesh.add_face({rb[q], ra[q], rb[q + 1]}, wall.face_patch[f]);
+            else if (rb[q] == rb[q + 1])
+                out.mesh.add_face({rb[q], ra[q], ra[q + 1]}, wall.face_patch[f]);
+            else
+                out.mesh.add_face({rb[q], ra[q], ra[q + 1], rb[q + 1]}, wall.face_patch[f]);
             out.fan_face.push_back(1);
             if (runs.cornered(a)) corner_edges[a].push_back({ra[q], ra[q + 1]});
             if (runs.cornered(b)) corner_edges[b].push_back({rb[q + 1], rb[q]});
@@ -569,6 +596,11 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, const std::vector<
     std::vector<Vec3> anchor(un, Vec3::Zero());
     for (std::size_t i = 0; i < un && i < plane_normal.size(); ++i)
         if (boundary[i] && !(i < excluded.size() && excluded[i])) anchor[i] = plane_normal[i];
+    // Where a chain may end (prune): a plane node, or a terminal: any node off the open boundary
+    // that is not excluded (at a concave junction, where the edge fades into a smooth wall, or
+    // beside a node whose fan was dropped).
+    std::vector<char> ends(un, 0);
+    for (std::size_t i = 0; i < un; ++i) ends[i] = !open[i] || anchor[i] != Vec3::Zero();
     auto blocked = [&](Index v) {
         return open[static_cast<std::size_t>(v)] && anchor[static_cast<std::size_t>(v)] == Vec3::Zero();
     };
@@ -649,7 +681,7 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, const std::vector<
 
     // Each round drops one fan edge, so this ends.
     for (;;) {
-        const std::vector<std::vector<Index>> at = prune(et, un, anchor, keep);
+        const std::vector<std::vector<Index>> at = prune(et, un, anchor, ends, keep);
         if (std::none_of(keep.begin(), keep.end(), [](char k) { return k != 0; })) return explain(out);
         std::vector<Index> bad;
         FanWall fw = assemble(wall, et, keep, at, turn, anchor, plane_reach, bad);

@@ -11,9 +11,9 @@
 // a corner; above, they are ordinary prisms and hexahedra.
 
 #include <strata/core/cell_quality.h>
-#include <strata/module/layer_report.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/core/types.h>
+#include <strata/module/layer_report.h>
 
 #include <array>
 #include <vector>
@@ -30,6 +30,13 @@ struct FanWall {
     Index corners = 0;            ///< of those, corners (three or more fan edges, or two turning sharply)
     Index plane_nodes = 0;        ///< of those, on a plane the chain ends on (one fan edge, columns in the plane)
     Index columns = 0;            ///< columns added (mesh nodes beyond the wall's)
+    /// The nodes where a chain ends with one fan edge off any plane (at a concave junction: a
+    /// trailing edge on a fuselage; or where the edge fades into a smooth wall), ascending. Such
+    /// a node has one sector, so one column, on which every column of its fan edge closes (the
+    /// fan's last quads are triangles): one direction there cannot stand off both sides of the
+    /// edge, and the cells between the two sides would be flat at it, so its column stops at the
+    /// wall and the fan's last cells close onto it as steps.
+    std::vector<Index> terminals;
     /// The wall's nodes on an edge turning fan_angle_deg or more that got no fan, ascending, and
     /// why: NoFan::Open where its chain reaches the open boundary other than at a plane node
     /// with one fan edge, NoFan::Unclosed where it ends without closing otherwise (at a concave

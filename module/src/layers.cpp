@@ -1157,6 +1157,11 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
                 scale_reason[u] = Shortfall::None;
             }
     }
+    for (const Index t : fans.terminals) {  // a fan's end at a junction: its column stops at the wall (fans.h)
+        col.max_levels[static_cast<std::size_t>(t)] = 0;
+        col.limit[static_cast<std::size_t>(t)] = Shortfall::SharpEdge;
+        scale_reason[static_cast<std::size_t>(t)] = Shortfall::None;
+    }
     out.scale_reason = std::move(scale_reason);
     out.mesh.points.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(layers + 1));
     out.mesh.points.insert(out.mesh.points.end(), w.mesh.points.begin(), w.mesh.points.begin() + nwall);
