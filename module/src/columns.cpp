@@ -601,7 +601,9 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
         for (Index f = 0; f < nf; ++f) {
             const auto u = static_cast<std::size_t>(f);
             const int n = col.faces.size[u];
-            const std::array<bool, 4> m = moving_corners(col.faces, f, col.active);
+            // A column stopped above (at its limit: the layers it may have, the wall for a sharp
+            // edge's node) makes this face a step too, not a cell over its ghost.
+            const std::array<bool, 4> m = moving_corners(col.faces, f, go);
             if (std::count(m.begin(), m.begin() + n, true) != n) continue;  // a step: close_steps judges it
             full[u] = 1;
             bool finite = true;

@@ -123,8 +123,9 @@ TEST(Fans, TheSameBytesForAnyThreadCount) {
 
 TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
     // The sharp edge's middle node may not have a single layer (its limit is below the first
-    // height): a fan there would have coincident columns on the front, so none is built there,
-    // the chain through it goes too, and the run says how many nodes lost their fan.
+    // height): a fan there would have coincident columns on the front, so none is built there;
+    // the two halves of the chain end beside it (terminals, whose columns stop at the wall) and
+    // keep their fans, and the run says how many nodes lost theirs.
     const SurfaceMesh wall = test::blade(8, 40.0);  // grows without fans too
     LayerParams p = blade_layers(120.0);
     p.sharp_edge_stop_deg = 0.0;  // the edges whose fans go keep one direction, and grow
@@ -137,14 +138,15 @@ TEST(Fans, NoFanWhereItsFirstCellsWouldBeUnusable) {
     EXPECT_EQ(std::adjacent_find(lm.fans_dropped.begin(), lm.fans_dropped.end()), lm.fans_dropped.end());
     EXPECT_NE(std::find(lm.fans_dropped.begin(), lm.fans_dropped.end(), 3 * 4 + 2), lm.fans_dropped.end());
     // The report says where: each such node once, at its place on the wall, by node id (with
-    // those whose fan went for skewed cells, and those of the sharp edge whose chain no longer
-    // closes through the dropped node).
+    // those whose fan went for skewed cells; no chain is left unclosed: it ends beside the node).
     const LayerReport r = layer_report(lm);
     ASSERT_EQ(r.no_fan.size(), lm.fans_dropped.size() + lm.fans_skewed.size() + lm.fans_unclosed.size());
     EXPECT_EQ(r.no_fan_nodes(NoFan::Unusable), static_cast<Index>(lm.fans_dropped.size()));
     EXPECT_EQ(r.no_fan_nodes(NoFan::Skewed), static_cast<Index>(lm.fans_skewed.size()));
     EXPECT_EQ(r.no_fan_nodes(NoFan::Unclosed), static_cast<Index>(lm.fans_unclosed.size()));
-    EXPECT_FALSE(lm.fans_unclosed.empty());
+    EXPECT_TRUE(lm.fans_unclosed.empty());
+    EXPECT_EQ(lm.node_layers(3 * 3 + 2), 0) << "a terminal beside the dropped node";
+    EXPECT_EQ(lm.node_layers(3 * 5 + 2), 0) << "a terminal beside the dropped node";
     for (std::size_t j = 0; j < r.no_fan.size(); ++j) {
         if (r.no_fan[j].reason == NoFan::Unclosed) {
             EXPECT_EQ(r.no_fan[j].node % 3, 2) << "a node of the sharp edge";
@@ -312,33 +314,35 @@ TEST(Fans, SharpEdgesLeftWithoutAFanAreSaidWhy) {
     EXPECT_TRUE(build_fans(wall, boundary_loops(wall), {}, 1.0, 120.0, {}).unfanned.empty());
     const std::vector<Index> edge{5, 8, 11, 14, 17, 20, 23, 26};  // the sharp edge's nodes j = 1..8
     // Open at y = 1 (its cap gone) in no plane that holds its nodes (an open edge of a wall,
-    // not a half model's on its symmetry plane: AChainMayEndOnAPlaneNode...): the edge's chain
-    // reaches the open boundary, where no node gets a fan, and only the loop of the cap at y = 0
-    // keeps one; the edge's other nodes are said to reach the boundary.
+    // not a half model's on its symmetry plane: AChainMayEndOnAPlaneNode...): no node on the
+    // open boundary gets a fan, so the three chains from the cap at y = 0 end one node before
+    // it (terminals); the sharp edge's node on the boundary is said to reach it.
     SurfaceMesh open = wall;
     open.face_offsets.pop_back();
     open.face_nodes.resize(static_cast<std::size_t>(open.face_offsets.back()));
     open.face_patch.pop_back();
     ASSERT_EQ(boundary_loops(open).rows(), 1);
     const FanWall half = build_fans(open, boundary_loops(open), {}, 1.0, 120.0, {});
-    EXPECT_EQ(half.fan_edges, 3);  // the cap's loop
-    ASSERT_EQ(half.unfanned.size(), edge.size());
-    for (std::size_t j = 0; j < edge.size(); ++j) {
-        EXPECT_EQ(half.unfanned[j].first, edge[j]);
-        EXPECT_EQ(half.unfanned[j].second, NoFan::Open);
-    }
+    EXPECT_EQ(half.fan_edges, 3 + 3 * 7);  // the cap's loop, and each chain but its last edge
+    EXPECT_EQ(half.terminals, (std::vector<Index>{21, 22, 23}));
+    ASSERT_EQ(half.unfanned.size(), 1u);
+    EXPECT_EQ(half.unfanned[0].first, edge.back());
+    EXPECT_EQ(half.unfanned[0].second, NoFan::Open);
     // Closed, but a node of the edge excluded (its fan dropped by the caller): the two halves of
-    // the edge end there without closing; the excluded node is its caller's to explain.
+    // the edge end beside it; the excluded node is its caller's to explain.
     std::vector<char> excluded(static_cast<std::size_t>(wall.num_points()), 0);
     excluded[14] = 1;
     const FanWall cut = build_fans(wall, boundary_loops(wall), {}, 1.0, 120.0, excluded);
-    EXPECT_EQ(cut.fan_edges, 6 + 16);  // the caps and the base's two edges still close
-    const std::vector<Index> ends{5, 8, 11, 17, 20, 23};
-    ASSERT_EQ(cut.unfanned.size(), ends.size());
-    for (std::size_t j = 0; j < ends.size(); ++j) {
-        EXPECT_EQ(cut.unfanned[j].first, ends[j]);
-        EXPECT_EQ(cut.unfanned[j].second, NoFan::Unclosed);
-    }
+    EXPECT_EQ(cut.fan_edges, 6 + 16 + 6);  // the caps, the base's two edges, the sharp edge but node 14's two
+    EXPECT_EQ(cut.terminals, (std::vector<Index>{11, 17}));
+    EXPECT_TRUE(cut.unfanned.empty());
+    // Both ends of a lone edge terminals: nothing there splits, so it has no fan.
+    excluded.assign(excluded.size(), 0);
+    excluded[2] = excluded[11] = 1;  // the sharp edge's edge (5, 8) alone between them
+    const FanWall lone = build_fans(wall, boundary_loops(wall), {}, 1.0, 120.0, excluded);
+    for (Index i = wall.num_points(); i < lone.mesh.num_points(); ++i)
+        EXPECT_TRUE(lone.base[static_cast<std::size_t>(i)] != 5 && lone.base[static_cast<std::size_t>(i)] != 8);
+    EXPECT_TRUE(std::find(lone.terminals.begin(), lone.terminals.end(), 5) == lone.terminals.end());
 }
 
 TEST(Fans, AChainMayEndOnAPlaneNodeWhoseColumnsLieInThePlane) {
@@ -383,20 +387,16 @@ TEST(Fans, AChainMayEndOnAPlaneNodeWhoseColumnsLieInThePlane) {
     const double unleaned = across(build_fans(open, loops, plane, 1e-9, 120.0, {}), 23);
     EXPECT_GT(unleaned, 0.2);
     EXPECT_LT(across(fw, 23), 0.25 * unleaned);
-    // Without the plane the chains cannot end there: no fan along the edges.
-    EXPECT_EQ(build_fans(open, loops, {}, 1.0, 120.0, {}).fan_edges, 3);
+    // Without the plane the chains end one node before the open boundary (terminals).
+    EXPECT_EQ(build_fans(open, loops, {}, 1.0, 120.0, {}).fan_edges, 3 + 3 * 7);
     // A node of the sharp edge excluded (its fan dropped by the caller): the edge's two halves
-    // end there without closing, the plane node's among them, all said to be unclosed.
+    // end beside it, one at a terminal, the other at the plane node.
     std::vector<char> excluded(open.points.size(), 0);
     excluded[14] = 1;
     const FanWall cut = build_fans(open, loops, plane, 1.0, 120.0, excluded);
-    EXPECT_EQ(cut.fan_edges, 3 + 2 * 8);  // the cap and the base's edges still end on the plane
-    const std::vector<Index> ends{5, 8, 11, 17, 20, 23, 26};
-    ASSERT_EQ(cut.unfanned.size(), ends.size());
-    for (std::size_t j = 0; j < ends.size(); ++j) {
-        EXPECT_EQ(cut.unfanned[j].first, ends[j]);
-        EXPECT_EQ(cut.unfanned[j].second, NoFan::Unclosed);
-    }
+    EXPECT_EQ(cut.fan_edges, 3 + 2 * 8 + 6);  // the cap, the base's edges, the sharp edge but node 14's two
+    EXPECT_EQ(cut.terminals, (std::vector<Index>{11, 17}));
+    EXPECT_TRUE(cut.unfanned.empty());
 }
 
 /// A cell of \p type whose ids are \p id, over the unit cube's corners (Gmsh's hexahedron order).
