@@ -731,9 +731,9 @@ void print_layer_table(const strata::ReportNode& r) {
 void print_coverage(const strata::ReportNode& r) {
     std::printf("coverage: %d layers asked, %.4g thick (first %.3g); per wall patch, what the columns reached:\n",
                 count(r, "layers"), r.number("thickness"), r.number("first_height"));
-    std::printf("  %-20s %7s %7s %6s %6s %6s %6s %6s  short: %5s %5s %5s %5s %5s %5s %5s %5s %5s\n", "patch", "faces",
-                "nodes", "full", "all L", "mean L", "min L", "thick", "prox", "front", "held", "qual", "turn", "twist",
-                "nbrs", "nan", "sharp");
+    std::printf("  %-20s %7s %7s %6s %6s %6s %6s %6s  short: %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s\n", "patch",
+                "faces", "nodes", "full", "all L", "mean L", "min L", "thick", "prox", "front", "held", "qual", "turn",
+                "twist", "nbrs", "nan", "sharp", "iso");
     for (const strata::ReportValue& row : r.list("patches")) {
         const strata::ReportNode& c = row.node();
         const double n = c.integer("nodes") > 0 ? c.number("nodes") : 1.0;
@@ -751,7 +751,8 @@ void print_coverage(const strata::ReportNode& r) {
     std::printf(
         "  (full: every layer at the thickness asked; all L: every layer; thick: mean thickness reached; short: "
         "nodes by why their column fell short, in OUT.report.json with positions; sharp: stopped at the wall on a "
-        "convex edge too sharp for one direction that got no fan, --sharp-edge-stop)\n");
+        "convex edge too sharp for one direction that got no fan, --sharp-edge-stop; iso: stopped where the next layer "
+        "would be taller than the layer front is wide, --isotropy)\n");
 }
 
 /// Scaled Jacobian below which the summary warns that a solver may not use the cells.

@@ -347,6 +347,12 @@ std::vector<OptionSpec> make_table() {
         "a column stops where a cell it would make has its top turned more than this about its axis "
         "against its bottom, degrees"));
     t.push_back(spec(
+        "--isotropy", "isotropy", "LayerParams::isotropy", Stage::Layers,
+        [](Options& o) -> double& { return o.layers.params.isotropy; },
+        "a column stops before a layer taller than this times the spacing of the layer front round it "
+        "(cells taller than wide: the tetrahedra take over there, as AFLR3 stops its layers); every column "
+        "keeps its first layer; 0: never"));
+    t.push_back(spec(
         "--fan-angle", "fan_angle_deg", "LayerParams::fan_angle_deg", Stage::Layers,
         [](Options& o) -> double& { return o.layers.params.fan_angle_deg; },
         "a fan of columns (one per side, more between) at convex edges whose faces turn by this many "

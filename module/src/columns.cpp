@@ -57,6 +57,9 @@ Columns::Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& m
     reason.assign(n, Shortfall::None);
     top = wall.points;
     reach = wall_reach(wall, plane_normal, line);
+    const EdgeTable et = edge_table(wall);
+    for (const auto& e : et.nodes)
+        if (wall.points[e[0]] != wall.points[e[1]]) edges.push_back({e[0], e[1]});
 }
 
 std::vector<double> wall_reach(const SurfaceMesh& wall, const std::vector<Vec3>& plane_normal,
@@ -576,9 +579,28 @@ double cell_bar(double min_quality, double best) {
     return best >= min_quality ? std::max(min_quality * best, 0.5 * min_quality) : min_quality * best;
 }
 
+namespace {
+
+/// Per wall node, the mean length of its edges (Columns::edges) on the level \p next.
+std::vector<double> front_spacing(const Columns& col, const std::vector<Vec3>& next) {
+    std::vector<double> sum(col.levels.size(), 0.0);
+    std::vector<int> count(col.levels.size(), 0);
+    for (const auto& [a, b] : col.edges) {
+        const double l = (next[static_cast<std::size_t>(a)] - next[static_cast<std::size_t>(b)]).norm();
+        for (const Index v : {a, b}) sum[static_cast<std::size_t>(v)] += l, ++count[static_cast<std::size_t>(v)];
+    }
+    for (std::size_t i = 0; i < sum.size(); ++i)
+        sum[i] = count[i] > 0 ? sum[i] / count[i] : std::numeric_limits<double>::infinity();
+    return sum;
+}
+
+}  // namespace
+
 Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vector<Vec3>& next) {
     const Index nw = static_cast<Index>(col.levels.size());
     std::vector<char> go = col.active;
+    const bool isotropy = rules.quality && rules.isotropy > 0.0 && k > 0;
+    const std::vector<double> spacing = isotropy ? front_spacing(col, next) : std::vector<double>{};
     for (Index i = 0; i < nw; ++i) {
         const auto u = static_cast<std::size_t>(i);
         if (!go[u]) continue;
@@ -589,6 +611,8 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
         } else if (rules.quality && k > 0 &&
                    angle_deg(next[u] - col.top[u], col.top[u] - col.at_level(i, k - 1)) > rules.max_turn_deg) {
             stop(col, go, i, Shortfall::Turning);
+        } else if (isotropy && (next[u] - col.top[u]).norm() > rules.isotropy * spacing[u]) {
+            stop(col, go, i, Shortfall::Isotropic);
         }
     }
     if (rules.quality) {

@@ -44,6 +44,9 @@ struct Columns {
     /// Per column face, face_corner_quality as computed once (it depends on the wall alone);
     /// stop_columns extends it to faces split since.
     std::vector<double> best;
+    /// The wall's edges between distinct positions (a fan's columns, which start at one node,
+    /// are not apart on the wall): the front's spacing round each column (StopRules::isotropy).
+    std::vector<std::array<Index, 2>> edges;
     /// Pairs of column faces that share an edge (its two nodes, then the two faces), as found
     /// for side_pairs_faces faces; stop_columns finds them again once faces are split.
     std::vector<std::array<Index, 4>> side_pairs;
@@ -69,6 +72,7 @@ struct StopRules {
     double min_quality = 0.2;
     double max_turn_deg = 60.0;
     double max_twist_deg = 30.0;
+    double isotropy = 0.0;  ///< LayerParams::isotropy (0: never)
     bool quality = true;  ///< stop on min_quality, max_turn_deg and max_twist_deg (off: only limits and non-finite)
     int threads = 0;      ///< threads of the quality test (0: OpenMP's default); the result is the same for any count
 };

@@ -6,7 +6,7 @@ namespace strata {
 std::string_view to_string(Shortfall reason) {
     static constexpr EnumNames<Shortfall, kShortfalls> kNames{{"none", "proximity", "front", "held back", "quality",
                                                                "turning", "twist", "neighbours", "non-finite",
-                                                               "sharp edge"}};
+                                                               "sharp edge", "isotropic"}};
     return kNames.name(reason);
 }
 

@@ -979,6 +979,9 @@ void check_layer_params(const LayerParams& params) {
     if (!(params.proximity_limits.front_slope > 0.0 && std::isfinite(params.proximity_limits.front_slope)))
         throw InputError("ProximityParams::front_slope = " + format_number(params.proximity_limits.front_slope) +
                          ": need a thickness per unit of wall distance above 0");
+    if (!(params.isotropy >= 0.0 && std::isfinite(params.isotropy)))
+        throw InputError("LayerParams::isotropy = " + format_number(params.isotropy) +
+                         ": need a ratio of layer height to front spacing of 0 or more (0: never stop for it)");
     if (!(params.fan_angle_deg >= 0.0 && params.fan_angle_deg <= 180.0))
         throw InputError("LayerParams::fan_angle_deg = " + format_number(params.fan_angle_deg) +
                          ": need an angle in [0, 180] degrees (0: no fans)");
@@ -1168,7 +1171,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     report(progress, "layers", 0.0);
 
     // Stopping: on unless turned off (min_quality 0) or for diagnostics (keep_invalid).
-    const StopRules rules{params.min_quality, params.max_turn_deg, params.max_twist_deg,
+    const StopRules rules{params.min_quality, params.max_turn_deg, params.max_twist_deg, params.isotropy,
                           params.min_quality > 0.0 && !params.keep_invalid, mc.threads};
     if (auto retry = march_levels(surface, w, mc, constraints, delta, rules, col, out, progress))
         return std::move(*retry);

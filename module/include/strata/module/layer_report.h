@@ -29,10 +29,11 @@ enum class Shortfall : std::uint8_t {
     Neighbours,  ///< stopped: with its neighbours stopped, the cell closing the step would be unusable
     NonFinite,   ///< stopped: its next position could not be computed
     SharpEdge,   ///< stopped at the wall: on a convex edge too sharp for one direction, without a fan
+    Isotropic,   ///< stopped: its next layer would be taller than the front is wide there (LayerParams::isotropy)
 };
-inline constexpr std::size_t kShortfalls = 10;
+inline constexpr std::size_t kShortfalls = 11;
 /// "none", "proximity", "front", "held back", "quality", "turning", "twist", "neighbours",
-/// "non-finite", "sharp edge".
+/// "non-finite", "sharp edge", "isotropic".
 std::string_view to_string(Shortfall reason);
 
 /// One wall patch.

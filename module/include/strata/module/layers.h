@@ -69,6 +69,12 @@ struct LayerParams {
     /// face turned about the cell's axis against its bottom face (the mean of the angles its
     /// edges turn, seen along the axis), which the scaled Jacobian of a prism hardly sees.
     double max_twist_deg = 30.0;
+    /// A column also stops before a layer taller than this times the spacing of the layer front
+    /// round it (the mean length of its edges on the level it would reach): past that its cells
+    /// are taller than wide, the smoothing shears them and their stops spread, and the
+    /// tetrahedra serve better (AFLR3 stops its layers by the same aspect ratio). Every column
+    /// keeps its first layer. 0: never.
+    double isotropy = 1.0;
     /// Fans (ALGORITHM.md, "Fans"): at a convex edge whose faces turn by this many degrees or
     /// more (a sharp trailing edge, a thin fin's tip), and at the convex edges of 30° or more
     /// that close its chain, each node gets a column per side of the edge and columns between
