@@ -25,31 +25,19 @@ case_table() {
     seconds=$(echo "$(date +%s.%N) - $start" | bc)
     "$strata" mesh "${args[@]}" --threads 1 -o "$out.t1.msh" -q > /dev/null 2>&1 || true
     if cmp -s "$out.msh" "$out.t1.msh"; then same=yes; else same=NO; fi
-    python3 - "$out.log" "$out.msh.report.json" "$name" "$same" "$seconds" <<'EOF'
-import json, re, sys
+    PYTHONPATH=$(dirname "${BASH_SOURCE[0]}") python3 - "$out.log" "$out.msh.report.json" "$name" "$same" "$seconds" <<'EOF'
+import json, sys
+from report_figures import checkmesh_verdict, min_jacobian
 log, report, name, same, seconds = sys.argv[1:]
-text = open(log).read()
 r = json.load(open(report))
 cells = r["cells"]
-q = r["quality"]["min_scaled_jacobian"]
-def fmt(t):
-    if cells.get(t, 0) == 0:
-        return "-"
-    v = q[t]
-    return f"{v:.2g}" if v < 0.01 else f"{v:.3f}"
 nodes = sum(p["nodes"] for p in r["patches"])
 whole = sum(p["all_layers"] for p in r["patches"])
-m = re.search(r"^openfoam: .*?: checkMesh would (say \"Mesh OK\"|fail it)", text, re.M)
-verdict = "Mesh OK" if m and "OK" in m.group(1) else "fails"
-why = []
-for w in re.finditer(r"^warning: checkMesh would fail: (\d+) (faces with a skewness|cells with an aspect ratio|[a-z ]+?)[ ,].*?the worst ([0-9.e+-]+)", text, re.M):
-    kind = "skewness" if "skew" in w.group(2) else "aspect ratio" if "aspect" in w.group(2) else w.group(2)
-    why.append(f"{kind} {w.group(3)} ({w.group(1)})")
-if why:
-    verdict += ": " + ", ".join(why)
+fmt = lambda t: min_jacobian(r, t)
 print(f"| {name} | {cells.get('hexahedron', 0):,}, {cells.get('prism', 0):,}, {cells.get('pyramid', 0):,}, "
       f"{cells.get('tetrahedron', 0):,} | {fmt('hexahedron')} / {fmt('prism')} / {fmt('pyramid')} / "
-      f"{fmt('tetrahedron')} | {100.0 * whole / nodes:.1f} % | {verdict} | {same} | {float(seconds):.1f} |")
+      f"{fmt('tetrahedron')} | {100.0 * whole / nodes:.1f} % | {checkmesh_verdict(open(log).read())} | {same} | "
+      f"{float(seconds):.1f} |")
 EOF
     rm -f "$out.msh" "$out.t1.msh"
   done

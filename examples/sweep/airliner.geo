@@ -4,38 +4,6 @@ SetFactory("OpenCASCADE");
 // swept wing with dihedral lofted through three NACA 00xx sections (sharp trailing edges);
 // annular nacelles on pylons under the wings; a horizontal tail and a fin. Fused (--fuse).
 
-// A NACA 00t section with a sharp trailing edge as a wire of two splines (upper and lower),
-// chord c, leading edge at (x0, y0, z0); vertical = 1 puts its thickness along y (a fin).
-Macro NacaSection
-  n = 30;
-  For i In {0:n}
-    xs[i] = 0.5 * (1 - Cos(Pi * i / n));
-  EndFor
-  For i In {0:n}
-    x = xs[n - i];
-    yt = 5 * t * (0.2969 * Sqrt(x) - 0.1260 * x - 0.3516 * x^2 + 0.2843 * x^3 - 0.1036 * x^4);
-    If (vertical == 0)
-      up[i] = newp; Point(up[i]) = {x0 + c * x, y0, z0 + c * yt};
-    Else
-      up[i] = newp; Point(up[i]) = {x0 + c * x, y0 + c * yt, z0};
-    EndIf
-  EndFor
-  lo[0] = up[n];
-  For i In {1:n - 1}
-    x = xs[i];
-    yt = 5 * t * (0.2969 * Sqrt(x) - 0.1260 * x - 0.3516 * x^2 + 0.2843 * x^3 - 0.1036 * x^4);
-    If (vertical == 0)
-      lo[i] = newp; Point(lo[i]) = {x0 + c * x, y0, z0 - c * yt};
-    Else
-      lo[i] = newp; Point(lo[i]) = {x0 + c * x, y0 - c * yt, z0};
-    EndIf
-  EndFor
-  lo[n] = up[0];
-  s1 = newc; Spline(s1) = {up[{0:n}]};
-  s2 = newc; Spline(s2) = {lo[{0:n}]};
-  sec = newll; Wire(sec) = {s1, s2};
-Return
-
 // Fuselage.
 Cylinder(1) = {1.5, 0, 0, 5.5, 0, 0, 0.5};
 Sphere(2) = {1.5, 0, 0, 0.5};
@@ -45,38 +13,41 @@ Cone(3) = {7, 0, 0, 3, 0, 0.25, 0.5, 0.08};
 // Wing, mirrored.
 vertical = 0;
 c = 2.2; t = 0.14; x0 = 3.2; y0 = 0; z0 = -0.15;
-Call NacaSection;
+Include "naca_section.geo";
 w1 = sec;
 c = 2.0; t = 0.13; x0 = 3.45; y0 = 1; z0 = -0.1;
-Call NacaSection;
+Include "naca_section.geo";
 w2 = sec;
 c = 0.8; t = 0.10; x0 = 5.6; y0 = 5; z0 = 0.2;
-Call NacaSection;
+Include "naca_section.geo";
 w3 = sec;
 ThruSections(4) = {w1, w2, w3};
 Symmetry {0, 1, 0, 0} { Duplicata { Volume{4}; } }
 
-// Nacelles (rings) on pylons.
-Cylinder(10) = {3, 1.8, -0.75, 1.4, 0, 0, 0.28};
-Cylinder(11) = {2.9, 1.8, -0.75, 1.6, 0, 0, 0.22};
-BooleanDifference(12) = { Volume{10}; Delete; }{ Volume{11}; Delete; };
-Box(13) = {3.5, 1.76, -0.5, 0.9, 0.08, 0.45};
-Symmetry {0, 1, 0, 0} { Duplicata { Volume{12, 13}; } }
+// Nacelles (rings) on pylons; airliner_tail.geo sets nacelles = 0 before it Includes this.
+DefineConstant[ nacelles = 1 ];
+If (nacelles)
+  Cylinder(10) = {3, 1.8, -0.75, 1.4, 0, 0, 0.28};
+  Cylinder(11) = {2.9, 1.8, -0.75, 1.6, 0, 0, 0.22};
+  BooleanDifference(12) = { Volume{10}; Delete; }{ Volume{11}; Delete; };
+  Box(13) = {3.5, 1.76, -0.5, 0.9, 0.08, 0.45};
+  Symmetry {0, 1, 0, 0} { Duplicata { Volume{12, 13}; } }
+EndIf
 
 // Horizontal tail, mirrored, and fin.
 c = 1.0; t = 0.10; x0 = 8.2; y0 = 0; z0 = 0.1;
-Call NacaSection;
+Include "naca_section.geo";
 h1 = sec;
 c = 0.45; t = 0.09; x0 = 8.9; y0 = 1.8; z0 = 0.25;
-Call NacaSection;
+Include "naca_section.geo";
 h2 = sec;
 ThruSections(20) = {h1, h2};
 Symmetry {0, 1, 0, 0} { Duplicata { Volume{20}; } }
 vertical = 1;
 c = 1.3; t = 0.10; x0 = 8.0; y0 = 0; z0 = 0.2;
-Call NacaSection;
+Include "naca_section.geo";
 v1 = sec;
 c = 0.55; t = 0.09; x0 = 9.0; y0 = 0; z0 = 1.7;
-Call NacaSection;
+Include "naca_section.geo";
 v2 = sec;
 ThruSections(30) = {v1, v2};
