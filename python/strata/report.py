@@ -3,8 +3,8 @@
     python3 -m strata.report OUT.report.json --plots DIR [-q]
 
 Reads OUT.report.json (written next to every mesh) and, if it exists, OUT.plot.json beside it
-(the wall surface with the layers and thickness share reached per node and a cut through the volume mesh, written
-by `strata mesh --plots`). Writes into DIR, always under the same names:
+(the wall surface with the layers and the share of the thickness reached per node and a cut
+through the volume mesh, written by `strata mesh --plots`). Writes into DIR, always under the same names:
 
   quality_histograms.png  cells per scaled-Jacobian bin, one panel per cell type (log bins)
   layers.png              per layer: height, min and mean scaled Jacobian, columns reaching it
@@ -154,10 +154,11 @@ def wall_summary(report):
             f"{w['neighbour_nodes']} only because of a neighbour")
 
 
-def _draw_wall(plt, data, key, short, short_key, cmap, norm, path, colourbar, title, nothing):
+def _draw_wall(plt, data, key, short, cmap, norm, path, colourbar, title, nothing):
     """The wall from two sides, each face coloured by the least of its nodes' data["wall"][key]
-    (a shortfall is never hidden by its neighbours); with data None, the \\p short nodes by their
-    short_key. colourbar: the colour bar's keywords; nothing: the text when there is nothing to draw."""
+    (a shortfall is never hidden by its neighbours); with data None, the \\p short nodes (the
+    report's) by their key. colourbar: the colour bar's keywords; nothing: the text when there is
+    nothing to draw."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
     fig = plt.figure(figsize=(12, 5))
     if data is not None:
@@ -183,7 +184,7 @@ def _draw_wall(plt, data, key, short, short_key, cmap, norm, path, colourbar, ti
             col = Poly3DCollection(polys, facecolors=cmap(norm(face_values)), edgecolors="k", linewidths=0.05)
             ax.add_collection3d(col)
         else:
-            ax.scatter(xs, ys, zs, c=[n[short_key] for n in short], cmap=cmap, norm=norm, s=4)
+            ax.scatter(xs, ys, zs, c=[n[key] for n in short], cmap=cmap, norm=norm, s=4)
         ax.set_xlim(min(xs), max(xs))
         ax.set_ylim(min(ys), max(ys))
         ax.set_zlim(min(zs), max(zs))
@@ -207,7 +208,7 @@ def plot_wall(report, data, path):
     cmap, norm = _layer_colours(plt, asked)
     short = report["short_nodes"]
     what = "" if data is not None else " (short nodes only: OUT.plot.json missing; mesh with --plots)"
-    _draw_wall(plt, data, "layers", short, "layers", cmap, norm, path,
+    _draw_wall(plt, data, "layers", short, cmap, norm, path,
                dict(label=f"layers reached (of {asked})",
                     ticks=sorted(set([0, asked] + list(range(0, asked + 1, max(1, asked // 10)))))),
                f"layers reached over the wall: {len(short)} wall nodes short of {asked} layers{what}",
@@ -221,10 +222,10 @@ def plot_wall_thickness(report, data, path):
     import matplotlib.colors as mcolors
     from matplotlib.ticker import PercentFormatter
     shares = data if data is not None and "share" in data["wall"] else None
-    what = "" if shares is not None else "\n(short nodes only: OUT.plot.json missing or without shares; mesh with --plots)"
+    what = "" if shares is not None else "\n(short nodes only: OUT.plot.json missing or without shares; mesh again)"
     summary = wall_summary(report)
     title = f"thickness reached over the wall (asked: {report['thickness']:.4g})"
-    _draw_wall(plt, shares, "share", report["short_nodes"], "share", plt.get_cmap("viridis"),
+    _draw_wall(plt, shares, "share", report["short_nodes"], plt.get_cmap("viridis"),
                mcolors.Normalize(0.0, 1.0), path,
                dict(label="thickness reached, of the thickness asked", ticks=[k / 10 for k in range(11)],
                     format=PercentFormatter(1.0)),
