@@ -726,6 +726,22 @@ void print_layer_table(const strata::ReportNode& r) {
     print_thinned(r);
 }
 
+/// The whole wall's coverage in one line (the report's "coverage"): every layer, the same where
+/// no proximity limit binds, the mean thickness, and the short nodes by whether their own reason
+/// stopped them (each such reason with its nodes) or only a neighbour.
+void print_wall_coverage(const strata::ReportNode& w) {
+    std::string own;
+    for (const strata::ReportNode::Entry& e : w.node("short").entries())
+        if (e.key != strata::to_string(strata::Shortfall::Neighbours) && e.value.integer() > 0)
+            own += (own.empty() ? " (" : ", ") + e.key + " " + std::to_string(e.value.integer());
+    std::printf(
+        "coverage: every layer on %.1f %% of %d wall nodes (%.1f %% of the %d where no proximity limit binds), %.1f %% "
+        "of the thickness asked on average; short: %d for their own reason%s, %d only because of a neighbour\n",
+        100.0 * w.number("all_layers_share"), count(w, "nodes"), 100.0 * w.number("unbound_all_layers_share"),
+        count(w, "unbound_nodes"), 100.0 * w.number("mean_share"), count(w, "own_reason_nodes"),
+        (own.empty() ? own : own + ")").c_str(), count(w, "neighbour_nodes"));
+}
+
 /// The coverage table: per wall patch, the columns with every layer at full thickness, the
 /// layers reached and why the others fell short (one column per reason, the report's "short").
 void print_coverage(const strata::ReportNode& r) {
@@ -753,6 +769,7 @@ void print_coverage(const strata::ReportNode& r) {
         "nodes by why their column fell short, in OUT.report.json with positions; sharp: stopped at the wall on a "
         "convex edge too sharp for one direction that got no fan, --sharp-edge-stop; iso: stopped where the next layer "
         "would be taller than the layer front is wide, --isotropy)\n");
+    print_wall_coverage(r.node("coverage"));
 }
 
 /// Scaled Jacobian below which the summary warns that a solver may not use the cells.
@@ -1023,7 +1040,8 @@ int run_mesh(const Common& c, const PlotOptions& po) {
     strata::OutputSet outputs;  // the mesh, its report and the plots' data, all or none
     strata::write_outputs(r, c.output, msh_version, &terminal, outputs);
     if (!po.dir.empty())
-        strata::write_plot_data(strata::node_layers(r.hybrid.coverage, r.surface.points.size()), r.surface, r.mesh,
+        strata::write_plot_data(strata::node_layers(r.hybrid.coverage, r.surface.points.size()),
+                                strata::node_shares(r.hybrid.coverage, r.surface.points.size()), r.surface, r.mesh,
                                 strata::plot_data_path(c.output), cut_axis, cut_value, &outputs);
     outputs.commit();
     strata::set_time(r.report, "write", seconds_since(t1));

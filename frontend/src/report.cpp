@@ -141,16 +141,34 @@ ReportValue layer_stats(const std::vector<LayerStats>& stats) {
     return rows;
 }
 
-/// "patches", "short_nodes" and "no_fan_nodes" of \p r.
+/// The figures of \p c (a wall patch's, or the whole wall's) into \p p.
+void set_patch_coverage(ReportNode& p, const PatchCoverage& c) {
+    ReportNode short_by;
+    for (std::size_t k = 1; k < kShortfalls; ++k)  // every reason but None, by name
+        short_by.set(std::string(to_string(static_cast<Shortfall>(k))), c.short_by[k]);
+    p.set("faces", c.faces).set("nodes", c.nodes).set("full_nodes", c.full_nodes).set("all_layers", c.all_layers);
+    p.set("unbound_nodes", c.unbound_nodes).set("unbound_all_layers", c.unbound_all_layers);
+    p.set("mean_share", c.mean_share).set("min_share", c.min_share);
+    p.set("mean_layers", c.mean_layers).set("min_layers", c.min_layers).set("short", std::move(short_by));
+}
+
+/// "coverage": the whole wall's figures, its shares, and its short nodes split into those short
+/// for their own reason and those short only because of a neighbour.
+ReportNode wall_coverage(const PatchCoverage& c) {
+    ReportNode w;
+    set_patch_coverage(w, c);
+    w.set("all_layers_share", c.all_layers_share()).set("unbound_all_layers_share", c.unbound_all_layers_share());
+    w.set("own_reason_nodes", c.own_reason_nodes()).set("neighbour_nodes", c.short_nodes(Shortfall::Neighbours));
+    return w;
+}
+
+/// "coverage", "patches", "short_nodes" and "no_fan_nodes" of \p r.
 void set_coverage(ReportNode& n, const LayerReport& r) {
     ReportValue::List patches, short_nodes, no_fan;
     for (const PatchCoverage& c : r.patches) {
-        ReportNode p, short_by;
-        for (std::size_t k = 1; k < kShortfalls; ++k)  // every reason but None, by name
-            short_by.set(std::string(to_string(static_cast<Shortfall>(k))), c.short_by[k]);
-        p.set("name", c.name).set("faces", c.faces).set("nodes", c.nodes).set("full_nodes", c.full_nodes);
-        p.set("all_layers", c.all_layers).set("mean_share", c.mean_share).set("min_share", c.min_share);
-        p.set("mean_layers", c.mean_layers).set("min_layers", c.min_layers).set("short", std::move(short_by));
+        ReportNode p;
+        p.set("name", c.name);
+        set_patch_coverage(p, c);
         patches.emplace_back(std::move(p));
     }
     for (const ShortNode& s : r.short_nodes) {
@@ -164,6 +182,7 @@ void set_coverage(ReportNode& n, const LayerReport& r) {
         p.set("node", s.node).set("position", point(s.position)).set("reason", std::string(to_string(s.reason)));
         no_fan.emplace_back(std::move(p));
     }
+    n.set("coverage", wall_coverage(r.wall));
     n.set("patches", std::move(patches)).set("short_nodes", std::move(short_nodes));
     n.set("no_fan_nodes", std::move(no_fan));
 }

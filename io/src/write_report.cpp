@@ -153,8 +153,9 @@ std::string plot_data_path(const std::string& mesh_path) {
     return p + ".plot.json";
 }
 
-void write_plot_data(const std::vector<int>& node_layers, const SurfaceMesh& surface, const VolumeMesh& mesh,
-                     const std::string& path, int cut_axis, double cut_value, OutputSet* outputs) {
+void write_plot_data(const std::vector<int>& node_layers, const std::vector<double>& node_share,
+                     const SurfaceMesh& surface, const VolumeMesh& mesh, const std::string& path, int cut_axis,
+                     double cut_value, OutputSet* outputs) {
     // The wall: its faces, and its points renumbered in surface order.
     std::vector<Index> faces;
     std::vector<Index> point_of(surface.points.size(), kNone);
@@ -170,9 +171,10 @@ void write_plot_data(const std::vector<int>& node_layers, const SurfaceMesh& sur
             point_of[i] = static_cast<Index>(points.size());
             points.push_back(static_cast<Index>(i));
         }
-    if (node_layers.size() != surface.points.size())
-        throw Error("write_plot_data: " + std::to_string(node_layers.size()) + " layer counts for " +
-                    std::to_string(surface.points.size()) + " surface nodes");
+    if (node_layers.size() != surface.points.size() || node_share.size() != surface.points.size())
+        throw Error("write_plot_data: " + std::to_string(node_layers.size()) + " layer counts and " +
+                    std::to_string(node_share.size()) + " shares for " + std::to_string(surface.points.size()) +
+                    " surface nodes");
     Vec3 lo = Vec3::Constant(0.0), hi = Vec3::Constant(0.0);
     for (std::size_t i = 0; i < points.size(); ++i) {
         const Vec3& p = surface.points[static_cast<std::size_t>(points[i])];
@@ -219,6 +221,9 @@ void write_plot_data(const std::vector<int>& node_layers, const SurfaceMesh& sur
         out << "],\n\"layers\": [";
         for (std::size_t i = 0; i < points.size(); ++i)
             out << (i ? "," : "") << node_layers[static_cast<std::size_t>(points[i])];
+        out << "],\n\"share\": [";
+        for (std::size_t i = 0; i < points.size(); ++i)
+            out << (i ? "," : "") << short_number(node_share[static_cast<std::size_t>(points[i])]);
         const char* names = "xyz";
         out << "]},\n\"cut\": {\"axis\": \"" << names[axis] << "\", \"value\": " << short_number(value) << ", \"u\": \""
             << names[u] << "\", \"v\": \"" << names[v] << "\", \"window\": [" << short_number(window[0]) << ", "

@@ -1208,7 +1208,8 @@ LayerReport layer_report(const LayerMesh& lm) {
     std::vector<double> share(static_cast<std::size_t>(nw), 1.0);
     std::vector<int> levels(static_cast<std::size_t>(nw), lm.layers());
     std::vector<Shortfall> why(static_cast<std::size_t>(nw), Shortfall::None);
-    auto base = [&](Index i) { return lm.level_node(0, i); };  // the wall node a column starts at
+    std::vector<char> proximity(static_cast<std::size_t>(nw), 0);  // a column of it stopped or thinned for that
+    auto base = [&](Index i) { return lm.level_node(0, i); };      // the wall node a column starts at
     for (Index i = 0; i < nw; ++i) {
         double length = 0.0;
         for (int k = 0; k < lm.node_layers(i); ++k)
@@ -1222,6 +1223,8 @@ LayerReport layer_report(const LayerMesh& lm) {
         else if (u < lm.scale_reason.size())
             w = lm.scale_reason[u];
         const auto b = static_cast<std::size_t>(base(i));
+        if (w == Shortfall::Proximity || (u < lm.scale_reason.size() && lm.scale_reason[u] == Shortfall::Proximity))
+            proximity[b] = 1;
         const double s = r.thickness > 0.0 ? length / r.thickness : 1.0;
         if (b == u || lm.node_layers(i) < levels[b] || (lm.node_layers(i) == levels[b] && s < share[b])) {
             levels[b] = lm.node_layers(i);
@@ -1266,27 +1269,25 @@ LayerReport layer_report(const LayerMesh& lm) {
     }
     std::sort(patch_node.begin(), patch_node.end());
     patch_node.erase(std::unique(patch_node.begin(), patch_node.end()), patch_node.end());
-    std::vector<double> sum(wall.patches.size(), 0.0), layer_sum(wall.patches.size(), 0.0);
-    for (PatchCoverage& c : r.patches) c.min_layers = lm.layers();
-    for (const auto& [patch, node] : patch_node) {
-        const auto p = static_cast<std::size_t>(patch);
-        const auto u = static_cast<std::size_t>(node);
-        PatchCoverage& c = r.patches[p];
-        const int node_levels = levels[u];
-        ++c.nodes;
-        sum[p] += share[u];
-        layer_sum[p] += node_levels;
-        c.min_share = std::min(c.min_share, share[u]);
-        c.min_layers = std::min(c.min_layers, node_levels);
-        c.all_layers += node_levels == lm.layers();
-        c.full_nodes += why[u] == Shortfall::None;
-        ++c.short_by[static_cast<std::size_t>(why[u])];
+    const auto node = [&](Index i) {
+        const auto u = static_cast<std::size_t>(i);
+        return NodeCoverage{share[u], levels[u], why[u], proximity[u] != 0};
+    };
+    std::vector<std::vector<NodeCoverage>> patch_nodes(wall.patches.size());
+    std::vector<char> on_wall(static_cast<std::size_t>(nw), 0);
+    for (const auto& [patch, i] : patch_node) {
+        patch_nodes[static_cast<std::size_t>(patch)].push_back(node(i));
+        on_wall[static_cast<std::size_t>(i)] = 1;
     }
-    for (std::size_t p = 0; p < r.patches.size(); ++p)
-        if (r.patches[p].nodes > 0) {
-            r.patches[p].mean_share = sum[p] / static_cast<double>(r.patches[p].nodes);
-            r.patches[p].mean_layers = layer_sum[p] / static_cast<double>(r.patches[p].nodes);
-        }
+    std::vector<NodeCoverage> wall_nodes;
+    for (Index i = 0; i < nw; ++i)
+        if (on_wall[static_cast<std::size_t>(i)]) wall_nodes.push_back(node(i));
+    Index faces = 0;
+    for (std::size_t p = 0; p < r.patches.size(); ++p) {
+        r.patches[p] = coverage_of(r.patches[p].name, r.patches[p].faces, patch_nodes[p], lm.layers());
+        faces += r.patches[p].faces;
+    }
+    r.wall = coverage_of("wall", faces, wall_nodes, lm.layers());
     // Patches without wall faces (the wall's own table lists them all) are left out.
     r.patches.erase(
         std::remove_if(r.patches.begin(), r.patches.end(), [](const PatchCoverage& c) { return c.faces == 0; }),

@@ -3,11 +3,13 @@
     python3 -m strata.report OUT.report.json --plots DIR [-q]
 
 Reads OUT.report.json (written next to every mesh) and, if it exists, OUT.plot.json beside it
-(the wall surface with the layers reached per node and a cut through the volume mesh, written
-by `strata mesh --plots`). Writes into DIR, always under the same names:
+(the wall surface with the layers and the share of the thickness reached per node and a cut
+through the volume mesh, written by `strata mesh --plots`). Writes into DIR, always under the same names:
 
   quality_histograms.png  cells per scaled-Jacobian bin, one panel per cell type (log bins)
   layers.png              per layer: height, min and mean scaled Jacobian, columns reaching it
+  wall_thickness.png      the wall coloured by the share of the thickness asked each node reached,
+                          titled with the whole wall's coverage (OUT.plot.json)
   wall_layers.png         the wall coloured by the layers reached per node (OUT.plot.json)
   cut.png                 a section through the mesh near the body, cells by type (OUT.plot.json)
   index.md                the figures as tables and the plots
@@ -23,7 +25,7 @@ import sys
 
 TYPES = ("tetrahedron", "pyramid", "prism", "hexahedron")
 COLOURS = {"tetrahedron": "#4c72b0", "pyramid": "#dd8452", "prism": "#55a868", "hexahedron": "#c44e52"}
-PLOTS = ("quality_histograms.png", "layers.png", "wall_layers.png", "cut.png")
+PLOTS = ("wall_thickness.png", "quality_histograms.png", "layers.png", "wall_layers.png", "cut.png")
 
 
 def plot_data_path(report_path):
@@ -138,27 +140,39 @@ def _layer_colours(plt, asked):
     return cmap, mcolors.BoundaryNorm([i - 0.5 for i in range(asked + 2)], asked + 1)
 
 
-def plot_wall(report, data, path):
-    plt = _pyplot()
+def wall_summary(report):
+    """The whole wall's coverage (the report's "coverage") in a line, as the CLI prints it; None
+    for a report without it (an older strata's)."""
+    w = report.get("coverage")
+    if w is None:
+        return None
+    own = ", ".join(f"{k} {n}" for k, n in w["short"].items() if n and k != "neighbours")
+    return (f"every layer on {100 * w['all_layers_share']:.1f} % of {w['nodes']} wall nodes "
+            f"({100 * w['unbound_all_layers_share']:.1f} % of the {w['unbound_nodes']} where no proximity limit "
+            f"binds), {100 * w['mean_share']:.1f} % of the thickness asked on average; short: "
+            f"{w['own_reason_nodes']} for their own reason{f' ({own})' if own else ''}, "
+            f"{w['neighbour_nodes']} only because of a neighbour")
+
+
+def _draw_wall(plt, data, key, short, cmap, norm, path, colourbar, title, nothing):
+    """The wall from two sides, each face coloured by the least of its nodes' data["wall"][key]
+    (a shortfall is never hidden by its neighbours); with data None, the \\p short nodes (the
+    report's) by their key. colourbar: the colour bar's keywords; nothing: the text when there is
+    nothing to draw."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-    asked = report["layers"]
-    cmap, norm = _layer_colours(plt, asked)
     fig = plt.figure(figsize=(12, 5))
     if data is not None:
         pts = data["wall"]["points"]
+        values = data["wall"][key]
         faces = data["wall"]["faces"]
-        layers = data["wall"]["layers"]
-        # A face shows its fewest layers: a shortfall is never hidden by its neighbours.
-        face_layers = [min(layers[i] for i in f) for f in faces]
+        face_values = [min(values[i] for i in f) for f in faces]
         polys = [[pts[i] for i in f] for f in faces]
     else:
-        short = report["short_nodes"]
         pts = [n["position"] for n in short]
         if not pts:  # nothing to draw in 3D: say so
             ax = fig.add_subplot(1, 1, 1)
             ax.set_axis_off()
-            ax.text(0.5, 0.5, f"every wall node reached all {asked} layers\n(OUT.plot.json missing: no wall drawn; "
-                    "mesh with --plots)", ha="center", va="center", fontsize=14)
+            ax.text(0.5, 0.5, nothing, ha="center", va="center", fontsize=14)
             _save(fig, path)
             plt.close(fig)
             return
@@ -167,10 +181,10 @@ def plot_wall(report, data, path):
     for j, (az, el) in enumerate(((-60, 25), (120, -25))):
         ax = fig.add_subplot(1, 2, j + 1, projection="3d")
         if data is not None:
-            col = Poly3DCollection(polys, facecolors=cmap(norm(face_layers)), edgecolors="k", linewidths=0.05)
+            col = Poly3DCollection(polys, facecolors=cmap(norm(face_values)), edgecolors="k", linewidths=0.05)
             ax.add_collection3d(col)
         else:
-            ax.scatter(xs, ys, zs, c=[n["layers"] for n in short], cmap=cmap, norm=norm, s=4)
+            ax.scatter(xs, ys, zs, c=[n[key] for n in short], cmap=cmap, norm=norm, s=4)
         ax.set_xlim(min(xs), max(xs))
         ax.set_ylim(min(ys), max(ys))
         ax.set_zlim(min(zs), max(zs))
@@ -178,14 +192,45 @@ def plot_wall(report, data, path):
         ax.view_init(elev=el, azim=az)
         ax.set_axis_off()
     import matplotlib.cm as cm
-    sm = cm.ScalarMappable(norm=norm, cmap=cmap)
-    fig.colorbar(sm, ax=fig.axes, shrink=0.7, label=f"layers reached (of {asked})",
-                 ticks=sorted(set([0, asked] + list(range(0, asked + 1, max(1, asked // 10))))))
-    short = len(report["short_nodes"])
-    what = "" if data is not None else " (short nodes only: OUT.plot.json missing; mesh with --plots)"
-    fig.suptitle(f"layers reached over the wall: {short} wall nodes short of {asked} layers{what}")
+    fig.colorbar(cm.ScalarMappable(norm=norm, cmap=cmap), ax=fig.axes, shrink=0.7, **colourbar)
+    fig.suptitle(title)
     _save(fig, path)
     plt.close(fig)
+
+
+MISSING = "OUT.plot.json missing: no wall drawn; mesh with --plots"
+
+
+def plot_wall(report, data, path):
+    """The wall coloured by the layers reached per node."""
+    plt = _pyplot()
+    asked = report["layers"]
+    cmap, norm = _layer_colours(plt, asked)
+    short = report["short_nodes"]
+    what = "" if data is not None else " (short nodes only: OUT.plot.json missing; mesh with --plots)"
+    _draw_wall(plt, data, "layers", short, cmap, norm, path,
+               dict(label=f"layers reached (of {asked})",
+                    ticks=sorted(set([0, asked] + list(range(0, asked + 1, max(1, asked // 10)))))),
+               f"layers reached over the wall: {len(short)} wall nodes short of {asked} layers{what}",
+               f"every wall node reached all {asked} layers\n({MISSING})")
+
+
+def plot_wall_thickness(report, data, path):
+    """The wall coloured by the share of the thickness asked each node reached (0 to 100 %),
+    titled with the whole wall's figures."""
+    plt = _pyplot()
+    import matplotlib.colors as mcolors
+    from matplotlib.ticker import PercentFormatter
+    shares = data if data is not None and "share" in data["wall"] else None
+    what = "" if shares is not None else "\n(short nodes only: OUT.plot.json missing or without shares; mesh again)"
+    summary = wall_summary(report)
+    title = f"thickness reached over the wall (asked: {report['thickness']:.4g})"
+    _draw_wall(plt, shares, "share", report["short_nodes"], plt.get_cmap("viridis"),
+               mcolors.Normalize(0.0, 1.0), path,
+               dict(label="thickness reached, of the thickness asked", ticks=[k / 10 for k in range(11)],
+                    format=PercentFormatter(1.0)),
+               title + (":\n" + summary.replace("; ", ";\n") if summary else "") + what,
+               f"every wall node reached the thickness asked\n({MISSING})")
 
 
 def plot_cut(report, data, path):
@@ -246,8 +291,11 @@ def _index(report, data, report_path, written):
     q = report["quality"]
     lines = [f"# Quality report: {os.path.basename(report_path)}", "",
              f"{report['nodes']} nodes; {report['layers']} layers asked, first height {report['first_height']:.4g}, "
-             f"thickness {report['thickness']:.4g}.", "",
-             "| cell type | cells | min scaled Jacobian | cells below 0.01 |", "|---|---:|---:|---:|"]
+             f"thickness {report['thickness']:.4g}.", ""]
+    summary = wall_summary(report)
+    if summary:
+        lines += [f"Whole wall: {summary}.", ""]
+    lines += ["| cell type | cells | min scaled Jacobian | cells below 0.01 |", "|---|---:|---:|---:|"]
     edges = q["bin_edges"]
     below = sum(1 for e in edges[1:] if e <= 0.01 * (1 + 1e-12))  # bins wholly below 0.01
     for t in TYPES:
@@ -265,6 +313,8 @@ def _index(report, data, report_path, written):
     captions = {
         "quality_histograms.png": "Cells per scaled-Jacobian bin (4 bins a decade), one panel per cell type.",
         "layers.png": "Per layer: height asked, min and mean scaled Jacobian, columns reaching it and stopping.",
+        "wall_thickness.png": ("The wall coloured by the share of the thickness asked its nodes reached (a face shows "
+                               "its nodes' least; a node nothing limited counts as full)."),
         "wall_layers.png": "The wall coloured by the layers reached (a face shows its nodes' fewest).",
         "cut.png": (f"A cut {data['cut']['axis']} = {data['cut']['value']:.4g} through the mesh near the body."
                     if data else ""),
@@ -284,6 +334,8 @@ def write_plots(report_path, plots_dir, quiet=False):
     check(report)
     os.makedirs(plots_dir, exist_ok=True)
     written = []
+    plot_wall_thickness(report, data, os.path.join(plots_dir, "wall_thickness.png"))
+    written.append("wall_thickness.png")
     plot_histograms(report, os.path.join(plots_dir, "quality_histograms.png"))
     written.append("quality_histograms.png")
     plot_layers(report, os.path.join(plots_dir, "layers.png"))

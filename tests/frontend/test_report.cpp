@@ -29,6 +29,10 @@ HybridReport hybrid_fixture(const VolumeMesh& mesh) {
     c.short_by[static_cast<std::size_t>(Shortfall::Quality)] = 3;
     c.min_layers = 4, c.mean_layers = 12.5, c.all_layers = 8;
     r.patches.push_back(c);
+    c.name = "wall", c.nodes = 10, c.full_nodes = 6, c.all_layers = 7, c.unbound_nodes = 8, c.unbound_all_layers = 6;
+    c.short_by[static_cast<std::size_t>(Shortfall::Neighbours)] = 1;
+    c.short_by[static_cast<std::size_t>(Shortfall::Quality)] = 1;
+    r.wall = c;  // with proximity 2, front 1: 4 short for their own reason, 1 for a neighbour
     r.short_nodes.push_back({7, Vec3(1, 2, 3), 0.25, 30, Shortfall::Proximity});
     r.short_nodes.push_back({8, Vec3(1, 2, 4), 0.5, 4, Shortfall::HeldBack});
     r.no_fan.push_back({5, Vec3(0.5, 0, 1), NoFan::Unusable});
@@ -80,10 +84,18 @@ TEST(MeshReport, TheJsonKeepsItsKeysAndCarriesEveryValueOfTheTree) {
                       "\"held_nodes\": 1"),
           std::string("{\"layer\": 2, \"height\": 0.0011999999999999999, "),
           std::string("{\"name\": \"wing \\\"upper\\\"\\\\tip\\n\", \"faces\": 10, \"nodes\": 12, \"full_nodes\": 9, "
-                      "\"all_layers\": 8, \"mean_share\": 0.90000000000000002, \"min_share\": 0.25, "
+                      "\"all_layers\": 8, \"unbound_nodes\": 0, \"unbound_all_layers\": 0, "
+                      "\"mean_share\": 0.90000000000000002, \"min_share\": 0.25, "
                       "\"mean_layers\": 12.5, \"min_layers\": 4, \"short\": {\"proximity\": 2, \"front\": 1, "
                       "\"held back\": 0, \"quality\": 3, \"turning\": 0, \"twist\": 0, \"neighbours\": 0, "
                       "\"non-finite\": 0, \"sharp edge\": 0}}"),
+          std::string(
+              "\"coverage\": {\"faces\": 10, \"nodes\": 10, \"full_nodes\": 6, \"all_layers\": 7, "
+              "\"unbound_nodes\": 8, \"unbound_all_layers\": 6, \"mean_share\": 0.90000000000000002, "
+              "\"min_share\": 0.25, \"mean_layers\": 12.5, \"min_layers\": 4, \"short\": {\"proximity\": 2, "
+              "\"front\": 1, \"held back\": 0, \"quality\": 1, \"turning\": 0, \"twist\": 0, "
+              "\"neighbours\": 1, \"non-finite\": 0, \"sharp edge\": 0}, \"all_layers_share\": 0.69999999999999996, "
+              "\"unbound_all_layers_share\": 0.75, \"own_reason_nodes\": 4, \"neighbour_nodes\": 1}"),
           std::string("{\"node\": 7, \"position\": [1, 2, 3], \"share\": 0.25, \"layers\": 30, "
                       "\"reason\": \"proximity\"}"),
           std::string("\"no_fan_nodes\": [\n    {\"node\": 5, \"position\": [0.5, 0, 1], \"reason\": \"unusable\"},\n"

@@ -150,6 +150,38 @@ def test_coverage_lists_the_short_nodes_with_their_positions():
         d = min(np.linalg.norm(np.subtract(n["position"], c)) for c in ((0, 0, 0), (1.0118, 0, 0)))
         assert abs(d - 0.5) < 0.01, n
     assert cov["no_fan_nodes"] == []
+    # The whole wall: short for proximity alone, so every layer wherever no proximity limit binds.
+    w = cov["coverage"]
+    assert w["all_layers_share"] < 1.0 and w["unbound_nodes"] < w["nodes"]
+    assert w["unbound_all_layers_share"] == 1.0
+    assert w["own_reason_nodes"] == len(short) and w["neighbour_nodes"] == 0
+
+
+def test_the_whole_walls_coverage_agrees_with_its_patches_and_short_nodes():
+    # The ONERA M6 from CAD in 11 patches, layers too thick for its tip: nodes short for their
+    # own reason and for their neighbours, nodes on two patches counted once for the wall.
+    report = strata.layers(os.path.join(EXAMPLES, "onera_m6_sharp_te.stp"), size=60, layers=10, first_height=0.5,
+                           growth=1.2).report
+    w, patches, short = report["coverage"], report["patches"], report["short_nodes"]
+    assert len(patches) > 5
+    assert w["faces"] == sum(p["faces"] for p in patches)
+    for key in ("nodes", "full_nodes", "all_layers", "unbound_nodes", "unbound_all_layers"):
+        assert max(p[key] for p in patches) <= w[key] <= sum(p[key] for p in patches), key
+    assert w["nodes"] < sum(p["nodes"] for p in patches)  # a node on two patches once
+    assert w["min_layers"] == min(p["min_layers"] for p in patches)
+    assert w["min_share"] == min(p["min_share"] for p in patches)
+    # Each short node once, with its reason; the rest full.
+    assert len(short) == w["nodes"] - w["full_nodes"] > 0
+    for reason, n in w["short"].items():
+        assert n == sum(1 for s in short if s["reason"] == reason), reason
+    assert w["all_layers"] == w["nodes"] - sum(1 for s in short if s["layers"] < report["layers"])
+    # The mean share: the short nodes' own, the others about 1 (smoothing moves them a little).
+    full = w["full_nodes"]
+    assert w["mean_share"] == pytest.approx((sum(s["share"] for s in short) + full) / w["nodes"], abs=0.02)
+    assert w["neighbour_nodes"] == w["short"]["neighbours"] > 0
+    assert w["own_reason_nodes"] + w["neighbour_nodes"] == len(short)
+    assert w["all_layers_share"] == pytest.approx(w["all_layers"] / w["nodes"])
+    assert w["unbound_all_layers_share"] == pytest.approx(w["unbound_all_layers"] / w["unbound_nodes"])
 
 
 def test_surface_and_layers(tmp_path):

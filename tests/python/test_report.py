@@ -18,7 +18,7 @@ from conftest import BUILD, BUILD_PYTHON, ROOT, SPHERE_STL
 
 STRATA = os.path.join(BUILD if os.path.isabs(BUILD) else os.path.join(ROOT, BUILD), "app", "strata")
 OPTIONS = ["--layers", "4", "--first-height", "1e-3", "--growth", "1.2"]
-PNGS = ["quality_histograms.png", "layers.png", "wall_layers.png", "cut.png"]
+PNGS = ["wall_thickness.png", "quality_histograms.png", "layers.png", "wall_layers.png", "cut.png"]
 
 pytest.importorskip("matplotlib")
 
@@ -104,6 +104,7 @@ def test_plot_data_has_the_wall_with_layers_and_a_cut(meshed):
     assert len(wall["face_patch"]) == len(wall["faces"])
     assert all(0 <= v < len(wall["points"]) for f in wall["faces"] for v in f)
     assert set(wall["layers"]) <= set(range(5)) and max(wall["layers"]) == 4
+    assert len(wall["share"]) == len(wall["points"]) and all(0 <= s <= 1.5 for s in wall["share"])
     cut = data["cut"]
     assert cut["axis"] in "xyz" and len(cut["polygons"]) == len(cut["types"]) > 50
     assert {"prism", "tetrahedron"} <= set(cut["types"])
@@ -130,9 +131,35 @@ def test_without_plot_data_the_wall_shows_short_nodes_and_no_cut(meshed, tmp_pat
     report = str(tmp_path / "alone.cgr.report.json")
     shutil.copy(out + ".report.json", report)
     files = strata.report.write_plots(report, str(tmp_path / "p"), quiet=True)
-    assert [os.path.basename(f) for f in files] == ["quality_histograms.png", "layers.png", "wall_layers.png",
-                                                    "index.md"]
+    assert [os.path.basename(f) for f in files] == ["wall_thickness.png", "quality_histograms.png", "layers.png",
+                                                    "wall_layers.png", "index.md"]
     assert "No OUT.plot.json" in open(files[-1]).read()
+
+
+def test_the_wall_thickness_picture_is_coloured_by_the_share_reached(meshed, tmp_path):
+    # The sphere's nodes all reach the thickness asked; told that half of them reached none,
+    # the picture changes, and drawn again from the same files it is the same bytes.
+    d, out, plots, _ = meshed
+    report, data = strata.report.load(out + ".report.json")
+    again = str(tmp_path / "again.png")
+    strata.report.plot_wall_thickness(report, data, again)
+    assert open(again, "rb").read() == open(os.path.join(plots, "wall_thickness.png"), "rb").read()
+    share = data["wall"]["share"]
+    data["wall"]["share"] = [0.0 if i % 2 else s for i, s in enumerate(share)]
+    halved = str(tmp_path / "halved.png")
+    strata.report.plot_wall_thickness(report, data, halved)
+    assert open(halved, "rb").read() != open(again, "rb").read()
+    w, h, distinct = read_png(halved)
+    assert 500 <= w <= 2000 and distinct > 10
+
+
+def test_the_whole_wall_line_is_the_cli_summary_and_the_index(meshed):
+    d, out, plots, stdout = meshed
+    report = json.load(open(out + ".report.json"))
+    summary = strata.report.wall_summary(report)
+    assert summary.startswith("every layer on ")
+    assert "coverage: " + summary + "\n" in stdout
+    assert f"Whole wall: {summary}." in open(os.path.join(plots, "index.md")).read()
 
 
 def test_a_histogram_that_does_not_count_every_cell_is_refused(meshed, tmp_path):

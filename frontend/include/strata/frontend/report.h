@@ -4,21 +4,21 @@
 /// JSON beside the mesh (write_report), the Python dict and the CLI's summary all walk it, so a
 /// field added here reaches the three. Its keys, for a hybrid mesh in order: the coverage head
 /// ("layers" asked, "first_height", "thickness"), the mesh ("nodes", "cells", "quality"), the
-/// layers ("layer_stats"), the coverage ("patches", "short_nodes", "no_fan_nodes"), the layers'
-/// counters (LayerCounts: "unsmoothed_nodes", "thinned_nodes", "fan_edges", ...), the hybrid
-/// stages' ("internal_flow", "front_rounds", "tet_improve", ...), "surface" (PrepareReport),
-/// "times" (seconds per stage) and "provenance" (Strata's version and commit, the inputs, the
-/// options given).
+/// layers ("layer_stats"), the coverage ("coverage": the whole wall, "patches", "short_nodes",
+/// "no_fan_nodes"), the layers' counters (LayerCounts: "unsmoothed_nodes", "thinned_nodes",
+/// "fan_edges", ...), the hybrid stages' ("internal_flow", "front_rounds", "tet_improve", ...),
+/// "surface" (PrepareReport), "times" (seconds per stage) and "provenance" (Strata's version and
+/// commit, the inputs, the options given).
 
 #include <strata/core/report_tree.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/core/validate.h>
 #include <strata/core/volume_mesh.h>
 #include <strata/frontend/options.h>
-#include <strata/surface/prepare.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/module/layer_report.h>
 #include <strata/module/layers.h>
+#include <strata/surface/prepare.h>
 
 #include <string>
 #include <utility>

@@ -31,19 +31,22 @@ std::string plot_data_path(const std::string& mesh_path);
 /// Write what the plots of `strata report` draw beyond the report, as JSON (7 significant
 /// digits: for pictures), to \p path:
 /// {"wall": {"points": [[x, y, z]], "faces": [[a, b, c(, d)]], "patches": [names],
-///           "face_patch": [i], "layers": [layers reached per point]},
+///           "face_patch": [i], "layers": [layers reached per point],
+///           "share": [thickness reached / asked per point]},
 ///  "cut": {"axis": "x" | "y" | "z", "value": c, "u": axis, "v": axis,
 ///          "window": [u0, u1, v0, v1], "types": [cell type name per polygon],
 ///          "polygons": [[u, v, u, v, ...]]}}.
 /// wall: the wall patches of \p surface (the surface the layers were marched from; its node
-/// ids are the report's), each point with the layers its column reached (\p node_layers, one
-/// per node of \p surface; Error if not). cut: the cells of \p mesh crossed by the plane
+/// ids are the report's), each point with the layers its column reached (\p node_layers) and
+/// its share of the thickness asked (\p node_share), one per node of \p surface (Error if
+/// not). cut: the cells of \p mesh crossed by the plane
 /// axis = value, each as its polygon of intersection, within the wall's box widened by half its
 /// size in the plane (the layers and the first tetrahedra, not the farfield). The plane is
 /// through the wall box's centre across its longest side (a wing's section, a missile's cross
 /// section) unless \p cut_axis is 0, 1 or 2 (then at \p cut_value). Atomic, or staged in
 /// \p outputs; OutputError naming the path if it cannot be written.
-void write_plot_data(const std::vector<int>& node_layers, const SurfaceMesh& surface, const VolumeMesh& mesh,
-                     const std::string& path, int cut_axis = -1, double cut_value = 0.0, OutputSet* outputs = nullptr);
+void write_plot_data(const std::vector<int>& node_layers, const std::vector<double>& node_share,
+                     const SurfaceMesh& surface, const VolumeMesh& mesh, const std::string& path, int cut_axis = -1,
+                     double cut_value = 0.0, OutputSet* outputs = nullptr);
 
 }  // namespace strata

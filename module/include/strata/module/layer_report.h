@@ -36,20 +36,39 @@ inline constexpr std::size_t kShortfalls = 11;
 /// "non-finite", "sharp edge", "isotropic".
 std::string_view to_string(Shortfall reason);
 
-/// One wall patch.
+/// One wall node as the coverage counts it (a node with a fan: its shortest column).
+struct NodeCoverage {
+    double share = 1.0;  ///< thickness reached / asked
+    int layers = 0;      ///< layers reached
+    Shortfall reason = Shortfall::None;
+    bool proximity = false;  ///< a proximity limit binds it: stopped or thinned for a facing wall
+};
+
+/// One wall patch, or the whole wall (LayerReport::wall).
 struct PatchCoverage {
     std::string name;
     Index faces = 0;
-    Index nodes = 0;          ///< wall nodes on the patch (a node on two patches counts in both)
-    Index full_nodes = 0;     ///< nodes whose column nothing limited
-    Index all_layers = 0;     ///< nodes with every layer asked (possibly thinner)
-    double mean_share = 1.0;  ///< mean thickness reached / asked over the patch's nodes
+    Index nodes = 0;               ///< wall nodes on the patch (a node on two patches counts in both)
+    Index full_nodes = 0;          ///< nodes whose column nothing limited
+    Index all_layers = 0;          ///< nodes with every layer asked (possibly thinner)
+    Index unbound_nodes = 0;       ///< nodes no proximity limit binds (NodeCoverage::proximity)
+    Index unbound_all_layers = 0;  ///< of those, the nodes with every layer asked
+    double mean_share = 1.0;       ///< mean thickness reached / asked over the patch's nodes
     double min_share = 1.0;
     double mean_layers = 0.0;  ///< layers reached, mean over the patch's nodes
     int min_layers = 0;
     std::array<Index, kShortfalls> short_by{};  ///< nodes short, by reason (index: Shortfall)
     Index short_nodes(Shortfall reason) const { return short_by[static_cast<std::size_t>(reason)]; }
+    /// Nodes short for a reason of their own: every reason but None and Neighbours.
+    Index own_reason_nodes() const;
+    /// all_layers / nodes, and unbound_all_layers / unbound_nodes (1 with no such nodes).
+    double all_layers_share() const;
+    double unbound_all_layers_share() const;
 };
+
+/// The coverage of \p nodes (each wall node once) with \p layers asked, named \p name, over
+/// \p faces faces: counts, means and minima (mean_share 1 and min_layers \p layers with none).
+PatchCoverage coverage_of(std::string name, Index faces, const std::vector<NodeCoverage>& nodes, int layers);
 
 /// A wall node whose column fell short.
 struct ShortNode {
@@ -84,6 +103,7 @@ struct LayerReport {
     double first_height = 0.0;  ///< asked
     double thickness = 0.0;     ///< asked: the sum of the layer heights
     std::vector<PatchCoverage> patches;
+    PatchCoverage wall;                  ///< the whole wall: its faces, and each node once (named "wall")
     std::vector<ShortNode> short_nodes;  ///< every limited node, by wall node id
     std::vector<NoFanNode> no_fan;       ///< wall nodes with no fan (LayerParams::fan_angle_deg), by node id
     /// The wall nodes of no_fan with \p reason.
@@ -93,5 +113,8 @@ struct LayerReport {
 /// The layers each of the \p nodes nodes of the surface the layers stand on reached:
 /// \p report's short nodes theirs, every other node report.layers.
 std::vector<int> node_layers(const LayerReport& report, std::size_t nodes);
+/// The share of the thickness asked each of them reached: the short nodes' theirs, every other
+/// node 1 (nothing limited its column).
+std::vector<double> node_shares(const LayerReport& report, std::size_t nodes);
 
 }  // namespace strata
