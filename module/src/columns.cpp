@@ -276,16 +276,55 @@ bool collapsed(CellType type, const std::array<Vec3, 8>& p, bool& valid) {
     return true;
 }
 
+/// The steepest a step may be: its drop at most this many times its distance on the wall from
+/// the column going on (ALGORITHM.md, "The cells that close a step"). Past it the step cells'
+/// moving corners fall below a tenth of a right prism's, and the columns beside it stop too.
+constexpr double kMaxStepSlope = 10.0;
+
+/// The share of LayerParams::min_quality a cell closing a step is held to, against what its face
+/// and its step allow (usable): half, as cell_bar holds a whole cell over a fair face to half of
+/// min_quality at least. A step cell is a transition the tetrahedra's quality is measured against,
+/// not a layer cell; held to the whole bar, a column going on among stopped ones whose corner
+/// falls to a scaled Jacobian of 0.1 stopped too, and round a stop the layers went ring by ring.
+constexpr double kStepShare = 0.5;
+
+/// How a step's drop lowers the best its closing cell \p p (closing_cell's corners, of \p type,
+/// at least one column stopped) can be: per column going on, the product over the stopped tops
+/// its corner meets of |e⊥| / |e|, e from the column's bottom to that top and e⊥ its part across
+/// the column (a right step of drop D at wall distance L: L / sqrt(L² + D²), 1 for a step of one
+/// layer's height over a long edge); the least over the moving columns. \p steepest: the least
+/// single factor, the steepest pair.
+double step_steepness(CellType type, const std::array<Vec3, 8>& p, double& steepest) {
+    steepest = 1.0;
+    auto factor = [&](int lo, int hi, int top) {
+        const Vec3 u = p[static_cast<std::size_t>(hi)] - p[static_cast<std::size_t>(lo)];
+        const Vec3 e = p[static_cast<std::size_t>(top)] - p[static_cast<std::size_t>(lo)];
+        const double ul = u.norm(), el = e.norm();
+        if (!(ul > 0.0) || !(el > 0.0)) return 1.0;
+        const double r = (e - e.dot(u / ul) * (u / ul)).norm() / el;
+        steepest = std::min(steepest, r);
+        return r;
+    };
+    if (type == CellType::Tet) return factor(0, 3, 1) * factor(0, 3, 2);               // one column, two stopped
+    if (type == CellType::Pyramid) return std::min(factor(0, 1, 4), factor(3, 2, 4));  // apex: the stopped top
+    return std::min(factor(0, 2, 1), factor(3, 5, 4));  // side-on prism: p meets t, q meets s
+}
+
 /// Whether the closing cell of \p type at \p p is usable: every corner positive, the corners of
-/// moving columns at least min_quality times \p face_quality (the best a cell on the face can be).
+/// moving columns at least min_quality times \p face_quality (the best a cell on the face can be)
+/// times what the step's drop allows them (step_steepness), the drop at most kMaxStepSlope times
+/// its wall distance.
 /// A cell over a fan's face on the wall, whose columns start at one node, is judged as the cell
 /// it collapses to, and only on being valid: such a face has no area, so nothing to be relative to.
 bool usable(CellType type, bool full, const std::array<Vec3, 8>& p, double face_quality, const StopRules& rules) {
     if (bool valid = false; !full && collapsed(type, p, valid)) return valid;
-    double moving_min = 0.0;
+    double moving_min = 0.0, steepest = 1.0;
     const double all = closing_quality(type, full, p, moving_min);
-    if (!(all > 0.0) || moving_min < rules.min_quality * face_quality) return false;
+    const double steep = full ? 1.0 : step_steepness(type, p, steepest);
+    const double bar = (full ? 1.0 : kStepShare * steep) * rules.min_quality * face_quality;
+    if (!(all > 0.0) || moving_min < bar) return false;
     if (full) return true;
+    if (steepest < 1.0 / std::hypot(1.0, kMaxStepSlope)) return false;
     // The stopped corners see the step's side edge-on: at best about segment / distance (the
     // segments' length over their distance from the stopped node). Judged relative to that,
     // so a step whose apex lies nearly in its base's plane stops the columns too.
@@ -300,7 +339,7 @@ bool usable(CellType type, bool full, const std::array<Vec3, 8>& p, double face_
         dist = std::max(dist, (p[static_cast<std::size_t>(a)] - apex).norm());
     }
     const double ideal = dist > 0.0 ? std::min(1.0, seg / dist) : 0.0;
-    return !(all < rules.min_quality * ideal * face_quality);
+    return !(all < bar * ideal);
 }
 
 /// Whether splitting quad \p f through its corner \p c keeps every cell below level \p k usable

@@ -3,8 +3,8 @@
 // min_quality, max_turn_deg, the proximity limit), the faces they stand on, and the cells,
 // boundary and front of a ragged LayerMesh. ALGORITHM.md, "Local stopping", says why.
 
-#include <strata/module/layer_report.h>
 #include <strata/core/surface_mesh.h>
+#include <strata/module/layer_report.h>
 #include <strata/module/layers.h>
 
 #include <array>
@@ -73,8 +73,8 @@ struct StopRules {
     double max_turn_deg = 60.0;
     double max_twist_deg = 30.0;
     double isotropy = 0.0;  ///< LayerParams::isotropy (0: never)
-    bool quality = true;  ///< stop on min_quality, max_turn_deg and max_twist_deg (off: only limits and non-finite)
-    int threads = 0;      ///< threads of the quality test (0: OpenMP's default); the result is the same for any count
+    bool quality = true;    ///< stop on min_quality, max_turn_deg and max_twist_deg (off: only limits and non-finite)
+    int threads = 0;        ///< threads of the quality test (0: OpenMP's default); the result is the same for any count
 };
 
 /// The scaled Jacobian below which a cell over a face whose best is \p best (face_corner_quality)

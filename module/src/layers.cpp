@@ -1171,8 +1171,12 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     report(progress, "layers", 0.0);
 
     // Stopping: on unless turned off (min_quality 0) or for diagnostics (keep_invalid).
-    const StopRules rules{params.min_quality, params.max_turn_deg, params.max_twist_deg, params.isotropy,
-                          params.min_quality > 0.0 && !params.keep_invalid, mc.threads};
+    const StopRules rules{params.min_quality,
+                          params.max_turn_deg,
+                          params.max_twist_deg,
+                          params.isotropy,
+                          params.min_quality > 0.0 && !params.keep_invalid,
+                          mc.threads};
     if (auto retry = march_levels(surface, w, mc, constraints, delta, rules, col, out, progress))
         return std::move(*retry);
     if (std::all_of(col.levels.begin(), col.levels.end(), [](int l) { return l == 0; })) throw_no_layers(w, col);

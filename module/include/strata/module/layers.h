@@ -74,7 +74,7 @@ struct LayerParams {
     /// are taller than wide, the smoothing shears them and their stops spread, and the
     /// tetrahedra serve better (AFLR3 stops its layers by the same aspect ratio). Every column
     /// keeps its first layer. 0: never.
-    double isotropy = 1.0;
+    double isotropy = 0.0;
     /// Fans (ALGORITHM.md, "Fans"): at a convex edge whose faces turn by this many degrees or
     /// more (a sharp trailing edge, a thin fin's tip), and at the convex edges of 30° or more
     /// that close its chain, each node gets a column per side of the edge and columns between
