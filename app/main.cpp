@@ -664,15 +664,16 @@ const char* no_fan_reason(strata::NoFan reason) {
             return "a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (a fan over a coarsely faceted "
                    "wall; a finer wall keeps it)";
         case strata::NoFan::Open:
-            return "their sharp edge's chain reaches the wall's open boundary where it cannot end (an open edge in no "
-                   "plane of a symmetry, outflow or box patch, a node where two such planes meet, or one with two "
-                   "sharp edges), and a fan's chain must close into a loop or end on such a plane: one column each, "
-                   "stopped at the wall on an edge sharper than --sharp-edge-stop (sharp)";
+            return "their sharp edge reaches the wall's open boundary where no fan ends (an open edge in no plane of a "
+                   "symmetry, outflow or box patch, a node where two such planes meet, or one with two sharp edges), "
+                   "so the edge's fan ends one node before it: one column each, stopped at the wall on an edge sharper "
+                   "than --sharp-edge-stop (sharp)";
         case strata::NoFan::Unclosed:
             break;
     }
-    return "their sharp edge's chain ends without closing into a loop (at a concave junction, or where a fan was "
-           "dropped): one column each, stopped at the wall on an edge sharper than --sharp-edge-stop (sharp)";
+    return "their sharp edge's chain could take no fan (a single sharp edge between two nodes that end it, or a "
+           "corner's fan edge dropped where its cells would be flat): one column each, stopped at the wall on an edge "
+           "sharper than --sharp-edge-stop (sharp)";
 }
 
 /// The fans at sharp convex edges, if any, and the wall nodes where none could be built (the

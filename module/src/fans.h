@@ -48,10 +48,11 @@ struct FanWall {
 
 /// Fans on \p wall (oriented, normals into the flow): at every convex edge whose faces turn by
 /// \p fan_angle_deg or more, and at the convex edges turning 30° or more that are connected
-/// to one (so a trailing edge's fan closes into the tip's and root's edges), minus chains that
-/// end without closing (a node with a single fan edge cannot be split) and nodes on the
-/// wall's open boundary \p loops and the nodes \p excluded marks (empty or one per wall node),
-/// and the fan edges of corners whose sides' normals lie nearly in one plane. A chain may end
+/// to one (so a trailing edge's fan closes into the tip's and root's edges), minus the nodes on
+/// the wall's open boundary \p loops and the nodes \p excluded marks (empty or one per wall
+/// node), and the fan edges of corners whose sides' normals lie nearly in one plane. A chain
+/// may end at any other node with one fan edge, a terminal (FanWall::terminals), but for a lone
+/// edge between two terminals (nothing there splits), which gets none. A chain may also end
 /// at a node of the open boundary held in one plane (\p plane_normal, unit, zero where none or
 /// empty: a half model's symmetry plane) by one fan edge: its open ring splits into two
 /// sectors, and its columns lie in the plane; with more fan edges it gets none. Along the

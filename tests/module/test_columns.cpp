@@ -3,6 +3,7 @@
 // the cells closing its steps, the level-major numbering, how far a limit reaches, and the
 // same bytes for any thread count.
 
+#include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/core/validate.h>
 #include <strata/module/layers.h>
@@ -295,6 +296,63 @@ TEST(Columns, AStoppedColumnOnTrianglesIsClosedByPyramidsAndItsNeighboursFollowT
     EXPECT_EQ(r.patches[0].min_layers, 2);
     EXPECT_LT(r.patches[0].all_layers, r.patches[0].nodes);
     EXPECT_GT(r.patches[0].short_nodes(Shortfall::Front), 0);
+}
+
+TEST(Columns, AStepMayDropTenTimesItsWallDistanceBeforeItsNeighboursStop) {
+    // Layers of 0.1 on the plate of spacing 0.1, the centre limited to one: the step round it
+    // drops a wall spacing per layer. Its cells are judged against what a right step of that
+    // drop allows, so the ring round the centre keeps growing until the drop passes ten times
+    // its wall distance; the next ring, judged against the first ring's top, keeps every layer.
+    const SurfaceMesh wall = plate(true);
+    LayerParams p = eight_layers();
+    p.distribution.first_height = 0.1;
+    p.distribution.layers = 14;
+    p.proximity_limits.front_slope = 1e3;  // the limit stays at the centre
+    LayerConstraints c = limited_centre(wall);
+    c.node_thickness_limit[5 * 11 + 5] = 0.15;
+    const LayerMesh lm = extrude_layers(wall, p, c);
+    const ValidationReport v = validate_mesh(lm.mesh);
+    ASSERT_TRUE(v.ok()) << v.problems.front();
+    const Index centre = 5 * 11 + 5;
+    EXPECT_EQ(lm.node_layers(centre), 1);
+    for (const Index ring : {centre - 1, centre + 1, centre - 11, centre + 11}) {
+        EXPECT_GE(lm.node_layers(ring), 10) << ring;  // a drop of 0.9 at 0.1: nine times
+        EXPECT_LT(lm.node_layers(ring), 14) << ring;
+        EXPECT_EQ(lm.stop_reason[static_cast<std::size_t>(ring)], Shortfall::Neighbours) << ring;
+    }
+    for (const Index far : {centre - 2, centre + 2, centre - 22, centre + 22})
+        EXPECT_EQ(lm.node_layers(far), 14) << far;
+    // Eight layers drop at most eight spacings: nothing but the centre stops.
+    p.distribution.layers = 8;
+    const LayerMesh eight = extrude_layers(wall, p, c);
+    for (Index i = 0; i < eight.wall_nodes(); ++i)
+        if (i != centre) EXPECT_EQ(eight.node_layers(i), 8) << i;
+}
+
+TEST(Columns, AColumnStopsBeforeALayerTallerThanTheFrontIsWideWhereAsked) {
+    // Quads of 0.1, layers 0.03, 0.048, 0.0768, 0.1229, ...: with LayerParams::isotropy 1 every
+    // column stops before the fourth, taller than the front's spacing; without, none stops.
+    const SurfaceMesh wall = plate(false);
+    LayerParams p = eight_layers();
+    p.distribution.first_height = 0.03;
+    p.distribution.growth = 1.6;
+    p.distribution.layers = 6;
+    p.isotropy = 1.0;
+    const LayerMesh lm = extrude_layers(wall, p);
+    for (Index i = 0; i < lm.wall_nodes(); ++i) {
+        EXPECT_EQ(lm.node_layers(i), 3) << i;
+        EXPECT_EQ(lm.stop_reason[static_cast<std::size_t>(i)], Shortfall::Isotropic) << i;
+    }
+    EXPECT_EQ(layer_report(lm).patches[0].short_nodes(Shortfall::Isotropic), lm.wall_nodes());
+    p.isotropy = 0.0;
+    const LayerMesh all = extrude_layers(wall, p);
+    for (Index i = 0; i < all.wall_nodes(); ++i) EXPECT_EQ(all.node_layers(i), 6) << i;
+    // A first layer taller than the front is wide is kept.
+    p.isotropy = 0.2;
+    const LayerMesh first = extrude_layers(wall, p);
+    for (Index i = 0; i < first.wall_nodes(); ++i) EXPECT_EQ(first.node_layers(i), 1) << i;
+    p.isotropy = -1.0;
+    EXPECT_THROW(extrude_layers(wall, p), InputError);
 }
 
 TEST(Columns, AFrontLimitSpreadsAtTheFrontSlopeAndAProximityLimitAtItsOwn) {

@@ -84,8 +84,8 @@ enum class NoFan : std::uint8_t {
     Unusable,  ///< the fan's first cells would have been unusable (a needle face or a narrow gap beside it)
     Uncapped,  ///< a fan's face on the layer top could not be capped with a pyramid (its columns twist)
     Skewed,    ///< a fan's cells had faces OpenFOAM's checkMesh would fail as skewed (kFoamSkewness)
-    Open,      ///< its edge's chain of sharp edges reaches the wall's open boundary where it cannot end
-    Unclosed,  ///< its edge's chain ends without closing into a loop (a concave junction, a dropped fan)
+    Open,      ///< on the wall's open boundary where no fan ends (its edge's fan ends one node before)
+    Unclosed,  ///< its edge's chain could take no fan (a lone edge between two chain ends, a corner's dropped edge)
 };
 inline constexpr std::size_t kNoFanReasons = 5;
 /// "unusable", "uncapped", "skewed", "open", "unclosed".

@@ -179,9 +179,9 @@ public:
     /// Nodes of the input surface with no fan because its cells had faces checkMesh would fail
     /// as skewed (ascending; layer_report lists them with their positions).
     std::vector<Index> fans_skewed;
-    /// Wall nodes on an edge turning LayerParams::fan_angle_deg or more whose chain of sharp
-    /// edges could not close into a loop, so got no fan (NoFan::Open, NoFan::Unclosed), by input
-    /// node id, with their positions.
+    /// Wall nodes on an edge turning LayerParams::fan_angle_deg or more that got no fan: on the
+    /// open boundary where no chain ends, or on a chain that could take none (NoFan::Open,
+    /// NoFan::Unclosed), by input node id, with their positions.
     std::vector<NoFanNode> fans_unclosed;
 
     Index wall_nodes() const { return wall_nodes_; }
