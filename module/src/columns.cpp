@@ -277,9 +277,9 @@ bool collapsed(CellType type, const std::array<Vec3, 8>& p, bool& valid) {
 }
 
 /// The steepest a step may be: its drop at most this many times its distance on the wall from
-/// the column going on (ALGORITHM.md, "The cells that close a step"). Past it the step cells'
-/// moving corners fall below a tenth of a right prism's, and the columns beside it stop too.
-constexpr double kMaxStepSlope = 10.0;
+/// the column going on (ALGORITHM.md, "The cells that close a step"); past it the columns beside
+/// it stop too. At 10 the front round a sharp cone tip stopped at the wall met itself.
+constexpr double kMaxStepSlope = 5.0;
 
 /// The share of LayerParams::min_quality a cell closing a step is held to, against what its face
 /// and its step allow (usable): half, as cell_bar holds a whole cell over a fair face to half of

@@ -717,12 +717,13 @@ TEST(Cli, AWallQuadNoPyramidCanCapIsSplitIntoTwoTriangles) {
     // A wall quad bent so that it takes no pyramid on the layer top at any apex height, where
     // lowering its columns does not change that (the run stopped with "cannot be capped with a
     // pyramid" after 8 rounds), is split into two triangles, whose columns need no pyramid, and
-    // the mesh is made. The sweep's rocket in quads, 15 layers from 1e-3, has one such quad. (It
+    // the mesh is made. The sweep's rocket in quads, 15 layers from 2e-3, has one such quad. (It
     // was the pipe junction's, bent round the branch pipe's small radius, until the concave
-    // terms kept to the spacing asked and its columns there rose less.)
+    // terms kept to the spacing asked and its columns there rose less; then the rocket's from
+    // 1e-3 until steps were judged against their own geometry.)
     test::ScratchDir dir("cli_split_quad");
     const CliResult r =
-        mesh_sweep(dir, "rocket.geo", "--fuse --quads --layers 15 --growth 1.2 --first-height 1e-3 -o p.msh");
+        mesh_sweep(dir, "rocket.geo", "--fuse --quads --layers 15 --growth 1.2 --first-height 2e-3 -o p.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     // (Its first "quads: " line says that Blossom's quads folded; the split's line is its own.)
     const auto at = r.out.find(" wall quads could take no pyramid on the layer top");

@@ -298,15 +298,15 @@ TEST(Columns, AStoppedColumnOnTrianglesIsClosedByPyramidsAndItsNeighboursFollowT
     EXPECT_GT(r.patches[0].short_nodes(Shortfall::Front), 0);
 }
 
-TEST(Columns, AStepMayDropTenTimesItsWallDistanceBeforeItsNeighboursStop) {
+TEST(Columns, AStepMayDropFiveTimesItsWallDistanceBeforeItsNeighboursStop) {
     // Layers of 0.1 on the plate of spacing 0.1, the centre limited to one: the step round it
     // drops a wall spacing per layer. Its cells are judged against what a right step of that
-    // drop allows, so the ring round the centre keeps growing until the drop passes ten times
+    // drop allows, so the ring round the centre keeps growing until the drop passes five times
     // its wall distance; the next ring, judged against the first ring's top, keeps every layer.
     const SurfaceMesh wall = plate(true);
     LayerParams p = eight_layers();
     p.distribution.first_height = 0.1;
-    p.distribution.layers = 14;
+    p.distribution.layers = 10;
     p.proximity_limits.front_slope = 1e3;  // the limit stays at the centre
     LayerConstraints c = limited_centre(wall);
     c.node_thickness_limit[5 * 11 + 5] = 0.15;
@@ -316,17 +316,16 @@ TEST(Columns, AStepMayDropTenTimesItsWallDistanceBeforeItsNeighboursStop) {
     const Index centre = 5 * 11 + 5;
     EXPECT_EQ(lm.node_layers(centre), 1);
     for (const Index ring : {centre - 1, centre + 1, centre - 11, centre + 11}) {
-        EXPECT_GE(lm.node_layers(ring), 10) << ring;  // a drop of 0.9 at 0.1: nine times
-        EXPECT_LT(lm.node_layers(ring), 14) << ring;
+        EXPECT_GE(lm.node_layers(ring), 6) << ring;  // a drop of 0.5 at 0.1: five times
+        EXPECT_LT(lm.node_layers(ring), 10) << ring;
         EXPECT_EQ(lm.stop_reason[static_cast<std::size_t>(ring)], Shortfall::Neighbours) << ring;
     }
-    for (const Index far : {centre - 2, centre + 2, centre - 22, centre + 22})
-        EXPECT_EQ(lm.node_layers(far), 14) << far;
-    // Eight layers drop at most eight spacings: nothing but the centre stops.
-    p.distribution.layers = 8;
-    const LayerMesh eight = extrude_layers(wall, p, c);
-    for (Index i = 0; i < eight.wall_nodes(); ++i)
-        if (i != centre) EXPECT_EQ(eight.node_layers(i), 8) << i;
+    for (const Index far : {centre - 3, centre + 3, centre - 33, centre + 33}) EXPECT_EQ(lm.node_layers(far), 10) << far;
+    // Five layers drop at most four spacings: nothing but the centre stops.
+    p.distribution.layers = 5;
+    const LayerMesh five = extrude_layers(wall, p, c);
+    for (Index i = 0; i < five.wall_nodes(); ++i)
+        if (i != centre) EXPECT_EQ(five.node_layers(i), 5) << i;
 }
 
 TEST(Columns, AColumnStopsBeforeALayerTallerThanTheFrontIsWideWhereAsked) {
