@@ -311,17 +311,21 @@ double step_steepness(CellType type, const std::array<Vec3, 8>& p, double& steep
 }
 
 /// Whether the closing cell of \p type at \p p is usable: every corner positive, the corners of
-/// moving columns at least min_quality times \p face_quality (the best a cell on the face can be)
-/// times what the step's drop allows them (step_steepness), the drop at most kMaxStepSlope times
-/// its wall distance.
+/// moving columns at least min_quality times \p face_quality (the best a cell on the face can be),
+/// and above the first layer (\p first false) kStepShare of that times what the step's drop
+/// allows them (step_steepness), the drop at most kMaxStepSlope times its wall distance. In the
+/// first layer a column whose step cells fall short stops at the wall with its neighbour: its
+/// prisms beside a column stopped there (round a tiny hole's rim) leaned so far over their
+/// small wall faces that checkMesh found those faces skewed 6.3.
 /// A cell over a fan's face on the wall, whose columns start at one node, is judged as the cell
 /// it collapses to, and only on being valid: such a face has no area, so nothing to be relative to.
-bool usable(CellType type, bool full, const std::array<Vec3, 8>& p, double face_quality, const StopRules& rules) {
+bool usable(CellType type, bool full, const std::array<Vec3, 8>& p, double face_quality, const StopRules& rules,
+            bool first) {
     if (bool valid = false; !full && collapsed(type, p, valid)) return valid;
     double moving_min = 0.0, steepest = 1.0;
     const double all = closing_quality(type, full, p, moving_min);
     const double steep = full ? 1.0 : step_steepness(type, p, steepest);
-    const double bar = (full ? 1.0 : kStepShare * steep) * rules.min_quality * face_quality;
+    const double bar = (full || first ? 1.0 : kStepShare * steep) * rules.min_quality * face_quality;
     if (!(all > 0.0) || moving_min < bar) return false;
     if (full) return true;
     if (steepest < 1.0 / std::hypot(1.0, kMaxStepSlope)) return false;
@@ -368,7 +372,7 @@ bool split_keeps_cells(const Columns& col, Index f, int c, int k, const StopRule
                                           col.reach[static_cast<std::size_t>(t[1])],
                                           col.reach[static_cast<std::size_t>(t[2])], 1.0};
             const double fq = corner_sines({lo(t[0]), lo(t[1]), lo(t[2]), Vec3::Zero()}, 3, &w);
-            if (!usable(type, m == 3, p, fq, rules) || face_pyramids_inverted(p.data(), type)) return false;
+            if (!usable(type, m == 3, p, fq, rules, j == 0) || face_pyramids_inverted(p.data(), type)) return false;
         }
     return true;
 }
@@ -529,7 +533,7 @@ void close_steps(Columns& col, const StopRules& rules, int k, const std::vector<
             std::array<Vec3, 8> p{};
             // As for whole cells, relative to the best a cell on the face can be.
             const bool fair = closing_cell(col.faces.nodes[u], n, m.data(), lo, hi, type, p) &&
-                              usable(type, false, p, face_corner_quality(col, f), rules);
+                              usable(type, false, p, face_corner_quality(col, f), rules, k == 0);
             // A cell thinner than one of its faces is warped can have every corner positive and
             // its centre on the wrong side of that face, which checkMesh fails ("incorrectly
             // oriented faces"): a step's side-on prism in the first layer over a quad that Gmsh
