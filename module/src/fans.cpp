@@ -596,11 +596,6 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, const std::vector<
     std::vector<Vec3> anchor(un, Vec3::Zero());
     for (std::size_t i = 0; i < un && i < plane_normal.size(); ++i)
         if (boundary[i] && !(i < excluded.size() && excluded[i])) anchor[i] = plane_normal[i];
-    // Where a chain may end (prune): a plane node, or a terminal: any node off the open boundary
-    // that is not excluded (at a concave junction, where the edge fades into a smooth wall, or
-    // beside a node whose fan was dropped).
-    std::vector<char> ends(un, 0);
-    for (std::size_t i = 0; i < un; ++i) ends[i] = !open[i] || anchor[i] != Vec3::Zero();
     auto blocked = [&](Index v) {
         return open[static_cast<std::size_t>(v)] && anchor[static_cast<std::size_t>(v)] == Vec3::Zero();
     };
@@ -679,6 +674,16 @@ FanWall build_fans(const SurfaceMesh& wall, const Csr& loops, const std::vector<
     for (std::size_t e = 0; e < ne; ++e)
         if (keep[e] && !seeded[static_cast<std::size_t>(chains.find(et.nodes[e][0]))]) keep[e] = 0;
 
+    // Where a chain may end (prune): a plane node, or a terminal: a node off the open boundary,
+    // not excluded, on an edge turning fan_angle_deg or more (at a concave junction, where the
+    // edge fades into a smooth wall, or beside a node whose fan was dropped). Such a node's one
+    // column stops at the wall, as it would without a fan; a node of a milder edge only (a tip
+    // cap's) keeps one growing direction instead, its chain without a fan.
+    std::vector<char> ends(un, 0);
+    for (std::size_t i = 0; i < un; ++i) ends[i] = anchor[i] != Vec3::Zero();
+    for (std::size_t e = 0; e < ne; ++e)
+        if (keep[e] && turn[e] >= fan_angle_deg)
+            for (const Index v : et.nodes[e]) ends[static_cast<std::size_t>(v)] |= !open[static_cast<std::size_t>(v)];
     // Each round drops one fan edge, so this ends.
     for (;;) {
         const std::vector<std::vector<Index>> at = prune(et, un, anchor, ends, keep);

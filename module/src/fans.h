@@ -51,8 +51,9 @@ struct FanWall {
 /// to one (so a trailing edge's fan closes into the tip's and root's edges), minus the nodes on
 /// the wall's open boundary \p loops and the nodes \p excluded marks (empty or one per wall
 /// node), and the fan edges of corners whose sides' normals lie nearly in one plane. A chain
-/// may end at any other node with one fan edge, a terminal (FanWall::terminals), but for a lone
-/// edge between two terminals (nothing there splits), which gets none. A chain may also end
+/// may end at any other node with one fan edge that is on an edge turning \p fan_angle_deg or
+/// more, a terminal (FanWall::terminals), but for a lone edge between two terminals (nothing
+/// there splits), which gets none. A chain may also end
 /// at a node of the open boundary held in one plane (\p plane_normal, unit, zero where none or
 /// empty: a half model's symmetry plane) by one fan edge: its open ring splits into two
 /// sectors, and its columns lie in the plane; with more fan edges it gets none. Along the

@@ -321,16 +321,17 @@ TEST(Fans, SharpEdgesLeftWithoutAFanAreSaidWhy) {
     const std::vector<Index> edge{5, 8, 11, 14, 17, 20, 23, 26};  // the sharp edge's nodes j = 1..8
     // Open at y = 1 (its cap gone) in no plane that holds its nodes (an open edge of a wall,
     // not a half model's on its symmetry plane: AChainMayEndOnAPlaneNode...): no node on the
-    // open boundary gets a fan, so the three chains from the cap at y = 0 end one node before
-    // it (terminals); the sharp edge's node on the boundary is said to reach it.
+    // open boundary gets a fan, so the sharp edge's chain from the cap at y = 0 ends one node
+    // before it (a terminal); the base's edges (95°, under the fan angle) may not end there, so
+    // they have none; the sharp edge's node on the boundary is said to reach it.
     SurfaceMesh open = wall;
     open.face_offsets.pop_back();
     open.face_nodes.resize(static_cast<std::size_t>(open.face_offsets.back()));
     open.face_patch.pop_back();
     ASSERT_EQ(boundary_loops(open).rows(), 1);
     const FanWall half = build_fans(open, boundary_loops(open), {}, 1.0, 120.0, {});
-    EXPECT_EQ(half.fan_edges, 3 + 3 * 7);  // the cap's loop, and each chain but its last edge
-    EXPECT_EQ(half.terminals, (std::vector<Index>{21, 22, 23}));
+    EXPECT_EQ(half.fan_edges, 3 + 7);  // the cap's loop, and the sharp edge but its last edge
+    EXPECT_EQ(half.terminals, (std::vector<Index>{23}));
     ASSERT_EQ(half.unfanned.size(), 1u);
     EXPECT_EQ(half.unfanned[0].first, edge.back());
     EXPECT_EQ(half.unfanned[0].second, NoFan::Open);
@@ -393,8 +394,9 @@ TEST(Fans, AChainMayEndOnAPlaneNodeWhoseColumnsLieInThePlane) {
     const double unleaned = across(build_fans(open, loops, plane, 1e-9, 120.0, {}), 23);
     EXPECT_GT(unleaned, 0.2);
     EXPECT_LT(across(fw, 23), 0.25 * unleaned);
-    // Without the plane the chains end one node before the open boundary (terminals).
-    EXPECT_EQ(build_fans(open, loops, {}, 1.0, 120.0, {}).fan_edges, 3 + 3 * 7);
+    // Without the plane the sharp edge's chain ends one node before the open boundary (a
+    // terminal), and the base's (95°) have none.
+    EXPECT_EQ(build_fans(open, loops, {}, 1.0, 120.0, {}).fan_edges, 3 + 7);
     // A node of the sharp edge excluded (its fan dropped by the caller): the edge's two halves
     // end beside it, one at a terminal, the other at the plane node.
     std::vector<char> excluded(open.points.size(), 0);
