@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <tuple>
 #include <vector>
 
 namespace strata {
@@ -12,6 +14,17 @@ namespace {
 
 std::size_t at(Shortfall reason) {
     return static_cast<std::size_t>(reason);
+}
+
+/// The counts of a PatchCoverage, in its fields' order.
+struct Counts {
+    std::string name;
+    Index faces, nodes, full_nodes, all_layers, unbound_nodes, unbound_all_layers;
+};
+
+void expect_counts(const PatchCoverage& c, const Counts& w) {
+    EXPECT_EQ(std::tie(c.name, c.faces, c.nodes, c.full_nodes, c.all_layers, c.unbound_nodes, c.unbound_all_layers),
+              std::tie(w.name, w.faces, w.nodes, w.full_nodes, w.all_layers, w.unbound_nodes, w.unbound_all_layers));
 }
 
 TEST(LayerReport, CoverageOfNodesCountsSharesAndReasons) {
@@ -23,13 +36,7 @@ TEST(LayerReport, CoverageOfNodesCountsSharesAndReasons) {
                                           {0.5, 2, Shortfall::Neighbours, false}, {0.0, 0, Shortfall::Proximity, true},
                                           {0.75, 3, Shortfall::Neighbours, true}};
     const PatchCoverage c = coverage_of("body", 9, nodes, 4);
-    EXPECT_EQ(c.name, "body");
-    EXPECT_EQ(c.faces, 9);
-    EXPECT_EQ(c.nodes, 7);
-    EXPECT_EQ(c.full_nodes, 2);
-    EXPECT_EQ(c.all_layers, 3);
-    EXPECT_EQ(c.unbound_nodes, 4);
-    EXPECT_EQ(c.unbound_all_layers, 2);
+    expect_counts(c, {"body", 9, 7, 2, 3, 4, 2});
     EXPECT_DOUBLE_EQ(c.all_layers_share(), 3.0 / 7.0);
     EXPECT_DOUBLE_EQ(c.unbound_all_layers_share(), 0.5);
     EXPECT_DOUBLE_EQ(c.mean_share, 4.0 / 7.0);
@@ -94,13 +101,7 @@ TEST(LayerReport, TheWholeWallCountsANodeOnTwoPatchesOnce) {
     EXPECT_EQ(right.unbound_nodes, 3);
     EXPECT_EQ(right.unbound_all_layers, 1);
 
-    EXPECT_EQ(wall.name, "wall");
-    EXPECT_EQ(wall.faces, 4);
-    EXPECT_EQ(wall.nodes, 6);
-    EXPECT_EQ(wall.full_nodes, 3);
-    EXPECT_EQ(wall.all_layers, 4);
-    EXPECT_EQ(wall.unbound_nodes, 5);
-    EXPECT_EQ(wall.unbound_all_layers, 3);
+    expect_counts(wall, {"wall", 4, 6, 3, 4, 5, 3});
     EXPECT_DOUBLE_EQ(wall.all_layers_share(), 4.0 / 6.0);
     EXPECT_DOUBLE_EQ(wall.unbound_all_layers_share(), 0.6);
     EXPECT_DOUBLE_EQ(wall.mean_share, (1.0 + 1.0 + 0.0 + 1.0 + 0.5 + 0.5) / 6.0);
