@@ -468,13 +468,14 @@ TEST(Cli, TetGenStoppingOnAnInternalCheckLowersTheColumnsThere) {
     // an internal check (tetgen.cxx:7854, scount == 1) recovering a layer-top face near the
     // wing root, though no face of the front crosses another: its run repeated with its trace
     // names the face, the columns around it are lowered and the fill succeeds. (That front is
-    // the one of 20 layers from 1.5e-3, in one of three rounds of lowerings; which layers give such
-    // a front changes with how the columns stop and rise: it was 1e-3 at --front-slope 0.25
-    // before cells on fair faces stopped at half of --min-quality, then 10 from 2e-3 until the
-    // concave terms kept to the spacing asked.)
+    // the one of 10 layers from 1.5e-3 at --front-slope 0.5; which layers give such a front
+    // changes with how the columns stop and rise: it was 1e-3 at --front-slope 0.25 before cells
+    // on fair faces stopped at half of --min-quality, then 10 from 2e-3 until the concave terms
+    // kept to the spacing asked, then 20 from 1.5e-3 until steps were judged against their own
+    // geometry.)
     test::ScratchDir dir("cli_tetgen_retry");
-    const CliResult r = strata_cli(
-        dir, "mesh '" + test_data("cli_wingbody_tangent.stl") + "' --layers 20 --first-height 1.5e-3 -o m.msh");
+    const CliResult r = strata_cli(dir, "mesh '" + test_data("cli_wingbody_tangent.stl") +
+                                            "' --layers 10 --first-height 1.5e-3 --front-slope 0.5 -o m.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     test::expect_contains(r.out,
                           {"short edges: 6 collapsed", "of them TetGen failed recovering a layer-top face", "valid: "});
@@ -923,8 +924,7 @@ TEST(Cli, QuadsRoundATinyHoleWhereBlossomWouldAbort) {
     const CliResult r =
         mesh_sweep(dir, "tinyhole.geo", "--quads --layers 15 --growth 1.2 --first-height 5e-4 -o h.msh");
     ASSERT_EQ(r.code, 0) << r.err;
-    test::expect_contains(
-        r.out, {"quads: Gmsh's Blossom recombination would have ended the process"});
+    test::expect_contains(r.out, {"quads: Gmsh's Blossom recombination would have ended the process"});
     test::expect_contains(r.out, {"were split into two triangles", "checkMesh would say \"Mesh OK\""});
 }
 
@@ -1007,7 +1007,7 @@ TEST(Cli, FighterHalfModelWithInletDuct) {
 
     const VolumeMesh m = read_volume_msh(dir.file("fighter.msh"));
     EXPECT_GT(m.tets.size(), 0u);
-    EXPECT_FALSE(m.hexes.empty());                  // the fans' wedges
+    EXPECT_FALSE(m.hexes.empty());                    // the fans' wedges
     EXPECT_LT(m.hexes.size(), m.prisms.size() / 20);  // else prisms, as the paper's
     // Prisms only in the layers: at most one per wall triangle and layer, and none away from
     // the aircraft (x 0..15.5, y 0..5, z -1.6..3.6; the layers are 0.026 thick).
