@@ -57,7 +57,11 @@ Columns::Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& m
     reason.assign(n, Shortfall::None);
     top = wall.points;
     reach = wall_reach(wall, plane_normal, line);
+}
+
+void Columns::find_edges(const SurfaceMesh& wall) {
     const EdgeTable et = edge_table(wall);
+    edges.clear();
     for (const auto& e : et.nodes)
         if (wall.points[e[0]] != wall.points[e[1]]) edges.push_back({e[0], e[1]});
 }
@@ -278,14 +282,13 @@ bool collapsed(CellType type, const std::array<Vec3, 8>& p, bool& valid) {
 
 /// The steepest a step may be: its drop at most this many times its distance on the wall from
 /// the column going on (ALGORITHM.md, "The cells that close a step"); past it the columns beside
-/// it stop too. At 10 the front round a sharp cone tip stopped at the wall met itself.
+/// it stop too, and the layer top round a sharp tip stopped at the wall does not meet itself.
 constexpr double kMaxStepSlope = 5.0;
 
 /// The share of LayerParams::min_quality a cell closing a step is held to, against what its face
 /// and its step allow (usable): half, as cell_bar holds a whole cell over a fair face to half of
-/// min_quality at least. A step cell is a transition the tetrahedra's quality is measured against,
-/// not a layer cell; held to the whole bar, a column going on among stopped ones whose corner
-/// falls to a scaled Jacobian of 0.1 stopped too, and round a stop the layers went ring by ring.
+/// min_quality at least: a step cell is a transition, not a layer cell, and held to the whole bar
+/// the columns round a stop would stop ring by ring (ALGORITHM.md, "The cells that close a step").
 constexpr double kStepShare = 0.5;
 
 /// How a step's drop lowers the best its closing cell \p p (closing_cell's corners, of \p type,
@@ -314,9 +317,8 @@ double step_steepness(CellType type, const std::array<Vec3, 8>& p, double& steep
 /// moving columns at least min_quality times \p face_quality (the best a cell on the face can be),
 /// and above the first layer (\p first false) kStepShare of that times what the step's drop
 /// allows them (step_steepness), the drop at most kMaxStepSlope times its wall distance. In the
-/// first layer a column whose step cells fall short stops at the wall with its neighbour: its
-/// prisms beside a column stopped there (round a tiny hole's rim) leaned so far over their
-/// small wall faces that checkMesh found those faces skewed 6.3.
+/// first layer the whole bar holds: prisms beside a column stopped at the wall can lean far over
+/// small wall faces, which checkMesh then finds skewed.
 /// A cell over a fan's face on the wall, whose columns start at one node, is judged as the cell
 /// it collapses to, and only on being valid: such a face has no area, so nothing to be relative to.
 bool usable(CellType type, bool full, const std::array<Vec3, 8>& p, double face_quality, const StopRules& rules,

@@ -46,6 +46,7 @@ struct Columns {
     std::vector<double> best;
     /// The wall's edges between distinct positions (a fan's columns, which start at one node,
     /// are not apart on the wall): the front's spacing round each column (StopRules::isotropy).
+    /// Empty until find_edges.
     std::vector<std::array<Index, 2>> edges;
     /// Pairs of column faces that share an edge (its two nodes, then the two faces), as found
     /// for side_pairs_faces faces; stop_columns finds them again once faces are split.
@@ -63,6 +64,8 @@ struct Columns {
     /// \p plane_normal, \p line: the planes and lines wall nodes are held in (wall_reach).
     Columns(const SurfaceMesh& wall, int layers, const std::vector<Vec3>& mesh_points,
             const std::vector<Vec3>& plane_normal = {}, const std::vector<Vec3>& line = {});
+    /// Fills edges from \p wall (the surface given to the constructor): only the isotropy stop needs them.
+    void find_edges(const SurfaceMesh& wall);
     /// Position of wall node \p i on \p level (its top above its column).
     Vec3 at_level(Index i, int level) const;
 };

@@ -1123,6 +1123,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         if (mc.node_plane[i] != kNone) plane_normal[i] = mc.planes[mc.node_plane[i]].normal;
     Columns col(w.mesh, layers, out.mesh.points, plane_normal, mc.node_line);
     col.max_levels = std::move(max_levels);
+    if (params.isotropy > 0.0) col.find_edges(w.mesh);
     if (!fans.empty()) {
         // A fan's columns start at their wall node, and each gets its first layer.
         for (Index i = nwall; i < nw; ++i)
