@@ -393,6 +393,50 @@ TEST(Columns, AStoppedColumnOnQuadsSplitsItsQuadsAndKeepsHexahedraElsewhere) {
     EXPECT_NEAR(area, 1.0, 1e-12);
 }
 
+/// A torus of tube radius \p r round a circle of radius \p big, \p around × \p along
+/// squares, each split into two triangles (locally a thin rod meshed isotropically).
+SurfaceMesh thin_torus(double big, double r, int around, int along) {
+    SurfaceMesh m;
+    m.patches.push_back({"rod", PatchKind::Wall});
+    for (int j = 0; j < along; ++j)
+        for (int i = 0; i < around; ++i) {
+            const double u = 2.0 * std::numbers::pi * j / along, v = 2.0 * std::numbers::pi * i / around;
+            const double rad = big + r * std::cos(v);
+            m.points.emplace_back(rad * std::cos(u), rad * std::sin(u), r * std::sin(v));
+        }
+    auto at = [&](int i, int j) { return static_cast<Index>((j % along) * around + (i % around)); };
+    for (int j = 0; j < along; ++j)
+        for (int i = 0; i < around; ++i) {
+            // Counter-clockwise seen from outside the tube.
+            const std::array<Index, 3> a{at(i, j), at(i, j + 1), at(i + 1, j + 1)}, b{at(i, j), at(i + 1, j + 1), at(i + 1, j)};
+            m.add_face(a.data(), 3, 0);
+            m.add_face(b.data(), 3, 0);
+        }
+    return m;
+}
+
+TEST(Columns, ColumnsRoundAThinRodKeepEveryLayerWhereTheFrontStretchesItsFaces) {
+    // Layers to eleven times the rod's radius: the front's faces, square on the wall, come out
+    // six times as long round the rod as along it (twelve with plain extrusion; their corners' sines fall from 0.7 to
+    // about 0.08, under a fifth of what the wall faces allow), with straight columns. They are
+    // the geometry's: every column keeps every layer, and every cell is valid.
+    const double r = 0.01;
+    const SurfaceMesh wall = thin_torus(0.25, r, 12, 300);  // 0.0052 round, 0.0052 along
+    LayerParams p;
+    p.distribution.layers = 12;
+    p.distribution.growth = 1.2;
+    p.distribution.first_height = 11.0 * r * 0.2 / (std::pow(1.2, 12) - 1.0);
+    p.proximity = ProximityMode::Off;
+    const LayerMesh lm = extrude_layers(wall, p);
+    const ValidationReport v = validate_mesh(lm.mesh);
+    ASSERT_TRUE(v.ok()) << v.problems.front();
+    for (Index i = 0; i < lm.wall_nodes(); ++i) ASSERT_EQ(lm.node_layers(i), 12) << i;
+    // The top faces are as stretched as said: round the rod against along it.
+    auto top = [&](Index i) { return lm.mesh.points[static_cast<std::size_t>(lm.top_node(i))]; };
+    const double round = (top(1) - top(0)).norm(), along = (top(12) - top(0)).norm();
+    EXPECT_GT(round / along, 5.0);
+}
+
 TEST(Columns, SameBytesForAnyThreadCount) {
     const SurfaceMesh wall = plate(false);
     test::expect_same_bytes_for_any_thread_count(wall, eight_layers(), limited_centre(wall));
