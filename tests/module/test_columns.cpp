@@ -417,9 +417,10 @@ SurfaceMesh thin_torus(double big, double r, int around, int along) {
 
 TEST(Columns, ColumnsRoundAThinRodKeepEveryLayerWhereTheFrontStretchesItsFaces) {
     // Layers to eleven times the rod's radius: the front's faces, square on the wall, come out
-    // six times as long round the rod as along it (twelve with plain extrusion; their corners' sines fall from 0.7 to
-    // about 0.08, under a fifth of what the wall faces allow), with straight columns. They are
-    // the geometry's: every column keeps every layer, and every cell is valid.
+    // about six times as long round the rod as along it (twelve with plain extrusion), their
+    // corners' sines far under a fifth of what the wall faces allow. That is the geometry's:
+    // every column keeps every layer (judged against the wall's bar alone, they stopped), and
+    // every cell is valid.
     const double r = 0.01;
     const SurfaceMesh wall = thin_torus(0.25, r, 12, 300);  // 0.0052 round, 0.0052 along
     LayerParams p;
