@@ -262,6 +262,29 @@ inline SurfaceMesh moebius_strip() {
 }
 
 /// Structured nx × ny grid of unit quads in the z = 0 plane, one "wall" patch, normals +z.
+/// A torus round a circle of radius \p big whose tube is an ellipse of half-axes \p r (in the
+/// torus's plane) and \p flat × \p r (across it), \p around × \p along squares, each split
+/// into two triangles: locally a thin rod (flat 1) or a thin wing with round edges (flat < 1).
+inline SurfaceMesh thin_torus(double big, double r, int around, int along, double flat = 1.0) {
+    SurfaceMesh m;
+    m.patches.push_back({"rod", PatchKind::Wall});
+    for (int j = 0; j < along; ++j)
+        for (int i = 0; i < around; ++i) {
+            const double u = 2.0 * std::numbers::pi * j / along, v = 2.0 * std::numbers::pi * i / around;
+            const double rad = big + r * std::cos(v);
+            m.points.emplace_back(rad * std::cos(u), rad * std::sin(u), flat * r * std::sin(v));
+        }
+    auto at = [&](int i, int j) { return static_cast<Index>((j % along) * around + (i % around)); };
+    for (int j = 0; j < along; ++j)
+        for (int i = 0; i < around; ++i) {  // counter-clockwise seen from outside the tube
+            const std::array<Index, 3> a{at(i, j), at(i, j + 1), at(i + 1, j + 1)};
+            const std::array<Index, 3> b{at(i, j), at(i + 1, j + 1), at(i + 1, j)};
+            m.add_face(a.data(), 3, 0);
+            m.add_face(b.data(), 3, 0);
+        }
+    return m;
+}
+
 inline SurfaceMesh quad_grid(int nx, int ny, double h = 1.0) {
     SurfaceMesh m;
     m.patches.push_back({"wall", PatchKind::Wall});

@@ -179,13 +179,20 @@ double face_corner_quality(const Columns& col, Index f) {
 
 namespace {
 
+/// The least share of what its wall face allows that a front grown over it may lower a cell's
+/// bar to (front_quality): round a cone's tip the front's faces stretch a hundredfold, and judged
+/// against them alone the cells beside the stopped tip grew until the layer top crossed itself
+/// (the rocket's nose: 265 columns lowered by the front rounds, 26 at a quarter).
+constexpr double kFrontShare = 0.25;
+
 /// The best a cell over column face \p f can be in layer \p k: what its wall face allows
 /// (Columns::best), or less where the front has grown over it (its face at the columns' tops
 /// larger than on the wall) into a worse shape: a front round a leading edge or a thin rod
 /// spreads its faces round the edge only, so faces the wall meshed square come out long and
 /// thin however straight the columns (twelve times as long round a rod of radius r at 11 r);
 /// those are the geometry's, as a needle wall face is, and the cells are judged relative to the
-/// right cell on them. Where the front shrinks (a concave region) the wall's bar holds.
+/// right cell on them, down to kFrontShare of the wall's. Where the front shrinks (a concave
+/// region) the wall's bar holds.
 double front_quality(const Columns& col, Index f, int k) {
     const auto u = static_cast<std::size_t>(f);
     const double wall = u < col.best.size() ? col.best[u] : face_corner_quality(col, f);
@@ -202,7 +209,7 @@ double front_quality(const Columns& col, Index f, int k) {
         for (int c = 1; c + 1 < n; ++c) a += (x[c] - x[0]).cross(x[c + 1] - x[0]);
         return a.norm();
     };
-    return area(fb) > area(wb) ? std::min(wall, corner_sines(fb, n)) : wall;
+    return area(fb) > area(wb) ? std::min(wall, std::max(corner_sines(fb, n), kFrontShare * wall)) : wall;
 }
 
 }  // namespace

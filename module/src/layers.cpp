@@ -791,12 +791,41 @@ Vec3 jacobi_update(const Marcher& mc, const Levels& lv, Index o, double theta, d
 /// every case gives the same worst cells.
 constexpr double kMaxSmoothingMove = 10.0;
 
+/// The most a column may lean off the normal of the front it grows from, degrees, once smoothed
+/// (limit_lean).
+constexpr double kMaxLeanDeg = 30.0;
+
+/// Each of the \p nw wall nodes of the smoothed level \p r1 moved back towards its extruded position \p ref (\p r0
+/// plus its layer height along its normal) until its column leans at most kMaxLeanDeg off that
+/// normal; its progress along the normal is kept. Where the layers grow taller than the front's
+/// spacing the Poisson terms within the layer outweigh the marching one by (height / spacing)²,
+/// and once the front's faces have stretched one way (round a leading edge) Knupp's logical
+/// space mixes their two directions: the smoothing then pulls a leading edge's columns round
+/// towards its tip layer after layer (80° over 16 layers on a tailplane's, whose plain normals
+/// stay within 6°), and their cells shear until the columns stop (ALGORITHM.md, "How far a
+/// column may lean").
+void limit_lean(Index nw, const std::vector<Vec3>& r0, const std::vector<Vec3>& ref, std::vector<Vec3>& r1) {
+    const double tan_lean = std::tan(kMaxLeanDeg * std::numbers::pi / 180.0);
+    for (std::size_t o = 0; o < static_cast<std::size_t>(nw); ++o) {
+        const Vec3 up = ref[o] - r0[o];
+        const double h = up.norm();
+        if (!(h > 0.0)) continue;
+        const Vec3 n = up / h;
+        const Vec3 d = r1[o] - ref[o];
+        const double along = d.dot(n);
+        const Vec3 side = d - along * n;
+        const double most = tan_lean * std::max(h + along, 0.0), now = side.norm();
+        if (now > most) r1[o] = ref[o] + along * n + (most / now) * side;
+    }
+}
+
 /// Step 2 of a layer: point-Jacobi sweeps of the Poisson system over the middle level \p r1
 /// (each node's update reads only the previous iterate, so the result does not depend on the
 /// thread count), level 2 regenerated from it before every sweep (Eq. 12). At least
 /// LayerParams::sweeps sweeps, more (up to max_sweeps) while the largest update exceeds
 /// tolerance × δ_k; each update held within kMaxSmoothingMove layer heights of \p r1 as it came
-/// in (the extruded level). Returns the sweeps done.
+/// in (the extruded level), and the result's columns leaning at most kMaxLeanDeg (limit_lean).
+/// Returns the sweeps done.
 int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, double dk1, std::vector<Vec3>& r1) {
     const LayerParams& p = mc.params;
     const double theta = p.control_functions ? -2.0 * (dk1 - dk) / (dk + dk1) : 0.0;
@@ -822,8 +851,12 @@ int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, doub
             max_move = std::max(max_move, (next[o] - r1[o]).norm());
         }
         std::swap(r1, next);
-        if (sweep + 1 >= p.sweeps && max_move <= p.tolerance * dk) return sweep + 1;
+        if (sweep + 1 >= p.sweeps && max_move <= p.tolerance * dk) {
+            ++sweep;
+            break;
+        }
     }
+    if (sweep > 0) limit_lean(nw, r0, ref, r1);
     return sweep;
 }
 

@@ -393,28 +393,6 @@ TEST(Columns, AStoppedColumnOnQuadsSplitsItsQuadsAndKeepsHexahedraElsewhere) {
     EXPECT_NEAR(area, 1.0, 1e-12);
 }
 
-/// A torus of tube radius \p r round a circle of radius \p big, \p around × \p along
-/// squares, each split into two triangles (locally a thin rod meshed isotropically).
-SurfaceMesh thin_torus(double big, double r, int around, int along) {
-    SurfaceMesh m;
-    m.patches.push_back({"rod", PatchKind::Wall});
-    for (int j = 0; j < along; ++j)
-        for (int i = 0; i < around; ++i) {
-            const double u = 2.0 * std::numbers::pi * j / along, v = 2.0 * std::numbers::pi * i / around;
-            const double rad = big + r * std::cos(v);
-            m.points.emplace_back(rad * std::cos(u), rad * std::sin(u), r * std::sin(v));
-        }
-    auto at = [&](int i, int j) { return static_cast<Index>((j % along) * around + (i % around)); };
-    for (int j = 0; j < along; ++j)
-        for (int i = 0; i < around; ++i) {
-            // Counter-clockwise seen from outside the tube.
-            const std::array<Index, 3> a{at(i, j), at(i, j + 1), at(i + 1, j + 1)}, b{at(i, j), at(i + 1, j + 1), at(i + 1, j)};
-            m.add_face(a.data(), 3, 0);
-            m.add_face(b.data(), 3, 0);
-        }
-    return m;
-}
-
 TEST(Columns, ColumnsRoundAThinRodKeepEveryLayerWhereTheFrontStretchesItsFaces) {
     // Layers to eleven times the rod's radius: the front's faces, square on the wall, come out
     // about six times as long round the rod as along it (twelve with plain extrusion), their
@@ -422,7 +400,7 @@ TEST(Columns, ColumnsRoundAThinRodKeepEveryLayerWhereTheFrontStretchesItsFaces) 
     // every column keeps every layer (judged against the wall's bar alone, they stopped), and
     // every cell is valid.
     const double r = 0.01;
-    const SurfaceMesh wall = thin_torus(0.25, r, 12, 300);  // 0.0052 round, 0.0052 along
+    const SurfaceMesh wall = test::thin_torus(0.25, r, 12, 300);  // 0.0052 round, 0.0052 along
     LayerParams p;
     p.distribution.layers = 12;
     p.distribution.growth = 1.2;

@@ -4,6 +4,7 @@
 #include <strata/core/error.h>
 #include <strata/core/validate.h>
 #include <strata/geometry/check.h>
+#include <strata/geometry/normals.h>
 #include <strata/module/layers.h>
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <utility>
 
 namespace strata {
@@ -137,6 +139,33 @@ TEST(Layers, NeedleTrianglesNeverGiveANonFiniteCoordinate) {
                 EXPECT_NE(msg.find(part), std::string::npos) << part << " not in: " << msg;
         }
     }
+}
+
+TEST(Layers, ColumnsLeanAtMostThirtyDegreesOffTheNormalOfTheFrontTheyGrowFrom) {
+    // A flat tube (a thin wing with round edges, 0.02 by 0.005, meshed square round its edges)
+    // under layers to five times its chord: the front's faces stretch round the edges and the
+    // smoothing pulls the columns there towards the edges' tips. Each segment stays within 30°
+    // of the max-min normal of the level it grows from (the marching's own normals, a little
+    // slack for the normal of the whole level against the marcher's).
+    const SurfaceMesh wall = test::thin_torus(0.25, 0.01, 24, 400, 0.25);
+    LayerParams p = geometric(16, 0.1 * 0.2 / (std::pow(1.2, 16) - 1.0), 1.2);
+    p.proximity = ProximityMode::Off;
+    p.min_quality = 0.0;  // every column every layer: the lean is what is measured
+    const LayerMesh lm = extrude_layers(wall, p);
+    ASSERT_EQ(lm.layers(), 16);
+    const Index nw = lm.wall_nodes();
+    double worst = 0.0;
+    SurfaceMesh level = wall;
+    for (int k = 0; k < lm.layers(); ++k) {
+        for (Index i = 0; i < nw; ++i) level.points[i] = lm.mesh.points[static_cast<std::size_t>(lm.level_node(k, i))];
+        const std::vector<Vec3> n = node_normals(level, NormalMethod::MaxMinDot);
+        for (Index i = 0; i < nw; ++i) {
+            const Vec3 seg = lm.mesh.points[static_cast<std::size_t>(lm.level_node(k + 1, i))] - level.points[i];
+            worst = std::max(worst, std::acos(std::clamp(seg.normalized().dot(n[i]), -1.0, 1.0)) * 180.0 / std::numbers::pi);
+        }
+    }
+    EXPECT_LT(worst, 30.0 + 1e-6);
+    EXPECT_GT(worst, 20.0);  // the limit is what holds them
 }
 
 TEST(Layers, ANegativeThreadCountIsRefusedByName) {
