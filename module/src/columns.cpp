@@ -186,16 +186,15 @@ namespace {
 constexpr double kFrontShare = 0.25;
 
 /// The best a cell over column face \p f can be in layer \p k: what its wall face allows
-/// (Columns::best), or less where the front has grown over it (its face at the columns' tops
+/// (\p wall), or less where the front has grown over it (its face at the columns' tops
 /// larger than on the wall) into a worse shape: a front round a leading edge or a thin rod
 /// spreads its faces round the edge only, so faces the wall meshed square come out long and
 /// thin however straight the columns (twelve times as long round a rod of radius r at 11 r);
 /// those are the geometry's, as a needle wall face is, and the cells are judged relative to the
 /// right cell on them, down to kFrontShare of the wall's. Where the front shrinks (a concave
 /// region) the wall's bar holds.
-double front_quality(const Columns& col, Index f, int k) {
+double front_quality(const Columns& col, Index f, int k, double wall) {
     const auto u = static_cast<std::size_t>(f);
-    const double wall = u < col.best.size() ? col.best[u] : face_corner_quality(col, f);
     if (k == 0) return wall;
     const int n = col.faces.size[u];
     std::array<Vec3, 4> fb, wb;
@@ -572,7 +571,7 @@ void close_steps(Columns& col, const StopRules& rules, int k, const std::vector<
             std::array<Vec3, 8> p{};
             // As for whole cells, relative to the best a cell on the face can be.
             const bool fair = closing_cell(col.faces.nodes[u], n, m.data(), lo, hi, type, p) &&
-                              usable(type, false, p, front_quality(col, f, k), rules, k == 0);
+                              usable(type, false, p, front_quality(col, f, k, face_corner_quality(col, f)), rules, k == 0);
             // A cell thinner than one of its faces is warped can have every corner positive and
             // its centre on the wrong side of that face, which checkMesh fails ("incorrectly
             // oriented faces"): a step's side-on prism in the first layer over a quad that Gmsh
@@ -720,7 +719,7 @@ Index stop_columns(Columns& col, const StopRules& rules, int k, const std::vecto
             // face that allows a fair cell keeps its cells at half of min_quality (cell_bar).
             std::array<Vec3, 8> p;  // the cell's corners, bottom then top, in the face's order
             const double q = finite ? column_cell_jacobian(col, f, next, &p) : std::nan("");
-            const double best_here = front_quality(col, f, k);
+            const double best_here = front_quality(col, f, k, col.best[u]);
             poor[u] = q >= cell_bar(rules.min_quality, best_here) ? 0 : 1;
             if (!poor[u]) {
                 std::array<Vec3, 4> bottom, top;
