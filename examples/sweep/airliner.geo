@@ -1,6 +1,8 @@
 SetFactory("OpenCASCADE");
 // An airliner-like model, 10 long (written for Strata's sweep, 2026-11-27): a fuselage of a
-// cylinder, a stretched-sphere nose and an upswept tail cone ending on a small flat face; a
+// cylinder, a stretched-sphere nose and an upswept tail cone ending on a small flat face (lofted
+// between sections across the fuselage's axis, so that it meets the cylinder all round its
+// edge: a cone along its own tilted axis left a groove 4 mm deep on the cylinder's end); a
 // swept wing with dihedral lofted through three NACA 00xx sections (sharp trailing edges);
 // annular nacelles on pylons under the wings; a horizontal tail and a fin. Fused (--fuse).
 
@@ -8,7 +10,14 @@ SetFactory("OpenCASCADE");
 Cylinder(1) = {1.5, 0, 0, 5.5, 0, 0, 0.5};
 Sphere(2) = {1.5, 0, 0, 0.5};
 Dilate {{1.5, 0, 0}, {3, 1, 1}} { Volume{2}; }
-Cone(3) = {7, 0, 0, 3, 0, 0.25, 0.5, 0.08};
+t1 = newc; Circle(t1) = {0, 0, 0, 0.5};
+t2 = newc; Circle(t2) = {0, 0, 0, 0.08};
+Rotate {{0, 1, 0}, {0, 0, 0}, Pi / 2} { Curve{t1, t2}; }
+Translate {7, 0, 0} { Curve{t1}; }
+Translate {10, 0, 0.25} { Curve{t2}; }
+t3 = newll; Curve Loop(t3) = {t1};
+t4 = newll; Curve Loop(t4) = {t2};
+ThruSections(3) = {t3, t4};
 
 // Wing, mirrored.
 vertical = 0;
