@@ -528,28 +528,31 @@ struct Rounds {
     bool has_outer = false;                   ///< the input closes the fluid itself (closed_domain)
     Index farfield_patch = kNone;             ///< the generated farfield's patch of the region, if any
     double asked = 0.0;                       ///< the thickness asked: the sum of the layer heights
-    LayerParams layers;                       ///< the settings, front_slope as this round spreads the bounds
-    LayerConstraints constraints;             ///< the thickness bounds and the nodes without a fan
+    LayerParams layers;                       ///< the settings
+    LayerConstraints constraints;             ///< the thickness bounds, their slopes and the nodes without a fan
     std::vector<double> limit_before;         ///< the thickness bounds of the round before
-    int repeats = 0;                          ///< rounds that lowered a column lowered before
+    std::vector<int> repeats;                 ///< per input node, the rounds that lowered it again
     std::vector<Index> uncapped;              ///< input nodes whose fan's face on the layer top took no pyramid
     std::set<Index> unusable, skewed;         ///< input nodes whose fan extrude_layers dropped (LayerMesh)
     std::set<std::vector<Index>> uncappable;  ///< the input nodes of quads that took no pyramid
 
-    /// The front rounds' bounds spread along the wall at front_slope (ProximityParams, \p given),
-    /// halved from the second round on that lowers a column lowered before, and from round
-    /// kFrontRounds / 2 on at the proximity limits' slope (never above what was asked): a
-    /// lowering stays local unless the front keeps meeting itself there (ALGORITHM.md, "Proximity").
+    /// The front rounds' bounds spread along the wall from each column lowered at front_slope
+    /// (ProximityParams, \p given), halved for a column from the second round on that lowers it
+    /// again, and from round kFrontRounds / 2 on at the proximity limits' slope for the columns
+    /// that round lowers (never above what was asked): a lowering stays local unless the front
+    /// keeps meeting itself there, and only there does it spread wider (ALGORITHM.md, "Proximity").
     void spread(int round, const ProximityParams& given) {
         const std::vector<double>& limit = constraints.node_thickness_limit;
-        bool again = false;
-        for (std::size_t i = 0; i < limit.size() && !again; ++i)
-            again = limit[i] < limit_before[i] && std::isfinite(limit_before[i]);
-        ProximityParams& now = layers.proximity_limits;
-        if (again && ++repeats > 1) now.front_slope *= 0.5;
+        std::vector<double>& slope = constraints.node_front_slope;
+        if (slope.size() != limit.size()) slope.assign(limit.size(), given.front_slope);
+        repeats.resize(limit.size(), 0);
         const double lowest = std::min(given.front_slope, given.slope);  // extrude_layers refuses 0
-        if (round >= kFrontRounds / 2) now.front_slope = 0.0;
-        now.front_slope = std::max(now.front_slope, lowest);
+        for (std::size_t i = 0; i < limit.size(); ++i) {
+            if (!(limit[i] < limit_before[i])) continue;
+            if (std::isfinite(limit_before[i]) && ++repeats[i] > 1) slope[i] *= 0.5;
+            if (round >= kFrontRounds / 2) slope[i] = 0.0;
+            slope[i] = std::max(slope[i], lowest);
+        }
         limit_before = limit;
     }
 

@@ -481,12 +481,48 @@ void levels_differ_by_one(const SurfaceMesh& wall, std::vector<int>& levels, std
         }
 }
 
+/// The front rounds' bounds \p extra (per wall node) spread along the wall, each from its node
+/// at that node's slope (LayerConstraints::node_front_slope, else ProximityParams::front_slope):
+/// one envelope per slope, the lowest holding.
+std::vector<double> front_limits(const Wall& w, const ProximityParams& given, const LayerConstraints& constraints,
+                                 const std::vector<double>& extra) {
+    const std::size_t nw = extra.size();
+    const std::vector<double>& by_input = constraints.node_front_slope;
+    if (!by_input.empty() && by_input.size() != constraints.node_thickness_limit.size())
+        throw InputError("LayerConstraints::node_front_slope has " + std::to_string(by_input.size()) +
+                         " values for " + std::to_string(constraints.node_thickness_limit.size()) + " nodes");
+    std::vector<double> slope(nw, given.front_slope);
+    if (!by_input.empty())
+        for (std::size_t i = 0; i < nw; ++i) slope[i] = by_input[static_cast<std::size_t>(w.input_node[i])];
+    std::vector<double> slopes;
+    for (std::size_t i = 0; i < nw; ++i) {
+        if (!(slope[i] > 0.0 && std::isfinite(slope[i])))
+            throw InputError("LayerConstraints::node_front_slope = " + format_number(slope[i]) +
+                             ": need a thickness per unit of wall distance above 0");
+        if (std::isfinite(extra[i])) slopes.push_back(slope[i]);
+    }
+    std::sort(slopes.begin(), slopes.end());
+    slopes.erase(std::unique(slopes.begin(), slopes.end()), slopes.end());
+    std::vector<double> limit(nw, std::numeric_limits<double>::infinity());
+    for (const double s : slopes) {
+        ProximityParams front = given;
+        front.slope = s;
+        std::vector<double> from(nw, std::numeric_limits<double>::infinity());
+        for (std::size_t i = 0; i < nw; ++i)
+            if (slope[i] == s) from[i] = extra[i];
+        const std::vector<double> by_front = thickness_limits(w.mesh, std::vector<ProximityHit>(nw), front, from);
+        for (std::size_t i = 0; i < nw; ++i) limit[i] = std::min(limit[i], by_front[i]);
+    }
+    return limit;
+}
+
 /// Per node, the share of the layer heights that fits the proximity limit (1: the full
 /// \p thickness fits), or in Stop mode 1 and (\p max_levels) the layers that fit it, with why.
 /// Directions: the level-0 marching directions.
 std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, const Marcher& mc,
-                                    const std::vector<double>& by_input, const std::vector<double>& delta,
+                                    const LayerConstraints& constraints, const std::vector<double>& delta,
                                     std::vector<Shortfall>& reason, std::vector<int>& max_levels) {
+    const std::vector<double>& by_input = constraints.node_thickness_limit;
     const auto nw = static_cast<std::size_t>(w.mesh.num_points());
     const int layers = mc.params.distribution.layers;
     double thickness = 0.0;
@@ -509,9 +545,7 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
     const std::vector<double> by_proximity = thickness_limits(w.mesh, hits, mc.params.proximity_limits);
     std::vector<double> limit = by_proximity;
     if (!extra.empty()) {
-        ProximityParams front = mc.params.proximity_limits;
-        front.slope = front.front_slope;
-        const std::vector<double> by_front = thickness_limits(w.mesh, std::vector<ProximityHit>(nw), front, extra);
+        const std::vector<double> by_front = front_limits(w, mc.params.proximity_limits, constraints, extra);
         for (std::size_t i = 0; i < nw; ++i) limit[i] = std::min(limit[i], by_front[i]);
     }
     auto fitting = [&](double l) {  // the layers whose heights add up to l at most
@@ -694,7 +728,7 @@ Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const FanWall& f
         mc.control_functions();
     }
     mc.height_scale =
-        proximity_scale(surface, w, mc, constraints.node_thickness_limit, delta, scale_reason, max_levels);
+        proximity_scale(surface, w, mc, constraints, delta, scale_reason, max_levels);
     return mc;
 }
 

@@ -376,6 +376,33 @@ TEST(Columns, AFrontLimitSpreadsAtTheFrontSlopeAndAProximityLimitAtItsOwn) {
     EXPECT_GE(lm.node_layers(centre + 2), 7);
 }
 
+TEST(Columns, EachFrontLimitSpreadsAtItsOwnNodesSlope) {
+    // Two nodes limited to 0.025 as a front round sets, four spacings apart: the one given a
+    // slope of 0.25 (a column lowered again) lowers its ring to 4 or 5 layers, the one at the
+    // settings' 1 lowers only itself.
+    const SurfaceMesh wall = plate(true);
+    const Index a = 5 * 11 + 3, b = 5 * 11 + 7;
+    LayerParams p = eight_layers();
+    p.proximity_limits.front_slope = 1.0;
+    LayerConstraints c = limited_centre(wall);
+    c.node_thickness_limit[5 * 11 + 5] = std::numeric_limits<double>::infinity();
+    c.node_thickness_limit[a] = c.node_thickness_limit[b] = 0.025;
+    c.node_front_slope.assign(wall.points.size(), 1.0);
+    c.node_front_slope[a] = 0.25;
+    const LayerMesh lm = extrude_layers(wall, p, c);
+    EXPECT_EQ(lm.node_layers(a), 2);
+    EXPECT_EQ(lm.node_layers(b), 2);
+    for (const Index ring : {a - 1, a - 11, a + 11}) {
+        EXPECT_GE(lm.node_layers(ring), 4) << ring;
+        EXPECT_LE(lm.node_layers(ring), 5) << ring;
+    }
+    for (const Index ring : {b + 1, b - 11, b + 11}) EXPECT_EQ(lm.node_layers(ring), 8) << ring;
+    c.node_front_slope[a] = 0.0;
+    EXPECT_THROW(extrude_layers(wall, p, c), InputError);
+    c.node_front_slope.pop_back();
+    EXPECT_THROW(extrude_layers(wall, p, c), InputError);
+}
+
 TEST(Columns, AStoppedColumnOnQuadsSplitsItsQuadsAndKeepsHexahedraElsewhere) {
     const SurfaceMesh wall = plate(false);
     const LayerMesh lm = extrude_layers(wall, eight_layers(), limited_centre(wall));

@@ -110,6 +110,11 @@ struct LayerConstraints {
     /// limit but at ProximityParams::front_slope, and applied by scaling whatever the proximity
     /// mode. build_hybrid_mesh lowers it where the layer front intersects itself.
     std::vector<double> node_thickness_limit;
+    /// Empty, or one per node of the surface given to extrude_layers: the slope (thickness per
+    /// unit of wall distance, above 0) at which that node's node_thickness_limit spreads along
+    /// the wall, in place of ProximityParams::front_slope. build_hybrid_mesh lowers it where its
+    /// rounds lower the same columns again, and there only.
+    std::vector<double> node_front_slope;
     /// Empty, or one per node of the surface given to extrude_layers: 1 where no fan may be
     /// (build_hybrid_mesh marks the nodes of a fan whose face on the layer top no pyramid can cap).
     std::vector<char> no_fan_nodes;

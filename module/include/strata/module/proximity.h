@@ -40,10 +40,11 @@ struct ProximityParams {
     /// The same for the extra limits thickness_limits is given (build_hybrid_mesh's front
     /// rounds: columns lowered where the layer top met itself), so how far such a lowering
     /// spreads; the two envelopes are taken apart and the lower holds. build_hybrid_mesh
-    /// halves it (down to \p slope, or to itself if smaller) when its rounds keep lowering the
-    /// same columns, and goes down to that from its fifth round on: a lowering stays local
-    /// unless the front keeps meeting itself there. At 0.25 from the first round the fused
-    /// wing-fuselage kept 36 % of its wall nodes with every layer, at 1 it keeps 63 %.
+    /// halves it for the columns its rounds keep lowering (down to \p slope, or to itself if
+    /// smaller; LayerConstraints::node_front_slope), and goes down to that for the columns its
+    /// fifth round on lowers: a lowering stays local unless the front keeps meeting itself there.
+    /// At 0.25 from the first round the fused wing-fuselage kept 36 % of its wall nodes with
+    /// every layer, at 1 it keeps 63 %.
     double front_slope = 1.0;
     /// Hits less square than this (ProximityHit::facing, the cosine of the angle between the ray
     /// and the face's normal) do not limit: two walls meeting at a concave corner of 60° or more
