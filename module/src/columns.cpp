@@ -181,8 +181,8 @@ namespace {
 
 /// The least share of what its wall face allows that a front grown over it may lower a cell's
 /// bar to (front_quality): round a cone's tip the front's faces stretch a hundredfold, and judged
-/// against them alone the cells beside the stopped tip grew until the layer top crossed itself
-/// (the rocket's nose: 265 columns lowered by the front rounds, 26 at a quarter).
+/// against them alone the cells beside the stopped tip grow on until the layer top crosses
+/// itself (ALGORITHM.md, "The bar over a grown front").
 constexpr double kFrontShare = 0.25;
 
 /// The best a cell over column face \p f can be in layer \p k: what its wall face allows
