@@ -203,12 +203,12 @@ double front_quality(const Columns& col, Index f, int k, double wall) {
         fb[static_cast<std::size_t>(c)] = col.top[static_cast<std::size_t>(v)];
         wb[static_cast<std::size_t>(c)] = col.at_level(v, 0);
     }
-    auto area = [&](const std::array<Vec3, 4>& x) {
+    auto area2 = [&](const std::array<Vec3, 4>& x) {  // twice the vector area, squared
         Vec3 a = Vec3::Zero();
         for (int c = 1; c + 1 < n; ++c) a += (x[c] - x[0]).cross(x[c + 1] - x[0]);
-        return a.norm();
+        return a.squaredNorm();
     };
-    return area(fb) > area(wb) ? std::min(wall, std::max(corner_sines(fb, n), kFrontShare * wall)) : wall;
+    return area2(fb) > area2(wb) ? std::min(wall, std::max(corner_sines(fb, n), kFrontShare * wall)) : wall;
 }
 
 }  // namespace

@@ -829,9 +829,9 @@ constexpr double kMaxSmoothingMove = 10.0;
 /// (limit_lean).
 constexpr double kMaxLeanDeg = 30.0;
 
-/// Each of the \p nw wall nodes of the smoothed level \p r1 moved back towards its extruded position \p ref (\p r0
-/// plus its layer height along its normal) until its column leans at most kMaxLeanDeg off that
-/// normal; its progress along the normal is kept. Where the layers grow taller than the front's
+/// Each of the \p nw wall nodes of the smoothed level \p r1 moved back towards its extruded
+/// position \p ref (\p r0 plus its layer height along its normal) until its column leans at most
+/// kMaxLeanDeg off that normal; its progress along the normal is kept. Where the layers grow taller than the front's
 /// spacing the Poisson terms within the layer outweigh the marching one by (height / spacing)²,
 /// and once the front's faces have stretched one way (round a leading edge) Knupp's logical
 /// space mixes their two directions: the smoothing then pulls a leading edge's columns round
