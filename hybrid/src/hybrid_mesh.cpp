@@ -300,7 +300,7 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
     return mesh;
 }
 
-/// Rounds of lowering colliding columns before giving up (each halves their thickness).
+/// Rounds of lowering colliding columns before giving up (lower_marked_columns).
 constexpr int kFrontRounds = 8;
 
 /// The error when the boundary TetGen is to fill against still crosses itself after every
@@ -410,15 +410,24 @@ double column_length(const LayerMesh& lm, Index w) {
     return (lm.mesh.points[lm.top_node(w)] - lm.mesh.points[lm.level_node(0, w)]).norm();
 }
 
-/// The \p marked columns bounded in \p repair to half what they reached. Returns how many of them
-/// had grown at all (the others' bound becomes 0, which changes nothing).
-Index halve_marked_columns(const std::vector<char>& marked, const LayerMesh& lm, Repair& repair) {
+/// The \p marked columns bounded in \p repair: to the layers below their top layer the first
+/// time (the heights asked, times the column's height_scale), to half that the times after, so
+/// that a collision takes off what closing it needs where one layer does and goes deeper only
+/// where the front meets itself again (ALGORITHM.md, "Proximity"). \p reach: the thickness of
+/// the first k layers asked, k = 0, ..., layers; \p limit: per input node, its bound so far
+/// (infinite: none). Returns how many of them had grown at all (the others' bound becomes 0,
+/// which changes nothing).
+Index lower_marked_columns(const std::vector<char>& marked, const LayerMesh& lm, const std::vector<double>& reach,
+                           const std::vector<double>& limit, Repair& repair) {
     Index grew = 0;
     for (Index w = 0; w < lm.wall_nodes(); ++w) {
         if (!marked[static_cast<std::size_t>(w)]) continue;
-        const double reached = column_length(lm, w);
-        repair.bounds.emplace_back(lm.input_node[static_cast<std::size_t>(w)], 0.5 * reached);
-        if (reached > 0.0) ++grew;
+        const Index v = lm.input_node[static_cast<std::size_t>(w)];
+        const auto n = static_cast<std::size_t>(lm.node_layers(w));
+        const double scale = lm.height_scale.empty() ? 1.0 : lm.height_scale[static_cast<std::size_t>(w)];
+        const bool first = !std::isfinite(limit[static_cast<std::size_t>(v)]);
+        repair.bounds.emplace_back(v, first && n > 0 ? scale * reach[n - 1] : 0.5 * scale * reach[n]);
+        if (n > 0) ++grew;
     }
     return grew;
 }
@@ -484,9 +493,10 @@ Outcome<PyramidLayer> cap_with_pyramids(const LayerMesh& lm, const SurfaceMesh& 
 }
 
 /// Nothing if the boundary TetGen is to fill against does not cross itself; else the columns
-/// under the layer-top faces of the crossing pairs halved.
+/// under the layer-top faces of the crossing pairs lowered (lower_marked_columns).
 std::optional<Repair> front_repair(const SurfaceMesh& region, Index top_patch, const LayerMesh& lm,
-                                   const PyramidLayer& pyr, int threads) {
+                                   const PyramidLayer& pyr, const std::vector<double>& reach,
+                                   const std::vector<double>& limit, int threads) {
     const std::vector<FacePair> pairs = self_intersections(region, 0, threads);
     if (pairs.empty()) return std::nullopt;
     Repair repair(Repair::Stage::Front, front_intersects_message(region, pairs));
@@ -494,16 +504,17 @@ std::optional<Repair> front_repair(const SurfaceMesh& region, Index top_patch, c
     for (const FacePair& p : pairs)
         for (const Index f : {p.a, p.b})
             if (region.face_patch[f] == top_patch) mark_columns(region, f, lm.wall_nodes(), pyr, marked);
-    halve_marked_columns(marked, lm, repair);
+    lower_marked_columns(marked, lm, reach, limit, repair);
     return repair;
 }
 
 /// The tetrahedra filling \p region. Where TetGen stops on one of its internal checks recovering
 /// a face of the layer top (a configuration of the front it cannot handle, though no face crosses
-/// another), the columns under every layer-top face touching that face's nodes halved, so that
+/// another), the columns under every layer-top face touching that face's nodes lowered, so that
 /// the front there changes shape; an error where none of them grew (a face of the outer boundary
 /// or of walls with no layers: nothing there can change).
 Outcome<TetFill> fill_region(const SurfaceMesh& region, Index top_patch, const LayerMesh& lm, const PyramidLayer& pyr,
+                             const std::vector<double>& reach, const std::vector<double>& limit,
                              const TetFillParams& params, Progress* progress) {
     auto out = local_failure_as_value([&] { return fill_with_tets(region, points_in_layers(lm), params, progress); });
     const auto* stuck = std::get_if<LocalFailure>(&out);
@@ -517,7 +528,7 @@ Outcome<TetFill> fill_region(const SurfaceMesh& region, Index top_patch, const L
         if (touches) mark_columns(region, f, lm.wall_nodes(), pyr, marked);
     }
     Repair repair(Repair::Stage::Tets, stuck->why);
-    if (halve_marked_columns(marked, lm, repair) == 0)
+    if (lower_marked_columns(marked, lm, reach, limit, repair) == 0)
         throw LocalTopologyError(stuck->why, stuck->nodes, stuck->reached);
     return repair;
 }
@@ -528,6 +539,7 @@ struct Rounds {
     bool has_outer = false;                   ///< the input closes the fluid itself (closed_domain)
     Index farfield_patch = kNone;             ///< the generated farfield's patch of the region, if any
     double asked = 0.0;                       ///< the thickness asked: the sum of the layer heights
+    std::vector<double> reach;                ///< the thickness of the first k layers asked, k = 0, ..., layers
     LayerParams layers;                       ///< the settings
     LayerConstraints constraints;             ///< the thickness bounds, their slopes and the nodes without a fan
     std::vector<double> limit_before;         ///< the thickness bounds of the round before
@@ -610,14 +622,15 @@ Outcome<Stages> attempt(const HybridParams& params, Rounds& rounds, HybridReport
     t0 = clock::now();
     s.outer = outer_part(rounds.surface, s.lm, rounds.has_outer, params.farfield, params.tets.growth);
     s.region = region_to_fill(rounds.surface.patches, s.pyr, s.outer, rounds.farfield_patch, s.top_patch);
-    std::optional<Repair> crossing = front_repair(s.region, s.top_patch, s.lm, s.pyr, params.threads);
+    const std::vector<double>& limit = rounds.constraints.node_thickness_limit;
+    std::optional<Repair> crossing = front_repair(s.region, s.top_patch, s.lm, s.pyr, rounds.reach, limit, params.threads);
     rep.seconds_tets += seconds_since(t0);
     if (crossing) return std::move(*crossing);
     t0 = clock::now();
     strata::report(progress, "tetrahedra", 0.0);
     TetFillParams tet_params = params.tets;
     tet_params.background_mesh = params.tets.background_mesh && s.outer.remeshed.empty();  // see TetFillParams
-    Outcome<TetFill> fill = fill_region(s.region, s.top_patch, s.lm, s.pyr, tet_params, progress);
+    Outcome<TetFill> fill = fill_region(s.region, s.top_patch, s.lm, s.pyr, rounds.reach, limit, tet_params, progress);
     if (auto* repair = std::get_if<Repair>(&fill)) {
         rep.seconds_tets += seconds_since(t0);
         return std::move(*repair);
@@ -643,7 +656,10 @@ Rounds first_round(SurfaceMesh surface, bool has_outer, const HybridParams& para
     rounds.constraints.node_thickness_limit.assign(surface.points.size(), std::numeric_limits<double>::infinity());
     rounds.limit_before = rounds.constraints.node_thickness_limit;
     const std::vector<double> heights = layer_heights(params.layers.distribution);
-    for (int k = 0; k < params.layers.distribution.layers; ++k) rounds.asked += heights[static_cast<std::size_t>(k)];
+    rounds.reach.push_back(0.0);
+    for (int k = 0; k < params.layers.distribution.layers; ++k)
+        rounds.reach.push_back(rounds.reach.back() + heights[static_cast<std::size_t>(k)]);
+    rounds.asked = rounds.reach.back();
     if (!has_outer)
         check_layers_fit_farfield(surface, params.farfield, rounds.asked, params.layers.proximity_limits.other_patch);
     rounds.surface = std::move(surface);

@@ -284,6 +284,27 @@ TEST(HybridMesh, LayersInANarrowGapAreThinnedUntilTheFrontIsClear) {
     EXPECT_GT(off.front_lowered_nodes, 0);
 }
 
+TEST(HybridMesh, AColumnWhoseFrontMeetsAnotherLosesItsTopLayerFirstAndHalfOnlyWhenItMeetsAgain) {
+    // Two unit spheres, 10 layers of 0.02 on each, proximity off: only the front rounds act, and
+    // their bounds scale the heights (mode off). A gap of 0.38: the fronts overlap by less than a
+    // layer, taking the colliding columns' top layer off (0.9 of the thickness) clears them in
+    // one round (halving them left 0.5). A gap of 0.3: one layer is not enough, and the columns
+    // that meet again are halved.
+    HybridParams p;
+    p.layers.distribution.layers = 10;
+    p.layers.distribution.first_height = 0.02;
+    p.layers.distribution.growth = 1.0;
+    p.layers.proximity = ProximityMode::Off;
+    HybridReport r;
+    EXPECT_TRUE(validate_mesh(build_hybrid_mesh(two_unit_spheres(2.38), p, nullptr, &r)).ok());
+    EXPECT_EQ(r.front_rounds, 1);
+    ASSERT_EQ(r.coverage.patches.size(), 2u);
+    for (const PatchCoverage& c : r.coverage.patches) EXPECT_GT(c.min_share, 0.85);
+    EXPECT_TRUE(validate_mesh(build_hybrid_mesh(two_unit_spheres(2.3), p, nullptr, &r)).ok());
+    EXPECT_GE(r.front_rounds, 2);
+    for (const PatchCoverage& c : r.coverage.patches) EXPECT_LT(c.min_share, 0.5);
+}
+
 TEST(HybridMesh, OverlappingBodiesAreRefusedBeforeTheLayers) {
     HybridParams p;
     p.layers.distribution.layers = 2;
