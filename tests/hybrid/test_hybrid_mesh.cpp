@@ -243,16 +243,22 @@ SurfaceMesh two_unit_spheres(double dx) {
                         icosphere(Vec3(dx, 0, 0), 1.0, 3, {"b", PatchKind::Wall}));
 }
 
+/// Ten layers of 0.02 (0.2 in all, as two_unit_spheres' gaps are measured against) in \p mode.
+HybridParams ten_layers_of_0_02(ProximityMode mode) {
+    HybridParams p;
+    p.layers.distribution.layers = 10;
+    p.layers.distribution.first_height = 0.02;
+    p.layers.distribution.growth = 1.0;
+    p.layers.proximity = mode;
+    return p;
+}
+
 TEST(HybridMesh, LayersInANarrowGapAreThinnedUntilTheFrontIsClear) {
     // Two unit spheres 0.1 apart, 0.2 of layers asked on each: the proximity limit thins the
     // columns facing each other across the gap, the front check lowers the ones beside it
     // that still collide, and the mesh is valid; away from the gap the layers are whole.
     const SurfaceMesh s = two_unit_spheres(2.1);
-    HybridParams p;
-    p.layers.distribution.layers = 10;
-    p.layers.distribution.first_height = 0.02;
-    p.layers.distribution.growth = 1.0;
-    p.layers.proximity = ProximityMode::Scale;
+    HybridParams p = ten_layers_of_0_02(ProximityMode::Scale);
     HybridReport r;
     const VolumeMesh m = build_hybrid_mesh(s, p, nullptr, &r);
     EXPECT_TRUE(validate_mesh(m).ok());
@@ -290,11 +296,7 @@ TEST(HybridMesh, AColumnWhoseFrontMeetsAnotherLosesItsTopLayerFirstAndHalfOnlyWh
     // layer, taking the colliding columns' top layer off (0.9 of the thickness) clears them in
     // one round (halving them left 0.5). A gap of 0.3: one layer is not enough, and the columns
     // that meet again are halved.
-    HybridParams p;
-    p.layers.distribution.layers = 10;
-    p.layers.distribution.first_height = 0.02;
-    p.layers.distribution.growth = 1.0;
-    p.layers.proximity = ProximityMode::Off;
+    const HybridParams p = ten_layers_of_0_02(ProximityMode::Off);
     HybridReport r;
     EXPECT_TRUE(validate_mesh(build_hybrid_mesh(two_unit_spheres(2.38), p, nullptr, &r)).ok());
     EXPECT_EQ(r.front_rounds, 1);
