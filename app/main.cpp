@@ -430,7 +430,8 @@ void print_wall_sizing(const strata::ReportNode& w) {
     if (w.number("thin_size") > 0.0)
         std::printf(
             "size: the default size %s left a part thinner than it with its two sides meshed through the same "
-            "nodes (edges of four faces); meshed at %s instead (--size sets it)\n",
+            "nodes (edges of four faces) or faces crossing where parts meet closer than it; meshed at %s instead "
+            "(--size sets it)\n",
             strata::format_number(w.number("default_size"), 3).c_str(),
             strata::format_number(w.number("thin_size"), 3).c_str());
     if (w.integer("surfaces") > 0 || w.integer("curves") > 0)

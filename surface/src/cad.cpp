@@ -4,6 +4,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
+#include <strata/geometry/intersections.h>
 #include <strata/geometry/topology.h>
 #include <strata/io/cad_content.h>
 #include <strata/io/cad_units.h>
@@ -916,21 +917,30 @@ void set_elements(const std::string& path, const CadParams& params, const std::m
     }
 }
 
+/// Where the default size is too coarse for the model: the edges where a thin part's two sides
+/// were meshed through the same nodes (shared_chords), then the pairs of faces that cross where
+/// two parts meet closer than the size (the airliner's nacelle and pylon at the default 0.78,
+/// halved once for its chords, crossed at 0.39); compared in that order.
+std::pair<Index, Index> coarse_defects(const SurfaceMesh& mesh) {
+    return {shared_chords(mesh), static_cast<Index>(self_intersections(mesh).size())};
+}
+
 /// A part thinner than the default size can get its two sides meshed through the same nodes (a
-/// blade's tip, one chord across): halve the size, up to three times, while that leaves fewer
-/// such edges. Where it does not (a model whose surfaces meet three to an edge, which no size
-/// mends), the size and mesh before stay: no finer mesh for nothing. \p generate meshes the
-/// model once; the sizes used go into \p r.
-SurfaceMesh mend_shared_chords(const std::string& path, const std::vector<int>& surfaces, const CadSizes& sizes,
-                               const SurfaceGenerator& generate_surfaces, const std::function<void()>& generate,
-                               SurfaceMesh mesh, std::vector<int>& face_surface, WallSizeReport& r) {
-    Index chords = shared_chords(mesh);
-    for (int round = 0; round < 3 && chords > 0; ++round) {
+/// blade's tip, one chord across), and two parts closer than it faces that cross: halve the
+/// size, up to three times, while that leaves fewer such defects (coarse_defects, chords first). Where it
+/// does not (a model whose surfaces meet three to an edge, which no size mends), the size and
+/// mesh before stay: no finer mesh for nothing. \p generate meshes the model once; the sizes
+/// used go into \p r.
+SurfaceMesh mend_default_size(const std::string& path, const std::vector<int>& surfaces, const CadSizes& sizes,
+                              const SurfaceGenerator& generate_surfaces, const std::function<void()>& generate,
+                              SurfaceMesh mesh, std::vector<int>& face_surface, WallSizeReport& r) {
+    std::pair<Index, Index> defects = coarse_defects(mesh);
+    for (int round = 0; round < 3 && defects != std::pair<Index, Index>{0, 0}; ++round) {
         const double before = get_number("Mesh.MeshSizeMax"), smaller = before / 2.0;
         const std::string finer_context = path + ": Gmsh failed to mesh the surfaces again finer (maximum size " +
                                           format_number(smaller) +
-                                          ") where the default size left a thin part's two sides on one chord; "
-                                          "give a smaller size";
+                                          ") where the default size left a thin part's two sides on one chord or "
+                                          "faces crossing; give a smaller size";
         auto remesh_at = [&](double at) {
             set_number("Mesh.MeshSizeMax", at);
             if (sizes.curvature && sizes.default_size_min) set_number("Mesh.MeshSizeMin", at / 20.0);
@@ -942,13 +952,13 @@ SurfaceMesh mend_shared_chords(const std::string& path, const std::vector<int>& 
             return extract(path, surfaces, face_surface);
         };
         SurfaceMesh finer = remesh_at(smaller);
-        const Index left = shared_chords(finer);
-        if (left >= chords) {
+        const std::pair<Index, Index> left = coarse_defects(finer);
+        if (left >= defects) {
             mesh = remesh_at(before);  // the Gmsh model back to the mesh kept
             break;
         }
         mesh = std::move(finer);
-        chords = left;
+        defects = left;
         r.thin_size = smaller;
         r.default_size = sizes.size;
     }
@@ -1019,8 +1029,8 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     SurfaceMesh mesh = extract(path, surfaces, face_surface);
     WallSizeReport wall_report;
     if (sizes.default_size)
-        mesh = mend_shared_chords(path, surfaces, sizes, generate_surfaces, generate, std::move(mesh), face_surface,
-                                  wall_report);
+        mesh = mend_default_size(path, surfaces, sizes, generate_surfaces, generate, std::move(mesh), face_surface,
+                                 wall_report);
     if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0)
         mesh = limit_wall_aspect(path, params, surfaces, points, std::move(mesh), face_surface, wall_report,
                                  generate_surfaces);

@@ -4,6 +4,7 @@
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/core/solver_checks.h>
+#include <strata/geometry/intersections.h>
 #include <strata/geometry/topology.h>
 #include <strata/io/gmsh_session.h>
 #include <strata/surface/cad.h>
@@ -380,6 +381,19 @@ TEST(MeshCad, ExtensionCaseAndBrpAreAccepted) {
     const SurfaceMesh b = mesh_cad(example_data("bl3d_4_box_notch_concave_corner.brep"), {});
     EXPECT_EQ(a.num_faces(), b.num_faces());
     EXPECT_EQ(a.num_points(), b.num_points());
+}
+
+TEST(MeshCad, PartsCloserThanTheDefaultSizeAreMeshedFinerUntilNoFacesCross) {
+    // The sweep's airliner: the default size (0.777) left its thin parts' sides on one chord,
+    // and at half of it (0.388) the faces of a nacelle and its pylon crossed, which the layers
+    // refuse ("the surface intersects itself"). Unasked, the size is halved again (0.194).
+    const std::string path = example_data("../sweep/airliner.geo");
+    CadParams p;
+    p.fuse = true;
+    WallSizeReport walls;
+    const SurfaceMesh m = mesh_cad(path, p, nullptr, &walls);
+    EXPECT_TRUE(self_intersections(m).empty());
+    EXPECT_NEAR(walls.thin_size, walls.default_size / 4.0, 1e-12);
 }
 
 TEST(MeshCad, AThinPartUnderTheDefaultSizeIsMeshedFiner) {

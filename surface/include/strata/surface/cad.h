@@ -191,7 +191,8 @@ struct WallSizeReport {
     /// Where the default size (none asked: CadParams::size 0, no size in a .geo script) left a
     /// part thinner than it (a propeller blade's tip, a thin fin) with its two sides meshed
     /// through the same nodes, one chord across (edges of four faces: not a surface layers can
-    /// stand on), the surfaces were meshed again at half the size, up to three times: the size
+    /// stand on), or faces crossing where two parts meet closer than it (a nacelle on its
+    /// pylon), the surfaces were meshed again at half the size, up to three times: the size
     /// used (0: the default served), and the default.
     double thin_size = 0.0;
     double default_size = 0.0;
