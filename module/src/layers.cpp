@@ -831,12 +831,12 @@ constexpr double kMaxLeanDeg = 30.0;
 
 /// Each of the \p nw wall nodes of the smoothed level \p r1 moved back towards its extruded
 /// position \p ref (\p r0 plus its layer height along its normal) until its column leans at most
-/// kMaxLeanDeg off that normal; its progress along the normal is kept. Where the layers grow taller than the front's
-/// spacing the Poisson terms within the layer outweigh the marching one by (height / spacing)²,
-/// and once the front's faces have stretched one way (round a leading edge) Knupp's logical
-/// space mixes their two directions: the smoothing then pulls a leading edge's columns round
-/// towards its tip layer after layer, where plain normals stay put, and their cells shear until
-/// the columns stop (ALGORITHM.md, "How far a column may lean").
+/// kMaxLeanDeg off that normal; its progress along the normal is kept. Where the layers grow
+/// taller than the front's spacing the Poisson terms within the layer outweigh the marching one
+/// by (height / spacing)², and once the front's faces have stretched one way (round a leading
+/// edge) Knupp's logical space mixes their two directions: the smoothing then pulls a leading
+/// edge's columns round towards its tip layer after layer, where plain normals stay put, and
+/// their cells shear until the columns stop (ALGORITHM.md, "How far a column may lean").
 void limit_lean(Index nw, const std::vector<Vec3>& r0, const std::vector<Vec3>& ref, std::vector<Vec3>& r1) {
     const double tan_lean = std::tan(kMaxLeanDeg * std::numbers::pi / 180.0);
     for (std::size_t o = 0; o < static_cast<std::size_t>(nw); ++o) {

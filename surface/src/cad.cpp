@@ -919,18 +919,17 @@ void set_elements(const std::string& path, const CadParams& params, const std::m
 
 /// Where the default size is too coarse for the model: the edges where a thin part's two sides
 /// were meshed through the same nodes (shared_chords), then the pairs of faces that cross where
-/// two parts meet closer than the size (the airliner's nacelle and pylon at the default 0.78,
-/// halved once for its chords, crossed at 0.39); compared in that order.
+/// two parts meet closer than the size (a nacelle on its pylon); compared in that order.
 std::pair<Index, Index> coarse_defects(const SurfaceMesh& mesh) {
     return {shared_chords(mesh), static_cast<Index>(self_intersections(mesh).size())};
 }
 
 /// A part thinner than the default size can get its two sides meshed through the same nodes (a
 /// blade's tip, one chord across), and two parts closer than it faces that cross: halve the
-/// size, up to three times, while that leaves fewer such defects (coarse_defects, chords first). Where it
-/// does not (a model whose surfaces meet three to an edge, which no size mends), the size and
-/// mesh before stay: no finer mesh for nothing. \p generate meshes the model once; the sizes
-/// used go into \p r.
+/// size, up to three times, while that leaves fewer such defects (coarse_defects, chords
+/// first). Where it does not (a model whose surfaces meet three to an edge, which no size
+/// mends), the size and mesh before stay: no finer mesh for nothing. \p generate meshes the
+/// model once; the sizes used go into \p r.
 SurfaceMesh mend_default_size(const std::string& path, const std::vector<int>& surfaces, const CadSizes& sizes,
                               const SurfaceGenerator& generate_surfaces, const std::function<void()>& generate,
                               SurfaceMesh mesh, std::vector<int>& face_surface, WallSizeReport& r) {
