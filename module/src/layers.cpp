@@ -234,6 +234,13 @@ struct Marcher {
     /// Per node, the share of every layer height it marches (below 1 where the proximity
     /// limit leaves less room than the layers ask; LayerParams::proximity).
     std::vector<double> height_scale;
+    /// Per node, the tallest a layer of its column may be (infinity: none; height_cap): finite
+    /// where a front round's bound leaves less room than the layers ask, so that the column
+    /// keeps its first height and every layer, its layers growing as asked up to the cap. Such
+    /// a column marches as if it had none (CappedPaths).
+    std::vector<double> cap;
+
+    bool capped(std::size_t i) const { return cap[i] != std::numeric_limits<double>::infinity(); }
     /// Per node, empty or a fixed marching direction (the columns of a fan, fans.h); zero: none.
     std::vector<Vec3> fixed;
     /// Per face, empty or 1 for a face of a fan (zero area on the wall; its cells are built to shape).
@@ -516,12 +523,33 @@ std::vector<double> front_limits(const Wall& w, const ProximityParams& given, co
     return limit;
 }
 
+/// The tallest a layer may be for the first \p n of \p delta, each as asked up to that height
+/// (the first height and the growth kept where the layers are thinner), to add up to \p limit:
+/// infinity where they fit as asked, 0 where even \p n layers as thin as the thinnest do not.
+double height_cap(const std::vector<double>& delta, int n, double limit) {
+    const auto end = delta.begin() + n;
+    auto sum = [&](double h) {
+        return std::accumulate(delta.begin(), end, 0.0, [h](double s, double d) { return s + std::min(d, h); });
+    };
+    if (n <= 0 || sum(std::numeric_limits<double>::infinity()) <= limit) return std::numeric_limits<double>::infinity();
+    double lo = *std::min_element(delta.begin(), end), hi = *std::max_element(delta.begin(), end);
+    if (sum(lo) > limit) return 0.0;
+    for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (sum(mid) > limit ? hi : lo) = mid;
+    }
+    return lo;
+}
+
 /// Per node, the share of the layer heights that fits the proximity limit (1: the full
 /// \p thickness fits), or in Stop mode 1 and (\p max_levels) the layers that fit it, with why.
-/// Directions: the level-0 marching directions.
+/// In Stop mode a front round's bound below the proximity limit keeps the column's layers and
+/// first height, its layers no taller than a cap (\p cap, height_cap), and takes layers off
+/// only where even layers as thin as the first do not fit. Directions: the level-0 marching directions.
 std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, const Marcher& mc,
                                     const LayerConstraints& constraints, const std::vector<double>& delta,
-                                    std::vector<Shortfall>& reason, std::vector<int>& max_levels) {
+                                    std::vector<Shortfall>& reason, std::vector<int>& max_levels,
+                                    std::vector<double>& cap) {
     const std::vector<double>& by_input = constraints.node_thickness_limit;
     const auto nw = static_cast<std::size_t>(w.mesh.num_points());
     const int layers = mc.params.distribution.layers;
@@ -530,6 +558,7 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
     std::vector<double> scale(nw, 1.0);
     reason.assign(nw, Shortfall::None);
     max_levels.assign(nw, layers);
+    cap.assign(nw, std::numeric_limits<double>::infinity());
     if ((mc.params.proximity == ProximityMode::Off && by_input.empty()) || !(thickness > 0.0)) return scale;
     if (!by_input.empty() && by_input.size() != surface.points.size())
         throw InputError("LayerConstraints::node_thickness_limit has " + std::to_string(by_input.size()) +
@@ -574,8 +603,19 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
         for (std::size_t i = 0; i < nw; ++i) {
             if (reason[i] == Shortfall::None && max_levels[i] < layers) reason[i] = Shortfall::Proximity;
             if (!extra.empty() && limit[i] < by_proximity[i]) {
+                // As thick as the layers that fit the bound would be: a bound a little below
+                // the thickness asked (the envelope round a lowered column) takes off what a
+                // layer does, so the front moves away from where it met itself.
                 const int n = fitting(limit[i]);
-                if (n < max_levels[i]) max_levels[i] = n, reason[i] = Shortfall::Front;
+                const double fit = std::accumulate(delta.begin(), delta.begin() + n, 0.0);
+                if (n < max_levels[i]) cap[i] = height_cap(delta, max_levels[i], fit);
+                if (cap[i] == 0.0) {
+                    cap[i] = std::numeric_limits<double>::infinity();
+                    max_levels[i] = n, reason[i] = Shortfall::Front;
+                } else if (max_levels[i] == layers && mc.capped(i)) {
+                    reason[i] = Shortfall::Front;
+                    continue;
+                }
             }
             if (max_levels[i] == layers) reason[i] = Shortfall::None;
         }
@@ -702,12 +742,26 @@ FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, const st
     return fans;
 }
 
+/// Per node of \p mc, the share of the \p thickness asked (the sum of the first layers of
+/// \p delta) its layers are asked to reach, capped and scaled.
+std::vector<double> thickness_shares(const Marcher& mc, const std::vector<double>& delta, double thickness) {
+    std::vector<double> share = mc.height_scale;
+    const int layers = mc.params.distribution.layers;
+    for (std::size_t i = 0; i < share.size(); ++i) {
+        if (!mc.capped(i)) continue;
+        double sum = 0.0;
+        for (int k = 0; k < layers; ++k) sum += std::min(delta[static_cast<std::size_t>(k)], mc.cap[i]);
+        share[i] *= sum / thickness;
+    }
+    return share;
+}
+
 /// \p plan_only: the directions and the proximity levels only (proximity_plan), no stencils
 /// or control functions.
 Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const FanWall& fans, const LayerParams& params,
                      const LayerConstraints& constraints, const std::vector<double>& delta,
                      std::vector<Shortfall>& scale_reason, std::vector<int>& max_levels, bool plan_only = false) {
-    Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}, {}, {}};
+    Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
     if (!fans.empty()) mc.fixed = fans.direction, mc.fan_face = fans.fan_face;
     {
         const std::vector<Vec3> n = node_normals(w.mesh, w.mesh.points, mc.vf, params.normals, mc.threads);
@@ -727,8 +781,7 @@ Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const FanWall& f
             if (mc.fixed[i] != Vec3::Zero()) mc.st.valid[i] = 0;
         mc.control_functions();
     }
-    mc.height_scale =
-        proximity_scale(surface, w, mc, constraints, delta, scale_reason, max_levels);
+    mc.height_scale = proximity_scale(surface, w, mc, constraints, delta, scale_reason, max_levels, mc.cap);
     return mc;
 }
 
@@ -1053,6 +1106,54 @@ void check_layer_params(const LayerParams& params) {
                          ": need an angle in [0, 180] degrees (0: no fans)");
 }
 
+/// The columns whose layers are capped (Marcher::cap) march as if they were not, so that the
+/// front and the smoothing round them are what they would be had each stopped where its capped
+/// layers end (a front round's bound is what that many layers add up to); their nodes are
+/// placed along that path, level k where the heights of the capped layers below it add up to,
+/// at the same place on the path as the asked heights put it.
+class CappedPaths {
+public:
+    CappedPaths(const Marcher& mc, const std::vector<double>& delta) {
+        const int layers = mc.params.distribution.layers;
+        reach_.push_back(0.0);
+        for (int k = 0; k < layers; ++k) reach_.push_back(reach_.back() + delta[static_cast<std::size_t>(k)]);
+        for (std::size_t i = 0; i < mc.cap.size(); ++i) {
+            if (!mc.capped(i)) continue;
+            nodes_.push_back(static_cast<Index>(i));
+            path_.push_back({mc.wall.points[i]});
+            std::vector<double> at{0.0};
+            for (int k = 0; k < layers; ++k)
+                at.push_back(at.back() + std::min(delta[static_cast<std::size_t>(k)], mc.cap[i]));
+            at_.push_back(std::move(at));
+        }
+    }
+
+    /// Level \p k + 1 as marched (\p r1), with the capped columns' nodes where they are placed.
+    const std::vector<Vec3>& place(int k, const std::vector<Vec3>& r1) {
+        if (nodes_.empty()) return r1;
+        placed_ = r1;
+        for (std::size_t c = 0; c < nodes_.size(); ++c) {
+            const auto i = static_cast<std::size_t>(nodes_[c]);
+            std::vector<Vec3>& path = path_[c];
+            path.push_back(r1[i]);
+            const double s = at_[c][static_cast<std::size_t>(k) + 1];
+            std::size_t j = 0;
+            while (j + 2 < path.size() && reach_[j + 1] <= s) ++j;
+            const double t = std::clamp((s - reach_[j]) / (reach_[j + 1] - reach_[j]), 0.0, 1.0);
+            placed_[i] = path[j] + t * (path[j + 1] - path[j]);
+        }
+        return placed_;
+    }
+
+private:
+    std::vector<double> reach_;               ///< the sums of the heights asked, k = 0, ..., layers
+    std::vector<Index> nodes_;                ///< the capped wall nodes
+    std::vector<std::vector<Vec3>> path_;     ///< per capped node, its positions as marched, level by level
+    std::vector<std::vector<double>> at_;     ///< per capped node, the sums of its capped heights
+    std::vector<Vec3> placed_;
+};
+
+
 /// Steps 1 to 4 of every layer over the columns \p col (extrude_layers): each level's moving
 /// nodes appended to \p out's points, its stats, and the nodes held back. Where a fan's first
 /// cells would be unusable, the layers marched again without it instead.
@@ -1067,6 +1168,7 @@ std::optional<LayerMesh> march_levels(const SurfaceMesh& surface, const Wall& w,
     std::vector<Vec3> r0 = w.mesh.points, r1(r0.size());
     std::vector<char> held(static_cast<std::size_t>(nw));
     out.stats.assign(static_cast<std::size_t>(layers), LayerStats{});
+    CappedPaths capped(mc, delta);
     for (int k = 0; k < layers; ++k) {
         const double dk = delta[static_cast<std::size_t>(k)], dk1 = delta[static_cast<std::size_t>(k) + 1];
         LayerStats& stats = out.stats[static_cast<std::size_t>(k)];
@@ -1084,7 +1186,8 @@ std::optional<LayerMesh> march_levels(const SurfaceMesh& surface, const Wall& w,
             if (holds) hold_back_folds(mc, r0, dk, r1, held);
             check_folds(w, params, k, col, r1);
         }
-        stats.stopped_nodes = stop_columns(col, rules, k, r1);
+        const std::vector<Vec3>& placed = capped.place(k, r1);
+        stats.stopped_nodes = stop_columns(col, rules, k, placed);
         if (k == 0 && std::find(col.pinned.begin(), col.pinned.end(), 2) != col.pinned.end()) {
             // A fan whose first cells would be unusable (a needle face beside it, a gap
             // narrower than the first layer): no fan at those wall nodes, and march again.
@@ -1099,7 +1202,7 @@ std::optional<LayerMesh> march_levels(const SurfaceMesh& surface, const Wall& w,
         for (Index i = 0; i < nw; ++i) {
             const auto u = static_cast<std::size_t>(i);
             if (col.levels[u] != k + 1) continue;
-            out.mesh.points.push_back(r1[u]);
+            out.mesh.points.push_back(placed[u]);
             if (held[u]) out.held_back[u] = 1, ++stats.held_nodes;
         }
         if (rules.quality && holds) {
@@ -1208,12 +1311,12 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     for (Index i = 0; i < nw; ++i) out.unsmoothed_nodes += mc.st.valid[i] ? 0 : 1;
     out.asked_thickness = thickness;
     out.held_back.assign(static_cast<std::size_t>(nw), 0);
-    out.height_scale = mc.height_scale;
+    out.height_scale = thickness_shares(mc, delta, thickness);
     for (Index i = 0; i < nw; ++i) {
         const auto u = static_cast<std::size_t>(i);
         if (col.max_levels[u] < layers) col.limit[u] = scale_reason[u];  // Stop mode: the levels say it
         if (col.max_levels[u] < layers) scale_reason[u] = Shortfall::None;
-        const double share = mc.height_scale[u];
+        const double share = out.height_scale[u];
         if (share < 1.0) ++out.thinned_nodes;
         out.min_thickness_share = std::min(out.min_thickness_share, share);
     }

@@ -298,6 +298,49 @@ TEST(Columns, AStoppedColumnOnTrianglesIsClosedByPyramidsAndItsNeighboursFollowT
     EXPECT_GT(r.patches[0].short_nodes(Shortfall::Front), 0);
 }
 
+TEST(Columns, AFrontLimitKeepsTheFirstHeightAndEveryLayerItsTallestLayersCapped) {
+    // Eight layers from 0.01 at growth 1.2 (0.165 in all) with the centre bounded to 0.1, as a
+    // front round bounds a column whose top met the front: the column keeps its eight layers, its
+    // first height and its growth up to a cap (0.01, 0.012, then six of about 0.0129), and is as
+    // thick as the six layers that fit the bound (0.0993); bounded below eight layers of 0.01
+    // (0.08), it loses layers instead.
+    const SurfaceMesh wall = plate(true);
+    LayerParams p = eight_layers();
+    p.distribution.growth = 1.2;
+    LayerConstraints c = limited_centre(wall);
+    const Index centre = 5 * 11 + 5;
+    c.node_thickness_limit[static_cast<std::size_t>(centre)] = 0.1;
+    const LayerMesh lm = extrude_layers(wall, p, c);
+    const ValidationReport v = validate_mesh(lm.mesh);
+    ASSERT_TRUE(v.ok()) << v.problems.front();
+    ASSERT_EQ(lm.node_layers(centre), 8);
+    auto height = [&](Index i, int k) {
+        return (lm.mesh.points[lm.level_node(k + 1, i)] - lm.mesh.points[lm.level_node(k, i)]).norm();
+    };
+    EXPECT_NEAR(height(centre, 0), 0.01, 1e-4);
+    double length = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        length += height(centre, k);
+        if (k > 0) EXPECT_GE(height(centre, k), height(centre, k - 1) * (1.0 - 1e-3)) << k;
+    }
+    double six = 0.0;
+    for (int k = 0; k < 6; ++k) six += 0.01 * std::pow(1.2, k);
+    EXPECT_NEAR(length, six, 0.003);
+    EXPECT_NEAR(height(centre, 1), 0.012, 2e-4);
+    EXPECT_NEAR(height(centre, 7), height(centre, 2), 2e-4);  // capped
+    EXPECT_NEAR(lm.height_scale[static_cast<std::size_t>(centre)], six / 0.165, 0.003);
+    // The report: every node has every layer, the centre and its ring short of thickness for the front.
+    const LayerReport r = layer_report(lm);
+    EXPECT_EQ(r.patches[0].all_layers, r.patches[0].nodes);
+    EXPECT_GT(r.patches[0].short_nodes(Shortfall::Front), 0);
+    EXPECT_LT(r.patches[0].full_nodes, r.patches[0].nodes);
+
+    c.node_thickness_limit[static_cast<std::size_t>(centre)] = 0.05;
+    const LayerMesh fewer = extrude_layers(wall, p, c);
+    EXPECT_EQ(fewer.node_layers(centre), 3);  // 0.01 + 0.012 + 0.0144, and a fourth of 0.01728 would pass 0.05
+    EXPECT_EQ(fewer.stop_reason[static_cast<std::size_t>(centre)], Shortfall::Front);
+}
+
 TEST(Columns, AStepMayDropFiveTimesItsWallDistanceBeforeItsNeighboursStop) {
     // Layers of 0.1 on the plate of spacing 0.1, the centre limited to one: the step round it
     // drops a wall spacing per layer. Its cells are judged against what a right step of that

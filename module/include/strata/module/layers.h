@@ -107,8 +107,10 @@ struct LayerParams {
 struct LayerConstraints {
     /// Empty, or one per node of the surface given to extrude_layers: a further bound on the
     /// node's total thickness (infinity: none), smoothed along the wall like the proximity
-    /// limit but at ProximityParams::front_slope, and applied by scaling whatever the proximity
-    /// mode. build_hybrid_mesh lowers it where the layer front intersects itself.
+    /// limit but at ProximityParams::front_slope. In Stop mode the column keeps its first
+    /// height and its layers, their heights growing less from layer to layer to fit (down to
+    /// equal heights; below that it loses layers); in Scale mode its heights are scaled.
+    /// build_hybrid_mesh lowers it where the layer front intersects itself.
     std::vector<double> node_thickness_limit;
     /// Empty, or one per node of the surface given to extrude_layers: the slope (thickness per
     /// unit of wall distance, above 0) at which that node's node_thickness_limit spreads along
@@ -173,7 +175,7 @@ public:
     std::vector<Index> input_node;        ///< wall node → node of the input surface
     Index top_patch = kNone;              ///< the patch of mesh.boundary ("layer_top") holding the outermost level
     double asked_thickness = 0.0;         ///< the sum of the layer heights
-    std::vector<double> height_scale;     ///< per wall node, the share of the layer heights it marched
+    std::vector<double> height_scale;     ///< per wall node, the share of the thickness asked its layers were asked
     std::vector<Shortfall> scale_reason;  ///< per wall node, why that share is below 1 (Proximity or Front)
     std::vector<Shortfall> stop_reason;   ///< per wall node, why its column stopped below layers() (None: it did not)
     std::vector<char> held_back;          ///< per wall node, 1 if some layer held it back (hold_back)
