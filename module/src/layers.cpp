@@ -563,6 +563,10 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
     if (!by_input.empty() && by_input.size() != surface.points.size())
         throw InputError("LayerConstraints::node_thickness_limit has " + std::to_string(by_input.size()) +
                          " values for a surface of " + std::to_string(surface.points.size()) + " nodes");
+    if (!constraints.node_stop_limit.empty() && (constraints.node_stop_limit.size() != surface.points.size() ||
+                                                 constraints.node_stop_reason.size() != surface.points.size()))
+        throw InputError("LayerConstraints::node_stop_limit and node_stop_reason need one value per node of a "
+                         "surface of " + std::to_string(surface.points.size()) + " nodes");
     std::vector<ProximityHit> hits(nw);
     if (mc.params.proximity != ProximityMode::Off)
         hits = cast_proximity_rays(surface, w.input_node, w.mesh.points, mc.normals(w.mesh.points), mc.threads);
@@ -600,20 +604,35 @@ std::vector<double> proximity_scale(const SurfaceMesh& surface, const Wall& w, c
         // fell to 1 % of the thickness after one round).
         std::vector<Shortfall> prox_reason(nw, Shortfall::Proximity);
         levels_differ_by_one(w.mesh, max_levels, prox_reason);
+        // Where columns stopped in an earlier march (capped_at_stops), their bounds spread like
+        // a front round's, and the columns they lower follow for their neighbours.
+        std::vector<double> own_stop, by_stop;
+        if (!constraints.node_stop_limit.empty()) {
+            for (std::size_t i = 0; i < nw; ++i)
+                own_stop.push_back(constraints.node_stop_limit[static_cast<std::size_t>(w.input_node[i])]);
+            by_stop = front_limits(w, mc.params.proximity_limits, constraints, own_stop);
+        }
         for (std::size_t i = 0; i < nw; ++i) {
             if (reason[i] == Shortfall::None && max_levels[i] < layers) reason[i] = Shortfall::Proximity;
-            if (!extra.empty() && limit[i] < by_proximity[i]) {
+            double bound = limit[i] < by_proximity[i] ? limit[i] : std::numeric_limits<double>::infinity();
+            Shortfall why = Shortfall::Front;
+            if (!by_stop.empty() && by_stop[i] < bound) {
+                bound = by_stop[i];
+                why = by_stop[i] < own_stop[i] ? Shortfall::Neighbours
+                                               : constraints.node_stop_reason[static_cast<std::size_t>(w.input_node[i])];
+            }
+            if (bound < by_proximity[i]) {
                 // As thick as the layers that fit the bound would be: a bound a little below
                 // the thickness asked (the envelope round a lowered column) takes off what a
                 // layer does, so the front moves away from where it met itself.
-                const int n = fitting(limit[i]);
+                const int n = fitting(bound);
                 const double fit = std::accumulate(delta.begin(), delta.begin() + n, 0.0);
                 if (n < max_levels[i]) cap[i] = height_cap(delta, max_levels[i], fit);
                 if (cap[i] == 0.0) {
                     cap[i] = std::numeric_limits<double>::infinity();
-                    max_levels[i] = n, reason[i] = Shortfall::Front;
+                    max_levels[i] = n, reason[i] = why;
                 } else if (max_levels[i] == layers && mc.capped(i)) {
-                    reason[i] = Shortfall::Front;
+                    reason[i] = why;
                     continue;
                 }
             }
@@ -1222,6 +1241,39 @@ std::optional<LayerMesh> march_levels(const SurfaceMesh& surface, const Wall& w,
     return std::nullopt;
 }
 
+/// The layers marched again with each column that stopped for its own cells or a neighbour's
+/// step (quality, turning, twist, neighbours) bounded to the thickness of the layers it reached
+/// (LayerConstraints::node_stop_limit): marching as before, it keeps every layer up to where it
+/// stopped, its tallest layers capped (CappedPaths), where that many layers fit at least at the
+/// first height (height_cap). Once: empty where the march had such bounds already, where
+/// proximity limits scale or nothing stopped.
+std::optional<LayerMesh> capped_at_stops(const SurfaceMesh& surface, const LayerParams& params,
+                                         const LayerConstraints& constraints, const Wall& w, const Columns& col,
+                                         const std::vector<double>& delta, Progress* progress) {
+    if (params.proximity != ProximityMode::Stop || !constraints.node_stop_limit.empty()) return std::nullopt;
+    const int layers = params.distribution.layers;
+    std::vector<double> reach{0.0};
+    for (int k = 0; k < layers; ++k) reach.push_back(reach.back() + delta[static_cast<std::size_t>(k)]);
+    LayerConstraints again = constraints;
+    again.node_stop_limit.assign(surface.points.size(), std::numeric_limits<double>::infinity());
+    again.node_stop_reason.assign(surface.points.size(), Shortfall::None);
+    bool any = false;
+    for (std::size_t i = 0; i < col.levels.size(); ++i) {
+        const int m = col.levels[i];
+        const Shortfall why = col.reason[i];
+        const bool own = why == Shortfall::Quality || why == Shortfall::Turning || why == Shortfall::Twist ||
+                         why == Shortfall::Neighbours;
+        if (!own || m <= 0 || m >= layers || height_cap(delta, layers, reach[static_cast<std::size_t>(m)]) == 0.0)
+            continue;
+        const auto v = static_cast<std::size_t>(w.input_node[i]);
+        if (reach[static_cast<std::size_t>(m)] < again.node_stop_limit[v])
+            again.node_stop_limit[v] = reach[static_cast<std::size_t>(m)], again.node_stop_reason[v] = why;
+        any = true;
+    }
+    if (!any) return std::nullopt;
+    return extrude_layers(surface, params, again, progress);
+}
+
 }  // namespace
 
 bool LayerConstraints::bar_fan(Index v, std::size_t nodes) {
@@ -1350,6 +1402,8 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     if (auto retry = march_levels(surface, w, mc, constraints, delta, rules, col, out, progress))
         return std::move(*retry);
     if (std::all_of(col.levels.begin(), col.levels.end(), [](int l) { return l == 0; })) throw_no_layers(w, col);
+    if (rules.quality)
+        if (auto again = capped_at_stops(surface, params, constraints, w, col, delta, progress)) return std::move(*again);
     out.set_columns(col.levels, fans.empty() ? std::vector<Index>{} : fans.base);
     out.stop_reason.assign(static_cast<std::size_t>(nw), Shortfall::None);
     for (Index i = 0; i < nw; ++i)

@@ -117,6 +117,14 @@ struct LayerConstraints {
     /// the wall, in place of ProximityParams::front_slope. build_hybrid_mesh lowers it where its
     /// rounds lower the same columns again, and there only.
     std::vector<double> node_front_slope;
+    /// Empty, or one per node of the surface given to extrude_layers: a bound on the node's
+    /// thickness that does not spread along the wall (infinity: none), for the reason in
+    /// node_stop_reason. extrude_layers sets both where a column stopped (its cells' quality,
+    /// turning, twist, a neighbour's step) and marches again, each such column then keeping
+    /// every layer up to where it stopped, its tallest layers capped (ALGORITHM.md, "Capped
+    /// columns").
+    std::vector<double> node_stop_limit;
+    std::vector<Shortfall> node_stop_reason;  ///< per node with a node_stop_limit, why its column stopped
     /// Empty, or one per node of the surface given to extrude_layers: 1 where no fan may be
     /// (build_hybrid_mesh marks the nodes of a fan whose face on the layer top no pyramid can cap).
     std::vector<char> no_fan_nodes;
