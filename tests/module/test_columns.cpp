@@ -341,6 +341,55 @@ TEST(Columns, AFrontLimitKeepsTheFirstHeightAndEveryLayerItsTallestLayersCapped)
     EXPECT_EQ(fewer.stop_reason[static_cast<std::size_t>(centre)], Shortfall::Front);
 }
 
+TEST(Columns, AColumnBoundWhereItStoppedKeepsEveryLayerCappedAndItsReason) {
+    // A stop bound as extrude_layers sets it where a column stopped (the six layers it reached,
+    // 0.0993 of eight from 0.01 at growth 1.2): the centre keeps all eight, ends there and is
+    // short for the reason it stopped; its neighbours follow the envelope, short for it.
+    const SurfaceMesh wall = plate(true);
+    LayerParams p = eight_layers();
+    p.distribution.growth = 1.2;
+    LayerConstraints c;
+    const Index centre = 5 * 11 + 5;
+    c.node_stop_limit.assign(wall.points.size(), std::numeric_limits<double>::infinity());
+    c.node_stop_reason.assign(wall.points.size(), Shortfall::None);
+    double six = 0.0;
+    for (int k = 0; k < 6; ++k) six += 0.01 * std::pow(1.2, k);
+    c.node_stop_limit[static_cast<std::size_t>(centre)] = six;
+    c.node_stop_reason[static_cast<std::size_t>(centre)] = Shortfall::Quality;
+    const LayerMesh lm = extrude_layers(wall, p, c);
+    ASSERT_EQ(lm.node_layers(centre), 8);
+    const double length = (lm.mesh.points[lm.top_node(centre)] - lm.mesh.points[lm.level_node(0, centre)]).norm();
+    EXPECT_NEAR(length, six, 1e-3);
+    const LayerReport r = layer_report(lm);
+    EXPECT_EQ(r.patches[0].all_layers, r.patches[0].nodes);
+    EXPECT_EQ(r.patches[0].short_nodes(Shortfall::Quality), 1);
+    EXPECT_GT(r.patches[0].short_nodes(Shortfall::Neighbours), 0);
+    c.node_stop_reason.pop_back();
+    test::expect_error<InputError>([&] { (void)extrude_layers(wall, p, c); }, {"node_stop_reason"});
+}
+
+TEST(Columns, ColumnsThatStopOnABumpAreMarchedAgainWithEveryLayer) {
+    // The plate's centre raised 0.1 into a bump, eight layers from 0.01 at growth 1.3, and
+    // columns allowed to turn 4 degrees a layer: those round the bump, spreading as they rise,
+    // stop for turning some layers up. Marched again with each bounded where it stopped, every
+    // column has all eight layers (a column short for turning with every layer is one capped),
+    // the bump's short of thickness for their turning or their neighbours.
+    SurfaceMesh wall = plate(true);
+    const Index centre = 5 * 11 + 5;
+    wall.points[static_cast<std::size_t>(centre)].z() = 0.1;
+    LayerParams p = eight_layers();
+    p.distribution.first_height = 0.01;
+    p.distribution.growth = 1.3;
+    p.max_turn_deg = 4.0;
+    const LayerMesh lm = extrude_layers(wall, p);
+    const ValidationReport v = validate_mesh(lm.mesh);
+    ASSERT_TRUE(v.ok()) << v.problems.front();
+    const LayerReport r = layer_report(lm);
+    EXPECT_EQ(r.patches[0].all_layers, r.patches[0].nodes);
+    EXPECT_GT(r.patches[0].short_nodes(Shortfall::Turning), 0);
+    EXPECT_LT(r.patches[0].mean_share, 0.99);
+}
+
 TEST(Columns, AStepMayDropFiveTimesItsWallDistanceBeforeItsNeighboursStop) {
     // Layers of 0.1 on the plate of spacing 0.1, the centre limited to one: the step round it
     // drops a wall spacing per layer. Its cells are judged against what a right step of that
