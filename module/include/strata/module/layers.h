@@ -125,6 +125,7 @@ struct LayerConstraints {
     /// columns").
     std::vector<double> node_stop_limit;
     std::vector<Shortfall> node_stop_reason;  ///< per node with a node_stop_limit, why its column stopped
+    int stop_marches = 0;                     ///< the marches extrude_layers has made again for them
     /// Empty, or one per node of the surface given to extrude_layers: 1 where no fan may be
     /// (build_hybrid_mesh marks the nodes of a fan whose face on the layer top no pyramid can cap).
     std::vector<char> no_fan_nodes;
