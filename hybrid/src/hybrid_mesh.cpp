@@ -411,7 +411,8 @@ double column_length(const LayerMesh& lm, Index w) {
 }
 
 /// The \p marked columns bounded in \p repair: to the layers below their top layer the first
-/// time (the heights asked, times the column's height_scale), to half that the times after, so
+/// time (the heights asked, times the share of them the column was asked: height_scale, below
+/// 1 where it is scaled or capped), to half that the times after, so
 /// that a collision takes off what closing it needs where one layer does and goes deeper only
 /// where the front meets itself again (ALGORITHM.md, "Proximity"). \p reach: the thickness of
 /// the first k layers asked, k = 0, ..., layers; \p limit: per input node, its bound so far

@@ -321,7 +321,9 @@ TEST(Columns, AFrontLimitKeepsTheFirstHeightAndEveryLayerItsTallestLayersCapped)
     double length = 0.0;
     for (int k = 0; k < 8; ++k) {
         length += height(centre, k);
-        if (k > 0) EXPECT_GE(height(centre, k), height(centre, k - 1) * (1.0 - 1e-3)) << k;
+        if (k > 0) {
+            EXPECT_GE(height(centre, k), height(centre, k - 1) * (1.0 - 1e-3)) << k;
+        }
     }
     double six = 0.0;
     for (int k = 0; k < 6; ++k) six += 0.01 * std::pow(1.2, k);
@@ -418,8 +420,11 @@ TEST(Columns, AStepMayDropFiveTimesItsWallDistanceBeforeItsNeighboursStop) {
     // Five layers drop at most four spacings: nothing but the centre stops.
     p.distribution.layers = 5;
     const LayerMesh five = extrude_layers(wall, p, c);
-    for (Index i = 0; i < five.wall_nodes(); ++i)
-        if (i != centre) EXPECT_EQ(five.node_layers(i), 5) << i;
+    for (Index i = 0; i < five.wall_nodes(); ++i) {
+        if (i != centre) {
+            EXPECT_EQ(five.node_layers(i), 5) << i;
+        }
+    }
 }
 
 TEST(Columns, AColumnStopsBeforeALayerTallerThanTheFrontIsWideWhereAsked) {

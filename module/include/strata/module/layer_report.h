@@ -18,6 +18,8 @@ namespace strata {
 
 /// Why a column did not reach the thickness asked: it stopped below the layers asked (the
 /// reasons a column stops, LayerParams) or its layers were thinned.
+/// Quality, Turning, Twist and Neighbours: stopped there, or marched again ending where it
+/// stopped with every layer (LayerConstraints::node_stop_limit).
 enum class Shortfall : std::uint8_t {
     None,        ///< nothing limited it (smoothing may leave it a few per cent off)
     Proximity,   ///< fewer or thinner layers to fit the distance to a facing wall or patch
@@ -26,7 +28,7 @@ enum class Shortfall : std::uint8_t {
     Quality,     ///< stopped: a cell it would make falls below LayerParams::min_quality
     Turning,     ///< stopped: its column would turn more than LayerParams::max_turn_deg
     Twist,       ///< stopped: a cell it would make twists more than LayerParams::max_twist_deg
-    Neighbours,  ///< stopped: with its neighbours stopped, the cell closing the step would be unusable
+    Neighbours,  ///< stopped: with its neighbours stopped, the cell closing the step would be unusable; or lowered by a neighbour's bound
     NonFinite,   ///< stopped: its next position could not be computed
     SharpEdge,   ///< stopped at the wall: on a convex edge too sharp for one direction, without a fan
     Isotropic,   ///< stopped: its next layer would be taller than the front is wide there (LayerParams::isotropy)
