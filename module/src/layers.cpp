@@ -526,15 +526,22 @@ std::vector<double> front_limits(const Wall& w, const ProximityParams& given, co
 /// How steeply a bound set where a column stopped (LayerConstraints::node_stop_limit) rises
 /// along the wall: thickness per unit of wall distance. The steps a stop leaves were closed by
 /// cells up to five times as steep (kMaxStepSlope); capped, the columns beside a stop are
-/// prisms whose levels slope with the bound. Measured at 20 layers (ALGORITHM.md, "Capped
-/// columns"): 1 kept every layer on 97.6 % of the airliner with nacelles and 89.4 % of its
-/// thickness, 2 95.7 % and 90.4 %, 3 94.9 % and 90.6 %.
+/// prisms whose levels slope with the bound; a lower slope lowers more of them (the trade-off
+/// measured: ALGORITHM.md, "Capped columns").
 constexpr double kStopSlope = 2.0;
 
 /// How many times extrude_layers marches again with the columns that stopped capped where they
 /// did (capped_at_stops): the columns the second march stops (beside those capped, at the
 /// last layers) are capped by the third.
 constexpr int kStopMarches = 2;
+
+/// The thickness of the first k layers of \p delta, k = 0, ..., \p layers, each no taller than
+/// \p cap (infinity: as asked).
+std::vector<double> capped_reach(const std::vector<double>& delta, int layers, double cap) {
+    std::vector<double> reach{0.0};
+    for (int k = 0; k < layers; ++k) reach.push_back(reach.back() + std::min(delta[static_cast<std::size_t>(k)], cap));
+    return reach;
+}
 
 /// The tallest a layer may be for the first \p n of \p delta, each as asked up to that height
 /// (the first height and the growth kept where the layers are thinner), to add up to \p limit:
@@ -781,12 +788,8 @@ FanWall add_fans(const SurfaceMesh& surface, const LayerParams& params, const st
 std::vector<double> thickness_shares(const Marcher& mc, const std::vector<double>& delta, double thickness) {
     std::vector<double> share = mc.height_scale;
     const int layers = mc.params.distribution.layers;
-    for (std::size_t i = 0; i < share.size(); ++i) {
-        if (!mc.capped(i)) continue;
-        double sum = 0.0;
-        for (int k = 0; k < layers; ++k) sum += std::min(delta[static_cast<std::size_t>(k)], mc.cap[i]);
-        share[i] *= sum / thickness;
-    }
+    for (std::size_t i = 0; i < share.size(); ++i)
+        if (mc.capped(i)) share[i] *= capped_reach(delta, layers, mc.cap[i]).back() / thickness;
     return share;
 }
 
@@ -1149,16 +1152,12 @@ class CappedPaths {
 public:
     CappedPaths(const Marcher& mc, const std::vector<double>& delta) {
         const int layers = mc.params.distribution.layers;
-        reach_.push_back(0.0);
-        for (int k = 0; k < layers; ++k) reach_.push_back(reach_.back() + delta[static_cast<std::size_t>(k)]);
+        reach_ = capped_reach(delta, layers, std::numeric_limits<double>::infinity());
         for (std::size_t i = 0; i < mc.cap.size(); ++i) {
             if (!mc.capped(i)) continue;
             nodes_.push_back(static_cast<Index>(i));
             path_.push_back({mc.wall.points[i]});
-            std::vector<double> at{0.0};
-            for (int k = 0; k < layers; ++k)
-                at.push_back(at.back() + std::min(delta[static_cast<std::size_t>(k)], mc.cap[i]));
-            at_.push_back(std::move(at));
+            at_.push_back(capped_reach(delta, layers, mc.cap[i]));
         }
     }
 
@@ -1267,8 +1266,7 @@ std::optional<LayerMesh> capped_at_stops(const SurfaceMesh& surface, const Layer
                                          const std::vector<double>& delta, Progress* progress) {
     if (params.proximity != ProximityMode::Stop || constraints.stop_marches >= kStopMarches) return std::nullopt;
     const int layers = params.distribution.layers;
-    std::vector<double> reach{0.0};
-    for (int k = 0; k < layers; ++k) reach.push_back(reach.back() + delta[static_cast<std::size_t>(k)]);
+    const std::vector<double> reach = capped_reach(delta, layers, std::numeric_limits<double>::infinity());
     LayerConstraints again = constraints;
     ++again.stop_marches;
     if (again.node_stop_limit.empty()) {
