@@ -427,6 +427,20 @@ void print_sewing(const strata::ReportNode& s) {
 /// What --max-aspect-ratio did to the CAD walls (the surface report's "walls"; nothing to say
 /// when their first layer was fine), and the default size halved for a thin part.
 void print_wall_sizing(const strata::ReportNode& w) {
+    if (const strata::ReportNode& n = w.node("narrow"); n.integer("faces") > 0)
+        std::printf(
+            n.flag("over_budget")
+                ? "warning: %d CAD %s narrower than the size over %s (the narrowest %s wide, surface %d), so their "
+                  "triangles are slivers and the layer cells on them far from orthogonal; meshing them at %s would "
+                  "add about %.3g faces, more than Strata makes unasked: give a smaller --size there, or "
+                  "--narrow-faces 0 to silence this\n"
+                : "size: %d CAD %s narrower than the size over %s (the narrowest %s wide, surface %d) meshed finer "
+                  "along their edges, down to %s, so that their triangles are not slivers (--narrow-faces; about "
+                  "%.3g faces more at most)\n",
+            count(n, "faces"), count(n, "faces") == 1 ? "face" : "faces",
+            strata::format_number(n.number("ratio")).c_str(),
+            strata::format_number(n.number("narrowest"), 3).c_str(), count(n, "narrowest_surface"),
+            strata::format_number(n.number("size"), 3).c_str(), n.number("faces_estimate"));
     if (w.number("thin_size") > 0.0)
         std::printf(
             "size: the default size %s left a part thinner than it with its two sides meshed through the same "

@@ -70,6 +70,9 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
                          "' is already a surface mesh: --size, --size-min, --curvature, --quads and --mixed "
                          "apply to CAD input or with --remesh only, --units to STEP and IGES; remove them "
                          "(--scale scales any input) or add --remesh");
+    if (!any_cad && p.cad.narrow_face_ratio != none.narrow_face_ratio)
+        throw InputError("'" + c.input +
+                         "' is a surface mesh: --narrow-faces sizes the narrow faces of a CAD model; remove it");
     if (!any_cad && p.cad.sew_tolerance != none.sew_tolerance)
         throw InputError("'" + c.input +
                          "' is a surface mesh: --sew-tolerance sews the faces of a CAD model (STEP, IGES, BREP); "
@@ -161,9 +164,8 @@ OptionSpec turned_off(OptionSpec o, std::string keyword_help) {
     return o;
 }
 
-std::vector<OptionSpec> make_table() {
-    std::vector<OptionSpec> t;
-    // How the surface is made (CadParams, RemeshParams, PrepareParams; the switches quads, remesh).
+/// How the surface is made (CadParams, RemeshParams, PrepareParams; the switches quads, remesh).
+void add_surface_options(std::vector<OptionSpec>& t) {
     t.push_back(spec(
         "--size", "size", "CadParams::size", Stage::Surface,
         [](Options& o) -> double& { return o.surface.prepare.cad.size; },
@@ -177,6 +179,11 @@ std::vector<OptionSpec> make_table() {
         "--curvature", "curvature_points", "CadParams::curvature_points", Stage::Surface,
         [](Options& o) -> int& { return o.surface.prepare.cad.curvature_points; },
         "refine by curvature: elements per 2*pi of radius (CAD or --remesh; 0: off)"));
+    t.push_back(spec(
+        "--narrow-faces", "narrow_face_ratio", "CadParams::narrow_face_ratio", Stage::Surface,
+        [](Options& o) -> double& { return o.surface.prepare.cad.narrow_face_ratio; },
+        "CAD faces narrower than the size over this get triangles this many times their width long, not slivers "
+        "(0: off)"));
     t.push_back(spec(
         "", "algorithm", "CadParams::algorithm", Stage::Surface,
         [](Options& o) -> int& { return o.surface.prepare.cad.algorithm; },
@@ -256,8 +263,10 @@ std::vector<OptionSpec> make_table() {
         "(repeatable)"));
     patches.keyword_help = "None, or {patch name: 'wall' | 'symmetry' | 'farfield' | 'other'}";
     t.push_back(std::move(patches));
+}
 
-    // The layers (DistributionParams, LayerParams; enums as text).
+/// The layers' heights (DistributionParams; enums as text) and the walls sized for them.
+void add_distribution_options(std::vector<OptionSpec>& t) {
     t.push_back(no_default(spec(
         "--layers", "layers", "DistributionParams::layers", Stage::Layers,
         [](Options& o) -> int& { return o.layers.params.distribution.layers; }, "number of layers")));
@@ -303,6 +312,10 @@ std::vector<OptionSpec> make_table() {
         "walls are meshed again finer so that the step's layer height is at least Q of the wall spacing there (the "
         "cells closing the step then reach a scaled Jacobian of about Q/2), with at most 3 times the faces; the "
         "finer walls are dropped if the layers would lose thickness on them (0: keep the walls)"));
+}
+
+/// How the layers are marched and where a column stops (LayerParams).
+void add_marching_options(std::vector<OptionSpec>& t) {
     t.push_back(spec(
         "--sweeps", "sweeps", "LayerParams::sweeps", Stage::Layers,
         [](Options& o) -> int& { return o.layers.params.sweeps; }, "Poisson smoothing sweeps per layer"));
@@ -381,8 +394,10 @@ std::vector<OptionSpec> make_table() {
         "--threads", "threads", "LayerParams::threads", Stage::Layers,
         [](Options& o) -> int& { return o.layers.params.threads; },
         "threads (0: all cores); the output is the same for any count"));
+}
 
-    // The rest of the hybrid mesh (FarfieldParams, PyramidParams, TetFillParams).
+/// The rest of the hybrid mesh (FarfieldParams, PyramidParams, TetFillParams).
+void add_mesh_options(std::vector<OptionSpec>& t) {
     t.push_back(spec(
         "--farfield", "farfield", "FarfieldParams::shape", Stage::Mesh,
         [](Options& o) -> std::string& { return o.mesh.farfield; },
@@ -436,6 +451,14 @@ std::vector<OptionSpec> make_table() {
         "", "background_mesh", "TetFillParams::background_mesh", Stage::Mesh,
         [](Options& o) -> bool& { return o.mesh.params.tets.background_mesh; },
         "sample the size field on a background mesh"));
+}
+
+std::vector<OptionSpec> make_table() {
+    std::vector<OptionSpec> t;
+    add_surface_options(t);
+    add_distribution_options(t);
+    add_marching_options(t);
+    add_mesh_options(t);
     return t;
 }
 

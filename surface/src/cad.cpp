@@ -15,6 +15,7 @@
 #include <strata/io/input_file.h>
 #include <strata/surface/prepare.h>
 
+#include "narrow_faces.h"
 #include "wall_size.h"
 
 #include <algorithm>
@@ -109,6 +110,10 @@ void validate(const CadParams& p) {
     if (!(p.sew_tolerance >= 0.0 && p.sew_tolerance <= 1e-3))
         throw InputError("CadParams::sew_tolerance = " + format_number(p.sew_tolerance) +
                          ": give a share of the model's size in [0, 0.001] (0: faces are not sewn)");
+    if (!(p.narrow_face_ratio == 0.0 || p.narrow_face_ratio >= 1.0) || !std::isfinite(p.narrow_face_ratio))
+        throw InputError("CadParams::narrow_face_ratio = " + format_number(p.narrow_face_ratio) +
+                         ": give 0 (off) or a ratio of at least 1 (triangles that many times as long as a narrow face "
+                         "is wide)");
     if (!(p.wall_faces_budget > 0.0))
         throw InputError("CAD meshing: wall_faces_budget must be positive, got " + format_number(p.wall_faces_budget));
     if (p.curvature_points < 0)
@@ -709,7 +714,8 @@ Index shared_chords(const SurfaceMesh& mesh) {
 /// patch each will belong to, each round the whole model meshed again (so the curves the walls
 /// share with the other surfaces stay conforming).
 SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, const std::vector<int>& surfaces,
-                              const PointSizes& points, SurfaceMesh mesh, std::vector<int>& face_surface,
+                              const std::vector<const PointSizes*>& points, SurfaceMesh mesh,
+                              std::vector<int>& face_surface,
                               WallSizeReport& r, const SurfaceGenerator& generate_surfaces) {
     std::set<int> walls;
     for (const auto& [s, name] : surface_patch_names(surfaces))
@@ -730,7 +736,7 @@ SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, 
             const auto generate = [&] {
                 std::optional<SizeCallback> callback;
                 gmsh::model::mesh::clear();
-                callback.emplace(entity_sizes(caps), factor, &points);
+                callback.emplace(entity_sizes(caps), factor, points);
                 gmsh::model::mesh::generate(2);
             };
             generate_surfaces(context, generate);
@@ -1009,14 +1015,23 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     set_elements(path, params, renamed, surfaces, script_set);
     if (script) clear_script_mesh(path);
 
-    // CadParams::size_points, in the model's coordinates as the result's (scaled on import).
-    const PointSizes points(params.size_points, params.size_point_growth);
+    // CadParams::size_points, in the model's coordinates as the result's (scaled on import),
+    // and the narrow faces' (CadParams::narrow_face_ratio).
+    WallSizeReport wall_report;
+    const PointSizes asked(params.size_points, params.size_point_growth);
+    std::vector<SizePoint> narrow_points;
+    gmsh_call(path + ": measuring the CAD faces' widths", [&] {
+        narrow_points =
+            narrow_face_points(surfaces, params, sizes.size, std::max(sizes.size / 8.0, params.size_min), wall_report);
+    });
+    const PointSizes narrow(std::move(narrow_points), kNarrowFaceGrowth);
+    const std::vector<const PointSizes*> points{&asked, &narrow};
     const double size_factor = get_number("Mesh.MeshSizeFactor");
     const std::string context = path + ": Gmsh failed to mesh the surfaces (maximum size " + format_number(sizes.size) +
                                 "); try a smaller size, another algorithm, or repair the CAD";
     const std::function<void()> generate = [&] {
         std::optional<SizeCallback> callback;
-        if (!points.empty()) callback.emplace(EntitySizes{}, size_factor, &points);
+        if (!asked.empty() || !narrow.empty()) callback.emplace(EntitySizes{}, size_factor, points);
         gmsh::model::mesh::generate(2);
     };
     const bool quads = get_number("Mesh.RecombineAll") > 0.0 || params.elements == SurfaceElements::Mixed;
@@ -1026,7 +1041,6 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
 
     std::vector<int> face_surface;
     SurfaceMesh mesh = extract(path, surfaces, face_surface);
-    WallSizeReport wall_report;
     if (sizes.default_size)
         mesh = mend_default_size(path, surfaces, sizes, generate_surfaces, generate, std::move(mesh), face_surface,
                                  wall_report);

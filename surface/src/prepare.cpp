@@ -84,6 +84,15 @@ SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const
             walls->over_budget = walls->over_budget || one.over_budget;
             if (one.thin_size > 0.0 && (walls->thin_size == 0.0 || one.thin_size < walls->thin_size))
                 walls->thin_size = one.thin_size, walls->default_size = one.default_size;
+            walls->narrow_ratio = one.narrow_ratio;
+            if (one.narrow_faces > 0 && (walls->narrow_faces == 0 || one.narrowest < walls->narrowest))
+                walls->narrowest = one.narrowest, walls->narrowest_surface = one.narrowest_surface;
+            if (one.narrow_faces > 0)
+                walls->narrow_size =
+                    walls->narrow_faces == 0 ? one.narrow_size : std::min(walls->narrow_size, one.narrow_size);
+            walls->narrow_faces += one.narrow_faces;
+            walls->narrow_faces_estimate += one.narrow_faces_estimate;
+            walls->narrow_over_budget = walls->narrow_over_budget || one.narrow_over_budget;
         }
         return mesh;
     }

@@ -45,13 +45,15 @@ void EntitySizes::cap_curve(int tag, double size) {
     cap_boundary(1, tag, size);
 }
 
-SizeCallback::SizeCallback(const EntitySizes& sizes, double factor, const PointSizes* points)
-    : size_(sizes.sizes()), points_(points && !points->empty() ? points : nullptr), factor_(factor) {
+SizeCallback::SizeCallback(const EntitySizes& sizes, double factor, const std::vector<const PointSizes*>& points)
+    : size_(sizes.sizes()), factor_(factor) {
+    for (const PointSizes* p : points)
+        if (p && !p->empty()) points_.push_back(p);
     for (auto& [entity, size] : size_) size /= factor;
     gmsh::model::mesh::setSizeCallback([this](int dim, int tag, double x, double y, double z) {
         const auto it = size_.find({dim, tag});
         double size = it == size_.end() ? 1e22 : it->second;
-        if (points_) size = std::min(size, (*points_)(Vec3(x, y, z)) / factor_);
+        for (const PointSizes* p : points_) size = std::min(size, (*p)(Vec3(x, y, z)) / factor_);
         return size;
     });
 }

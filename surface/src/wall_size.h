@@ -39,19 +39,20 @@ private:
 };
 
 /// While alive, Gmsh's size callback gives each entity of \p sizes its size and every point the
-/// size \p points asks there (the smaller of the two; Gmsh takes the smaller of the callback
-/// and its other sizes), every size divided by \p factor (Gmsh multiplies the callback's by
-/// Mesh.MeshSizeFactor). Removed on destruction. \p points (may be null) must outlive it.
+/// smallest size any of \p points asks there (Gmsh takes the smaller of the callback and its
+/// other sizes), every size divided by \p factor (Gmsh multiplies the callback's by
+/// Mesh.MeshSizeFactor). Removed on destruction. \p points (empty ones are skipped) must
+/// outlive it.
 class SizeCallback {
 public:
-    SizeCallback(const EntitySizes& sizes, double factor, const PointSizes* points = nullptr);
+    SizeCallback(const EntitySizes& sizes, double factor, const std::vector<const PointSizes*>& points = {});
     ~SizeCallback();
     SizeCallback(const SizeCallback&) = delete;
     SizeCallback& operator=(const SizeCallback&) = delete;
 
 private:
     std::map<std::pair<int, int>, double> size_;
-    const PointSizes* points_ = nullptr;
+    std::vector<const PointSizes*> points_;
     double factor_ = 1.0;
 };
 

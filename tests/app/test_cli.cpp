@@ -461,6 +461,29 @@ TEST(Cli, WallsAreMeshedFinerWhereTheLayersStepAtAGap) {
     expect_clean_failure(args + "x.msh --step-quality 1", "--step-quality = 1", "step_range");
 }
 
+TEST(Cli, NarrowCadFacesKeepTheLayerCellsOrthogonal) {
+    // The README's M6 job: the STEP closes the sharp trailing edge with two strips 3.47 mm wide,
+    // one row of slivers at size 30, and the prisms on them and the fan cells beside them have
+    // faces nearly parallel to the line between their centres (3,000 above checkMesh's 70°).
+    // Meshed at 4 times their width (--narrow-faces, default 4) few are left, at the tip,
+    // where the CAD's faces are 0.23 mm wide.
+    test::ScratchDir dir("cli_narrow_faces");
+    const std::string args = "layers '" + example_data("onera_m6_sharp_te.stp") +
+                             "' --size 30 --layers 20 --first-height 0.02 --growth 1.2 -o ";
+    const OnAndOff r = mesh_on_and_off(dir, args, "--narrow-faces 0");
+    const auto severe = [](const std::string& out) {
+        const auto at = out.find(" faces above 70");
+        const auto from = out.rfind(", ", at);
+        return at == std::string::npos || from == std::string::npos ? -1 : std::stoi(out.substr(from + 2, at - from - 2));
+    };
+    test::expect_contains(r.on.out, {"size: 2 CAD faces narrower than the size over 4 (the narrowest 3.47 wide"});
+    EXPECT_EQ(r.off.out.find("narrower than the size"), std::string::npos) << r.off.out;
+    EXPECT_GT(severe(r.off.out), 2000) << r.off.out;
+    EXPECT_GE(severe(r.on.out), 0) << r.on.out;
+    EXPECT_LT(severe(r.on.out), severe(r.off.out) / 8) << r.on.out;
+    expect_clean_failure(args + "x.msh --narrow-faces 0.5", "--narrow-faces = 0.5", "narrow_ratio");
+}
+
 TEST(Cli, AWingNearlyTangentToAFuselageMeshesAfterItsFrontRounds) {
     // tests/data/cli_wingbody_tangent.stl: a thin wing nearly tangent to a fuselage, fused by
     // OpenCASCADE and tessellated by it (cli_wingbody_tangent.geo says how), 1171 of its 3416
@@ -843,10 +866,12 @@ TEST(Cli, AFanWhoseCellsCheckMeshFindsSkewedIsDropped) {
     // the wing's leading edge (151 degrees on so coarse a wall) seeds a fan chain that closes
     // through the fuselage's coarse facets and its nose pole, where the chain doubles back and
     // two wedges share a face checkMesh found skewed 4.17 (6 faces). The fans there are dropped
-    // and the layers marched again: the summary says where, and the mesh passes.
+    // and the layers marched again: the summary says where, and the mesh passes. (With its
+    // narrow faces meshed at their width, the default, the chain no longer doubles back there.)
     test::ScratchDir dir("cli_skewed_fan");
-    const CliResult r = strata_cli(dir, "mesh '" + example_data("wing_fuselage.step") +
-                                            "' --fuse --layers 10 --growth 1.3 --first-height 4.47e-4 -o w.msh");
+    const CliResult r =
+        strata_cli(dir, "mesh '" + example_data("wing_fuselage.step") +
+                            "' --fuse --narrow-faces 0 --layers 10 --growth 1.3 --first-height 4.47e-4 -o w.msh");
     ASSERT_EQ(r.code, 0) << r.err;
     test::expect_contains(r.out, {"where a fan's cells had faces OpenFOAM's checkMesh would fail as skewed",
                                   "checkMesh would say \"Mesh OK\""});

@@ -320,6 +320,9 @@ TEST(MeshCad, StepAndIgesAreReadInTheUnitTheyDeclareOrTheOneAsked) {
     // wing_fuselage.step declares metres, onera_m6_sharp_te.stp millimetres, the IGES box mm.
     CadUnits u;
     CadParams p;
+    // Gmsh integrates a size that varies along a curve to an absolute precision, so the narrow
+    // faces' sizes (CadParams::narrow_face_ratio) do not scale exactly: compared without them.
+    p.narrow_face_ratio = 0.0;
     const SurfaceMesh m = mesh_cad(example_data("wing_fuselage.step"), p, &u);
     EXPECT_EQ(u.unit, "m");
     EXPECT_EQ(u.declared, "m");
@@ -387,20 +390,29 @@ TEST(MeshCad, PartsCloserThanTheDefaultSizeAreMeshedFinerUntilNoFacesCross) {
     // The sweep's airliner: the default size (0.777) left its thin parts' sides on one chord,
     // and at half of it (0.388) the faces of a nacelle and its pylon crossed, which the layers
     // refuse ("the surface intersects itself"). Unasked, the size is halved again (0.194).
+    // With its narrow faces meshed at their width (the default), halving once is enough.
     const std::string path = example_data("../sweep/airliner.geo");
     CadParams p;
     p.fuse = true;
+    p.narrow_face_ratio = 0.0;
     WallSizeReport walls;
     const SurfaceMesh m = mesh_cad(path, p, nullptr, &walls);
     EXPECT_TRUE(self_intersections(m).empty());
     EXPECT_NEAR(walls.thin_size, walls.default_size / 4.0, 1e-12);
+    p.narrow_face_ratio = CadParams{}.narrow_face_ratio;
+    WallSizeReport narrow;
+    EXPECT_TRUE(self_intersections(mesh_cad(path, p, nullptr, &narrow)).empty());
+    EXPECT_GT(narrow.narrow_faces, 0);
+    EXPECT_NEAR(narrow.thin_size, narrow.default_size / 2.0, 1e-12);
 }
 
 TEST(MeshCad, AThinPartUnderTheDefaultSizeIsMeshedFiner) {
     // The sweep's propeller: at the default size (a twentieth of the diagonal, 0.127) Gmsh meshed
     // both sides of the blades' thin outer parts through the same nodes, one chord across (edges
     // of four faces), and the run stopped on a non-manifold edge. Unasked, the size is halved
-    // until no edge has more than two faces; asked, it is the user's.
+    // until no edge has more than two faces; asked, it is the user's. (Without the narrow faces'
+    // sizes: with them, the blades' narrow tip faces are meshed at their width and no edge has
+    // more than two faces at the default size.)
     auto most_faces_on_an_edge = [](const SurfaceMesh& m) {
         const EdgeTable et = edge_table(m);
         Index most = 0;
@@ -410,6 +422,11 @@ TEST(MeshCad, AThinPartUnderTheDefaultSizeIsMeshedFiner) {
     const std::string path = example_data("../sweep/propeller.geo");
     CadParams p;
     p.fuse = true;
+    WallSizeReport narrow;
+    EXPECT_EQ(most_faces_on_an_edge(mesh_cad(path, p, nullptr, &narrow)), 2);
+    EXPECT_GT(narrow.narrow_faces, 0);
+    EXPECT_EQ(narrow.thin_size, 0.0);
+    p.narrow_face_ratio = 0.0;
     WallSizeReport walls;
     const SurfaceMesh m = mesh_cad(path, p, nullptr, &walls);
     EXPECT_EQ(most_faces_on_an_edge(m), 2);
@@ -432,6 +449,79 @@ TEST(MeshCad, AThinPartUnderTheDefaultSizeIsMeshedFiner) {
     CadParams at_default;
     at_default.size = std::sqrt(6.0) / 20.0;                                     // a twentieth of the diagonal, asked
     EXPECT_LT(boxes.num_faces(), 2 * mesh_cad(shared, at_default).num_faces());  // halved once: 4 times
+}
+
+/// The mean longest edge of the faces of \p m on the patches named \p names.
+double mean_longest_edge(const SurfaceMesh& m, const std::vector<std::string>& names) {
+    std::set<Index> on;
+    for (const std::string& n : names) on.insert(find_patch(m, n));
+    double sum = 0.0;
+    Index count = 0;
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        if (!on.count(m.face_patch[static_cast<std::size_t>(f)])) continue;
+        double longest = 0.0;
+        const Index n = m.face_size(f);
+        for (Index i = 0; i < n; ++i)
+            longest = std::max(longest, (m.points[m.face_node(f, i)] - m.points[m.face_node(f, (i + 1) % n)]).norm());
+        sum += longest;
+        ++count;
+    }
+    return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+TEST(MeshCad, NarrowFacesGetTrianglesAboutTheirWidthNotSlivers) {
+    // The ONERA M6 STEP closes its sharp trailing edge with two strips 3.47 mm wide along the
+    // span (surfaces 5 and 8). At size 30 each is one row of triangles 30 long; meshed at 4
+    // times their width they are about 14 long.
+    const std::string path = example_data("onera_m6_sharp_te.stp");
+    CadParams p;
+    p.size = 30.0;
+    WallSizeReport r;
+    const SurfaceMesh on = mesh_cad(path, p, nullptr, &r);
+    EXPECT_EQ(r.narrow_faces, 2);
+    EXPECT_NEAR(r.narrowest, 3.47, 0.01);
+    EXPECT_NEAR(r.narrow_size, 4.0 * r.narrowest, 1e-9);
+    EXPECT_FALSE(r.narrow_over_budget);
+    CadParams off_params = p;
+    off_params.narrow_face_ratio = 0.0;
+    WallSizeReport off_report;
+    const SurfaceMesh off = mesh_cad(path, off_params, nullptr, &off_report);
+    EXPECT_EQ(off_report.narrow_faces, 0);
+    const std::vector<std::string> strips{"surface_5", "surface_8"};
+    EXPECT_LT(mean_longest_edge(on, strips), 20.0);
+    EXPECT_GT(mean_longest_edge(off, strips), 25.0);
+    expect_well_formed(on);
+    EXPECT_TRUE(closed(on));
+    // Over the faces budget the strips are meshed at the size, and the report says why.
+    CadParams tight = p;
+    tight.wall_faces_budget = 100.0;
+    WallSizeReport over;
+    EXPECT_EQ(mesh_cad(path, tight, nullptr, &over).num_faces(), off.num_faces());
+    EXPECT_TRUE(over.narrow_over_budget);
+    EXPECT_GT(over.narrow_faces_estimate, 100.0);
+    p.narrow_face_ratio = 0.5;
+    EXPECT_THROW(mesh_cad(path, p), InputError);
+}
+
+TEST(MeshCad, APlateEdgeTooThinForTheSmallestSizeIsNotRefined) {
+    // The sweep's thin fin: a plate 1 mm thick whose edge faces would need triangles of 4 mm
+    // where the smallest size is an eighth of 0.157: refined, they would stay slivers, only
+    // more of them. A thin tube is narrow along its circumference, not across: not refined
+    // either (a cylinder's seam is not an edge of it).
+    const std::string path = example_data("../sweep/thinfin.geo");
+    WallSizeReport r;
+    const SurfaceMesh m = mesh_cad(path, {}, nullptr, &r);
+    EXPECT_EQ(r.narrow_faces, 0);
+    CadParams off;
+    off.narrow_face_ratio = 0.0;
+    EXPECT_EQ(m.num_faces(), mesh_cad(path, off).num_faces());
+    ScratchDir dir("cad_thin_tube");
+    const std::string tube = dir.file("tube.geo");
+    std::ofstream(tube) << "SetFactory(\"OpenCASCADE\");\nCylinder(1) = {0, 0, 0, 1, 0, 0, 0.002};\n"
+                           "Mesh.MeshSizeMax = 0.1;\n";
+    WallSizeReport t;
+    mesh_cad(tube, {}, nullptr, &t);
+    EXPECT_EQ(t.narrow_faces, 0);
 }
 
 TEST(MeshCad, GeoSphereNodesLieOnTheSphere) {

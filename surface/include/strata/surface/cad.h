@@ -110,6 +110,17 @@ struct CadParams {
     /// the layers step at a gap (step_sizes, through prepare_for_layers); empty: none.
     std::vector<SizePoint> size_points;
     double size_point_growth = 0.25;
+    /// A face narrower than size / this (its width: twice its area over its perimeter, seams left
+    /// out; a strip's width) and longer than this many times its width is meshed with triangles
+    /// about this many times its width long, by size points along its boundary curves rising
+    /// at 0.5 per unit of distance into the faces around: meshed at the size, a CAD model's
+    /// strip along a trailing edge gets one row of slivers, and the layer cells on them faces
+    /// far from orthogonal (checkMesh's non-orthogonality above 70°). Not a face that would
+    /// need sizes below the larger of size / 8 and size_min (a thin plate's edge: its triangles
+    /// would stay slivers, only more of them), nor when the faces this adds would exceed
+    /// wall_faces_budget (WallSizeReport::narrow_over_budget), nor on a .geo's built-in
+    /// kernel, which cannot measure a face. 0: off; else at least 1.
+    double narrow_face_ratio = 4.0;
     /// For the front-ends' prepare_for_layers (not read here): where the layers step at a
     /// proximity limit (a column of k layers beside a taller one), the cells closing the step
     /// have a corner of scaled Jacobian about the layer height h_k over the wall spacing L; the
@@ -196,6 +207,17 @@ struct WallSizeReport {
     /// used (0: the default served), and the default.
     double thin_size = 0.0;
     double default_size = 0.0;
+    /// CadParams::narrow_face_ratio: the ratio asked (0: off), the faces narrower than the size
+    /// over it, the narrowest's width and surface tag, the smallest size asked along them, the
+    /// faces estimated to be added (an upper bound) and whether that exceeded the budget (then
+    /// they were meshed at the size).
+    double narrow_ratio = 0.0;
+    Index narrow_faces = 0;
+    double narrowest = 0.0;
+    int narrowest_surface = 0;
+    double narrow_size = 0.0;
+    double narrow_faces_estimate = 0.0;
+    bool narrow_over_budget = false;
 };
 
 /// What Gmsh's recombination into quadrilaterals did, where quads were asked
