@@ -752,9 +752,11 @@ void print_wall_coverage(const strata::ReportNode& w) {
             own += (own.empty() ? " (" : ", ") + e.key + " " + std::to_string(e.value.integer());
     std::printf(
         "coverage: every layer on %.1f %% of %d wall nodes (%.1f %% of the %d where no proximity limit binds), %.1f %% "
-        "of the thickness asked on average; short: %d for their own reason%s, %d only because of a neighbour\n",
+        "of the thickness asked on average (%.1f %% there); short: %d for their own reason%s, %d only because of a "
+        "neighbour\n",
         100.0 * w.number("all_layers_share"), count(w, "nodes"), 100.0 * w.number("unbound_all_layers_share"),
-        count(w, "unbound_nodes"), 100.0 * w.number("mean_share"), count(w, "own_reason_nodes"),
+        count(w, "unbound_nodes"), 100.0 * w.number("mean_share"), 100.0 * w.number("unbound_mean_share"),
+        count(w, "own_reason_nodes"),
         (own.empty() ? own : own + ")").c_str(), count(w, "neighbour_nodes"));
 }
 

@@ -153,7 +153,7 @@ void set_patch_coverage(ReportNode& p, const PatchCoverage& c) {
         short_by.set(std::string(to_string(static_cast<Shortfall>(k))), c.short_by[k]);
     p.set("faces", c.faces).set("nodes", c.nodes).set("full_nodes", c.full_nodes).set("all_layers", c.all_layers);
     p.set("unbound_nodes", c.unbound_nodes).set("unbound_all_layers", c.unbound_all_layers);
-    p.set("mean_share", c.mean_share).set("min_share", c.min_share);
+    p.set("mean_share", c.mean_share).set("unbound_mean_share", c.unbound_mean_share).set("min_share", c.min_share);
     p.set("mean_layers", c.mean_layers).set("min_layers", c.min_layers).set("short", std::move(short_by));
 }
 

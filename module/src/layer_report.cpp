@@ -40,7 +40,7 @@ PatchCoverage coverage_of(std::string name, Index faces, const std::vector<NodeC
     c.name = std::move(name);
     c.faces = faces;
     c.min_layers = layers;
-    double share_sum = 0.0, layer_sum = 0.0;
+    double share_sum = 0.0, unbound_share_sum = 0.0, layer_sum = 0.0;
     for (const NodeCoverage& n : nodes) {
         ++c.nodes;
         share_sum += n.share;
@@ -50,6 +50,7 @@ PatchCoverage coverage_of(std::string name, Index faces, const std::vector<NodeC
         c.all_layers += n.layers == layers;
         c.full_nodes += n.reason == Shortfall::None;
         c.unbound_nodes += !n.proximity;
+        unbound_share_sum += n.proximity ? 0.0 : n.share;
         c.unbound_all_layers += !n.proximity && n.layers == layers;
         ++c.short_by[static_cast<std::size_t>(n.reason)];
     }
@@ -57,6 +58,7 @@ PatchCoverage coverage_of(std::string name, Index faces, const std::vector<NodeC
         c.mean_share = share_sum / static_cast<double>(c.nodes);
         c.mean_layers = layer_sum / static_cast<double>(c.nodes);
     }
+    if (c.unbound_nodes > 0) c.unbound_mean_share = unbound_share_sum / static_cast<double>(c.unbound_nodes);
     return c;
 }
 

@@ -149,7 +149,8 @@ def wall_summary(report):
     own = ", ".join(f"{k} {n}" for k, n in w["short"].items() if n and k != "neighbours")
     return (f"every layer on {100 * w['all_layers_share']:.1f} % of {w['nodes']} wall nodes "
             f"({100 * w['unbound_all_layers_share']:.1f} % of the {w['unbound_nodes']} where no proximity limit "
-            f"binds), {100 * w['mean_share']:.1f} % of the thickness asked on average; short: "
+            f"binds), {100 * w['mean_share']:.1f} % of the thickness asked on average "
+            f"({100 * w.get('unbound_mean_share', w['mean_share']):.1f} % there); short: "
             f"{w['own_reason_nodes']} for their own reason{f' ({own})' if own else ''}, "
             f"{w['neighbour_nodes']} only because of a neighbour")
 

@@ -85,14 +85,14 @@ TEST(MeshReport, TheJsonKeepsItsKeysAndCarriesEveryValueOfTheTree) {
           std::string("{\"layer\": 2, \"height\": 0.0011999999999999999, "),
           std::string("{\"name\": \"wing \\\"upper\\\"\\\\tip\\n\", \"faces\": 10, \"nodes\": 12, \"full_nodes\": 9, "
                       "\"all_layers\": 8, \"unbound_nodes\": 0, \"unbound_all_layers\": 0, "
-                      "\"mean_share\": 0.90000000000000002, \"min_share\": 0.25, "
+                      "\"mean_share\": 0.90000000000000002, \"unbound_mean_share\": 1, \"min_share\": 0.25, "
                       "\"mean_layers\": 12.5, \"min_layers\": 4, \"short\": {\"proximity\": 2, \"front\": 1, "
                       "\"held back\": 0, \"quality\": 3, \"turning\": 0, \"twist\": 0, \"neighbours\": 0, "
                       "\"non-finite\": 0, \"sharp edge\": 0, \"isotropic\": 0}}"),
           std::string(
               "\"coverage\": {\"faces\": 10, \"nodes\": 10, \"full_nodes\": 6, \"all_layers\": 7, "
               "\"unbound_nodes\": 8, \"unbound_all_layers\": 6, \"mean_share\": 0.90000000000000002, "
-              "\"min_share\": 0.25, \"mean_layers\": 12.5, \"min_layers\": 4, \"short\": {\"proximity\": 2, "
+              "\"unbound_mean_share\": 1, \"min_share\": 0.25, \"mean_layers\": 12.5, \"min_layers\": 4, \"short\": {\"proximity\": 2, "
               "\"front\": 1, \"held back\": 0, \"quality\": 1, \"turning\": 0, \"twist\": 0, "
               "\"neighbours\": 1, \"non-finite\": 0, \"sharp edge\": 0, \"isotropic\": 0}, \"all_layers_share\": 0.69999999999999996, "
               "\"unbound_all_layers_share\": 0.75, \"own_reason_nodes\": 4, \"neighbour_nodes\": 1}"),

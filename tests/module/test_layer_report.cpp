@@ -40,6 +40,7 @@ TEST(LayerReport, CoverageOfNodesCountsSharesAndReasons) {
     EXPECT_DOUBLE_EQ(c.all_layers_share(), 3.0 / 7.0);
     EXPECT_DOUBLE_EQ(c.unbound_all_layers_share(), 0.5);
     EXPECT_DOUBLE_EQ(c.mean_share, 4.0 / 7.0);
+    EXPECT_DOUBLE_EQ(c.unbound_mean_share, (1.0 + 1.0 + 0.25 + 0.5) / 4.0);  // the four no proximity limit binds
     EXPECT_DOUBLE_EQ(c.min_share, 0.0);
     EXPECT_DOUBLE_EQ(c.mean_layers, 18.0 / 7.0);
     EXPECT_EQ(c.min_layers, 0);
@@ -55,6 +56,7 @@ TEST(LayerReport, CoverageOfNoNodesIsWhole) {
     EXPECT_EQ(c.nodes, 0);
     EXPECT_EQ(c.min_layers, 5);
     EXPECT_DOUBLE_EQ(c.mean_share, 1.0);
+    EXPECT_DOUBLE_EQ(c.unbound_mean_share, 1.0);
     EXPECT_DOUBLE_EQ(c.all_layers_share(), 1.0);
     EXPECT_DOUBLE_EQ(c.unbound_all_layers_share(), 1.0);
     EXPECT_EQ(c.own_reason_nodes(), 0);

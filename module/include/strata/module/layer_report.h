@@ -56,6 +56,7 @@ struct PatchCoverage {
     Index unbound_nodes = 0;       ///< nodes no proximity limit binds (NodeCoverage::proximity)
     Index unbound_all_layers = 0;  ///< of those, the nodes with every layer asked
     double mean_share = 1.0;       ///< mean thickness reached / asked over the patch's nodes
+    double unbound_mean_share = 1.0;  ///< the same over the nodes no proximity limit binds (1 with none)
     double min_share = 1.0;
     double mean_layers = 0.0;  ///< layers reached, mean over the patch's nodes
     int min_layers = 0;
