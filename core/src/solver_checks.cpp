@@ -132,6 +132,8 @@ std::vector<std::string> SolverChecks::failures() const {
     if (negative_pyramids > 0)
         out.push_back(std::to_string(negative_pyramids) + " faces whose pyramid to a cell centre is inverted (" +
                       worst_pyramid + ")");
+    if (unused_points > 0)
+        out.push_back(std::to_string(unused_points) + " points used by no cell (the first " + first_unused + ")");
     return out;
 }
 
@@ -286,6 +288,22 @@ void count_high_aspect(const VolumeMesh& mesh, const CellNumbering& cells, const
     }
 }
 
+/// The points no cell of \p mesh uses counted into \p r, and the first named: checkMesh fails
+/// a polyMesh with any ("Unused points found in the mesh").
+void count_unused_points(const VolumeMesh& mesh, SolverChecks& r) {
+    std::vector<char> used(mesh.points.size(), 0);
+    for (const CellType t : {CellType::Tet, CellType::Pyramid, CellType::Prism, CellType::Hex})
+        mesh.with_cells(t, [&](const auto& cells) {
+            for (const auto& c : cells)
+                for (const Index v : c)
+                    if (v >= 0 && static_cast<std::size_t>(v) < used.size()) used[static_cast<std::size_t>(v)] = 1;
+        });
+    for (std::size_t v = 0; v < used.size(); ++v) {
+        if (used[v]) continue;
+        if (r.unused_points++ == 0) r.first_unused = "node " + std::to_string(v) + " at " + format_point(mesh.points[v]);
+    }
+}
+
 /// The faces of the slots [\p begin, \p end) checked into \p q: each interior face once (from
 /// its lower slot), each boundary face from its cell; \p centre the cells' centres.
 void check_faces(const FaceMatch& match, const std::vector<Vec3>& p, const std::vector<Vec3>& centre,
@@ -387,6 +405,7 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
     std::vector<double> aspect;
     cell_centres_and_aspects(slots, mesh.points, threads, centre, aspect);
     count_high_aspect(mesh, slots.cells(), aspect, r);
+    count_unused_points(mesh, r);
     const std::uint64_t ns = slots.count();
     const auto chunks = static_cast<std::int64_t>((ns + kChunk - 1) / kChunk);
     std::vector<Partial> part(static_cast<std::size_t>(chunks));

@@ -325,7 +325,7 @@ ReportNode quality_report(const ValidationReport& v, const VolumeMesh* mesh) {
     foam.set("skew_faces", f.skew_faces).set("worst_skew", f.worst_skew).set("max_aspect_ratio", f.max_aspect_ratio);
     foam.set("high_aspect_cells", f.high_aspect_cells).set("worst_aspect", f.worst_aspect);
     foam.set("worst_aspect_type", std::string(to_string(f.worst_aspect_type)));
-    foam.set("negative_pyramids", f.negative_pyramids).set("check_mesh_ok", f.ok());
+    foam.set("negative_pyramids", f.negative_pyramids).set("unused_points", f.unused_points).set("check_mesh_ok", f.ok());
     foam.set("failures", ReportValue::list_of(f.failures()));
     ReportNode q;
     q.set("min_scaled_jacobian", std::move(min_sj)).set("bin_edges", ReportValue::list_of(edges));

@@ -554,6 +554,9 @@ private:
                     edge += (p_[static_cast<std::size_t>(f[1])] - p_[static_cast<std::size_t>(f[0])]).norm();
                 }
             }
+            // A cavity round a node would leave it in no tetrahedron (a point the mesh carries
+            // and checkMesh fails): growing cannot undo that.
+            if (swallows_node(cavity, made)) break;
             centre /= 3.0 * static_cast<double>(made.size());
             edge /= static_cast<double>(made.size());
             auto worst_of = [&](const Vec3& x) {
@@ -602,6 +605,19 @@ private:
             cavity.push_back(grow);
         }
         p_.pop_back();
+        return false;
+    }
+
+    /// Whether a node of the \p cavity's tetrahedra is on none of the tetrahedra \p made from its
+    /// boundary faces: inside the cavity, so replacing it would drop the node.
+    bool swallows_node(const std::vector<Index>& cavity, const std::vector<Tet>& made) const {
+        for (const Index c : cavity)
+            for (const Index v : tets_[static_cast<std::size_t>(c)]) {
+                const bool kept = std::any_of(made.begin(), made.end(), [v](const Tet& m) {
+                    return std::find(m.begin(), m.end(), v) != m.end();
+                });
+                if (!kept) return true;
+            }
         return false;
     }
 

@@ -49,6 +49,19 @@ TEST(SolverChecks, UnitCubesAreOrthogonalUnskewedAndOfAspectRatioOne) {
     EXPECT_TRUE(s.ok());
 }
 
+TEST(SolverChecks, APointNoCellUsesFailsAsCheckMeshFailsIt) {
+    // checkMesh fails a polyMesh with a point no face uses ("Unused points found in the mesh").
+    VolumeMesh m = BoxMesh(2, 1, 1).build();
+    EXPECT_EQ(checks(m).unused_points, 0);
+    m.points.push_back(Vec3(0.5, 0.5, 0.5));
+    const SolverChecks s = checks(m);
+    EXPECT_EQ(s.unused_points, 1);
+    EXPECT_FALSE(s.ok());
+    ASSERT_EQ(s.failures().size(), 1u);
+    EXPECT_NE(s.failures()[0].find("1 points used by no cell (the first node 12 at (0.5, 0.5, 0.5))"), std::string::npos)
+        << s.failures()[0];
+}
+
 TEST(SolverChecks, LeaningCellHasTheFiguresWorkedOutByHand) {
     // Centres (0.5, 0.5, 0.5) and (1.5, 1.5, 0.5): d = (1, 1, 0) against the shared face's
     // normal x, 45°. d crosses the shared face at y = 1, 0.5 from its centre, over the face's

@@ -161,23 +161,26 @@ TEST(ImproveTets, MovesAnInteriorNodeAwayFromTheBoundary) {
     EXPECT_EQ(r.inserted_nodes, 0);  // only where every corner is fixed
 }
 
-TEST(ImproveTets, InsertsAPointWhereNoFlipOrMoveHelps) {
-    // The same cube with its point fixed (as if a boundary node): the flat tetrahedra at the
-    // bottom have four fixed corners, no flip helps them, and a point is inserted in a cavity
-    // round them; the nine nodes stay where they were.
+TEST(ImproveTets, AnInsertedPointsCavityNeverSwallowsANode) {
+    // The same cube with its point fixed: the flat tetrahedra at the bottom have four fixed
+    // corners and no flip helps them; the only cavity whose new point would lift them is the
+    // whole star of the cube's point, which would then be in no tetrahedron (a point the mesh
+    // carries and checkMesh fails: "Unused points"). So nothing is inserted and every node stays
+    // in a tetrahedron. (Points are inserted where a cavity keeps its nodes: the notched box of
+    // Cli.TetrahedraAreImprovedAfterTetGen.)
     const TetFill before = cube_star({0.5, 0.45, 0.03});
     TetFill f = before;
     const TetImproveReport r = improve_tets(f, 9);
     EXPECT_EQ(r.moved_nodes, 0);
-    EXPECT_GE(r.inserted_nodes, 1);
-    ASSERT_EQ(f.points.size(), before.points.size() + static_cast<std::size_t>(r.inserted_nodes));
-    for (std::size_t i = 0; i < before.points.size(); ++i) EXPECT_EQ(f.points[i], before.points[i]);
+    EXPECT_EQ(r.inserted_nodes, 0);
+    ASSERT_EQ(f.points.size(), before.points.size());
+    std::vector<char> used(f.points.size(), 0);
+    for (const Tet& t : f.tets)
+        for (const Index v : t) used[static_cast<std::size_t>(v)] = 1;
+    EXPECT_EQ(std::count(used.begin(), used.end(), 1), static_cast<std::ptrdiff_t>(f.points.size()));
     for (const Tet& t : f.tets) EXPECT_GT(volume(f, t), 0.0);
-    for (const auto& [k, n] : face_counts(f)) EXPECT_LE(n, 2);
     EXPECT_EQ(boundary_faces(f), boundary_faces(before));
     EXPECT_NEAR(total_volume(f), 1.0, 1e-12);
-    EXPECT_LT(worst(before), 0.1);
-    EXPECT_GT(worst(f), 2.0 * worst(before));
 }
 
 TEST(ImproveTets, KeepsTheRegionOfATetGenFillAndRaisesItsWorst) {

@@ -46,6 +46,8 @@ struct SolverChecks {
     Index high_aspect_cells = 0;                 ///< cells above kFoamAspectRatio
     Index negative_pyramids = 0;                 ///< faces whose pyramid to a cell's centre is not positive (fails)
     std::string worst_pyramid;                   ///< the first such face
+    Index unused_points = 0;                     ///< points no cell uses ("Unused points", fails)
+    std::string first_unused;                    ///< where the first is
     /// What checkMesh's default run would fail on, one line each, naming the worst place;
     /// empty if it would say "Mesh OK".
     std::vector<std::string> failures() const;
