@@ -2,9 +2,12 @@
 // fillet, a thin band) is meshed with one row of triangles as long as the size and as wide as
 // the face: slivers whose centres sit off their shared edges, so the prisms standing on them
 // have faces far from orthogonal to the line between their centres (checkMesh's
-// non-orthogonality; ALGORITHM.md, "Narrow faces meshed at four times their width"). Sizes asked along such a face's boundary
-// give it triangles about as long as it is wide (times the ratio).
+// non-orthogonality; ALGORITHM.md, "Narrow faces meshed at four times their width"). Sizes
+// asked along such a face's boundary give it triangles about as long as it is wide (times the
+// ratio).
 #include "narrow_faces.h"
+
+#include "wall_size.h"
 
 #include <gmsh.h>
 
@@ -13,6 +16,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <map>
+#include <utility>
 
 namespace strata {
 namespace {
@@ -21,7 +25,8 @@ struct Narrow {
     int tag = 0;
     double width = 0.0;   ///< twice the area over the perimeter: a strip's width, a disc's radius
     double length = 0.0;  ///< the perimeter
-    std::vector<int> curves;
+    double target = 0.0;  ///< the size asked along it
+    std::vector<std::pair<int, double>> curves;  ///< its boundary curves and their lengths
 };
 
 /// \p s's width and boundary (seams left out: a curve the face meets on both sides, as a
@@ -40,7 +45,7 @@ bool measure(int s, Narrow& n) {
             double length = 0.0;
             gmsh::model::occ::getMass(1, c, length);
             n.length += length;
-            n.curves.push_back(c);
+            n.curves.emplace_back(c, length);
         }
         if (!(area > 0.0) || !(n.length > 0.0)) return false;
         n.tag = s;
@@ -51,12 +56,11 @@ bool measure(int s, Narrow& n) {
     }
 }
 
-/// Points along curve \p c at most \p spacing apart (in its parameter), each asking \p size.
-void sample_curve(int c, double spacing, double size, std::vector<SizePoint>& out) {
-    double length = 0.0;
+/// Points along curve \p c, \p length long, at most \p spacing apart (in its parameter), each
+/// asking \p size.
+void sample_curve(int c, double length, double spacing, double size, std::vector<SizePoint>& out) {
     std::vector<double> lo, hi;
     try {
-        gmsh::model::occ::getMass(1, c, length);
         gmsh::model::getParametrizationBounds(1, c, lo, hi);
     } catch (...) {
         return;
@@ -73,7 +77,7 @@ void sample_curve(int c, double spacing, double size, std::vector<SizePoint>& ou
 /// \p size: both sides of it, the size rising at \p growth (∫ dx / (0.433 h(x)²) per unit of
 /// length), an upper bound (the bands of a strip's two sides overlap).
 double added_faces(double length, double target, double size, double growth) {
-    return length * 2.0 / (0.4330127 * growth) * (1.0 / target - 1.0 / size);
+    return length * 2.0 * faces_at_size(1.0, 1.0) / growth * (1.0 / target - 1.0 / size);
 }
 
 }  // namespace
@@ -89,11 +93,11 @@ std::vector<SizePoint> narrow_face_points(const std::vector<int>& surfaces, cons
         if (!measure(s, n) || !(n.width * params.narrow_face_ratio < std::min(size, 0.5 * n.length - n.width)))
             continue;
         // Below the floor its triangles would stay slivers, only more of them (a thin plate's edge).
-        const double target = params.narrow_face_ratio * n.width;
-        if (!(target >= floor)) continue;
-        estimate += added_faces(n.length, target, size, kNarrowFaceGrowth);
+        n.target = params.narrow_face_ratio * n.width;
+        if (!(n.target >= floor)) continue;
+        estimate += added_faces(n.length, n.target, size, kNarrowFaceGrowth);
         if (r.narrow_faces == 0 || n.width < r.narrowest) r.narrowest = n.width, r.narrowest_surface = s;
-        r.narrow_size = r.narrow_faces == 0 ? target : std::min(r.narrow_size, target);
+        r.narrow_size = r.narrow_faces == 0 ? n.target : std::min(r.narrow_size, n.target);
         ++r.narrow_faces;
         narrow.push_back(std::move(n));
     }
@@ -103,10 +107,8 @@ std::vector<SizePoint> narrow_face_points(const std::vector<int>& surfaces, cons
         return {};
     }
     std::vector<SizePoint> points;
-    for (const Narrow& n : narrow) {
-        const double target = params.narrow_face_ratio * n.width;
-        for (const int c : n.curves) sample_curve(c, 0.5 * target, target, points);
-    }
+    for (const Narrow& n : narrow)
+        for (const auto& [c, length] : n.curves) sample_curve(c, length, 0.5 * n.target, n.target, points);
     return points;
 }
 
