@@ -483,6 +483,8 @@ TEST(Cli, NarrowCadFacesKeepTheLayerCellsOrthogonal) {
     EXPECT_GE(severe(r.on.out), 0) << r.on.out;
     EXPECT_LT(severe(r.on.out), severe(r.off.out) / 8) << r.on.out;
     expect_clean_failure(args + "x.msh --narrow-faces 0.5", "--narrow-faces = 0.5", "narrow_ratio");
+    expect_clean_failure("mesh '" + example_data("sphere.stl") + "' --narrow-faces 2 --layers 5 --first-height 1e-3 -o x.msh",
+                         "is a surface mesh: --narrow-faces sizes the narrow faces of a CAD model", "narrow_stl");
 }
 
 TEST(Cli, AWingNearlyTangentToAFuselageMeshesAfterItsFrontRounds) {
