@@ -884,6 +884,10 @@ void print_hybrid_summary(const strata::ReportNode& r, bool kept_surface) {
                            "lowered)")
                               .c_str()
                         : "");
+    if (r.integer("flat_quads") > 0)
+        std::printf("quads: %d wall quads with a corner wider than %s degrees were split into two triangles through it "
+                    "before the layers (nearly triangles: the hexahedra on them lean their side faces out of line)\n",
+                    count(r, "flat_quads"), strata::format_number(strata::kFlatQuadDeg).c_str());
     if (r.integer("split_quads") > 0)
         std::printf(
             "quads: %d wall quads could take no pyramid on the layer top (too warped for an apex, their columns at the "

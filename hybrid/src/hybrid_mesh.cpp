@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <type_traits>
@@ -706,6 +707,7 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
 
     // Layers, pyramids and the front TetGen fills against, marched again after each stage's
     // repair (a thickness bound, no fan, a split quad) until all go through.
+    rep.flat_quads = split_flat_quads(surface);
     Rounds rounds = first_round(std::move(surface), has_outer, params);
     Stages stages = march_with_repairs(params, rounds, rep, progress);
     LayerMesh& lm = stages.lm;
@@ -735,6 +737,7 @@ StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double 
     bool has_outer = false, half = false, internal = false;
     SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, half, internal);
     if (has_outer) split_into_planes(surface);  // as build_hybrid_mesh marches them
+    split_flat_quads(surface);
     LayerParams layer_params = params.layers;
     layer_params.threads = params.threads;
     const ProximityPlan plan = proximity_plan(surface, layer_params);
@@ -758,6 +761,44 @@ StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double 
     }
     if (area > 0.0 && asked > 0.0) out.thickness_share = covered / (area * asked);
     return out;
+}
+
+Index split_flat_quads(SurfaceMesh& mesh) {
+    const double flat_cos = std::cos(kFlatQuadDeg * std::numbers::pi / 180.0);
+    const auto widest = [&](Index f) {  // the corner of quad f wider than kFlatQuadDeg, or -1
+        const Index* q = mesh.face_begin(f);
+        const auto at = [&](int i) -> const Vec3& { return mesh.points[static_cast<std::size_t>(q[(i + 4) % 4])]; };
+        int corner = -1;
+        double lowest = flat_cos;
+        for (int i = 0; i < 4; ++i) {
+            const Vec3 a = (at(i - 1) - at(i)).normalized(), b = (at(i + 1) - at(i)).normalized();
+            if (const double c = a.dot(b); c < lowest) lowest = c, corner = i;
+        }
+        return corner;
+    };
+    std::vector<std::pair<Index, int>> flat;
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+        if (mesh.face_size(f) == 4 &&
+            mesh.patches[static_cast<std::size_t>(mesh.face_patch[f])].kind == PatchKind::Wall)
+            if (const int c = widest(f); c >= 0) flat.emplace_back(f, c);
+    if (flat.empty()) return 0;
+    SurfaceMesh out;
+    out.points = mesh.points;
+    out.patches = mesh.patches;
+    std::size_t next = 0;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const Index p = mesh.face_patch[static_cast<std::size_t>(f)];
+        if (next == flat.size() || flat[next].first != f) {
+            out.add_face(mesh.face_begin(f), mesh.face_size(f), p);
+            continue;
+        }
+        const Index* q = mesh.face_begin(f);
+        const int c = flat[next++].second;
+        out.add_face({q[c], q[(c + 1) % 4], q[(c + 2) % 4]}, p);
+        out.add_face({q[c], q[(c + 2) % 4], q[(c + 3) % 4]}, p);
+    }
+    mesh = std::move(out);
+    return static_cast<Index>(flat.size());
 }
 
 }  // namespace strata

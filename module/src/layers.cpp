@@ -670,42 +670,89 @@ bool fans_on(const LayerParams& params) {
     return params.min_quality > 0.0 && !params.keep_invalid && params.smoothing;
 }
 
-/// The nodes of the input surface (ascending) whose fan's columns have a node on an interior
-/// face of \p lm's cells that OpenFOAM's checkMesh would fail as skewed (above kFoamSkewness):
-/// a fan through a coarsely faceted wall, whose chain doubles back on itself, makes wedges whose
-/// shared faces stand far off the line between their centres. Only the cells with a node on a
-/// fan's column are looked at (a face with such a node has such cells on both sides).
-std::vector<Index> skewed_fan_nodes(const LayerMesh& lm, int threads) {
-    std::vector<Index> column(lm.mesh.points.size(), kNone);  // the fan column each node is on
+/// A column to march again capped (march_capped): its node of the input surface, the levels it
+/// keeps the thickness of, and why.
+struct CapAt {
+    Index node = kNone;
+    int level = 0;
+    Shortfall why = Shortfall::None;
+};
+
+/// Where \p lm's cells have an interior face OpenFOAM's checkMesh would fail as skewed (above
+/// kFoamSkewness).
+struct SkewedLayers {
+    /// The nodes of the input surface (ascending) whose fan's columns have a node on such a
+    /// face: a fan through a coarsely faceted wall, whose chain doubles back on itself, makes
+    /// wedges whose shared faces stand far off the line between their centres.
+    std::vector<Index> fan_nodes;
+    /// The other columns with a node on such a face, to cap below it (the lowest level of the
+    /// face's nodes, at least 1; reason quality): a column bent at a concave junction (a fin's
+    /// trailing edge on a body) whose layers stretch beside its neighbours'.
+    std::vector<CapAt> columns;
+};
+SkewedLayers skewed_layers(const LayerMesh& lm, int threads) {
+    std::vector<Index> column(lm.mesh.points.size(), kNone);  // the column each node is on
+    std::vector<int> level(lm.mesh.points.size(), 0);
     for (Index i = 0; i < lm.wall_nodes(); ++i)
-        if (lm.fan_column[static_cast<std::size_t>(i)])
-            for (int k = 0; k <= lm.node_layers(i); ++k) column[static_cast<std::size_t>(lm.level_node(k, i))] = i;
-    VolumeMesh fan_cells;
-    fan_cells.points = lm.mesh.points;
-    auto take = [&](const auto& cells, auto& into) {
-        for (const auto& c : cells)
-            if (std::any_of(c.begin(), c.end(), [&](Index v) { return column[static_cast<std::size_t>(v)] != kNone; }))
-                into.push_back(c);
-    };
-    take(lm.mesh.tets, fan_cells.tets);
-    take(lm.mesh.pyramids, fan_cells.pyramids);
-    take(lm.mesh.prisms, fan_cells.prisms);
-    take(lm.mesh.hexes, fan_cells.hexes);
+        for (int k = 0; k <= lm.node_layers(i); ++k) {
+            const auto v = static_cast<std::size_t>(lm.level_node(k, i));
+            if (column[v] == kNone) column[v] = i, level[v] = k;  // a fan's shared wall node: its first column
+        }
     std::vector<std::uint64_t> skewed;
-    const FaceMatch match = match_faces(fan_cells, threads);
-    solver_checks(fan_cells, match, threads, &skewed);
-    std::vector<Index> out;
+    const FaceMatch match = match_faces(lm.mesh, threads);
+    solver_checks(lm.mesh, match, threads, &skewed);
+    const auto on_fan = [&](Index i) {
+        return !lm.fan_column.empty() && lm.fan_column[static_cast<std::size_t>(i)] != 0;
+    };
+    SkewedLayers out;
     for (const std::uint64_t s : skewed) {
         if (match.across[s] < 0) continue;  // not a face between two cells
         Index v[4];
         const int n = match.slots.nodes(s, v);
-        for (int c = 0; c < n; ++c)
-            if (const Index i = column[static_cast<std::size_t>(v[c])]; i != kNone)
-                out.push_back(lm.input_node[static_cast<std::size_t>(i)]);
+        const bool fan = std::any_of(v, v + n, [&](Index x) { return on_fan(column[static_cast<std::size_t>(x)]); });
+        int lowest = std::numeric_limits<int>::max();
+        for (int c = 0; c < n; ++c) lowest = std::min(lowest, level[static_cast<std::size_t>(v[c])]);
+        for (int c = 0; c < n; ++c) {
+            const Index i = column[static_cast<std::size_t>(v[c])];
+            const Index input = lm.input_node[static_cast<std::size_t>(i)];
+            if (fan && on_fan(i))
+                out.fan_nodes.push_back(input);
+            else if (!fan && lowest >= 1)
+                out.columns.push_back({input, lowest, Shortfall::Quality});
+        }
     }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    std::sort(out.fan_nodes.begin(), out.fan_nodes.end());
+    out.fan_nodes.erase(std::unique(out.fan_nodes.begin(), out.fan_nodes.end()), out.fan_nodes.end());
     return out;
+}
+
+/// The layers marched again with each column of \p caps bounded to the thickness of the levels
+/// it keeps (LayerConstraints::node_stop_limit, with its reason): marching as before, it keeps
+/// every layer up to there, its tallest layers capped (CappedPaths). Up to kStopMarches times;
+/// nothing after those, where proximity limits scale, or where no bound is lowered.
+std::optional<LayerMesh> march_capped(const SurfaceMesh& surface, const LayerParams& params,
+                                      const LayerConstraints& constraints, const std::vector<CapAt>& caps,
+                                      const std::vector<double>& delta, Progress* progress) {
+    if (caps.empty() || params.proximity != ProximityMode::Stop || constraints.stop_marches >= kStopMarches)
+        return std::nullopt;
+    const std::vector<double> reach =
+        capped_reach(delta, params.distribution.layers, std::numeric_limits<double>::infinity());
+    LayerConstraints again = constraints;
+    ++again.stop_marches;
+    if (again.node_stop_limit.empty()) {
+        again.node_stop_limit.assign(surface.points.size(), std::numeric_limits<double>::infinity());
+        again.node_stop_reason.assign(surface.points.size(), Shortfall::None);
+    }
+    bool any = false;
+    for (const CapAt& c : caps) {
+        const auto v = static_cast<std::size_t>(c.node);
+        const double bound = reach[static_cast<std::size_t>(c.level)];
+        if (!(bound < again.node_stop_limit[v])) continue;
+        again.node_stop_limit[v] = bound, again.node_stop_reason[v] = c.why;
+        any = true;
+    }
+    if (!any) return std::nullopt;
+    return extrude_layers(surface, params, again, progress);
 }
 
 /// The layers marched again with no fan at \p nodes (of the input surface) either, those of them
@@ -1264,16 +1311,9 @@ std::optional<LayerMesh> march_levels(const SurfaceMesh& surface, const Wall& w,
 std::optional<LayerMesh> capped_at_stops(const SurfaceMesh& surface, const LayerParams& params,
                                          const LayerConstraints& constraints, const Wall& w, const Columns& col,
                                          const std::vector<double>& delta, Progress* progress) {
-    if (params.proximity != ProximityMode::Stop || constraints.stop_marches >= kStopMarches) return std::nullopt;
     const int layers = params.distribution.layers;
     const std::vector<double> reach = capped_reach(delta, layers, std::numeric_limits<double>::infinity());
-    LayerConstraints again = constraints;
-    ++again.stop_marches;
-    if (again.node_stop_limit.empty()) {
-        again.node_stop_limit.assign(surface.points.size(), std::numeric_limits<double>::infinity());
-        again.node_stop_reason.assign(surface.points.size(), Shortfall::None);
-    }
-    bool any = false;
+    std::vector<CapAt> caps;
     for (std::size_t i = 0; i < col.levels.size(); ++i) {
         const int m = col.levels[i];
         const Shortfall why = col.reason[i];
@@ -1281,13 +1321,28 @@ std::optional<LayerMesh> capped_at_stops(const SurfaceMesh& surface, const Layer
                          why == Shortfall::Neighbours;
         if (!own || m <= 0 || m >= layers || height_cap(delta, layers, reach[static_cast<std::size_t>(m)]) == 0.0)
             continue;
-        const auto v = static_cast<std::size_t>(w.input_node[i]);
-        if (!(reach[static_cast<std::size_t>(m)] < again.node_stop_limit[v])) continue;
-        again.node_stop_limit[v] = reach[static_cast<std::size_t>(m)], again.node_stop_reason[v] = why;
-        any = true;
+        caps.push_back({w.input_node[i], m, why});
     }
-    if (!any) return std::nullopt;
-    return extrude_layers(surface, params, again, progress);
+    return march_capped(surface, params, constraints, caps, delta, progress);
+}
+
+/// The normal of the symmetry or outflow plane each of \p mc's columns is held in (zero: none).
+std::vector<Vec3> held_plane_normals(const Marcher& mc) {
+    std::vector<Vec3> normal(mc.node_plane.size(), Vec3::Zero());
+    for (std::size_t i = 0; i < normal.size(); ++i)
+        if (mc.node_plane[i] != kNone) normal[i] = mc.planes[mc.node_plane[i]].normal;
+    return normal;
+}
+
+/// The columns of \p w that stop at the wall (1): on a sharp edge without a fan
+/// (LayerParams::sharp_edge_stop_deg, ALGORITHM.md) and at a fan's end at a junction (fans.h).
+std::vector<char> wall_stops(const Wall& w, const FanWall& fans, const LayerParams& params,
+                             const std::vector<Vec3>& plane_normal) {
+    std::vector<char> stops(static_cast<std::size_t>(w.mesh.num_points()), 0);
+    if (fans_on(params) && params.sharp_edge_stop_deg > 0.0)
+        stops = sharp_single_nodes(w.mesh, plane_normal, params.sharp_edge_stop_deg);
+    for (const Index t : fans.terminals) stops[static_cast<std::size_t>(t)] = 1;
+    return stops;
 }
 
 }  // namespace
@@ -1355,9 +1410,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     std::vector<int> max_levels(static_cast<std::size_t>(nw), layers);
     const Marcher mc = make_marcher(surface, w, fans, params, constraints, delta, scale_reason, max_levels);
     // Columns held in a symmetry or outflow plane are judged by what a direction in it allows.
-    std::vector<Vec3> plane_normal(static_cast<std::size_t>(nw), Vec3::Zero());
-    for (std::size_t i = 0; i < plane_normal.size(); ++i)
-        if (mc.node_plane[i] != kNone) plane_normal[i] = mc.planes[mc.node_plane[i]].normal;
+    const std::vector<Vec3> plane_normal = held_plane_normals(mc);
     Columns col(w.mesh, layers, out.mesh.points, plane_normal, mc.node_line);
     col.max_levels = std::move(max_levels);
     if (params.isotropy > 0.0) col.find_edges(w.mesh);
@@ -1388,21 +1441,13 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         if (share < 1.0) ++out.thinned_nodes;
         out.min_thickness_share = std::min(out.min_thickness_share, share);
     }
-    if (fans_on(params) && params.sharp_edge_stop_deg > 0.0) {
-        // Sharp edges without a fan: their columns stop at the wall (ALGORITHM.md).
-        const std::vector<char> sharp = sharp_single_nodes(w.mesh, plane_normal, params.sharp_edge_stop_deg);
-        for (std::size_t u = 0; u < sharp.size(); ++u)
-            if (sharp[u]) {
-                col.max_levels[u] = 0;
-                col.limit[u] = Shortfall::SharpEdge;
-                scale_reason[u] = Shortfall::None;
-            }
-    }
-    for (const Index t : fans.terminals) {  // a fan's end at a junction: its column stops at the wall (fans.h)
-        col.max_levels[static_cast<std::size_t>(t)] = 0;
-        col.limit[static_cast<std::size_t>(t)] = Shortfall::SharpEdge;
-        scale_reason[static_cast<std::size_t>(t)] = Shortfall::None;
-    }
+    const std::vector<char> stops = wall_stops(w, fans, params, plane_normal);
+    for (std::size_t u = 0; u < stops.size(); ++u)
+        if (stops[u]) {
+            col.max_levels[u] = 0;
+            col.limit[u] = Shortfall::SharpEdge;
+            scale_reason[u] = Shortfall::None;
+        }
     out.scale_reason = std::move(scale_reason);
     out.mesh.points.reserve(static_cast<std::size_t>(nw) * static_cast<std::size_t>(layers + 1));
     out.mesh.points.insert(out.mesh.points.end(), w.mesh.points.begin(), w.mesh.points.begin() + nwall);
@@ -1426,11 +1471,14 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         if (col.levels[static_cast<std::size_t>(i)] < layers)
             out.stop_reason[static_cast<std::size_t>(i)] = col.reason[static_cast<std::size_t>(i)];
     build_layer_cells(col, w.mesh, w.loops, side_patches(surface, w), out);
-    if (!fans.empty() && rules.quality) {
-        // Fans whose cells have faces checkMesh would fail as skewed: no fan at those wall
-        // nodes, and march again (each round marks new nodes, so this ends).
-        if (auto retry = without_fans(surface, params, constraints, skewed_fan_nodes(out, mc.threads),
-                                      &LayerMesh::fans_skewed, progress))
+    if (rules.quality) {
+        // Faces checkMesh would fail as skewed: no fan at the wall nodes of the fans they are
+        // in, and march again (each round marks new nodes, so this ends); else the columns
+        // under them capped where the faces begin.
+        const SkewedLayers skewed = skewed_layers(out, mc.threads);
+        if (auto retry = without_fans(surface, params, constraints, skewed.fan_nodes, &LayerMesh::fans_skewed, progress))
+            return std::move(*retry);
+        if (auto retry = march_capped(surface, params, constraints, skewed.columns, delta, progress))
             return std::move(*retry);
     }
     return out;
