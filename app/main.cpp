@@ -532,6 +532,30 @@ void print_step_sizing(const strata::ReportNode& st) {
     }
 }
 
+/// What the first mesh's cells above checkMesh's aspect ratio did to the CAD walls (the surface
+/// report's "aspect_remesh"; nothing to say when it had none).
+void print_aspect_remesh(const strata::ReportNode& a) {
+    if (count(a, "cells") == 0) return;
+    if (a.flag("over_budget")) {
+        std::printf(
+            "warning: %d cells above checkMesh's aspect ratio of 1000 (the worst %.4g, %s: cells closing a step "
+            "down to the wall are about as flat as their wall edge over the layer's height); walls fine enough round "
+            "them would take about %.3g faces, more than Strata makes unasked: give a smaller --size or a thicker "
+            "--first-height\n",
+            count(a, "cells"), a.number("worst"), a.text("worst_cell").c_str(), a.number("faces_estimate"));
+        return;
+    }
+    const bool kept = count(a, "cells_after") < count(a, "cells");
+    std::printf(
+        "aspect: the first mesh had %d cells above checkMesh's aspect ratio of 1000 (the worst %.4g, %s: cells "
+        "closing a step down to the wall are about as flat as their wall edge over the layer's height), so the walls "
+        "were meshed again finer round them (sizes down to %s, %d -> %d faces) and the mesh made again: %d such "
+        "cells%s (%.2f s)\n",
+        count(a, "cells"), a.number("worst"), a.text("worst_cell").c_str(),
+        strata::format_number(a.number("smallest"), 3).c_str(), count(a, "faces_before"), count(a, "faces_after"),
+        count(a, "cells_after"), kept ? ", kept" : ", not fewer: the first mesh is kept", a.number("seconds"));
+}
+
 /// A surface mesh kept as it is (the surface report's "wall_aspect"): where its wall faces are too
 /// wide for the first layer, say so (OpenFOAM's checkMesh fails cells over 1000) with the worst
 /// face and the remedy, before the solver does.
@@ -639,6 +663,7 @@ void print_surface_summary(const strata::ReportNode& s) {
             s.text("blossom_failure").c_str());
     print_wall_sizing(s.node("walls"));
     print_step_sizing(s.node("steps"));
+    print_aspect_remesh(s.node("aspect_remesh"));
     print_needles(s);
 }
 

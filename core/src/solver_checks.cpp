@@ -273,12 +273,30 @@ void cell_centres_and_aspects(const FaceSlots& slots, const std::vector<Vec3>& p
     }
 }
 
-/// The cells above checkMesh's aspect ratio counted into \p r, and the worst named.
-void count_high_aspect(const VolumeMesh& mesh, const CellNumbering& cells, const std::vector<double>& aspect,
-                       SolverChecks& r) {
+/// The longest edge of cell \p index of type \p type of \p mesh.
+double longest_edge(const VolumeMesh& mesh, CellType type, Index index) {
+    double longest = 0.0;
+    mesh.with_cells(type, [&](const auto& cells) {
+        const auto& c = cells[static_cast<std::size_t>(index)];
+        for (std::size_t i = 0; i < c.size(); ++i)
+            for (std::size_t j = i + 1; j < c.size(); ++j)
+                longest = std::max(longest, (mesh.points[static_cast<std::size_t>(c[i])] -
+                                             mesh.points[static_cast<std::size_t>(c[j])]).norm());
+    });
+    return longest;
+}
+
+/// The cells above checkMesh's aspect ratio counted and listed into \p r (centres \p centre),
+/// and the worst named.
+void count_high_aspect(const VolumeMesh& mesh, const CellNumbering& cells, const std::vector<Vec3>& centre,
+                       const std::vector<double>& aspect, SolverChecks& r) {
     for (std::int64_t g = 0; g < cells.count(); ++g) {
         const double a = aspect[static_cast<std::size_t>(g)];
-        if (a > kFoamAspectRatio) ++r.high_aspect_cells;
+        if (a > kFoamAspectRatio) {
+            ++r.high_aspect_cells;
+            const CellNumbering::Cell c = cells.locate(g);
+            r.high_aspect.push_back({centre[static_cast<std::size_t>(g)], a, longest_edge(mesh, c.type, c.index)});
+        }
         if (a > r.max_aspect_ratio) {
             r.max_aspect_ratio = a;
             const CellNumbering::Cell c = cells.locate(g);
@@ -404,7 +422,7 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
     std::vector<Vec3> centre;
     std::vector<double> aspect;
     cell_centres_and_aspects(slots, mesh.points, threads, centre, aspect);
-    count_high_aspect(mesh, slots.cells(), aspect, r);
+    count_high_aspect(mesh, slots.cells(), centre, aspect, r);
     count_unused_points(mesh, r);
     const std::uint64_t ns = slots.count();
     const auto chunks = static_cast<std::int64_t>((ns + kChunk - 1) / kChunk);

@@ -303,8 +303,9 @@ void add_distribution_options(std::vector<OptionSpec>& t) {
         "--max-aspect-ratio", "max_aspect_ratio", "CadParams::max_aspect_ratio", Stage::Layers,
         [](Options& o) -> double& { return o.surface.prepare.cad.max_aspect_ratio; },
         "CAD input and --remesh: wall surfaces whose first-layer cells would have an OpenFOAM aspect ratio "
-        "above this (fans' first cells too) are meshed again finer, up to about 200,000 faces (checkMesh fails "
-        "above 1000; 0: keep the size)"));
+        "above this (fans' first cells too) are meshed again finer, up to about 200,000 faces, and where the mesh "
+        "still has cells above it the walls are meshed again finer round them and the mesh made again, once "
+        "(checkMesh fails above 1000; 0: keep the size)"));
     t.push_back(spec(
         "--step-quality", "step_quality", "CadParams::step_quality", Stage::Mesh,
         [](Options& o) -> double& { return o.surface.prepare.cad.step_quality; },

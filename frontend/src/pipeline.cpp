@@ -1,13 +1,18 @@
 #include <strata/core/error.h>
+#include <strata/core/solver_checks.h>
 #include <strata/frontend/pipeline.h>
 #include <strata/frontend/prepare_layers.h>
+#include <strata/geometry/point_sizes.h>
 #include <strata/frontend/report.h>
 #include <strata/io/formats.h>
 #include <strata/io/write_report.h>
 #include <strata/io/write_surface.h>
 #include <strata/io/write_volume.h>
+#include <strata/module/step_sizes.h>
 
+#include <algorithm>
 #include <chrono>
+#include <limits>
 #include <utility>
 
 namespace strata {
@@ -15,6 +20,12 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Whether \p request's walls are meshed by Strata (CAD input, or a surface with --remesh), so
+/// that they can be meshed again finer.
+bool remeshable(const Request& request, bool any_cad) {
+    return request.surface ? static_cast<bool>(request.remesh) : any_cad;
 }
 
 /// The surface of \p request: made from its inputs or its surface (prepare_surfaces,
@@ -29,8 +40,7 @@ SurfaceMesh make_surface(const Request& request, const std::string& source, bool
                             progress);
     };
     if (request.job != Job::Mesh) return make(request.prepare, &report);
-    const bool cad = request.surface ? static_cast<bool>(request.remesh) : any_cad;
-    return prepare_for_layers(make, cad, request.prepare, request.mesh, &report);
+    return prepare_for_layers(make, remeshable(request, any_cad), request.prepare, request.mesh, &report);
 }
 
 /// The layers alone on \p r.surface, checked.
@@ -58,6 +68,64 @@ void run_mesh(const Request& request, Result& r, Progress* progress) {
     r.seconds.pyramids = r.hybrid.seconds_pyramids;
     r.seconds.tets = r.hybrid.seconds_tets;
     r.seconds.validation = r.hybrid.seconds_validate;
+}
+
+/// The sizes that bring \p cells (above checkMesh's aspect ratio) to kStepSizeShare of \p
+/// limit: at each one's centre, its longest edge scaled by the limit over its figure (the flat
+/// cells at the wall are as flat as their wall edge is long over the layer's height).
+std::vector<SizePoint> aspect_sizes(const std::vector<HighAspectCell>& cells, double limit) {
+    std::vector<SizePoint> points;
+    for (const HighAspectCell& c : cells)
+        points.push_back({c.centre, kStepSizeShare * c.longest_edge * limit / c.aspect_ratio});
+    return points;
+}
+
+/// Where the hybrid mesh of \p r has cells checkMesh fails for their aspect ratio and Strata
+/// meshes its walls: those walls meshed again finer round them (aspect_sizes) and the mesh made
+/// again, once, kept if it has fewer such cells. They are the cells closing a step down to the
+/// wall beside full columns (a front round's stop, a fan's end at a junction), about as flat as
+/// their wall edge over the first height, twice a prism's: the wall sizing before the layers
+/// (CadParams::max_aspect_ratio) cannot forecast where the front stops columns.
+void remesh_for_aspect(const Request& request, const std::string& source, Result& r, Progress* progress) {
+    const SolverChecks& checks = r.hybrid.validation.solver;
+    const double limit = request.prepare.cad.max_aspect_ratio;
+    if (checks.high_aspect.empty() || !(limit > 0.0) || !remeshable(request, r.any_cad)) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    AspectRemeshReport a;
+    a.cells = checks.high_aspect_cells, a.worst = checks.max_aspect_ratio, a.worst_cell = checks.worst_aspect;
+    a.faces_before = r.surface.num_faces();
+    std::vector<SizePoint> points = aspect_sizes(checks.high_aspect, limit);
+    a.smallest = std::numeric_limits<double>::infinity();
+    for (const SizePoint& q : points) a.smallest = std::min(a.smallest, q.size);
+    // Within the faces budget and kStepFacesGrowth times the surface's faces, as the steps' sizes.
+    const CadParams& cad = request.prepare.cad;
+    const double budget =
+        std::min(cad.wall_faces_budget > 0.0 ? cad.wall_faces_budget : std::numeric_limits<double>::infinity(),
+                 kStepFacesGrowth * static_cast<double>(a.faces_before));
+    a.faces_estimate = faces_with_sizes(r.surface, PointSizes(points, cad.size_point_growth));
+    if (a.faces_estimate > budget) {
+        a.over_budget = true;
+        r.prepare.aspect_remesh = a;
+        return;
+    }
+    Request again = request;
+    for (SizePoint& q : points) q.at /= r.prepare.scale, q.size /= r.prepare.scale;  // the CAD's unit
+    std::vector<SizePoint>& asked = again.prepare.cad.size_points;
+    asked.insert(asked.end(), points.begin(), points.end());
+    Result second;
+    second.any_cad = r.any_cad;
+    second.surface = make_surface(again, source, r.any_cad, second.prepare, progress);
+    second.seconds.surface = r.seconds.surface + seconds_since(t0);  // both surfaces
+    run_mesh(again, second, progress);
+    const SolverChecks& after = second.hybrid.validation.solver;
+    a.faces_after = second.surface.num_faces();
+    a.cells_after = after.high_aspect_cells, a.worst_after = after.max_aspect_ratio;
+    a.seconds = seconds_since(t0);
+    if (after.high_aspect_cells < checks.high_aspect_cells) {
+        r.surface = std::move(second.surface), r.prepare = std::move(second.prepare);
+        r.mesh = std::move(second.mesh), r.hybrid = std::move(second.hybrid), r.seconds = second.seconds;
+    }
+    r.prepare.aspect_remesh = a;
 }
 
 /// The report of \p r, built once from its stages' results.
@@ -100,7 +168,10 @@ Result run(const Request& request, Progress* progress) {
     r.surface = make_surface(request, source, r.any_cad, r.prepare, progress);
     r.seconds.surface = seconds_since(t0);
     if (request.job == Job::Layers) run_layers(request, source, r, progress);
-    if (request.job == Job::Mesh) run_mesh(request, r, progress);
+    if (request.job == Job::Mesh) {
+        run_mesh(request, r, progress);
+        remesh_for_aspect(request, source, r, progress);
+    }
     r.report = run_report(request, r);
     return r;
 }

@@ -60,6 +60,15 @@ ReportNode sewing_report(const SewReport& s) {
     return n;
 }
 
+ReportNode aspect_remesh_report(const AspectRemeshReport& a) {
+    ReportNode n;
+    n.set("cells", a.cells).set("worst", a.worst).set("worst_cell", a.worst_cell).set("smallest", a.smallest);
+    n.set("faces_before", a.faces_before).set("faces_after", a.faces_after).set("cells_after", a.cells_after);
+    n.set("worst_after", a.worst_after).set("faces_estimate", a.faces_estimate).set("over_budget", a.over_budget);
+    n.set("seconds", a.seconds);
+    return n;
+}
+
 ReportNode steps_report(const StepSizeReport& st) {
     ReportNode n;
     n.set("quality", st.quality).set("points", st.points).set("fan_points", st.fan_points);
@@ -289,6 +298,7 @@ ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r, bool cad
     holes.set("where", point(r.holes.where)).set("left", r.holes.left).set("largest_left", r.holes.largest_left);
     holes.set("max_edges", r.holes.max_edges);
     n.set("holes", std::move(holes)).set("sewn", sewing_report(r.sew)).set("steps", steps_report(r.steps));
+    n.set("aspect_remesh", aspect_remesh_report(r.aspect_remesh));
     const ShortEdgeReport& e = r.short_edges;
     ReportNode edges;
     edges.set("collapsed", e.collapsed).set("longest", e.longest).set("largest_share", e.largest_share);

@@ -802,6 +802,28 @@ TEST(Cli, ADeltaWingKeepsItsLeadingEdgeFansAndTheirWedgesPassCheckMesh) {
     EXPECT_GT(report_min_quality(rep, "tetrahedron"), 0.02) << r.out;
 }
 
+TEST(Cli, CellsAboveCheckMeshsAspectRatioMeshTheWallsAgainFinerRoundThem) {
+    // The sweep's propeller under the settings sweep's `fine` (25 layers from 5e-5 of its length
+    // at 1.15) at its default size: its blades' trailing edges end on the spinner (fan
+    // terminals, stopped at the wall), whose faces there are 0.12 long, and the pyramids
+    // closing those steps reached aspect ratio 1210 under 1e-4, which checkMesh fails. The
+    // walls are meshed again finer round such cells and the mesh made again.
+    test::ScratchDir dir("cli_aspect_remesh");
+    const CliResult r = mesh_sweep(dir, "propeller.geo", "--fuse --layers 25 --growth 1.15 --first-height 1e-4 -o p.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    test::expect_contains(r.out, {"aspect: the first mesh had ", "so the walls were meshed again finer round them",
+                                  "0 such cells, kept", "checkMesh would say \"Mesh OK\""});
+    const std::string rep = slurp(dir.file("p.msh.report.json"));
+    EXPECT_NE(rep.find("\"cells_after\": 0"), std::string::npos) << rep.substr(0, 2000);
+    // With the limit off (--max-aspect-ratio 0) nothing is meshed again, and the summary says
+    // what checkMesh will find.
+    const CliResult off =
+        mesh_sweep(dir, "propeller.geo", "--fuse --layers 25 --growth 1.15 --first-height 1e-4 --max-aspect-ratio 0 -o q.msh");
+    ASSERT_EQ(off.code, 0) << off.err;
+    EXPECT_EQ(off.out.find("aspect: the first mesh"), std::string::npos) << off.out;
+    test::expect_contains(off.out, {"cells with an aspect ratio above 1000"});
+}
+
 TEST(Cli, CellsStackedAcrossAnAcuteJunctionAreNotKeptSideBySide) {
     // The sweep's acute junctions, 30 layers from 2e-4 (1e-4 of their 2 m). A rod through a
     // plate at 15 degrees: the first prisms of plate and rod lay stacked across the junction,

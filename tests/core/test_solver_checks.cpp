@@ -145,6 +145,15 @@ TEST(SolverChecks, FlatCellsHaveTheRatioOfTheirSides) {
     const SolverChecks s = checks(m);
     EXPECT_NEAR(s.max_aspect_ratio, 1e4, 1e-6);
     EXPECT_EQ(s.high_aspect_cells, 2);
+    // Each listed, in cell order, with its centre and its longest edge (a diagonal: √(1 + 1 + h²)).
+    ASSERT_EQ(s.high_aspect.size(), 2u);
+    for (int c = 0; c < 2; ++c) {
+        const HighAspectCell& h = s.high_aspect[static_cast<std::size_t>(c)];
+        EXPECT_NEAR((h.centre - Vec3(0.5 + c, 0.5, 0.5e-4)).norm(), 0.0, 1e-12) << c;
+        EXPECT_NEAR(h.aspect_ratio, 1e4, 1e-6) << c;
+        EXPECT_NEAR(h.longest_edge, std::sqrt(2.0 + 1e-8), 1e-12) << c;
+    }
+    EXPECT_TRUE(checks(BoxMesh(2, 1, 1).build()).high_aspect.empty());
     ASSERT_EQ(s.failures().size(), 1u);
     EXPECT_NE(s.failures()[0].find("2 cells with an aspect ratio above 1000"), std::string::npos);
     EXPECT_NE(s.failures()[0].find("a finer surface or a thicker first layer"), std::string::npos);

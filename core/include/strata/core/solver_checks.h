@@ -31,6 +31,13 @@ inline constexpr double kFoamNonOrthogonalDeg = 70.0;  ///< "severely non-orthog
 inline constexpr double kFoamSkewness = 4.0;           ///< "highly skew faces" (fails)
 inline constexpr double kFoamAspectRatio = 1000.0;     ///< "high aspect ratio cells" (fails)
 
+/// A cell above kFoamAspectRatio (SolverChecks::high_aspect).
+struct HighAspectCell {
+    Vec3 centre = Vec3::Zero();  ///< OpenFOAM's centre of the cell
+    double aspect_ratio = 0.0;
+    double longest_edge = 0.0;  ///< the longest of its edges
+};
+
 struct SolverChecks {
     double max_non_orthogonality_deg = 0.0;  ///< over interior faces
     double mean_non_orthogonality_deg = 0.0;
@@ -44,6 +51,7 @@ struct SolverChecks {
     std::string worst_aspect;
     CellType worst_aspect_type = CellType::Tet;  ///< the type of that cell
     Index high_aspect_cells = 0;                 ///< cells above kFoamAspectRatio
+    std::vector<HighAspectCell> high_aspect;     ///< those cells, in cell order (tets, pyramids, prisms, hexes)
     Index negative_pyramids = 0;                 ///< faces whose pyramid to a cell's centre is not positive (fails)
     std::string worst_pyramid;                   ///< the first such face
     Index unused_points = 0;                     ///< points no cell uses ("Unused points", fails)

@@ -160,6 +160,22 @@ struct StepSizeReport {
     double seconds = 0.0;  ///< the layers planned to find the steps, and the surface made again
 };
 
+/// What the cells of the mesh above checkMesh's aspect ratio asked of the CAD walls (the
+/// front-end's run: the walls meshed again finer round them and the mesh made again, once).
+struct AspectRemeshReport {
+    Index cells = 0;          ///< cells of the first mesh above the limit (0: nothing done)
+    double worst = 0.0;       ///< the largest aspect ratio among them
+    std::string worst_cell;   ///< where (SolverChecks::worst_aspect)
+    double smallest = 0.0;    ///< the smallest size asked, in the result's unit
+    double faces_estimate = 0.0;  ///< the faces estimated from the sizes
+    bool over_budget = false;     ///< not meshed again: the estimate exceeded the faces budget
+    Index faces_before = 0;   ///< the first surface's faces
+    Index faces_after = 0;    ///< and the one meshed again
+    Index cells_after = 0;    ///< cells above the limit in the mesh made again
+    double worst_after = 0.0;
+    double seconds = 0.0;  ///< the surface and the mesh made again
+};
+
 /// What CadParams::sew_tolerance did.
 struct SewReport {
     Index faces = 0;  ///< faces that bounded no solid, sewn (0: nothing to sew)

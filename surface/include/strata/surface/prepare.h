@@ -61,6 +61,7 @@ struct PrepareReport {
     SewReport sew;                      ///< CAD input: what CadParams::sew_tolerance did (several files: summed)
     RecombinationReport recombination;  ///< quads asked (CAD or PrepareParams::remesh): what Gmsh's recombination did
     StepSizeReport steps;               ///< CAD input: what CadParams::step_quality did (prepare_for_layers)
+    AspectRemeshReport aspect_remesh;   ///< CAD input: the walls meshed again for the mesh's flat cells (run)
     double scale = 1.0;                 ///< PrepareParams::scale applied
     Index fused_components = 0;         ///< components replaced by their union (PrepareParams::fuse)
     Index fused_slivers = 0;            ///< flat slivers of the union flipped away (flip_flat_triangles)
