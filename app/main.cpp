@@ -538,19 +538,17 @@ void print_aspect_remesh(const strata::ReportNode& a) {
     if (count(a, "cells") == 0) return;
     if (a.flag("over_budget")) {
         std::printf(
-            "warning: %d cells above checkMesh's aspect ratio of 1000 (the worst %.4g, %s: cells closing a step "
-            "down to the wall are about as flat as their wall edge over the layer's height); walls fine enough round "
-            "them would take about %.3g faces, more than Strata makes unasked: give a smaller --size or a thicker "
-            "--first-height\n",
+            "warning: %d cells above checkMesh's aspect ratio of 1000 (the worst %.4g, %s); walls fine enough round "
+            "them would take about %.3g faces, more than Strata makes unasked (three times the surface's, at most the "
+            "faces budget): give a smaller --size there or a thicker --first-height\n",
             count(a, "cells"), a.number("worst"), a.text("worst_cell").c_str(), a.number("faces_estimate"));
         return;
     }
     const bool kept = count(a, "cells_after") < count(a, "cells");
     std::printf(
-        "aspect: the first mesh had %d cells above checkMesh's aspect ratio of 1000 (the worst %.4g, %s: cells "
-        "closing a step down to the wall are about as flat as their wall edge over the layer's height), so the walls "
-        "were meshed again finer round them (sizes down to %s, %d -> %d faces) and the mesh made again: %d such "
-        "cells%s (%.2f s)\n",
+        "aspect: the first mesh had %d cells above checkMesh's aspect ratio of 1000 (the worst %.4g, %s), so the "
+        "walls were meshed again finer round them (sizes down to %s, %d -> %d faces) and the mesh made again: %d "
+        "such cells%s (%.2f s)\n",
         count(a, "cells"), a.number("worst"), a.text("worst_cell").c_str(),
         strata::format_number(a.number("smallest"), 3).c_str(), count(a, "faces_before"), count(a, "faces_after"),
         count(a, "cells_after"), kept ? ", kept" : ", not fewer: the first mesh is kept", a.number("seconds"));
@@ -909,10 +907,10 @@ void print_hybrid_summary(const strata::ReportNode& r, bool kept_surface) {
                            "lowered)")
                               .c_str()
                         : "");
-    if (r.integer("flat_quads") > 0)
-        std::printf("quads: %d wall quads with a corner wider than %s degrees were split into two triangles through it "
-                    "before the layers (nearly triangles: the hexahedra on them lean their side faces out of line)\n",
-                    count(r, "flat_quads"), strata::format_number(strata::kFlatQuadDeg).c_str());
+    if (r.flag("skew_capped"))
+        std::printf(
+            "skew: faces between layer cells that checkMesh would fail as skewed (above 4) were found, and the mesh made "
+            "again with their columns capped below them (counted as quality stops, every layer kept)\n");
     if (r.integer("split_quads") > 0)
         std::printf(
             "quads: %d wall quads could take no pyramid on the layer top (too warped for an apex, their columns at the "

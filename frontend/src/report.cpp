@@ -377,7 +377,7 @@ ReportNode mesh_run_report(const VolumeMesh* mesh, const HybridReport& hr, const
     set_counts(n, hr.layers);
     n.set("internal_flow", hr.internal_flow).set("closed_half_model", hr.closed_half_model);
     n.set("front_rounds", hr.front_rounds).set("front_lowered_nodes", hr.front_lowered_nodes);
-    n.set("tet_retries", hr.tet_retries).set("split_quads", hr.split_quads).set("flat_quads", hr.flat_quads);
+    n.set("tet_retries", hr.tet_retries).set("split_quads", hr.split_quads).set("skew_capped", hr.skew_capped);
     const auto patch_name = [&](Index p) {
         return mesh ? mesh->boundary.patches[static_cast<std::size_t>(p)].name : std::to_string(p);
     };

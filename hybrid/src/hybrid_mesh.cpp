@@ -16,7 +16,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <set>
 #include <type_traits>
@@ -682,6 +681,31 @@ Stages march_with_repairs(const HybridParams& params, Rounds& rounds, HybridRepo
     }
 }
 
+/// The mesh of \p stages (layers, pyramids, tetrahedra, the planes merged back into the input's
+/// \p input_patches by \p plane_of), validated, with its coverage and counts in \p rep.
+VolumeMesh assembled(Stages& stages, Rounds& rounds, Index input_patches, const std::vector<Index>& plane_of,
+                     const HybridParams& params, HybridReport& rep, Progress* progress) {
+    LayerMesh& lm = stages.lm;
+    rep.layers = static_cast<const LayerCounts&>(lm);
+    lm.fans_dropped.assign(rounds.unusable.begin(), rounds.unusable.end());
+    lm.fans_skewed.assign(rounds.skewed.begin(), rounds.skewed.end());
+    rep.coverage = layer_report(lm);
+    std::sort(rounds.uncapped.begin(), rounds.uncapped.end());
+    for (const Index v : rounds.uncapped)
+        rep.coverage.no_fan.push_back({v, rounds.surface.points[static_cast<std::size_t>(v)], NoFan::Uncapped});
+    std::sort(rep.coverage.no_fan.begin(), rep.coverage.no_fan.end(),
+              [](const NoFanNode& a, const NoFanNode& b) { return a.node < b.node; });
+    rep.remeshed_patches = stages.outer.remeshed;
+
+    auto t0 = std::chrono::steady_clock::now();
+    const std::vector<Patch> patches(stages.region.patches.begin(), stages.region.patches.begin() + stages.top_patch);
+    VolumeMesh mesh = assemble(lm, stages.pyr, stages.region, stages.top_patch, stages.fill, patches);
+    merge_planes(mesh, input_patches, plane_of, rep.remeshed_patches);
+    rep.validation = require_valid_mesh(mesh, "hybrid mesh", {.threads = params.threads, .progress = progress});
+    rep.seconds_validate = seconds_since(t0);
+    return mesh;
+}
+
 }  // namespace
 
 VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& params, Progress* progress,
@@ -707,27 +731,19 @@ VolumeMesh build_hybrid_mesh(const SurfaceMesh& input, const HybridParams& param
 
     // Layers, pyramids and the front TetGen fills against, marched again after each stage's
     // repair (a thickness bound, no fan, a split quad) until all go through.
-    rep.flat_quads = split_flat_quads(surface);
     Rounds rounds = first_round(std::move(surface), has_outer, params);
-    Stages stages = march_with_repairs(params, rounds, rep, progress);
-    LayerMesh& lm = stages.lm;
-    rep.layers = static_cast<const LayerCounts&>(lm);
-    lm.fans_dropped.assign(rounds.unusable.begin(), rounds.unusable.end());
-    lm.fans_skewed.assign(rounds.skewed.begin(), rounds.skewed.end());
-    rep.coverage = layer_report(lm);
-    std::sort(rounds.uncapped.begin(), rounds.uncapped.end());
-    for (const Index v : rounds.uncapped)
-        rep.coverage.no_fan.push_back({v, rounds.surface.points[static_cast<std::size_t>(v)], NoFan::Uncapped});
-    std::sort(rep.coverage.no_fan.begin(), rep.coverage.no_fan.end(),
-              [](const NoFanNode& a, const NoFanNode& b) { return a.node < b.node; });
-    rep.remeshed_patches = stages.outer.remeshed;
-
-    auto t0 = std::chrono::steady_clock::now();
-    const std::vector<Patch> patches(stages.region.patches.begin(), stages.region.patches.begin() + stages.top_patch);
-    VolumeMesh mesh = assemble(lm, stages.pyr, stages.region, stages.top_patch, stages.fill, patches);
-    merge_planes(mesh, input_patches, plane_of, rep.remeshed_patches);
-    rep.validation = require_valid_mesh(mesh, "hybrid mesh", {.threads = params.threads, .progress = progress});
-    rep.seconds_validate = seconds_since(t0);
+    VolumeMesh mesh;
+    for (int pass = 0;; ++pass) {
+        Stages stages = march_with_repairs(params, rounds, rep, progress);
+        mesh = assembled(stages, rounds, input_patches, plane_of, params, rep, progress);
+        // Faces between layer cells checkMesh would fail as skewed: their columns capped below
+        // them (cap_skewed_columns) and the mesh made again, once.
+        if (pass > 0 || rep.validation.solver.skew_faces == 0 ||
+            !cap_skewed_columns(stages.lm, rounds.layers, rounds.surface.points.size(), rounds.constraints,
+                                params.threads))
+            break;
+        rep.skew_capped = true;
+    }
     if (report) *report = std::move(rep);
     return mesh;
 }
@@ -737,7 +753,6 @@ StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double 
     bool has_outer = false, half = false, internal = false;
     SurfaceMesh surface = closed_domain(input, params.farfield, has_outer, half, internal);
     if (has_outer) split_into_planes(surface);  // as build_hybrid_mesh marches them
-    split_flat_quads(surface);
     LayerParams layer_params = params.layers;
     layer_params.threads = params.threads;
     const ProximityPlan plan = proximity_plan(surface, layer_params);
@@ -761,44 +776,6 @@ StepPlan step_plan(const SurfaceMesh& input, const HybridParams& params, double 
     }
     if (area > 0.0 && asked > 0.0) out.thickness_share = covered / (area * asked);
     return out;
-}
-
-Index split_flat_quads(SurfaceMesh& mesh) {
-    const double flat_cos = std::cos(kFlatQuadDeg * std::numbers::pi / 180.0);
-    const auto widest = [&](Index f) {  // the corner of quad f wider than kFlatQuadDeg, or -1
-        const Index* q = mesh.face_begin(f);
-        const auto at = [&](int i) -> const Vec3& { return mesh.points[static_cast<std::size_t>(q[(i + 4) % 4])]; };
-        int corner = -1;
-        double lowest = flat_cos;
-        for (int i = 0; i < 4; ++i) {
-            const Vec3 a = (at(i - 1) - at(i)).normalized(), b = (at(i + 1) - at(i)).normalized();
-            if (const double c = a.dot(b); c < lowest) lowest = c, corner = i;
-        }
-        return corner;
-    };
-    std::vector<std::pair<Index, int>> flat;
-    for (Index f = 0; f < mesh.num_faces(); ++f)
-        if (mesh.face_size(f) == 4 &&
-            mesh.patches[static_cast<std::size_t>(mesh.face_patch[f])].kind == PatchKind::Wall)
-            if (const int c = widest(f); c >= 0) flat.emplace_back(f, c);
-    if (flat.empty()) return 0;
-    SurfaceMesh out;
-    out.points = mesh.points;
-    out.patches = mesh.patches;
-    std::size_t next = 0;
-    for (Index f = 0; f < mesh.num_faces(); ++f) {
-        const Index p = mesh.face_patch[static_cast<std::size_t>(f)];
-        if (next == flat.size() || flat[next].first != f) {
-            out.add_face(mesh.face_begin(f), mesh.face_size(f), p);
-            continue;
-        }
-        const Index* q = mesh.face_begin(f);
-        const int c = flat[next++].second;
-        out.add_face({q[c], q[(c + 1) % 4], q[(c + 2) % 4]}, p);
-        out.add_face({q[c], q[(c + 2) % 4], q[(c + 3) % 4]}, p);
-    }
-    mesh = std::move(out);
-    return static_cast<Index>(flat.size());
 }
 
 }  // namespace strata

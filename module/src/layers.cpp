@@ -690,20 +690,37 @@ struct SkewedLayers {
     /// trailing edge on a body) whose layers stretch beside its neighbours'.
     std::vector<CapAt> columns;
 };
-SkewedLayers skewed_layers(const LayerMesh& lm, int threads) {
+/// With \p fans_only, only the cells with a node on a fan's column are looked at (a face with
+/// such a node has such cells on both sides), and only fan_nodes is filled.
+SkewedLayers skewed_layers(const LayerMesh& lm, int threads, bool fans_only) {
     std::vector<Index> column(lm.mesh.points.size(), kNone);  // the column each node is on
     std::vector<int> level(lm.mesh.points.size(), 0);
-    for (Index i = 0; i < lm.wall_nodes(); ++i)
-        for (int k = 0; k <= lm.node_layers(i); ++k) {
-            const auto v = static_cast<std::size_t>(lm.level_node(k, i));
-            if (column[v] == kNone) column[v] = i, level[v] = k;  // a fan's shared wall node: its first column
-        }
-    std::vector<std::uint64_t> skewed;
-    const FaceMatch match = match_faces(lm.mesh, threads);
-    solver_checks(lm.mesh, match, threads, &skewed);
     const auto on_fan = [&](Index i) {
-        return !lm.fan_column.empty() && lm.fan_column[static_cast<std::size_t>(i)] != 0;
+        return i != kNone && !lm.fan_column.empty() && lm.fan_column[static_cast<std::size_t>(i)] != 0;
     };
+    for (Index i = 0; i < lm.wall_nodes(); ++i)
+        if (!fans_only || on_fan(i))
+            for (int k = 0; k <= lm.node_layers(i); ++k) {
+                const auto v = static_cast<std::size_t>(lm.level_node(k, i));
+                if (column[v] == kNone) column[v] = i, level[v] = k;  // a fan's shared wall node: its first column
+            }
+    VolumeMesh subset;
+    if (fans_only) {
+        subset.points = lm.mesh.points;
+        auto take = [&](const auto& cells, auto& into) {
+            for (const auto& c : cells)
+                if (std::any_of(c.begin(), c.end(), [&](Index v) { return column[static_cast<std::size_t>(v)] != kNone; }))
+                    into.push_back(c);
+        };
+        take(lm.mesh.tets, subset.tets);
+        take(lm.mesh.pyramids, subset.pyramids);
+        take(lm.mesh.prisms, subset.prisms);
+        take(lm.mesh.hexes, subset.hexes);
+    }
+    const VolumeMesh& cells = fans_only ? subset : lm.mesh;
+    std::vector<std::uint64_t> skewed;
+    const FaceMatch match = match_faces(cells, threads);
+    solver_checks(cells, match, threads, &skewed);
     SkewedLayers out;
     for (const std::uint64_t s : skewed) {
         if (match.across[s] < 0) continue;  // not a face between two cells
@@ -714,6 +731,7 @@ SkewedLayers skewed_layers(const LayerMesh& lm, int threads) {
         for (int c = 0; c < n; ++c) lowest = std::min(lowest, level[static_cast<std::size_t>(v[c])]);
         for (int c = 0; c < n; ++c) {
             const Index i = column[static_cast<std::size_t>(v[c])];
+            if (i == kNone) continue;
             const Index input = lm.input_node[static_cast<std::size_t>(i)];
             if (fan && on_fan(i))
                 out.fan_nodes.push_back(input);
@@ -724,6 +742,26 @@ SkewedLayers skewed_layers(const LayerMesh& lm, int threads) {
     std::sort(out.fan_nodes.begin(), out.fan_nodes.end());
     out.fan_nodes.erase(std::unique(out.fan_nodes.begin(), out.fan_nodes.end()), out.fan_nodes.end());
     return out;
+}
+
+/// Each column of \p caps bounded in \p constraints to the thickness \p reach gives its level
+/// (LayerConstraints::node_stop_limit, for its reason; sized to \p nodes first if empty); whether
+/// any bound was lowered.
+bool lower_stop_limits(const std::vector<CapAt>& caps, const std::vector<double>& reach, std::size_t nodes,
+                       LayerConstraints& constraints) {
+    if (constraints.node_stop_limit.empty()) {
+        constraints.node_stop_limit.assign(nodes, std::numeric_limits<double>::infinity());
+        constraints.node_stop_reason.assign(nodes, Shortfall::None);
+    }
+    bool any = false;
+    for (const CapAt& c : caps) {
+        const auto v = static_cast<std::size_t>(c.node);
+        const double bound = reach[static_cast<std::size_t>(c.level)];
+        if (!(bound < constraints.node_stop_limit[v])) continue;
+        constraints.node_stop_limit[v] = bound, constraints.node_stop_reason[v] = c.why;
+        any = true;
+    }
+    return any;
 }
 
 /// The layers marched again with each column of \p caps bounded to the thickness of the levels
@@ -739,19 +777,7 @@ std::optional<LayerMesh> march_capped(const SurfaceMesh& surface, const LayerPar
         capped_reach(delta, params.distribution.layers, std::numeric_limits<double>::infinity());
     LayerConstraints again = constraints;
     ++again.stop_marches;
-    if (again.node_stop_limit.empty()) {
-        again.node_stop_limit.assign(surface.points.size(), std::numeric_limits<double>::infinity());
-        again.node_stop_reason.assign(surface.points.size(), Shortfall::None);
-    }
-    bool any = false;
-    for (const CapAt& c : caps) {
-        const auto v = static_cast<std::size_t>(c.node);
-        const double bound = reach[static_cast<std::size_t>(c.level)];
-        if (!(bound < again.node_stop_limit[v])) continue;
-        again.node_stop_limit[v] = bound, again.node_stop_reason[v] = c.why;
-        any = true;
-    }
-    if (!any) return std::nullopt;
+    if (!lower_stop_limits(caps, reach, surface.points.size(), again)) return std::nullopt;
     return extrude_layers(surface, params, again, progress);
 }
 
@@ -1471,14 +1497,12 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         if (col.levels[static_cast<std::size_t>(i)] < layers)
             out.stop_reason[static_cast<std::size_t>(i)] = col.reason[static_cast<std::size_t>(i)];
     build_layer_cells(col, w.mesh, w.loops, side_patches(surface, w), out);
-    if (rules.quality) {
-        // Faces checkMesh would fail as skewed: no fan at the wall nodes of the fans they are
-        // in, and march again (each round marks new nodes, so this ends); else the columns
-        // under them capped where the faces begin.
-        const SkewedLayers skewed = skewed_layers(out, mc.threads);
-        if (auto retry = without_fans(surface, params, constraints, skewed.fan_nodes, &LayerMesh::fans_skewed, progress))
-            return std::move(*retry);
-        if (auto retry = march_capped(surface, params, constraints, skewed.columns, delta, progress))
+    if (!fans.empty() && rules.quality) {
+        // Fans whose cells have faces checkMesh would fail as skewed: no fan at those wall
+        // nodes, and march again (each round marks new nodes, so this ends). Other columns
+        // under such faces: cap_skewed_columns, where the whole mesh has them.
+        if (auto retry = without_fans(surface, params, constraints, skewed_layers(out, mc.threads, true).fan_nodes,
+                                      &LayerMesh::fans_skewed, progress))
             return std::move(*retry);
     }
     return out;
@@ -1486,6 +1510,15 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
 
 LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {
     return extrude_layers(surface, params, LayerConstraints{}, progress);
+}
+
+bool cap_skewed_columns(const LayerMesh& lm, const LayerParams& params, std::size_t nodes,
+                        LayerConstraints& constraints, int threads) {
+    if (params.proximity != ProximityMode::Stop) return false;
+    const std::vector<CapAt> caps = skewed_layers(lm, threads, false).columns;
+    const std::vector<double> reach = capped_reach(layer_heights(params.distribution), params.distribution.layers,
+                                                   std::numeric_limits<double>::infinity());
+    return lower_stop_limits(caps, reach, nodes, constraints);
 }
 
 LayerReport layer_report(const LayerMesh& lm) {

@@ -365,30 +365,5 @@ TEST(Cancellation, EveryStageStopsAtItsNextCheckAndNothingIsWritten) {
             }
 }
 
-TEST(HybridMesh, AWallQuadWithAFlatCornerIsSplitThroughItBeforeTheLayers) {
-    // Three quads side by side in z = 0: a square, one whose corner at (2, -0.1) is 169 degrees
-    // (nearly the triangle (1, 0), (3, 0), (2, 1)), and the same on a symmetry plane.
-    SurfaceMesh m;
-    m.patches = {{"wall", PatchKind::Wall}, {"symmetry", PatchKind::Symmetry}};
-    m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(2, -0.1, 0), Vec3(3, 0, 0),
-                Vec3(2, 1, 0), Vec3(4, -0.1, 0), Vec3(5, 0, 0), Vec3(4, 1, 0)};
-    m.add_face({0, 1, 2, 3}, 0);
-    m.add_face({1, 4, 5, 6}, 0);  // corner 4: 180 - 2 atan(0.1) = 168.6 degrees
-    m.add_face({5, 7, 8, 9}, 1);
-    const Vec3 area = face_area_vector(m, 1);
-    EXPECT_EQ(split_flat_quads(m), 1);
-    ASSERT_EQ(m.num_faces(), 4);
-    EXPECT_EQ(std::vector<Index>(m.face_begin(0), m.face_end(0)), (std::vector<Index>{0, 1, 2, 3}));
-    // Through the flat corner: (4, 5, 6) and (4, 6, 1), the quad's orientation and patch kept.
-    EXPECT_EQ(std::vector<Index>(m.face_begin(1), m.face_end(1)), (std::vector<Index>{4, 5, 6}));
-    EXPECT_EQ(std::vector<Index>(m.face_begin(2), m.face_end(2)), (std::vector<Index>{4, 6, 1}));
-    EXPECT_EQ(m.face_patch[1], 0);
-    EXPECT_EQ(m.face_patch[2], 0);
-    EXPECT_NEAR((face_area_vector(m, 1) + face_area_vector(m, 2) - area).norm(), 0.0, 1e-12);
-    EXPECT_EQ(m.face_size(3), 4);  // not a wall's: kept
-    EXPECT_EQ(m.num_points(), 10);
-    EXPECT_EQ(split_flat_quads(m), 0);  // nothing left to split
-}
-
 }  // namespace
 }  // namespace strata

@@ -42,10 +42,9 @@ struct HybridReport {
     /// apex: a quad bent round a small hole), its columns at the wall or lowered for it in a
     /// round before, and was split into two triangles (its columns prisms).
     int split_quads = 0;
-    /// Wall quads split into two triangles before the layers, for a corner wider than
-    /// kFlatQuadDeg: the hexahedra on such a nearly triangular quad have side faces checkMesh
-    /// fails as skewed where their columns spread.
-    Index flat_quads = 0;
+    /// The mesh had faces between layer cells checkMesh fails as skewed, and was made again
+    /// with their columns capped below them (cap_skewed_columns): they stop for quality.
+    bool skew_capped = false;
     std::vector<Index>
         remeshed_patches;  ///< patches (of the result's boundary) re-meshed around the layers' side faces
     /// Non-wall patches the layers end on that are not one plane but a few (a wind tunnel's
@@ -78,15 +77,6 @@ struct HybridReport {
 /// Cancelled is thrown at the next check.
 VolumeMesh build_hybrid_mesh(const SurfaceMesh& surface, const HybridParams& params, Progress* progress = nullptr,
                              HybridReport* report = nullptr);
-
-/// build_hybrid_mesh splits a wall quad with a corner wider than this (degrees) into two
-/// triangles through that corner before growing layers on it (HybridReport::flat_quads).
-inline constexpr double kFlatQuadDeg = 160.0;
-
-/// The wall quads of \p mesh with a corner wider than kFlatQuadDeg, each replaced in place by
-/// two triangles split through that corner, keeping its orientation and patch (the faces
-/// after it keep their order; no node changes); how many. build_hybrid_mesh does it first.
-Index split_flat_quads(SurfaceMesh& mesh);
 
 /// What the layers of build_hybrid_mesh plan at their proximity limits on a surface (nothing
 /// marched: proximity_plan over its closed domain, a half model closed as it closes it).

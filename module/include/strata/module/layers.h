@@ -256,6 +256,17 @@ LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, con
                          Progress* progress = nullptr);
 LayerMesh extrude_layers(const SurfaceMesh& wall, const LayerParams& params, Progress* progress = nullptr);
 
+/// The columns of \p lm that are not a fan's and have a node on a face between two of its cells
+/// that OpenFOAM's checkMesh would fail as skewed (above kFoamSkewness: a column bent at a
+/// concave junction, a fin's trailing edge on a body, whose layers stretch beside its
+/// neighbours'), bounded in \p constraints (for a surface of \p nodes nodes, lm's input) to the
+/// thickness of the levels below the face's lowest node (node_stop_limit, reason quality), so
+/// that extrude_layers with them caps those columns there and keeps their layers (ALGORITHM.md,
+/// "Capped columns"); whether any bound was lowered. Nothing in Scale mode. build_hybrid_mesh
+/// does it where its mesh has such faces and makes it again.
+bool cap_skewed_columns(const LayerMesh& lm, const LayerParams& params, std::size_t nodes,
+                        LayerConstraints& constraints, int threads);
+
 /// The columns' levels that extrude_layers plans before marching, from the proximity limits
 /// alone (LayerParams::proximity Stop; every column full otherwise): per node of \p wall, the
 /// layers that fit its limit (neighbours within one layer; LayerConstraints::node_thickness_limit
