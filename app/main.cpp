@@ -544,6 +544,13 @@ void print_aspect_remesh(const strata::ReportNode& a) {
             count(a, "cells"), a.number("worst"), a.text("worst_cell").c_str(), a.number("faces_estimate"));
         return;
     }
+    if (!a.text("failure").empty()) {
+        std::printf(
+            "warning: %d cells above checkMesh's aspect ratio of 1000 (the worst %.4g, %s); meshing the walls again "
+            "finer round them failed, so the first mesh is kept: %s\n",
+            count(a, "cells"), a.number("worst"), a.text("worst_cell").c_str(), a.text("failure").c_str());
+        return;
+    }
     const bool kept = count(a, "cells_after") < count(a, "cells");
     std::printf(
         "aspect: the first mesh had %d cells above checkMesh's aspect ratio of 1000 (the worst %.4g, %s), so the "

@@ -114,9 +114,16 @@ void remesh_for_aspect(const Request& request, const std::string& source, Result
     asked.insert(asked.end(), points.begin(), points.end());
     Result second;
     second.any_cad = r.any_cad;
-    second.surface = make_surface(again, source, r.any_cad, second.prepare, progress);
-    second.seconds.surface = r.seconds.surface + seconds_since(t0);  // both surfaces
-    run_mesh(again, second, progress);
+    try {
+        second.surface = make_surface(again, source, r.any_cad, second.prepare, progress);
+        second.seconds.surface = r.seconds.surface + seconds_since(t0);  // both surfaces
+        run_mesh(again, second, progress);
+    } catch (const Error& e) {  // the first mesh is valid: it stays, and the summary says why
+        a.failure = e.what();
+        a.seconds = seconds_since(t0);
+        r.prepare.aspect_remesh = a;
+        return;
+    }
     const SolverChecks& after = second.hybrid.validation.solver;
     a.faces_after = second.surface.num_faces();
     a.cells_after = after.high_aspect_cells, a.worst_after = after.max_aspect_ratio;

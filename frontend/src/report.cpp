@@ -65,7 +65,7 @@ ReportNode aspect_remesh_report(const AspectRemeshReport& a) {
     n.set("cells", a.cells).set("worst", a.worst).set("worst_cell", a.worst_cell).set("smallest", a.smallest);
     n.set("faces_before", a.faces_before).set("faces_after", a.faces_after).set("cells_after", a.cells_after);
     n.set("worst_after", a.worst_after).set("faces_estimate", a.faces_estimate).set("over_budget", a.over_budget);
-    n.set("seconds", a.seconds);
+    n.set("failure", a.failure).set("seconds", a.seconds);
     return n;
 }
 

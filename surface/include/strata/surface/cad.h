@@ -173,6 +173,7 @@ struct AspectRemeshReport {
     Index faces_after = 0;    ///< and the one meshed again
     Index cells_after = 0;    ///< cells above the limit in the mesh made again
     double worst_after = 0.0;
+    std::string failure;   ///< making them again failed (its error): the first mesh is kept
     double seconds = 0.0;  ///< the surface and the mesh made again
 };
 
