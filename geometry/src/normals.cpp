@@ -55,11 +55,25 @@ bool face_area(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f
     return area_vector.norm() > kDegenerateArea * edges2;
 }
 
-// Unit normal of face f, or zero when the face is degenerate.
-Vec3 unit_face_normal(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f) {
-    Vec3 a;
-    if (!face_area(mesh, points, f, a)) return Vec3::Zero();
-    return a.normalized();
+// The vector area of each face as the normals use it: zero where the face is degenerate.
+// LiveAreas computes it from the points at each call, CachedAreas reads it from an array
+// filled once per set of positions (node_normals_at); both give the same bits.
+struct LiveAreas {
+    const SurfaceMesh& mesh;
+    const std::vector<Vec3>& points;
+    Vec3 operator()(Index f) const {
+        Vec3 a;
+        return face_area(mesh, points, f, a) ? a : Vec3::Zero();
+    }
+};
+
+struct CachedAreas {
+    const std::vector<Vec3>& areas;
+    Vec3 operator()(Index f) const { return areas[static_cast<std::size_t>(f)]; }
+};
+
+bool usable(const Vec3& area_vector) {
+    return area_vector.squaredNorm() != 0.0;
 }
 
 // Interior angle of face f at its corner \p node (radians); 0 if an edge there has zero length.
@@ -83,14 +97,13 @@ Vec3 normalised(const Vec3& sum, double magnitude_of_terms) {
 
 /// Σ term(f, a) over the usable incident faces (a: the face's area vector), normalised against
 /// Σ weight: \p term returns the face's contribution and its weight.
-template <class Term>
-Vec3 weighted_sum(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Index* begin, const Index* end,
-                  Term&& term) {
+template <class Areas, class Term>
+Vec3 weighted_sum(const Areas& area, const Index* begin, const Index* end, Term&& term) {
     Vec3 sum = Vec3::Zero();
     double total = 0.0;
     for (const Index* f = begin; f != end; ++f) {
-        Vec3 a;
-        if (!face_area(mesh, points, *f, a)) continue;
+        const Vec3 a = area(*f);
+        if (!usable(a)) continue;
         const auto [contribution, weight] = term(*f, a);
         sum += contribution;
         total += weight;
@@ -98,14 +111,16 @@ Vec3 weighted_sum(const SurfaceMesh& mesh, const std::vector<Vec3>& points, cons
     return normalised(sum, total);
 }
 
-Vec3 area_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Index* begin, const Index* end) {
-    return weighted_sum(mesh, points, begin, end,
+template <class Areas>
+Vec3 area_weighted(const Areas& area, const Index* begin, const Index* end) {
+    return weighted_sum(area, begin, end,
                         [](Index, const Vec3& a) { return std::pair<Vec3, double>(a, a.norm()); });
 }
 
-Vec3 angle_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node, const Index* begin,
-                    const Index* end) {
-    return weighted_sum(mesh, points, begin, end, [&](Index f, const Vec3& a) {
+template <class Areas>
+Vec3 angle_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Areas& area, Index node,
+                    const Index* begin, const Index* end) {
+    return weighted_sum(area, begin, end, [&](Index f, const Vec3& a) {
         const double angle = corner_angle(mesh, points, f, node);
         return std::pair<Vec3, double>(angle * a.normalized(), angle);
     });
@@ -115,13 +130,13 @@ Vec3 angle_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, In
 // the face's edges from the node to the next and previous vertices (counter-clockwise, so
 // e1 × e2 points along the face normal). A face that lists the node more than once (pinched)
 // contributes every corner at it, as its area vector would.
-Vec3 max_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node, const Index* begin,
-                  const Index* end) {
+template <class Areas>
+Vec3 max_weighted(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Areas& area, Index node,
+                  const Index* begin, const Index* end) {
     Vec3 sum = Vec3::Zero();
     double total = 0.0;
     for (const Index* f = begin; f != end; ++f) {
-        Vec3 a;
-        if (!face_area(mesh, points, *f, a)) continue;
+        if (!usable(area(*f))) continue;
         const Index n = mesh.face_size(*f);
         const Index* v = mesh.face_begin(*f);
         for (Index i = 0; i < n; ++i) {
@@ -199,11 +214,9 @@ int golden_step(int n) {
     return step;
 }
 
-// Smallest cap holding normal(0 .. n-1); normal(i) is a unit vector or zero (ignored).
-template <class NormalAt>
-Cap smallest_cap(int n, NormalAt normal) {
-    const int step = golden_step(n);
-    auto at = [&](int i) { return normal(static_cast<int>((static_cast<long long>(i) * step) % n)); };
+/// Welzl's recursion, unrolled, over at(0 .. n-1) in that order.
+template <class At>
+Cap welzl_cap(int n, At at) {
     int first = 0;
     Vec3 p0 = at(0);
     while (p0.squaredNorm() == 0.0 && ++first < n) p0 = at(first);
@@ -225,14 +238,31 @@ Cap smallest_cap(int n, NormalAt normal) {
     return cap;
 }
 
-Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index node, const Index* begin,
-                 const Index* end) {
+// Smallest cap holding normal(0 .. n-1); normal(i) is a unit vector or zero (ignored).
+template <class NormalAt>
+Cap smallest_cap(int n, NormalAt normal) {
+    const int step = golden_step(n);
+    auto at = [&](int i) { return normal(static_cast<int>((static_cast<long long>(i) * step) % n)); };
+    if (n <= kStackNormals) {
+        // The normals in visiting order, once: Welzl's loops revisit them often.
+        std::array<Vec3, kStackNormals> visit;
+        for (int i = 0; i < n; ++i) visit[static_cast<std::size_t>(i)] = at(i);
+        return welzl_cap(n, [&](int i) -> const Vec3& { return visit[static_cast<std::size_t>(i)]; });
+    }
+    return welzl_cap(n, at);
+}
+
+template <class Areas>
+Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Areas& area, Index node,
+                 const Index* begin, const Index* end) {
+    // Unit normal of face f, or zero when the face is degenerate.
+    const auto unit_face_normal = [&](Index f) { return area(f).normalized(); };
     // Distinct unit normals on the stack; flat regions repeat one normal many times.
     std::array<Vec3, kStackNormals> normals;
     int count = 0;
     bool overflow = false;
     for (const Index* f = begin; f != end && !overflow; ++f) {
-        const Vec3 n = unit_face_normal(mesh, points, *f);
+        const Vec3 n = unit_face_normal(*f);
         if (n.squaredNorm() == 0.0) continue;
         bool seen = false;
         for (int i = 0; i < count && !seen; ++i) seen = (normals[i] - n).squaredNorm() < kSameNormal * kSameNormal;
@@ -249,7 +279,7 @@ Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index
         cap = smallest_cap(count, [&](int i) { return normals[i]; });
     } else {
         cap = smallest_cap(static_cast<int>(end - begin),
-                           [&](int i) { return unit_face_normal(mesh, points, begin[i]); });
+                           [&](int i) { return unit_face_normal(begin[i]); });
     }
 
     // The cap's own t carries the kInside slack; judge the answer by its true minimum.
@@ -258,14 +288,34 @@ Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index
         for (int i = 0; i < count; ++i) min_dot = std::min(min_dot, cap.c.dot(normals[i]));
     } else {
         for (const Index* f = begin; f != end; ++f) {
-            const Vec3 n = unit_face_normal(mesh, points, *f);
+            const Vec3 n = unit_face_normal(*f);
             if (n.squaredNorm() != 0.0) min_dot = std::min(min_dot, cap.c.dot(n));
         }
     }
     // The faces span a hemisphere or more (a cusp, a folded or zero-thickness edge): no
     // direction sees them all from outside, so the angle-weighted normal is a fair compromise.
-    if (!(min_dot > kMinUsefulDot)) return angle_weighted(mesh, points, node, begin, end);
+    if (!(min_dot > kMinUsefulDot)) return angle_weighted(mesh, points, area, node, begin, end);
     return cap.c;
+}
+
+/// Node \p v's normal by \p method, its faces' vector areas given by \p area.
+template <class Areas>
+Vec3 node_normal(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Areas& area, NormalMethod method,
+                 const Csr& vertex_faces, Index v) {
+    const Index* begin = vertex_faces.row_begin(v);
+    const Index* end = vertex_faces.row_end(v);
+    if (begin == end) return Vec3::Zero();
+    switch (method) {
+        case NormalMethod::AreaWeighted:
+            return area_weighted(area, begin, end);
+        case NormalMethod::AngleWeighted:
+            return angle_weighted(mesh, points, area, v, begin, end);
+        case NormalMethod::MaxMinDot:
+            return max_min_dot(mesh, points, area, v, begin, end);
+        case NormalMethod::Max:
+            return max_weighted(mesh, points, area, v, begin, end);
+    }
+    return Vec3::Zero();
 }
 
 }  // namespace
@@ -295,28 +345,57 @@ std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>&
                          std::to_string(mesh.num_points()) +
                          " nodes; pass one position per mesh node and vertex_faces(mesh)");
     std::vector<Vec3> normals(points.size(), Vec3::Zero());
+    const LiveAreas area{mesh, points};
     // Each node is independent (reads only): the result does not depend on the thread count.
 #pragma omp parallel for schedule(static) num_threads(thread_count(threads, n))
-    for (Index v = 0; v < n; ++v) {
-        const Index* begin = vertex_faces.row_begin(v);
-        const Index* end = vertex_faces.row_end(v);
-        if (begin == end) continue;
-        switch (method) {
-            case NormalMethod::AreaWeighted:
-                normals[v] = area_weighted(mesh, points, begin, end);
-                break;
-            case NormalMethod::AngleWeighted:
-                normals[v] = angle_weighted(mesh, points, v, begin, end);
-                break;
-            case NormalMethod::MaxMinDot:
-                normals[v] = max_min_dot(mesh, points, v, begin, end);
-                break;
-            case NormalMethod::Max:
-                normals[v] = max_weighted(mesh, points, v, begin, end);
-                break;
-        }
-    }
+    for (Index v = 0; v < n; ++v) normals[v] = node_normal(mesh, points, area, method, vertex_faces, v);
     return normals;
+}
+
+void node_normals_at(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Csr& vertex_faces,
+                     NormalMethod method, const std::vector<Index>& nodes, NormalScratch& scratch,
+                     std::vector<Vec3>& normals, int threads) {
+    const Index faces = mesh.num_faces();
+    scratch.areas.resize(static_cast<std::size_t>(faces));
+    scratch.face_marked.resize(static_cast<std::size_t>(faces), 0);
+    normals.resize(points.size(), Vec3::Zero());
+    const LiveAreas live{mesh, points};
+    if (nodes.size() * 4 >= points.size()) {
+        // Most nodes: every face round one of them, found face by face.
+        scratch.node_marked.resize(points.size(), 0);
+        for (Index v : nodes) scratch.node_marked[static_cast<std::size_t>(v)] = 1;
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads, faces))
+        for (Index f = 0; f < faces; ++f) {
+            bool round = false;
+            for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v)
+                round = round || scratch.node_marked[static_cast<std::size_t>(*v)];
+            if (round) scratch.areas[static_cast<std::size_t>(f)] = live(f);
+        }
+        for (Index v : nodes) scratch.node_marked[static_cast<std::size_t>(v)] = 0;
+    } else {
+        // A few: their faces, each once.
+        scratch.faces.clear();
+        for (Index v : nodes)
+            for (const Index* f = vertex_faces.row_begin(v); f != vertex_faces.row_end(v); ++f)
+                if (!scratch.face_marked[static_cast<std::size_t>(*f)]) {
+                    scratch.face_marked[static_cast<std::size_t>(*f)] = 1;
+                    scratch.faces.push_back(*f);
+                }
+        const auto nf = static_cast<Index>(scratch.faces.size());
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads, nf))
+        for (Index i = 0; i < nf; ++i) {
+            const Index f = scratch.faces[static_cast<std::size_t>(i)];
+            scratch.areas[static_cast<std::size_t>(f)] = live(f);
+        }
+        for (Index f : scratch.faces) scratch.face_marked[static_cast<std::size_t>(f)] = 0;
+    }
+    const CachedAreas area{scratch.areas};
+    const auto nn = static_cast<Index>(nodes.size());
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads, nn))
+    for (Index i = 0; i < nn; ++i) {
+        const Index v = nodes[static_cast<std::size_t>(i)];
+        normals[static_cast<std::size_t>(v)] = node_normal(mesh, points, area, method, vertex_faces, v);
+    }
 }
 
 std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, NormalMethod method,

@@ -79,6 +79,25 @@ std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>&
 /// InputError if \p vertex_faces does not have one row per node.
 std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Csr& vertex_faces,
                                NormalMethod method, int threads = 0);
+
+/// Scratch space node_normals_at keeps between calls, so that a loop calling it allocates
+/// nothing once it has grown.
+struct NormalScratch {
+    std::vector<Vec3> areas;       ///< per face: its vector area (zero where degenerate)
+    std::vector<Index> faces;      ///< the faces evaluated by the last call
+    std::vector<char> face_marked; ///< per face: 0 between calls
+    std::vector<char> node_marked; ///< per node: 0 between calls
+};
+
+/// node_normals at \p nodes only (node ids, each once), for a loop that moves the points and
+/// needs the normals where something moved (the layers' smoothing sweeps): \p normals (resized
+/// to one per node) gets those nodes' normals, its other entries are left as they are. Each
+/// face round them is evaluated once, not once per corner. Node for node the same values as
+/// node_normals, for any thread count.
+void node_normals_at(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Csr& vertex_faces,
+                     NormalMethod method, const std::vector<Index>& nodes, NormalScratch& scratch,
+                     std::vector<Vec3>& normals, int threads = 0);
+
 inline std::vector<Vec3> node_normals(const SurfaceMesh& mesh, NormalMethod method) {
     return node_normals(mesh, mesh.points, method);
 }
