@@ -12,6 +12,7 @@
 #include <strata/core/parallel.h>
 #include <strata/core/solver_checks.h>
 #include <strata/geometry/check.h>
+#include <strata/geometry/normals.h>
 #include <strata/geometry/topology.h>
 #include <strata/module/layers.h>
 #include <strata/module/proximity.h>
@@ -260,21 +261,36 @@ struct Marcher {
         return out;
     }
 
+    /// Per node, the nodes whose smoothing update reads its position (its stencil's centre
+    /// and the nodes whose faces its normal is made of): the transpose of what each reads.
+    Csr readers;
+
     std::vector<Vec3> normals(const std::vector<Vec3>& r) const {
         std::vector<Vec3> n = node_normals(wall, r, vf, params.normals, threads);
-        // A fan's columns march along their fixed directions (in the plane, at a plane node);
-        // other nodes on a plane march in it: their normal is the mirror-symmetric one.
-        for (std::size_t i = 0; i < n.size(); ++i)
-            if (!fixed.empty() && fixed[i] != Vec3::Zero()) {
-                n[i] = fixed[i];
-            } else if (node_plane[i] != kNone) {
-                const Vec3& pn = planes[node_plane[i]].normal;
-                const Vec3 t = n[i] - n[i].dot(pn) * pn;
-                if (t.norm() > 1e-12) n[i] = t.normalized();
-            } else if (node_line[i] != Vec3::Zero()) {
-                n[i] = node_line[i];
-            }
+        for (std::size_t i = 0; i < n.size(); ++i) constrain_normal(static_cast<Index>(i), n[i]);
         return n;
+    }
+
+    /// normals(r) at \p nodes only, into \p n (other entries left as they are).
+    void normals_at(const std::vector<Vec3>& r, const std::vector<Index>& nodes, NormalScratch& scratch,
+                    std::vector<Vec3>& n) const {
+        node_normals_at(wall, r, vf, params.normals, nodes, scratch, n, threads);
+        for (Index i : nodes) constrain_normal(i, n[static_cast<std::size_t>(i)]);
+    }
+
+    /// A fan's columns march along their fixed directions (in the plane, at a plane node);
+    /// other nodes on a plane march in it: their normal is the mirror-symmetric one.
+    void constrain_normal(Index node, Vec3& n) const {
+        const auto i = static_cast<std::size_t>(node);
+        if (!fixed.empty() && fixed[i] != Vec3::Zero()) {
+            n = fixed[i];
+        } else if (node_plane[i] != kNone) {
+            const Vec3& pn = planes[node_plane[i]].normal;
+            const Vec3 t = n - n.dot(pn) * pn;
+            if (t.norm() > 1e-12) n = t.normalized();
+        } else if (node_line[i] != Vec3::Zero()) {
+            n = node_line[i];
+        }
     }
 
     /// Φ, Ψ (Eq. 14 in the form of ALGORITHM.md section 4) from the initial surface.
@@ -866,12 +882,40 @@ std::vector<double> thickness_shares(const Marcher& mc, const std::vector<double
     return share;
 }
 
+/// Marcher::readers: for each node o, what its smoothing update reads (o, its stencil points'
+/// nodes, the corners of the faces round it, which make its normal), transposed; each row
+/// ascending, each reader once.
+Csr smoothing_readers(const SurfaceMesh& wall, const Csr& vf, const Stencils& st) {
+    const Index n = wall.num_points();
+    std::vector<std::pair<Index, Index>> reads;  // (node read, reader)
+    std::vector<Index> row;
+    for (Index o = 0; o < n; ++o) {
+        row.assign(1, o);
+        for (Index j = st.offsets[o]; j < st.offsets[o + 1]; ++j) row.push_back(st.points[j].node);
+        for (const Index* f = vf.row_begin(o); f != vf.row_end(o); ++f)
+            row.insert(row.end(), wall.face_begin(*f), wall.face_end(*f));
+        std::sort(row.begin(), row.end());
+        row.erase(std::unique(row.begin(), row.end()), row.end());
+        for (Index a : row) reads.emplace_back(a, o);
+    }
+    std::sort(reads.begin(), reads.end());
+    Csr out;
+    out.offsets.assign(static_cast<std::size_t>(n) + 1, 0);
+    out.values.reserve(reads.size());
+    for (const auto& [a, o] : reads) {
+        ++out.offsets[static_cast<std::size_t>(a) + 1];
+        out.values.push_back(o);
+    }
+    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) out.offsets[i + 1] += out.offsets[i];
+    return out;
+}
+
 /// \p plan_only: the directions and the proximity levels only (proximity_plan), no stencils
 /// or control functions.
 Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const FanWall& fans, const LayerParams& params,
                      const LayerConstraints& constraints, const std::vector<double>& delta,
                      std::vector<Shortfall>& scale_reason, std::vector<int>& max_levels, bool plan_only = false) {
-    Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+    Marcher mc{w.mesh, params, thread_count(params.threads), vertex_faces(w.mesh), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
     if (!fans.empty()) mc.fixed = fans.direction, mc.fan_face = fans.fan_face;
     {
         const std::vector<Vec3> n = node_normals(w.mesh, w.mesh.points, mc.vf, params.normals, mc.threads);
@@ -890,6 +934,7 @@ Marcher make_marcher(const SurfaceMesh& surface, const Wall& w, const FanWall& f
         for (std::size_t i = 0; i < mc.fixed.size(); ++i)
             if (mc.fixed[i] != Vec3::Zero()) mc.st.valid[i] = 0;
         mc.control_functions();
+        mc.readers = smoothing_readers(w.mesh, mc.vf, mc.st);
     }
     mc.height_scale = proximity_scale(surface, w, mc, constraints, delta, scale_reason, max_levels, mc.cap);
     return mc;
@@ -988,6 +1033,10 @@ Vec3 jacobi_update(const Marcher& mc, const Levels& lv, Index o, double theta, d
 /// every case gives the same worst cells.
 constexpr double kMaxSmoothingMove = 10.0;
 
+/// A node whose smoothing update reads only nodes that moved at most this share of the
+/// tolerance (LayerParams::tolerance × δ_k) in the last sweep is not updated in the next one.
+constexpr double kSettledMove = 0.01;
+
 /// The most a column may lean off the normal of the front it grows from, degrees, once smoothed
 /// (limit_lean).
 constexpr double kMaxLeanDeg = 30.0;
@@ -1022,35 +1071,79 @@ void limit_lean(Index nw, const std::vector<Vec3>& r0, const std::vector<Vec3>& 
 /// tolerance × δ_k; each update held within kMaxSmoothingMove layer heights of \p r1 as it came
 /// in (the extruded level), and the result's columns leaning at most kMaxLeanDeg (limit_lean).
 /// Returns the sweeps done.
+/// The nodes to update in the next sweep, ascending, into \p todo: those reading a node in
+/// \p moved (Marcher::readers). Where many moved, every node: updating a node whose reads did
+/// not change gives the position it has. \p queued: per node, 0 (and 0 again on return).
+void next_todo(const Csr& readers, const std::vector<Index>& moved, std::vector<char>& queued,
+               std::vector<Index>& todo) {
+    const Index n = readers.rows();
+    todo.clear();
+    if (moved.size() * 8 >= static_cast<std::size_t>(n)) {
+        todo.resize(static_cast<std::size_t>(n));
+        std::iota(todo.begin(), todo.end(), Index{0});
+        return;
+    }
+    for (Index a : moved)
+        for (const Index* o = readers.row_begin(a); o != readers.row_end(a); ++o) queued[static_cast<std::size_t>(*o)] = 1;
+    for (Index o = 0; o < n; ++o)
+        if (queued[static_cast<std::size_t>(o)]) queued[static_cast<std::size_t>(o)] = 0, todo.push_back(o);
+}
+
+/// Node \p o's point-Jacobi update held within kMaxSmoothingMove layer heights of its extruded
+/// position \p ref: a node the sweeps carry away (a concave junction node whose update
+/// diverges: 60 layer heights in one layer on the body-fin box, 250 beside the
+/// wing-fuselage's junction) stays there.
+Vec3 smoothed_position(const Marcher& mc, const Levels& lv, Index o, double theta, double dk, double dk1,
+                       const Vec3& ref) {
+    Vec3 next = jacobi_update(mc, lv, o, theta, 0.5 * (dk + dk1) * mc.height_scale[o]);
+    const double reach = kMaxSmoothingMove * dk * mc.height_scale[o];
+    const Vec3 d = next - ref;
+    if (d.squaredNorm() > reach * reach) next = ref + (reach / d.norm()) * d;
+    return next;
+}
+
 int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, double dk1, std::vector<Vec3>& r1) {
     const LayerParams& p = mc.params;
     const double theta = p.control_functions ? -2.0 * (dk1 - dk) / (dk + dk1) : 0.0;
     const int max_sweeps = p.smoothing ? std::max(p.max_sweeps, p.sweeps) : 0;
     const Index nw = mc.wall.num_points();
-    std::vector<Vec3> r2(r1.size()), next(r1.size());
+    std::vector<Vec3> r2(r1.size()), n1(r1.size()), next;
     const std::vector<Vec3> ref = r1;  // the extruded level the smoothing corrects
+    // The nodes to update this sweep: at first all; then those whose update reads a node that
+    // moved more than kSettledMove of the tolerance in the last sweep (the others would
+    // compute about where they are).
+    std::vector<Index> todo(static_cast<std::size_t>(nw)), moved;
+    std::iota(todo.begin(), todo.end(), Index{0});
+    std::vector<char> queued(static_cast<std::size_t>(nw), 0);
+    std::vector<double> move;
+    NormalScratch scratch;
+    const double settled = kSettledMove * p.tolerance * dk;
     int sweep = 0;
     for (; sweep < max_sweeps; ++sweep) {
-        const std::vector<Vec3> n1 = mc.normals(r1);
-        for (Index i = 0; i < nw; ++i) r2[i] = r1[i] + (dk1 * mc.height_scale[i]) * n1[i];  // Eq. 12
-        const Levels lv{r0, r1, r2};
+        mc.normals_at(r1, todo, scratch, n1);
+        const auto nt = static_cast<Index>(todo.size());
+        next.resize(todo.size());
+        move.resize(todo.size());
         double max_move = 0.0;
-#pragma omp parallel for num_threads(thread_count(mc.threads, nw)) schedule(static) reduction(max : max_move)
-        for (Index o = 0; o < nw; ++o) {
-            next[o] = jacobi_update(mc, lv, o, theta, 0.5 * (dk + dk1) * mc.height_scale[o]);
-            // A node the sweeps carry away (a concave junction node whose update diverges: 60
-            // layer heights in one layer on the body-fin box, 250 beside the wing-fuselage's
-            // junction) is held within kMaxSmoothingMove layer heights of its extruded position.
-            const double reach = kMaxSmoothingMove * dk * mc.height_scale[o];
-            const Vec3 d = next[o] - ref[o];
-            if (d.squaredNorm() > reach * reach) next[o] = ref[o] + (reach / d.norm()) * d;
-            max_move = std::max(max_move, (next[o] - r1[o]).norm());
+#pragma omp parallel for num_threads(thread_count(mc.threads, nt)) schedule(static) reduction(max : max_move)
+        for (Index t = 0; t < nt; ++t) {
+            const Index o = todo[static_cast<std::size_t>(t)];
+            r2[o] = r1[o] + (dk1 * mc.height_scale[o]) * n1[o];  // Eq. 12
+            next[t] = smoothed_position(mc, Levels{r0, r1, r2}, o, theta, dk, dk1, ref[o]);
+            move[t] = (next[t] - r1[o]).norm();
+            max_move = std::max(max_move, move[t]);
         }
-        std::swap(r1, next);
+        moved.clear();
+        for (Index t = 0; t < nt; ++t) {
+            const Index o = todo[static_cast<std::size_t>(t)];
+            r1[o] = next[t];
+            if (move[t] > settled) moved.push_back(o);
+        }
         if (sweep + 1 >= p.sweeps && max_move <= p.tolerance * dk) {
             ++sweep;
             break;
         }
+        next_todo(mc.readers, moved, queued, todo);
     }
     if (sweep > 0) limit_lean(nw, r0, ref, r1);
     return sweep;
