@@ -579,6 +579,14 @@ struct Rounds {
             }
     }
 
+    /// The columns \p lm capped where they stopped stay capped in the rounds after, which make
+    /// no further marches for such stops: a round after a repair marches once, not once plus
+    /// the stop marches (extrude_layers) again from no cap.
+    void keep_stop_bounds(const LayerMesh& lm) {
+        constraints.node_stop_limit = lm.stop_limit, constraints.node_stop_reason = lm.stop_limit_reason;
+        constraints.stop_marches = lm.stop_marches;
+    }
+
     /// \p repair carried out for the next round, and counted in \p rep.
     void apply(const Repair& repair, HybridReport& rep) {
         for (const auto& [node, bound] : repair.bounds) {
@@ -615,6 +623,7 @@ Outcome<Stages> attempt(const HybridParams& params, Rounds& rounds, HybridReport
     if (auto* repair = std::get_if<Repair>(&layers)) return std::move(*repair);
     s.lm = std::get<LayerMesh>(std::move(layers));
     rounds.keep_dropped_fans(s.lm);
+    rounds.keep_stop_bounds(s.lm);
     t0 = clock::now();
     Outcome<PyramidLayer> pyr = cap_with_pyramids(s.lm, rounds.surface, params.pyramids, rounds.uncappable, progress);
     rep.seconds_pyramids += seconds_since(t0);

@@ -1598,6 +1598,8 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
                                       &LayerMesh::fans_skewed, progress))
             return std::move(*retry);
     }
+    out.stop_limit = constraints.node_stop_limit, out.stop_limit_reason = constraints.node_stop_reason;
+    out.stop_marches = constraints.stop_marches;
     return out;
 }
 

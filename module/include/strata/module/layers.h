@@ -195,6 +195,12 @@ public:
     /// Nodes of the input surface with no fan because its cells had faces checkMesh would fail
     /// as skewed (ascending; layer_report lists them with their positions).
     std::vector<Index> fans_skewed;
+    /// The bounds of the columns capped where they stopped that these layers were marched with
+    /// (LayerConstraints::node_stop_limit, node_stop_reason, stop_marches), for a caller that
+    /// marches the same surface again (build_hybrid_mesh's rounds).
+    std::vector<double> stop_limit;
+    std::vector<Shortfall> stop_limit_reason;
+    int stop_marches = 0;
     /// Wall nodes on an edge turning LayerParams::fan_angle_deg or more that got no fan: on the
     /// open boundary where no chain ends, or on a chain that could take none (NoFan::Open,
     /// NoFan::Unclosed), by input node id, with their positions.
