@@ -1034,8 +1034,9 @@ Vec3 jacobi_update(const Marcher& mc, const Levels& lv, Index o, double theta, d
 constexpr double kMaxSmoothingMove = 10.0;
 
 /// A node whose smoothing update reads only nodes that moved at most this share of the
-/// tolerance (LayerParams::tolerance × δ_k) in the last sweep is not updated in the next one.
-constexpr double kSettledMove = 0.01;
+/// tolerance (LayerParams::tolerance × δ_k) in the last sweep is not updated in the next one:
+/// the layer's own test of convergence (every node moving at most the tolerance), node by node.
+constexpr double kSettledMove = 1.0;
 
 /// The most a column may lean off the normal of the front it grows from, degrees, once smoothed
 /// (limit_lean).
@@ -1110,8 +1111,8 @@ int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, doub
     std::vector<Vec3> r2(r1.size()), n1(r1.size()), next;
     const std::vector<Vec3> ref = r1;  // the extruded level the smoothing corrects
     // The nodes to update this sweep: at first all; then those whose update reads a node that
-    // moved more than kSettledMove of the tolerance in the last sweep (the others would
-    // compute about where they are).
+    // moved more than kSettledMove of the tolerance in the last sweep (the others have
+    // converged: they would compute about where they are).
     std::vector<Index> todo(static_cast<std::size_t>(nw)), moved;
     std::iota(todo.begin(), todo.end(), Index{0});
     std::vector<char> queued(static_cast<std::size_t>(nw), 0);
