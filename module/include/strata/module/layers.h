@@ -32,7 +32,10 @@ ProximityMode parse_proximity_mode(std::string_view text);
 /// Parameters of layer generation. Lengths in model units.
 struct LayerParams {
     DistributionParams distribution;  ///< number of layers and their heights
-    int sweeps = 10;                  ///< point-Jacobi sweeps per layer (the paper's ten), ≥ 0
+    /// Point-Jacobi sweeps per layer (the paper's ten), ≥ 0. A sweep updates only the nodes
+    /// whose update reads a node that moved more than a tenth of tolerance × δ_k in the sweep
+    /// before.
+    int sweeps = 10;
     int max_sweeps = 50;              ///< more sweeps allowed while the residual is high; below sweeps it is sweeps
     double tolerance = 1e-3;          ///< stop extra sweeps when max update < tolerance × δ_k
     bool control_functions = true;    ///< Φ, Ψ from the wall, Θ from the distribution
