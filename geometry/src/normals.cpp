@@ -58,6 +58,7 @@ bool face_area(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f
 // The vector area of each face as the normals use it: zero where the face is degenerate.
 // LiveAreas computes it from the points at each call, CachedAreas reads it from an array
 // filled once per set of positions (node_normals_at); both give the same bits.
+// unit(f) is the face's unit normal, zero where it is degenerate.
 struct LiveAreas {
     const SurfaceMesh& mesh;
     const std::vector<Vec3>& points;
@@ -65,11 +66,14 @@ struct LiveAreas {
         Vec3 a;
         return face_area(mesh, points, f, a) ? a : Vec3::Zero();
     }
+    Vec3 unit(Index f) const { return (*this)(f).normalized(); }
 };
 
 struct CachedAreas {
     const std::vector<Vec3>& areas;
+    const std::vector<Vec3>& units;  ///< areas[f].normalized()
     Vec3 operator()(Index f) const { return areas[static_cast<std::size_t>(f)]; }
+    const Vec3& unit(Index f) const { return units[static_cast<std::size_t>(f)]; }
 };
 
 bool usable(const Vec3& area_vector) {
@@ -256,7 +260,7 @@ template <class Areas>
 Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Areas& area, Index node,
                  const Index* begin, const Index* end) {
     // Unit normal of face f, or zero when the face is degenerate.
-    const auto unit_face_normal = [&](Index f) { return area(f).normalized(); };
+    const auto unit_face_normal = [&](Index f) -> Vec3 { return area.unit(f); };
     // Distinct unit normals on the stack; flat regions repeat one normal many times.
     std::array<Vec3, kStackNormals> normals;
     int count = 0;
@@ -357,6 +361,7 @@ void node_normals_at(const SurfaceMesh& mesh, const std::vector<Vec3>& points, c
                      std::vector<Vec3>& normals, int threads) {
     const Index faces = mesh.num_faces();
     scratch.areas.resize(static_cast<std::size_t>(faces));
+    scratch.units.resize(static_cast<std::size_t>(faces));
     scratch.face_marked.resize(static_cast<std::size_t>(faces), 0);
     normals.resize(points.size(), Vec3::Zero());
     const LiveAreas live{mesh, points};
@@ -369,7 +374,7 @@ void node_normals_at(const SurfaceMesh& mesh, const std::vector<Vec3>& points, c
             bool round = false;
             for (const Index* v = mesh.face_begin(f); v != mesh.face_end(f); ++v)
                 round = round || scratch.node_marked[static_cast<std::size_t>(*v)];
-            if (round) scratch.areas[static_cast<std::size_t>(f)] = live(f);
+            if (round) scratch.set(f, live(f));
         }
         for (Index v : nodes) scratch.node_marked[static_cast<std::size_t>(v)] = 0;
     } else {
@@ -385,11 +390,11 @@ void node_normals_at(const SurfaceMesh& mesh, const std::vector<Vec3>& points, c
 #pragma omp parallel for schedule(static) num_threads(thread_count(threads, nf))
         for (Index i = 0; i < nf; ++i) {
             const Index f = scratch.faces[static_cast<std::size_t>(i)];
-            scratch.areas[static_cast<std::size_t>(f)] = live(f);
+            scratch.set(f, live(f));
         }
         for (Index f : scratch.faces) scratch.face_marked[static_cast<std::size_t>(f)] = 0;
     }
-    const CachedAreas area{scratch.areas};
+    const CachedAreas area{scratch.areas, scratch.units};
     const auto nn = static_cast<Index>(nodes.size());
 #pragma omp parallel for schedule(static) num_threads(thread_count(threads, nn))
     for (Index i = 0; i < nn; ++i) {

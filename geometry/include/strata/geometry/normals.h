@@ -84,9 +84,15 @@ std::vector<Vec3> node_normals(const SurfaceMesh& mesh, const std::vector<Vec3>&
 /// nothing once it has grown.
 struct NormalScratch {
     std::vector<Vec3> areas;       ///< per face: its vector area (zero where degenerate)
+    std::vector<Vec3> units;       ///< per face: areas normalised (zero where degenerate)
     std::vector<Index> faces;      ///< the faces evaluated by the last call
     std::vector<char> face_marked; ///< per face: 0 between calls
     std::vector<char> node_marked; ///< per node: 0 between calls
+
+    void set(Index f, const Vec3& area) {
+        areas[static_cast<std::size_t>(f)] = area;
+        units[static_cast<std::size_t>(f)] = area.normalized();
+    }
 };
 
 /// node_normals at \p nodes only (node ids, each once), for a loop that moves the points and
