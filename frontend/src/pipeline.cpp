@@ -190,12 +190,12 @@ std::vector<std::string> output_files(Job job, const std::string& output) {
     return files;
 }
 
-void check_outputs(Job job, const std::string& output, double msh_version, const std::vector<std::string>& inputs,
+void check_outputs(Job job, const std::string& output, MshFormat msh, const std::vector<std::string>& inputs,
                    const std::vector<std::string>& extra) {
     if (job == Job::Surface)
-        check_surface_output(output, msh_version);
+        check_surface_output(output, msh);
     else
-        check_volume_output(output, msh_version);
+        check_volume_output(output, msh);
     // No output replaces an input, and every output can be created (a run that takes minutes
     // should not end on a name that cannot be written); the first is the format's check's.
     std::vector<std::string> files = output_files(job, output);
@@ -204,13 +204,13 @@ void check_outputs(Job job, const std::string& output, double msh_version, const
     for (std::size_t i = 1; i < files.size(); ++i) check_output_path(files[i]);
 }
 
-void write_outputs(const Result& result, const std::string& output, double msh_version, Progress* progress,
+void write_outputs(const Result& result, const std::string& output, MshFormat msh, Progress* progress,
                    OutputSet& outputs) {
     if (result.job == Job::Surface) {
-        write_surface(result.surface, output, msh_version, progress, &outputs);
+        write_surface(result.surface, output, msh, progress, &outputs);
         return;
     }
-    write_volume(result.volume(), output, msh_version, progress, &outputs);
+    write_volume(result.volume(), output, msh, progress, &outputs);
     write_report(result.report, report_path(output), &outputs);
 }
 

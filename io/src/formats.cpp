@@ -39,9 +39,16 @@ std::string join(const std::array<const char*, N>& list) {
     return s;
 }
 
-void check_msh_version(const std::string& path, double version) {
-    if (version != 2.2 && version != 4.1)
-        throw InputError("cannot write '" + path + "': MSH version " + std::to_string(version) +
+/// \p msh for an output with extension \p ext.
+void check_msh_format(const std::string& path, const std::string& ext, MshFormat msh) {
+    if (ext != ".msh") {
+        if (msh.binary)
+            throw InputError("cannot write '" + path + "' in binary: binary output (--binary) is for .msh files; "
+                             "leave it out or name a .msh output");
+        return;
+    }
+    if (msh.version != 2.2 && msh.version != 4.1)
+        throw InputError("cannot write '" + path + "': MSH version " + std::to_string(msh.version) +
                          " is not written; use 4.1 (default) or 2.2");
 }
 
@@ -53,24 +60,27 @@ double parse_msh_version(std::string_view text) {
     throw InputError("MSH version '" + std::string(text) + "': use 4.1 or 2.2");
 }
 
-void check_surface_output(const std::string& path, double msh_version) {
+void check_surface_output(const std::string& path, MshFormat msh) {
     const std::string ext = lower_extension(path);
     if (!listed(ext, kSurfaceExtensions))
         throw InputError("cannot write '" + path + "': unknown mesh extension '" + ext + "'; use one of " +
                          join(kSurfaceExtensions));
-    if (ext == ".msh") check_msh_version(path, msh_version);
+    check_msh_format(path, ext, msh);
     check_output_path(path);
 }
 
-void check_volume_output(const std::string& path, double msh_version) {
-    if (is_polymesh_path(path)) return check_output_directory(path);
+void check_volume_output(const std::string& path, MshFormat msh) {
+    if (is_polymesh_path(path)) {
+        check_msh_format(path, "", msh);
+        return check_output_directory(path);
+    }
     const std::string ext = lower_extension(path);
     if (!listed(ext, kGmshVolumeExtensions) && !listed(ext, kCobaltExtensions) && !listed(ext, kCgnsExtensions))
         throw InputError("cannot write '" + path + "': unknown volume-mesh extension '" + ext + "'; use one of " +
                          join(kCobaltExtensions) + " (Cobalt60), " + join(kCgnsExtensions) +
                          " (CGNS), a directory named polyMesh (OpenFOAM, e.g. case/constant/polyMesh) or " +
                          join(kGmshVolumeExtensions) + " (through Gmsh)");
-    if (ext == ".msh") check_msh_version(path, msh_version);
+    check_msh_format(path, ext, msh);
     check_output_path(path);
 }
 

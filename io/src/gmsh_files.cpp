@@ -126,7 +126,7 @@ private:
 /// Build the mesh in a scratch model with \p add and write it to \p path through a temporary
 /// file (AtomicFile, in \p outputs if given), with Strata's output options set for the call only.
 template <class Add>
-void write_through_gmsh(const std::string& path, double msh_version, const char* session_name, Progress* progress,
+void write_through_gmsh(const std::string& path, MshFormat msh, const char* session_name, Progress* progress,
                         OutputSet* outputs, Add&& add) {
     report(progress, "writing", 0.0);
     OutputSet own;
@@ -137,8 +137,8 @@ void write_through_gmsh(const std::string& path, double msh_version, const char*
     if (!seeks_in_its_file(path)) pipe.emplace(out.temp_path(), path);
     const bool piped = pipe && !pipe->path().empty();
     gmsh_call("writing '" + path + "'", [&] {
-        options.set("Mesh.MshFileVersion", msh_version);
-        options.set("Mesh.Binary", 0);
+        options.set("Mesh.MshFileVersion", msh.version);
+        options.set("Mesh.Binary", msh.binary ? 1 : 0);
         options.set("Mesh.SaveAll", 0);  // every element is in a physical group
         options.set("Mesh.ScalingFactor", 1);
         add();
@@ -180,21 +180,21 @@ VolumeMesh read_volume_msh(const std::string& path) {
     return from_msh_file("read_volume_msh", path, volume_from_gmsh_model);
 }
 
-void write_surface(const SurfaceMesh& mesh, const std::string& path, double msh_version, Progress* progress,
+void write_surface(const SurfaceMesh& mesh, const std::string& path, MshFormat msh, Progress* progress,
                    OutputSet* outputs) {
-    check_surface_output(path, msh_version);
+    check_surface_output(path, msh);
     require_sound(check_surface_arrays(mesh), "cannot write '" + path + "': ");
-    write_through_gmsh(path, msh_version, "write_surface", progress, outputs, [&] { add_surface_to_gmsh_model(mesh); });
+    write_through_gmsh(path, msh, "write_surface", progress, outputs, [&] { add_surface_to_gmsh_model(mesh); });
 }
 
-void write_volume(const VolumeMesh& mesh, const std::string& path, double msh_version, Progress* progress,
+void write_volume(const VolumeMesh& mesh, const std::string& path, MshFormat msh, Progress* progress,
                   OutputSet* outputs) {
-    check_volume_output(path, msh_version);
+    check_volume_output(path, msh);
     if (is_cobalt_path(path)) return write_cobalt(mesh, path, progress, outputs);
     if (is_polymesh_path(path)) return write_polymesh(mesh, path, progress, outputs);
     if (is_cgns_path(path)) return write_cgns(mesh, path, progress, outputs);
     require_sound(check_volume_arrays(mesh), "cannot write '" + path + "': ");
-    write_through_gmsh(path, msh_version, "write_volume", progress, outputs, [&] { add_volume_to_gmsh_model(mesh); });
+    write_through_gmsh(path, msh, "write_volume", progress, outputs, [&] { add_volume_to_gmsh_model(mesh); });
 }
 
 }  // namespace strata

@@ -77,6 +77,7 @@ TEST(CliOutputs, AFullDiskFailsWithTheCauseAndKeepsThePreviousOutputOfEveryForma
     if (!full.mounted()) GTEST_SKIP() << "mounting a tmpfs needs root (the file size limit test runs for anyone)";
     const std::vector<std::pair<std::string, std::string>> runs{{"mesh", "out.msh"},
                                                                 {"mesh", "out.msh --msh-version 2.2"},
+                                                                {"mesh", "out.msh --binary"},
                                                                 {"mesh", "out.vtk"},
                                                                 {"mesh", "out.cgr"},
                                                                 {"mesh", "out.cgns"},

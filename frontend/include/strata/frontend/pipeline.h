@@ -20,6 +20,7 @@
 #include <strata/frontend/options.h>
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/io/files.h>
+#include <strata/io/formats.h>
 #include <strata/module/layers.h>
 #include <strata/surface/prepare.h>
 
@@ -109,14 +110,14 @@ Result run(const Request& request, Progress* progress = nullptr);
 /// report (report_path).
 std::vector<std::string> output_files(Job job, const std::string& output);
 
-/// Before run(): \p output (its format, with \p msh_version) and every file output_files names can
+/// Before run(): \p output (its format, with \p msh) and every file output_files names can
 /// be written, and none is one of \p inputs; \p extra outputs (the plots' data) too.
-void check_outputs(Job job, const std::string& output, double msh_version, const std::vector<std::string>& inputs,
+void check_outputs(Job job, const std::string& output, MshFormat msh, const std::vector<std::string>& inputs,
                    const std::vector<std::string>& extra = {});
 
 /// Write \p result to \p output: the surface (Job::Surface), or the volume mesh and its report
 /// (result.report at report_path), into \p outputs (the caller commits them, with any of its own).
-void write_outputs(const Result& result, const std::string& output, double msh_version, Progress* progress,
+void write_outputs(const Result& result, const std::string& output, MshFormat msh, Progress* progress,
                    OutputSet& outputs);
 
 }  // namespace strata

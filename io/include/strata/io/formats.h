@@ -15,16 +15,26 @@ namespace strata {
 /// otherwise.
 double parse_msh_version(std::string_view text);
 
-/// A surface output Gmsh writes (.msh, .vtk, .stl, .su2, ...; \p msh_version 4.1 or 2.2 for
-/// .msh) in a directory that exists: InputError naming the path and the choices otherwise.
-void check_surface_output(const std::string& path, double msh_version = 4.1);
+/// How a .msh file is written: its version (4.1 or 2.2) and whether in binary (Gmsh's
+/// Mesh.Binary: the same mesh with every coordinate's bits, where ASCII keeps 16 digits,
+/// written in about half the time; 1M prisms: 1.8 -> 0.8 s, 94 -> 83 MB).
+struct MshFormat {
+    double version = 4.1;
+    bool binary = false;
+    MshFormat(double v = 4.1, bool b = false) : version(v), binary(b) {}  // NOLINT: a version alone is ASCII
+};
+
+/// A surface output Gmsh writes (.msh, .vtk, .stl, .su2, ...; \p msh's version 4.1 or 2.2 for
+/// .msh, binary for .msh only) in a directory that exists: InputError naming the path and the
+/// choices otherwise.
+void check_surface_output(const std::string& path, MshFormat msh = {});
 
 /// A volume output: Cobalt60 (.cgr, .cog, .grd, with its .bc patch map), CGNS (.cgns), an
 /// OpenFOAM polyMesh directory (a path whose last component is `polyMesh`: a directory that
 /// does not exist yet or is replaced whole) or a format Gmsh writes volume meshes to (.msh, .vtk,
-/// .su2, .unv, ...; \p msh_version 4.1 or 2.2 for .msh), in a directory that exists: InputError
+/// .su2, .unv, ...; \p msh as for check_surface_output), in a directory that exists: InputError
 /// naming the path and the choices otherwise.
-void check_volume_output(const std::string& path, double msh_version = 4.1);
+void check_volume_output(const std::string& path, MshFormat msh = {});
 
 /// Cobalt60 grid extensions: .cgr, .cog, .grd (any case).
 bool is_cobalt_path(const std::string& path);
