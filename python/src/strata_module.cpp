@@ -446,20 +446,21 @@ py::object result_object(Result r, double write_seconds) {
 /// surface(), layers() and mesh(): the pipeline's \p job on \p input with the keywords
 /// \p kwargs; \p output, if given, checked before the work and written after it.
 py::object run_job(Job job, const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
-                   const std::string& msh_version, const py::object& callback, const py::object& timeout) {
+                   const std::string& msh_version, bool binary, const py::object& callback,
+                   const py::object& timeout) {
     Options o = options_from(kwargs);
     o.surface.inputs = as_inputs(input);
     if (o.surface.inputs.empty()) throw InputError("no input: give a CAD or surface-mesh file, or a list of them");
     o.surface.input = input_name(o.surface.inputs);
     const Request request = make_request(job, o);
-    const double version = parse_msh_version(msh_version);
-    if (output) check_outputs(job, *output, version, request.inputs);
+    const MshFormat msh(parse_msh_version(msh_version), binary);
+    if (output) check_outputs(job, *output, msh, request.inputs);
     return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
         Result r = run(request, progress);
         const auto t = std::chrono::steady_clock::now();
         if (output) {
             OutputSet outputs;  // the mesh and its report, both or neither
-            write_outputs(r, *output, version, progress, outputs);
+            write_outputs(r, *output, msh, progress, outputs);
             outputs.commit();
         }
         return result_object(std::move(r), seconds_since(t));
@@ -467,18 +468,21 @@ py::object run_job(Job job, const py::object& input, const py::dict& kwargs, con
 }
 
 py::object run_surface(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
-                       const std::string& msh_version, const py::object& callback, const py::object& timeout) {
-    return run_job(Job::Surface, input, kwargs, output, msh_version, callback, timeout);
+                       const std::string& msh_version, bool binary, const py::object& callback,
+                       const py::object& timeout) {
+    return run_job(Job::Surface, input, kwargs, output, msh_version, binary, callback, timeout);
 }
 
 py::object run_layers(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
-                      const std::string& msh_version, const py::object& callback, const py::object& timeout) {
-    return run_job(Job::Layers, input, kwargs, output, msh_version, callback, timeout);
+                      const std::string& msh_version, bool binary, const py::object& callback,
+                       const py::object& timeout) {
+    return run_job(Job::Layers, input, kwargs, output, msh_version, binary, callback, timeout);
 }
 
 py::object run_mesh(const py::object& input, const py::dict& kwargs, const std::optional<std::string>& output,
-                    const std::string& msh_version, const py::object& callback, const py::object& timeout) {
-    return run_job(Job::Mesh, input, kwargs, output, msh_version, callback, timeout);
+                    const std::string& msh_version, bool binary, const py::object& callback,
+                       const py::object& timeout) {
+    return run_job(Job::Mesh, input, kwargs, output, msh_version, binary, callback, timeout);
 }
 
 py::dict run_gmsh_model(const py::dict& kwargs, const py::object& callback, const py::object& timeout) {
@@ -552,10 +556,11 @@ void bind_surface(py::module_& m) {
         .def_readonly("report", &PySurface::report)
         .def(
             "write",
-            [](const PySurface& s, const std::string& path, const std::string& msh_version) {
-                write_surface(s.mesh, path, parse_msh_version(msh_version));
+            [](const PySurface& s, const std::string& path, const std::string& msh_version, bool binary) {
+                write_surface(s.mesh, path, MshFormat(parse_msh_version(msh_version), binary));
             },
-            py::arg("path"), py::arg("msh_version") = "4.1", "Write the surface (.msh, .vtk, .stl, ... by extension).")
+            py::arg("path"), py::arg("msh_version") = "4.1", py::arg("binary") = false,
+            "Write the surface (.msh, .vtk, .stl, ... by extension; binary: a binary .msh).")
         .def("__repr__", [](const PySurface& s) {
             return "<strata.Surface: " + std::to_string(s.mesh.num_points()) + " nodes, " +
                    std::to_string(s.mesh.num_faces()) + " faces, " + std::to_string(s.mesh.patches.size()) +
@@ -609,11 +614,11 @@ void bind_mesh(py::module_& m) {
         .def_readonly("report", &PyMesh::report)
         .def(
             "write",
-            [](const PyMesh& s, const std::string& path, const std::string& msh_version) {
-                write_volume(s.mesh, path, parse_msh_version(msh_version));
+            [](const PyMesh& s, const std::string& path, const std::string& msh_version, bool binary) {
+                write_volume(s.mesh, path, MshFormat(parse_msh_version(msh_version), binary));
             },
-            py::arg("path"), py::arg("msh_version") = "4.1",
-            "Write the mesh (.cgr with its .bc map, .msh, .vtk, .su2, ... by extension).")
+            py::arg("path"), py::arg("msh_version") = "4.1", py::arg("binary") = false,
+            "Write the mesh (.cgr with its .bc map, .msh, .vtk, .su2, ... by extension; binary: a binary .msh).")
         .def("__repr__", [](const PyMesh& s) {
             return "<strata.Mesh: " + std::to_string(s.mesh.points.size()) + " nodes, " +
                    std::to_string(s.mesh.tets.size()) + " tetrahedra, " + std::to_string(s.mesh.pyramids.size()) +
@@ -657,16 +662,16 @@ PYBIND11_MODULE(_strata, m) {
     bind_surface(m);
     bind_mesh(m);
 
-    const char* run_doc = "(input, options: dict, output, msh_version, progress, timeout); see strata.";
+    const char* run_doc = "(input, options: dict, output, msh_version, binary, progress, timeout); see strata.";
     m.def("check_geo_script", &check_geo_script, py::arg("path"),
           "Raise InputError if the .geo script at path (or one it Includes or Merges) runs commands or writes "
           "files, naming the line.");
     m.def("surface", &run_surface, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),
-          py::arg("progress"), py::arg("timeout"), run_doc);
+          py::arg("binary"), py::arg("progress"), py::arg("timeout"), run_doc);
     m.def("layers", &run_layers, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),
-          py::arg("progress"), py::arg("timeout"), run_doc);
+          py::arg("binary"), py::arg("progress"), py::arg("timeout"), run_doc);
     m.def("mesh", &run_mesh, py::arg("input"), py::arg("options"), py::arg("output"), py::arg("msh_version"),
-          py::arg("progress"), py::arg("timeout"), run_doc);
+          py::arg("binary"), py::arg("progress"), py::arg("timeout"), run_doc);
     m.def("mesh_current_gmsh_model", &run_gmsh_model, py::arg("options"), py::arg("progress"), py::arg("timeout"),
           "strata::mesh_current_gmsh_model on the current Gmsh model; returns the report dict.");
     m.def(

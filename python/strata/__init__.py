@@ -95,6 +95,7 @@ def _pipeline(name, summary):
     trailing = [
         _inspect.Parameter("output", _inspect.Parameter.KEYWORD_ONLY, default=None),
         _inspect.Parameter("msh_version", _inspect.Parameter.KEYWORD_ONLY, default="4.1"),
+        _inspect.Parameter("binary", _inspect.Parameter.KEYWORD_ONLY, default=False),
         _inspect.Parameter("progress", _inspect.Parameter.KEYWORD_ONLY, default=None),
         _inspect.Parameter("timeout", _inspect.Parameter.KEYWORD_ONLY, default=None),
     ]
@@ -107,13 +108,16 @@ def _pipeline(name, summary):
         input_ = given.pop("input")
         output = given.pop("output", None)
         msh_version = given.pop("msh_version", "4.1")
+        binary = given.pop("binary", False)
+        if not isinstance(binary, bool):
+            raise TypeError(f"binary={binary!r}: expected True (a binary .msh) or False")
         progress = given.pop("progress", None)
         if progress is not None and not callable(progress):
             raise TypeError(f"progress={progress!r}: expected a callable(stage, fraction) or None")
         timeout = _checked_timeout(given.pop("timeout", None))
         options = {k: v for k, v in given.items() if k in defaults}
         _note_gmsh_user()
-        return run(input_, options, None if output is None else str(output), msh_version, progress, timeout)
+        return run(input_, options, None if output is None else str(output), msh_version, binary, progress, timeout)
 
     function.__name__ = function.__qualname__ = name
     function.__signature__ = signature
