@@ -38,6 +38,7 @@ packages=(
   freecad-python3
   python3-matplotlib   # the quality report's plots: strata report, strata mesh --plots (strata.report)
   snakemake            # the workflow meshing a family of variants (examples/pipeline) and its test
+  time bc              # /usr/bin/time (peak memory) and bc (seconds) in the measuring scripts and their test
 )
 
 bash scripts/install_packages.sh setup "${packages[@]}"
