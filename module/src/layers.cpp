@@ -1066,13 +1066,6 @@ void limit_lean(Index nw, const std::vector<Vec3>& r0, const std::vector<Vec3>& 
     }
 }
 
-/// Step 2 of a layer: point-Jacobi sweeps of the Poisson system over the middle level \p r1
-/// (each node's update reads only the previous iterate, so the result does not depend on the
-/// thread count), level 2 regenerated from it before every sweep (Eq. 12). At least
-/// LayerParams::sweeps sweeps, more (up to max_sweeps) while the largest update exceeds
-/// tolerance × δ_k; each update held within kMaxSmoothingMove layer heights of \p r1 as it came
-/// in (the extruded level), and the result's columns leaning at most kMaxLeanDeg (limit_lean).
-/// Returns the sweeps done.
 /// The nodes to update in the next sweep, ascending, into \p todo: those reading a node in
 /// \p moved (Marcher::readers). Where many moved, every node: updating a node whose reads did
 /// not change gives the position it has. \p queued: per node, 0 (and 0 again on return).
@@ -1104,6 +1097,14 @@ Vec3 smoothed_position(const Marcher& mc, const Levels& lv, Index o, double thet
     return next;
 }
 
+/// Step 2 of a layer: point-Jacobi sweeps of the Poisson system over the middle level \p r1
+/// (each node's update reads only the previous iterate, so the result does not depend on the
+/// thread count), level 2 regenerated from it before every sweep (Eq. 12). At least
+/// LayerParams::sweeps sweeps, more (up to max_sweeps) while the largest update exceeds
+/// tolerance × δ_k; each update held within kMaxSmoothingMove layer heights of \p r1 as it came
+/// in (the extruded level), and the result's columns leaning at most kMaxLeanDeg (limit_lean).
+/// After the first sweep only the nodes whose reads moved more than kSettledMove of the
+/// tolerance are updated (next_todo). Returns the sweeps done.
 int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, double dk1, std::vector<Vec3>& r1) {
     const LayerParams& p = mc.params;
     const double theta = p.control_functions ? -2.0 * (dk1 - dk) / (dk + dk1) : 0.0;
