@@ -57,8 +57,8 @@ bool face_area(const SurfaceMesh& mesh, const std::vector<Vec3>& points, Index f
 
 // The vector area of each face as the normals use it: zero where the face is degenerate.
 // LiveAreas computes it from the points at each call, CachedAreas reads it from an array
-// filled once per set of positions (node_normals_at); both give the same bits.
-// unit(f) is the face's unit normal, zero where it is degenerate.
+// filled once per set of positions (node_normals_at); both give the same bits. unit(f) is the
+// face's unit normal, zero where the face is degenerate.
 struct LiveAreas {
     const SurfaceMesh& mesh;
     const std::vector<Vec3>& points;
@@ -259,14 +259,12 @@ Cap smallest_cap(int n, NormalAt normal) {
 template <class Areas>
 Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const Areas& area, Index node,
                  const Index* begin, const Index* end) {
-    // Unit normal of face f, or zero when the face is degenerate.
-    const auto unit_face_normal = [&](Index f) -> Vec3 { return area.unit(f); };
     // Distinct unit normals on the stack; flat regions repeat one normal many times.
     std::array<Vec3, kStackNormals> normals;
     int count = 0;
     bool overflow = false;
     for (const Index* f = begin; f != end && !overflow; ++f) {
-        const Vec3 n = unit_face_normal(*f);
+        const Vec3 n = area.unit(*f);
         if (n.squaredNorm() == 0.0) continue;
         bool seen = false;
         for (int i = 0; i < count && !seen; ++i) seen = (normals[i] - n).squaredNorm() < kSameNormal * kSameNormal;
@@ -283,7 +281,7 @@ Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const
         cap = smallest_cap(count, [&](int i) { return normals[i]; });
     } else {
         cap = smallest_cap(static_cast<int>(end - begin),
-                           [&](int i) { return unit_face_normal(begin[i]); });
+                           [&](int i) -> Vec3 { return area.unit(begin[i]); });
     }
 
     // The cap's own t carries the kInside slack; judge the answer by its true minimum.
@@ -292,7 +290,7 @@ Vec3 max_min_dot(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const
         for (int i = 0; i < count; ++i) min_dot = std::min(min_dot, cap.c.dot(normals[i]));
     } else {
         for (const Index* f = begin; f != end; ++f) {
-            const Vec3 n = unit_face_normal(*f);
+            const Vec3 n = area.unit(*f);
             if (n.squaredNorm() != 0.0) min_dot = std::min(min_dot, cap.c.dot(n));
         }
     }
