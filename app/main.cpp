@@ -927,6 +927,8 @@ void print_hybrid_summary(const strata::ReportNode& r, bool kept_surface) {
             "quads: %d wall quads could take no pyramid on the layer top (too warped for an apex, their columns at the "
             "wall or lowered for it before) and were split into two triangles, their columns prisms\n",
             count(r, "split_quads"));
+    if (const std::string why = r.text("tets_fallback"); !why.empty())
+        std::printf("note: TetGen filled the domain with tetrahedra where HXT (--tets hxt) could not: %s\n", why.c_str());
     print_tet_improve(r.node("tet_improve"));
     for (const strata::ReportNode::Entry& e : r.node("planes_of_patches").entries())
         std::printf(

@@ -119,6 +119,7 @@ HybridParams hybrid_params(const LayerOptions& layers, const MeshOptions& mesh) 
     hp.layers = layer_params(layers);
     hp.threads = hp.layers.threads;
     hp.farfield.shape = parse_farfield_shape(mesh.farfield);
+    hp.tets.mesher = parse_tet_mesher(mesh.tets);
     return hp;
 }
 
@@ -131,6 +132,7 @@ Options options_of(const HybridParams& mesh, const PrepareParams& prepare) {
     o.layers.proximity = to_string(mesh.layers.proximity);
     o.mesh.params = mesh;
     o.mesh.farfield = to_string(mesh.farfield.shape);
+    o.mesh.tets = to_string(mesh.tets.mesher);
     return o;
 }
 
@@ -418,6 +420,10 @@ void add_mesh_options(std::vector<OptionSpec>& t) {
         "", "pyramid_min_height", "PyramidParams::min_height", Stage::Mesh,
         [](Options& o) -> double& { return o.mesh.params.pyramids.min_height; },
         "lowest pyramid apex, relative to the quad's shortest edge"));
+    t.push_back(spec(
+        "--tets", "tets", "TetFillParams::mesher", Stage::Mesh, [](Options& o) -> std::string& { return o.mesh.tets; },
+        "tetrahedral mesher: tetgen (one thread, the same mesh for any thread count) or hxt (Gmsh's HXT on "
+        "every thread, faster; the same mesh for the same thread count)"));
     t.push_back(spec(
         "--radius-edge", "radius_edge", "TetFillParams::radius_edge", Stage::Mesh,
         [](Options& o) -> double& { return o.mesh.params.tets.radius_edge; },

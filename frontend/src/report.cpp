@@ -386,6 +386,7 @@ ReportNode mesh_run_report(const VolumeMesh* mesh, const HybridReport& hr, const
     ReportValue::List remeshed;
     for (const Index p : hr.remeshed_patches) remeshed.emplace_back(patch_name(p));
     n.set("planes_of_patches", std::move(planes)).set("remeshed_patches", std::move(remeshed));
+    n.set("tets_fallback", hr.tets_fallback);
     n.set("tet_improve", tet_improve_report(hr.tet_improve));
     StageTimes all = times;
     for (const auto& [stage, seconds] : StageTimes{{"layers", hr.seconds_layers},

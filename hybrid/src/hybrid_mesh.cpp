@@ -509,6 +509,21 @@ std::optional<Repair> front_repair(const SurfaceMesh& region, Index top_patch, c
     return repair;
 }
 
+/// fill_with_tets by the mesher \p params asks; where HXT fails (a configuration its Delaunay
+/// or boundary recovery cannot handle), TetGen fills the region instead and \p fallback says why.
+TetFill fill_falling_back(const SurfaceMesh& region, const std::vector<Vec3>& holes, const TetFillParams& params,
+                          Progress* progress, std::string& fallback) {
+    if (params.mesher != TetMesher::Hxt) return fill_with_tets(region, holes, params, progress);
+    try {
+        return fill_with_tets(region, holes, params, progress);
+    } catch (const BackendError& e) {
+        fallback = e.what();
+    }
+    TetFillParams tetgen = params;
+    tetgen.mesher = TetMesher::TetGen;
+    return fill_with_tets(region, holes, tetgen, progress);
+}
+
 /// The tetrahedra filling \p region. Where TetGen stops on one of its internal checks recovering
 /// a face of the layer top (a configuration of the front it cannot handle, though no face crosses
 /// another), the columns under every layer-top face touching that face's nodes lowered, so that
@@ -516,8 +531,9 @@ std::optional<Repair> front_repair(const SurfaceMesh& region, Index top_patch, c
 /// or of walls with no layers: nothing there can change).
 Outcome<TetFill> fill_region(const SurfaceMesh& region, Index top_patch, const LayerMesh& lm, const PyramidLayer& pyr,
                              const std::vector<double>& reach, const std::vector<double>& limit,
-                             const TetFillParams& params, Progress* progress) {
-    auto out = local_failure_as_value([&] { return fill_with_tets(region, points_in_layers(lm), params, progress); });
+                             const TetFillParams& params, Progress* progress, std::string& fallback) {
+    auto out = local_failure_as_value(
+        [&] { return fill_falling_back(region, points_in_layers(lm), params, progress, fallback); });
     const auto* stuck = std::get_if<LocalFailure>(&out);
     if (!stuck) return std::get<TetFill>(std::move(out));
     std::vector<char> marked(static_cast<std::size_t>(lm.wall_nodes()), 0);
@@ -640,7 +656,9 @@ Outcome<Stages> attempt(const HybridParams& params, Rounds& rounds, HybridReport
     strata::report(progress, "tetrahedra", 0.0);
     TetFillParams tet_params = params.tets;
     tet_params.background_mesh = params.tets.background_mesh && s.outer.remeshed.empty();  // see TetFillParams
-    Outcome<TetFill> fill = fill_region(s.region, s.top_patch, s.lm, s.pyr, rounds.reach, limit, tet_params, progress);
+    tet_params.threads = params.threads;
+    Outcome<TetFill> fill =
+        fill_region(s.region, s.top_patch, s.lm, s.pyr, rounds.reach, limit, tet_params, progress, rep.tets_fallback);
     if (auto* repair = std::get_if<Repair>(&fill)) {
         rep.seconds_tets += seconds_since(t0);
         return std::move(*repair);

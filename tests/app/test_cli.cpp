@@ -182,6 +182,27 @@ TEST(Cli, FiveStlPartsThatOverlapAreFusedIntoOneBody) {
         EXPECT_NE(find_patch(m.boundary, patch), kNone) << patch;
 }
 
+TEST(Cli, HxtFillsTheSameMeshTwice) {
+    // --tets hxt: Gmsh's HXT fills the domain (its points other than TetGen's), the same bytes on a
+    // second run at the same thread count, validated like any mesh (where HXT stops, TetGen fills
+    // it: HybridMesh.HxtFallsBackToTetGen). An unknown mesher is refused by name.
+    test::ScratchDir dir("cli_hxt");
+    const std::string args = "mesh '" + example_data("sphere.stl") + "' --layers 3 --first-height 1e-3 --threads 2 ";
+    CliResult a = strata_cli(dir, args + "-o a.msh --tets hxt");
+    ASSERT_EQ(a.code, 0) << a.err;
+    const CliResult b = strata_cli(dir, args + "-o b.msh --tets hxt");
+    ASSERT_EQ(b.code, 0) << b.err;
+    const CliResult t = strata_cli(dir, args + "-o t.msh");
+    ASSERT_EQ(t.code, 0) << t.err;
+    test::expect_contains(a.out, {"valid: "});
+    EXPECT_EQ(a.out.find("HXT"), std::string::npos) << a.out;
+    EXPECT_EQ(slurp(dir.path() / "a.msh"), slurp(dir.path() / "b.msh"));
+    EXPECT_NE(slurp(dir.path() / "a.msh"), slurp(dir.path() / "t.msh"));
+    const CliResult bad = strata_cli(dir, args + "-o bad.msh --tets netgen");
+    EXPECT_NE(bad.code, 0);
+    test::expect_contains(bad.err, {"netgen", "tetgen", "hxt"});
+}
+
 TEST(Cli, BinaryMshHoldsTheSameMeshAsAscii) {
     // --binary: Gmsh's binary MSH, read back to the same cells and patches and the same nodes (to
     // the 16 digits ASCII keeps; binary keeps every bit); MSH 2.2 too. Asked of a format that is

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hybrid/box_surface.h"
 #include "hybrid/reread_checks.h"
 #include "test_support.h"
 
@@ -79,6 +80,31 @@ TEST(HybridMesh, SpherePrismsPyramidsFreeTetsValid) {
     EXPECT_GT(m.tets.size(), 1000u);
     EXPECT_TRUE(rep.validation.ok());
     EXPECT_GT(rep.validation.min_scaled_jacobian, 0.0);
+}
+
+// --tets hxt where HXT 4.8 stops (the regular grids of a cube wall's layer top in a generated
+// box: HxtFill.DegenerateGridIsBackendError): TetGen fills the domain instead, the same mesh as
+// TetGen asked directly, and the report says why.
+TEST(HybridMesh, HxtFallsBackToTetGen) {
+    SurfaceMesh wall;
+    wall.patches.push_back({"wall", PatchKind::Wall});
+    test::add_box(wall, Vec3::Zero(), Vec3::Ones(), 8, 0, true);
+    HybridParams p;
+    p.layers.distribution.layers = 1;
+    p.layers.distribution.first_height = 1e-3;
+    p.farfield.shape = FarfieldShape::Box;
+    p.farfield.size = 3.0;
+    p.farfield.divisions = 3;
+    p.tets.growth = 0.2;
+    p.threads = 1;
+    HybridReport tetgen_rep, hxt_rep;
+    const VolumeMesh by_tetgen = build_hybrid_mesh(wall, p, nullptr, &tetgen_rep);
+    p.tets.mesher = TetMesher::Hxt;
+    const VolumeMesh by_hxt = build_hybrid_mesh(wall, p, nullptr, &hxt_rep);
+    EXPECT_TRUE(tetgen_rep.tets_fallback.empty());
+    test::expect_contains(hxt_rep.tets_fallback, {"HXT"});
+    EXPECT_EQ(by_hxt.tets, by_tetgen.tets);
+    EXPECT_TRUE(hxt_rep.validation.ok());
 }
 
 TEST(HybridMesh, QuadSphereHasEveryCellTypeButTetsAndItWritesAndRereads) {

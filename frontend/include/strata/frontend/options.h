@@ -65,6 +65,7 @@ LayerParams layer_params(const LayerOptions& options);
 struct MeshOptions {
     HybridParams params;
     std::string farfield{to_string(FarfieldParams{}.shape)};
+    std::string tets{to_string(TetFillParams{}.mesher)};
 };
 
 /// The HybridParams of \p layers and \p mesh: the layers' threads are every stage's.

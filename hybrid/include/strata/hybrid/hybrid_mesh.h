@@ -58,6 +58,9 @@ struct HybridReport {
     /// The input's walls enclose the fluid (they point inward: PrepareParams::internal_flow), so
     /// no farfield was generated.
     bool internal_flow = false;
+    /// With TetFillParams::mesher Hxt: why HXT could not fill the region, which TetGen then
+    /// filled ("" where HXT did, or TetGen was asked).
+    std::string tets_fallback;
     TetImproveReport tet_improve;  ///< what improve_tets changed
     ValidationReport validation;
     double seconds_layers = 0.0, seconds_pyramids = 0.0, seconds_tets = 0.0, seconds_validate = 0.0;

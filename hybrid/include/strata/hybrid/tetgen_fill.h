@@ -1,19 +1,32 @@
 #pragma once
 /// \file
-/// The tetrahedral fill through TetGen 1.5 (Debian's libtet, loaded privately at run time, not
-/// linked: hybrid/src/tetgen_library.cpp says why): the region enclosed by a closed
-/// triangulated boundary is meshed with tetrahedra, the boundary preserved exactly.
+/// The tetrahedral fill: the region enclosed by a closed triangulated boundary is meshed with
+/// tetrahedra, the boundary preserved exactly, by TetGen 1.5 (Debian's libtet, loaded privately
+/// at run time, not linked: hybrid/src/tetgen_library.cpp says why) or by Gmsh's HXT (parallel;
+/// hybrid/src/hxt_library.cpp says how it is called).
 
 #include <strata/core/progress.h>
 #include <strata/core/surface_mesh.h>
 
 #include <array>
+#include <string_view>
 #include <vector>
 
 namespace strata {
 
+/// Which mesher fills the region. TetGen: one thread, the same bytes for any thread count.
+/// HXT: Delaunay, refinement and improvement on every thread (Strata's thread count); the same
+/// bytes for the same boundary and thread count, other tetrahedra for another count.
+enum class TetMesher { TetGen, Hxt };
+std::string_view to_string(TetMesher mesher);
+/// "tetgen" or "hxt"; InputError otherwise.
+TetMesher parse_tet_mesher(std::string_view text);
+
 struct TetFillParams {
-    double radius_edge = 1.5;   ///< quality bound (TetGen -q), ≥ 1.2 recommended
+    TetMesher mesher = TetMesher::TetGen;
+    /// HXT's threads (0: OpenMP's count, which Strata's --threads sets); TetGen has one.
+    int threads = 0;
+    double radius_edge = 1.5;   ///< quality bound (TetGen -q), ≥ 1.2 recommended; TetGen only
     double min_dihedral = 0.0;  ///< extra dihedral bound in degrees (-q/ratio/angle); 0 = TetGen's default
     /// Largest dihedral angle, degrees, TetGen's optimisation (flips, smoothing) works down to
     /// (-o/angle); 0 = TetGen's own (165). 150 lifts the worst free tetrahedra (sphere 0.063 ->
@@ -55,6 +68,12 @@ struct TetFill {
 /// change the boundary there and try again. TetGen runs in a child process: its crash is a
 /// BackendError (a LocalTopologyError where its trace places it), and \p progress can stop it
 /// (Cancelled within 0.1 s).
+/// With params.mesher = Hxt the region filled is the one bounded by every connected part of the
+/// boundary together (what one part encloses alone is left empty; \p holes are not needed), the
+/// sizes those of TetGen's sizing (growth, max_volume; the TetGen bounds radius_edge and the
+/// dihedral angles do not apply). HXT runs in this process
+/// (\p progress is asked before and after it) and its failures, a boundary it cannot recover
+/// without a point on it among them, are BackendError saying to use TetGen.
 TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& holes, const TetFillParams& params,
                        const Progress* progress = nullptr);
 
