@@ -1,17 +1,40 @@
-// Team sizes (parallel.h): the count asked, OpenMP's default, and one thread for small loops.
+// Team sizes (parallel.h): the count asked, all cores, and one thread for small loops.
 #include <strata/core/error.h>
 #include <strata/core/parallel.h>
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace strata {
 namespace {
 
-TEST(ThreadCount, AskedOrOpenMPsDefault) {
+TEST(ThreadCount, AskedOrAllCores) {
     EXPECT_EQ(thread_count(3), 3);
     EXPECT_GE(thread_count(0), 1);
+}
+
+// Gmsh's initialisation sets OpenMP's default to its General.NumThreads (1) for the whole
+// process: "all cores" stays all cores after it (the layer stage ran on one core of two after
+// Gmsh meshed the surface).
+TEST(ThreadCount, AllCoresWhateverAnotherLibrarySetsAsOpenMPsDefault) {
+#ifdef _OPENMP
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const char* given = std::getenv("OMP_NUM_THREADS");
+    if (given == nullptr || std::atoi(given) <= 0)
+        EXPECT_EQ(thread_count(0), omp_get_num_procs());
+    else
+        EXPECT_EQ(thread_count(0), std::atoi(given));
+    omp_set_num_threads(saved);
+#else
+    EXPECT_EQ(thread_count(0), 1);
+#endif
 }
 
 TEST(ThreadCount, ANegativeCountIsAnInputErrorNamingTheParameter) {

@@ -6,8 +6,10 @@
 
 namespace strata {
 
-/// The team size for a parallel loop: \p requested if positive, else OpenMP's default (all
-/// cores, unless OMP_NUM_THREADS says otherwise); 1 in a build without OpenMP.
+/// The team size for a parallel loop: \p requested if positive, else all cores (the processors
+/// this process may run on, omp_get_num_procs), unless OMP_NUM_THREADS says otherwise (its first
+/// count); 1 in a build without OpenMP. Fixed at the first call, whatever Gmsh or another
+/// library later sets as OpenMP's default.
 int thread_count(int requested);
 
 /// The team size for a parallel loop over \p items independent items: thread_count(requested),
