@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""One row of scripts/speed_table.sh's first table, from two `strata mesh` runs of one case.
+"""Rows of scripts/speed_table.sh's tables, from `strata mesh` runs of one case.
 
   speed_row.py NAME RUN2 RUN1
-
-RUN2 and RUN1 are path prefixes of the runs at 2 threads and at 1: PREFIX.log (the summary),
-PREFIX.time ("SECONDS PEAK_KB" from /usr/bin/time) and PREFIX.cgr (the mesh written).
+      the first table's row: RUN2 and RUN1 are path prefixes of the runs at 2 threads and at 1:
+      PREFIX.log (the summary), PREFIX.time ("SECONDS PEAK_KB" from /usr/bin/time) and
+      PREFIX.cgr (the mesh written).
+  speed_row.py tets NAME MESHER RUN
+      the tetrahedral fill table's row for the run RUN (2 threads) with --tets MESHER.
 """
 import os
 import re
@@ -47,7 +49,26 @@ def main(name, run2, run1):
           f"| {peak_kb / 1024:.0f} ({peak_kb * 1024 / all_cells:.0f}) |")
 
 
+def tets_row(name, mesher, run):
+    """Tetrahedra stage, tetrahedra and their rate, the tetrahedra's quality after the
+    improvement, checkMesh's figures as Strata computes them, the whole run."""
+    log = open(run + ".log").read()
+    t, c = stage_seconds(log), cells(log)
+    whole = float(open(run + ".time").read().split()[0])
+    worst = re.search(r"^  tetrahedron: +min scaled Jacobian ([0-9.e+-]+)", log, re.M)
+    improved = re.search(r"below a scaled Jacobian of [0-9.]+: \d+ -> (\d+), the worst [0-9.e+-]+ -> ([0-9.e+-]+)", log)
+    foam = re.search(r"non-orthogonality max ([0-9.]+) deg.*skewness max ([0-9.]+)", log)
+    rate = c["tetrahedra"] / t["tetrahedra"] if t["tetrahedra"] > 0 else 0
+    print(f"| {name} | {mesher} | {t['tetrahedra']:.1f} | {c['tetrahedra']:,} ({rate:,.0f}) "
+          f"| {worst.group(1) if worst else '-'} | {improved.group(2) if improved else '-'} "
+          f"| {improved.group(1) if improved else '-'} "
+          f"| {foam.group(1) if foam else '-'} / {foam.group(2) if foam else '-'} | {whole:.1f} |")
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
+    if len(sys.argv) == 5 and sys.argv[1] == "tets":
+        tets_row(*sys.argv[2:])
+    elif len(sys.argv) == 4:
+        main(*sys.argv[1:])
+    else:
         sys.exit(__doc__)
-    main(*sys.argv[1:])

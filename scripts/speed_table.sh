@@ -8,6 +8,8 @@
 #   scripts/speed_table.sh [BUILD_DIR] [WORK_DIR]     (defaults: build, a temporary directory)
 #   ROWS="airliner fighter" scripts/speed_table.sh    only those rows of the first table
 #   SPHERES="100000" scripts/speed_table.sh           only those spheres (triangles asked)
+#   FILLS="airliner" scripts/speed_table.sh           the tetrahedral fill table's rows (default:
+#                                                      every row of the first table; "none": no table)
 #
 # One run per figure, on a machine with nothing else running: for a ratio that survives a noisy
 # machine, time a row with farm-bench instead. Exit status 0 whatever the meshes are like.
@@ -50,6 +52,25 @@ for key in "${rows[@]}"; do
   fi
   $py "$root/scripts/speed_row.py" "$name" "$work/$key-2" "$work/$key-1"
 done
+
+# The tetrahedral fill by each mesher (2 threads): TetGen's run is the first table's.
+read -r -a fills <<< "${FILLS:-${rows[*]}}"
+if [ "${fills[0]:-none}" != none ]; then
+  echo
+  echo "| case | --tets | tetrahedra s | tetrahedra (per s) | worst tetrahedron | worst free tetrahedron after the improvement | below 0.2 after it | non-orthogonality / skewness max | whole s |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  for key in "${fills[@]}"; do
+    name=${cases[$key]%%|*}
+    read -r -a args <<< "${cases[$key]#*|}"
+    [ -f "$work/$key-2.log" ] || run_mesh "$key" 2 "${args[@]}" || true
+    $py "$root/scripts/speed_row.py" tets "$name" tetgen "$work/$key-2" || echo "| $name | tetgen | failed |"
+    if run_mesh "$key-hxt" 2 "${args[@]}" --tets hxt; then
+      $py "$root/scripts/speed_row.py" tets "$name" hxt "$work/$key-hxt-2"
+    else
+      echo "| $name | hxt | failed: $(grep -m1 -i error "$work/$key-hxt-2.log" | cut -c1-100) |"
+    fi
+  done
+fi
 
 echo
 echo "| sphere (Gmsh, unit radius) | triangles | prisms | strata layers, 2 threads: s (cells/s) | 1 thread: s | Gmsh extrudeBoundaryLayer + generate(3): s | Gmsh / Strata |"
