@@ -17,6 +17,8 @@
 #include <strata/io/write_surface.h>
 #include <strata/io/write_volume.h>
 
+#include "msh41_writer.h"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -194,6 +196,8 @@ void write_volume(const VolumeMesh& mesh, const std::string& path, MshFormat msh
     if (is_polymesh_path(path)) return write_polymesh(mesh, path, progress, outputs);
     if (is_cgns_path(path)) return write_cgns(mesh, path, progress, outputs);
     require_sound(check_volume_arrays(mesh), "cannot write '" + path + "': ");
+    if (lower_extension(path) == ".msh" && msh.version == 4.1 && !msh.binary)
+        return write_msh41_ascii(mesh, path, progress, outputs);  // Strata's own: Gmsh's printf()s took minutes
     write_through_gmsh(path, msh, "write_volume", progress, outputs, [&] { add_volume_to_gmsh_model(mesh); });
 }
 
