@@ -682,6 +682,7 @@ Rounds first_round(SurfaceMesh surface, bool has_outer, const HybridParams& para
     rounds.layers = params.layers;
     rounds.layers.threads = params.threads;
     rounds.constraints.node_thickness_limit.assign(surface.points.size(), std::numeric_limits<double>::infinity());
+    rounds.constraints.smoothed = make_smoothed_levels();  // the rounds smooth a level once where they march it alike
     rounds.limit_before = rounds.constraints.node_thickness_limit;
     const std::vector<double> heights = layer_heights(params.layers.distribution);
     rounds.reach.push_back(0.0);

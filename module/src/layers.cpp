@@ -24,6 +24,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -1152,6 +1153,77 @@ int smooth_level(const Marcher& mc, const std::vector<Vec3>& r0, double dk, doub
     return sweep;
 }
 
+/// What a level's smoothing (reference_level, smooth_level) reads besides the positions it
+/// starts from: the walls with their fans, the marcher's per-node data built from them, the
+/// heights and the settings. Two marches with equal keys smooth a level from equal positions
+/// to equal bytes.
+struct SmoothingKey {
+    std::vector<Vec3> wall, fixed, node_line;
+    std::vector<Index> face_offsets, face_nodes, node_plane, stencil_offsets;
+    std::vector<std::array<double, 5>> stencil_weights, stencil_centre;
+    std::vector<char> valid;
+    std::vector<double> phi, psi, height_scale, delta;
+    std::array<double, 2> numbers{};
+    std::array<int, 6> flags{};
+    bool operator==(const SmoothingKey&) const = default;
+};
+
+SmoothingKey smoothing_key(const Marcher& mc, const std::vector<double>& delta) {
+    const LayerParams& p = mc.params;
+    return {mc.wall.points,
+            mc.fixed,
+            mc.node_line,
+            mc.wall.face_offsets,
+            mc.wall.face_nodes,
+            mc.node_plane,
+            mc.st.offsets,
+            mc.st.weights,
+            mc.st.centre,
+            mc.st.valid,
+            mc.phi,
+            mc.psi,
+            mc.height_scale,
+            delta,
+            {p.tolerance, p.concave_cap},
+            {p.sweeps, p.max_sweeps, p.smoothing, p.control_functions, p.concave, static_cast<int>(p.normals)}};
+}
+
+}  // namespace
+
+/// Per level of the last march: the positions it started from and the level as smoothed.
+struct SmoothedLevels {
+    SmoothingKey key;
+    std::vector<std::vector<Vec3>> from, to;
+    std::vector<int> sweeps;
+
+    /// A march with \p k starts: what was kept for another key goes.
+    void begin(SmoothingKey k) {
+        if (k == key) return;
+        key = std::move(k);
+        from.clear(), to.clear(), sweeps.clear();
+    }
+
+    /// smooth_level of level \p level from \p r0 (\p r1 as reference_level left it), or what
+    /// the last march smoothed from the same \p r0; the levels kept above it go when it is
+    /// smoothed anew (they started from its result).
+    int smooth(int level, const Marcher& mc, const std::vector<Vec3>& r0, double dk, double dk1,
+               std::vector<Vec3>& r1) {
+        const auto u = static_cast<std::size_t>(level);
+        if (u < from.size() && from[u] == r0) {
+            r1 = to[u];
+            return sweeps[u];
+        }
+        const int done = smooth_level(mc, r0, dk, dk1, r1);
+        from.resize(u), to.resize(u), sweeps.resize(u);
+        from.push_back(r0), to.push_back(r1), sweeps.push_back(done);
+        return done;
+    }
+};
+
+std::shared_ptr<SmoothedLevels> make_smoothed_levels() { return std::make_shared<SmoothedLevels>(); }
+
+namespace {
+
 /// With stopping off (LayerParams::min_quality 0): the first cell of layer \p k whose columns all
 /// go on and that would invert, or whose quality cannot be computed (NaN: coordinates out of
 /// range), stops the extrusion with a TopologyError naming it, unless LayerParams::keep_invalid.
@@ -1371,6 +1443,8 @@ std::optional<LayerMesh> march_levels(const SurfaceMesh& surface, const Wall& w,
     std::vector<char> held(static_cast<std::size_t>(nw));
     out.stats.assign(static_cast<std::size_t>(layers), LayerStats{});
     CappedPaths capped(mc, delta);
+    SmoothedLevels* smoothed = constraints.smoothed.get();
+    if (smoothed) smoothed->begin(smoothing_key(mc, delta));
     for (int k = 0; k < layers; ++k) {
         const double dk = delta[static_cast<std::size_t>(k)], dk1 = delta[static_cast<std::size_t>(k) + 1];
         LayerStats& stats = out.stats[static_cast<std::size_t>(k)];
@@ -1380,7 +1454,7 @@ std::optional<LayerMesh> march_levels(const SurfaceMesh& surface, const Wall& w,
         const std::vector<Vec3> n0 = reference_level(mc, r0, dk, r1);
         // 2. Poisson smoothing of level 1 over every node (stopped ones as ghosts); where its
         // cells would still invert, hold it back.
-        stats.sweeps = smooth_level(mc, r0, dk, dk1, r1);
+        stats.sweeps = smoothed ? smoothed->smooth(k, mc, r0, dk, dk1, r1) : smooth_level(mc, r0, dk, dk1, r1);
         std::fill(held.begin(), held.end(), 0);
         // 3. The columns whose cells are usable go on to level k + 1, the others stop. Stopping
         // off: every column goes on (but for limits), held back where it would fold.
@@ -1518,6 +1592,11 @@ ProximityPlan proximity_plan(const SurfaceMesh& surface, const LayerParams& para
 
 LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, const LayerConstraints& constraints,
                          Progress* progress) {
+    if (!constraints.smoothed) {  // one store for this call's stop marches
+        LayerConstraints shared = constraints;
+        shared.smoothed = make_smoothed_levels();
+        return extrude_layers(surface, params, shared, progress);
+    }
     const std::vector<double> delta = layer_heights(params.distribution);
     check_layer_params(params);
     Wall w = extract_wall(surface);

@@ -343,6 +343,43 @@ TEST(Columns, AFrontLimitKeepsTheFirstHeightAndEveryLayerItsTallestLayersCapped)
     EXPECT_EQ(fewer.stop_reason[static_cast<std::size_t>(centre)], Shortfall::Front);
 }
 
+/// The same layers: points and cells, bit for bit.
+void expect_same_layers(const LayerMesh& a, const LayerMesh& b, const char* what) {
+    EXPECT_EQ(a.mesh.points, b.mesh.points) << what;
+    EXPECT_EQ(a.mesh.hexes, b.mesh.hexes) << what;
+    EXPECT_EQ(a.mesh.prisms, b.mesh.prisms) << what;
+    EXPECT_EQ(a.mesh.pyramids, b.mesh.pyramids) << what;
+    ASSERT_EQ(a.wall_nodes(), b.wall_nodes()) << what;
+    for (Index i = 0; i < a.wall_nodes(); ++i) EXPECT_EQ(a.node_layers(i), b.node_layers(i)) << what << ", node " << i;
+}
+
+TEST(Columns, MarchesSharingTheirSmoothingGiveTheSameLayersAsFreshOnes) {
+    // build_hybrid_mesh's rounds share one SmoothedLevels (LayerConstraints::smoothed): a round
+    // whose bounds differ from the round before reuses the levels it smooths alike and smooths
+    // the others again; other settings (another key) smooth every level again. Either way the
+    // same bytes as a march with a store of its own.
+    const SurfaceMesh wall = plate(true);
+    LayerParams p = eight_layers();
+    p.distribution.growth = 1.2;
+    LayerConstraints shared = limited_centre(wall);
+    shared.smoothed = make_smoothed_levels();
+    const Index centre = 5 * 11 + 5;
+    auto alone = [&](const LayerParams& params) {
+        LayerConstraints own = shared;
+        own.smoothed = nullptr;  // extrude_layers makes its own
+        return extrude_layers(wall, params, own);
+    };
+    expect_same_layers(extrude_layers(wall, p, shared), alone(p), "the first march");
+    shared.node_thickness_limit[static_cast<std::size_t>(centre)] = 0.1;  // a front round's bound
+    expect_same_layers(extrude_layers(wall, p, shared), alone(p), "a round after it");
+    expect_same_layers(extrude_layers(wall, p, shared), alone(p), "the same round again");
+    LayerParams other = p;
+    other.tolerance = 1e-4;
+    expect_same_layers(extrude_layers(wall, other, shared), alone(other), "other settings");
+    shared.node_thickness_limit[static_cast<std::size_t>(centre)] = 0.05;
+    expect_same_layers(extrude_layers(wall, p, shared), alone(p), "back to the first settings");
+}
+
 TEST(Columns, AColumnBoundWhereItStoppedKeepsEveryLayerCappedAndItsReason) {
     // A stop bound as extrude_layers sets it where a column stopped (the six layers it reached,
     // 0.255 of eight from 0.02 at growth 1.3, 0.477 in all): the centre keeps all eight, ends

@@ -12,6 +12,7 @@
 #include <strata/module/proximity.h>
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 namespace strata {
@@ -105,6 +106,12 @@ struct LayerParams {
     bool keep_invalid = false;
 };
 
+/// Each level's Poisson smoothing as the last march computed it (layers.cpp): what the marches
+/// after it on the same walls and settings reuse where they reach a level from exactly the same
+/// positions. make_smoothed_levels() gives an empty one.
+struct SmoothedLevels;
+std::shared_ptr<SmoothedLevels> make_smoothed_levels();
+
 /// Per-node bounds on the layers of one surface, apart from the settings (LayerParams): what
 /// build_hybrid_mesh's repair rounds change where a later stage failed, marching again.
 struct LayerConstraints {
@@ -132,6 +139,14 @@ struct LayerConstraints {
     /// Empty, or one per node of the surface given to extrude_layers: 1 where no fan may be
     /// (build_hybrid_mesh marks the nodes of a fan whose face on the layer top no pyramid can cap).
     std::vector<char> no_fan_nodes;
+
+    /// Speed only, the layers are the same bytes without it: the smoothing the marches before
+    /// computed, shared by every copy of these constraints (the stop marches, build_hybrid_mesh's
+    /// rounds). A stop march or a round changes where columns stop and how tall they are, not how
+    /// the levels are smoothed until a stopped column's ghost is held back differently, so the
+    /// levels below are not smoothed again (the airliner stand-in: 5 marches, ~6 s each).
+    /// extrude_layers makes one for its own stop marches when none is given.
+    std::shared_ptr<SmoothedLevels> smoothed;
 
     /// No fan at node \p v of a surface of \p nodes nodes from now on; false if there was none already.
     bool bar_fan(Index v, std::size_t nodes);
