@@ -1128,7 +1128,10 @@ int main(int argc, char** argv) {
         "Strata: near-body hybrid meshes for viscous CFD.\n"
         "Boundary-layer prisms and hexahedra marched from the wall, tetrahedra beyond.",
         "strata"};
-    app.set_version_flag("--version", std::string("strata ") + STRATA_VERSION);
+    // The commit is the source tree's when it was configured (frontend/CMakeLists.txt), as in
+    // every report's provenance.
+    app.set_version_flag("--version",
+                         std::string("strata ") + STRATA_VERSION + " (commit " + strata::strata_commit() + ")");
     app.footer(
         "Volume outputs (layers, mesh: -o OUT) by name: .cgr/.cog/.grd Cobalt60 (with a .bc patch map), .cgns CGNS, "
         "a directory named polyMesh (CASE/constant/polyMesh) OpenFOAM, .msh (--msh-version 4.1 or 2.2), and through "

@@ -97,6 +97,14 @@ TEST(Cli, HelpAndVersion) {
     CliResult v = strata_cli(dir, "--version");
     EXPECT_EQ(v.code, 0);
     EXPECT_EQ(v.out.rfind("strata ", 0), 0u) << v.out;
+    // The commit it was built from, as the reports' provenance gives it (40 hex digits, or
+    // "unknown" outside a git checkout).
+    const auto at = v.out.find("(commit ");
+    ASSERT_NE(at, std::string::npos) << v.out;
+    const std::string commit = v.out.substr(at + 8, v.out.find(')', at) - at - 8);
+    EXPECT_TRUE(commit == "unknown" ||
+                (commit.size() == 40 && commit.find_first_not_of("0123456789abcdef") == std::string::npos))
+        << commit;
     CliResult none = strata_cli(dir, "");
     EXPECT_NE(none.code, 0);
 }
