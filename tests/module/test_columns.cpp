@@ -343,16 +343,6 @@ TEST(Columns, AFrontLimitKeepsTheFirstHeightAndEveryLayerItsTallestLayersCapped)
     EXPECT_EQ(fewer.stop_reason[static_cast<std::size_t>(centre)], Shortfall::Front);
 }
 
-/// The same layers: points and cells, bit for bit.
-void expect_same_layers(const LayerMesh& a, const LayerMesh& b, const char* what) {
-    EXPECT_EQ(a.mesh.points, b.mesh.points) << what;
-    EXPECT_EQ(a.mesh.hexes, b.mesh.hexes) << what;
-    EXPECT_EQ(a.mesh.prisms, b.mesh.prisms) << what;
-    EXPECT_EQ(a.mesh.pyramids, b.mesh.pyramids) << what;
-    ASSERT_EQ(a.wall_nodes(), b.wall_nodes()) << what;
-    for (Index i = 0; i < a.wall_nodes(); ++i) EXPECT_EQ(a.node_layers(i), b.node_layers(i)) << what << ", node " << i;
-}
-
 TEST(Columns, MarchesSharingTheirSmoothingGiveTheSameLayersAsFreshOnes) {
     // build_hybrid_mesh's rounds share one SmoothedLevels (LayerConstraints::smoothed): a round
     // whose bounds differ from the round before reuses the levels it smooths alike and smooths
@@ -369,15 +359,15 @@ TEST(Columns, MarchesSharingTheirSmoothingGiveTheSameLayersAsFreshOnes) {
         own.smoothed = nullptr;  // extrude_layers makes its own
         return extrude_layers(wall, params, own);
     };
-    expect_same_layers(extrude_layers(wall, p, shared), alone(p), "the first march");
+    test::expect_same_layers(extrude_layers(wall, p, shared), alone(p), "the first march");
     shared.node_thickness_limit[static_cast<std::size_t>(centre)] = 0.1;  // a front round's bound
-    expect_same_layers(extrude_layers(wall, p, shared), alone(p), "a round after it");
-    expect_same_layers(extrude_layers(wall, p, shared), alone(p), "the same round again");
+    test::expect_same_layers(extrude_layers(wall, p, shared), alone(p), "a round after it");
+    test::expect_same_layers(extrude_layers(wall, p, shared), alone(p), "the same round again");
     LayerParams other = p;
     other.tolerance = 1e-4;
-    expect_same_layers(extrude_layers(wall, other, shared), alone(other), "other settings");
+    test::expect_same_layers(extrude_layers(wall, other, shared), alone(other), "other settings");
     shared.node_thickness_limit[static_cast<std::size_t>(centre)] = 0.05;
-    expect_same_layers(extrude_layers(wall, p, shared), alone(p), "back to the first settings");
+    test::expect_same_layers(extrude_layers(wall, p, shared), alone(p), "back to the first settings");
 }
 
 TEST(Columns, AColumnBoundWhereItStoppedKeepsEveryLayerCappedAndItsReason) {
