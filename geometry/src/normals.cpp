@@ -211,11 +211,23 @@ Cap cap_through(const Vec3& a, const Vec3& b, const Vec3& p) {
 
 // A step coprime to n near n/φ: visiting i·step mod n spreads normals that arrive sorted
 // around the node (the usual order of a fan), which would be Welzl's quadratic worst case.
-int golden_step(int n) {
+constexpr int golden_step_of(int n) {
     if (n <= 2) return 1;
     int step = std::max(1, static_cast<int>(0.6180339887498949 * n));
     while (std::gcd(step, n) != 1) ++step;
     return step;
+}
+
+// golden_step_of(n) for the stack path's n, computed at compile time: a node's normal is taken
+// at every sweep, and the gcd loop's divisions are not cheap beside Welzl's few caps.
+constexpr auto kGoldenSteps = [] {
+    std::array<int, kStackNormals + 1> steps{};
+    for (int n = 0; n <= kStackNormals; ++n) steps[static_cast<std::size_t>(n)] = golden_step_of(n);
+    return steps;
+}();
+
+int golden_step(int n) {
+    return n <= kStackNormals ? kGoldenSteps[static_cast<std::size_t>(n)] : golden_step_of(n);
 }
 
 /// Welzl's recursion, unrolled, over at(0 .. n-1) in that order.
@@ -246,14 +258,15 @@ Cap welzl_cap(int n, At at) {
 template <class NormalAt>
 Cap smallest_cap(int n, NormalAt normal) {
     const int step = golden_step(n);
-    auto at = [&](int i) { return normal(static_cast<int>((static_cast<long long>(i) * step) % n)); };
     if (n <= kStackNormals) {
-        // The normals in visiting order, once: Welzl's loops revisit them often.
+        // The normals in visiting order (i·step mod n, stepped without a division), once:
+        // Welzl's loops revisit them often.
         std::array<Vec3, kStackNormals> visit;
-        for (int i = 0; i < n; ++i) visit[static_cast<std::size_t>(i)] = at(i);
+        for (int i = 0, at = 0; i < n; ++i, at = at + step >= n ? at + step - n : at + step)
+            visit[static_cast<std::size_t>(i)] = normal(at);
         return welzl_cap(n, [&](int i) -> const Vec3& { return visit[static_cast<std::size_t>(i)]; });
     }
-    return welzl_cap(n, at);
+    return welzl_cap(n, [&](int i) { return normal(static_cast<int>((static_cast<long long>(i) * step) % n)); });
 }
 
 template <class Areas>

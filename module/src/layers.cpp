@@ -217,6 +217,15 @@ double concave_ramp(double alpha) {
     return 0.5 * (1.0 - std::cos(4.0 * alpha));
 }
 
+/// concave_ramp(acos(\p cosine)) without the arc cosine where the cosine is clearly on one
+/// side of 45° or 90° (the margin far above acos's rounding, so the answer is the same bits).
+double concave_ramp_of_cosine(double cosine) {
+    constexpr double margin = 1e-9;
+    if (cosine >= std::numbers::sqrt2 / 2.0 + margin) return 1.0;
+    if (cosine <= -margin) return 0.0;
+    return concave_ramp(std::acos(cosine));
+}
+
 /// First and second ξ, η derivatives of the level-1 positions at node o.
 struct Derivs {
     Vec3 d[5];
@@ -971,11 +980,11 @@ void add_concave_terms(const Marcher& mc, const Levels& lv, Index o, const Deriv
         const Vec3 e = mc.at(lv.r1, mc.st.points[j]) - lv.r1[o];
         const double gm = e.squaredNorm();
         if (gm <= g33) continue;
-        const double alpha = std::acos(std::clamp(e.dot(nrm) / std::sqrt(gm), -1.0, 1.0));
+        const double ramp = concave_ramp_of_cosine(std::clamp(e.dot(nrm) / std::sqrt(gm), -1.0, 1.0));
         // Literal reading g_m/g33 − 1, capped (ALGORITHM.md section 6); the bounded reading
         // 1 − g33/g_m when the cap is 0.
         const double cap = mc.params.concave_cap;
-        const double nu = (cap > 0.0 ? std::min(gm / g33 - 1.0, cap) : 1.0 - g33 / gm) * concave_ramp(alpha);
+        const double nu = (cap > 0.0 ? std::min(gm / g33 - 1.0, cap) : 1.0 - g33 / gm) * ramp;
         if (nu <= 0.0) continue;
         const double cs = dir[0], sn = dir[1];
         const double gperp = sn * sn * g11 - 2.0 * sn * cs * g12 + cs * cs * g22;
