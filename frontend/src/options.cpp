@@ -85,6 +85,7 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
     // Walls sized for the first layer: CAD in its own unit (before --scale), a remeshed surface
     // in the model's (after it).
     p.remeshing.max_aspect_ratio = p.cad.max_aspect_ratio;
+    if (layers) p.cad.threads = layers->threads;
     if (layers && (any_cad || p.remesh) && p.cad.max_aspect_ratio > 0.0) {
         const double h = resolve(layers->distribution).first_height;
         const double fan = layers->min_quality > 0.0 ? layers->fan_angle_deg : 0.0;

@@ -4,6 +4,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/format.h>
+#include <strata/core/parallel.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/topology.h>
 #include <strata/io/cad_content.h>
@@ -116,6 +117,7 @@ void validate(const CadParams& p) {
                          "is wide)");
     if (!(p.wall_faces_budget > 0.0))
         throw InputError("CAD meshing: wall_faces_budget must be positive, got " + format_number(p.wall_faces_budget));
+    check_threads(p.threads, "CadParams::threads");
     if (p.curvature_points < 0)
         throw InputError("CAD meshing: curvature_points must be >= 0 (0 = off), got " +
                          std::to_string(p.curvature_points));
@@ -168,6 +170,7 @@ const std::vector<std::string> kSavedOptions = {
     "General.Terminal",
     "General.Verbosity",
     "General.NumThreads",
+    "Geometry.OCCParallel",
 };
 
 double get_number(const std::string& name) {
@@ -993,6 +996,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     options.save_string("Geometry.OCCTargetUnit");
     const CadUnits read_in = set_import_units(path, *format, params);
     if (units) *units = read_in;
+    set_number("Geometry.OCCParallel", thread_count(params.threads) > 1 ? 1.0 : 0.0);
 
     load(path, *format, params.trust_geo);
 

@@ -316,6 +316,26 @@ TEST(MeshCad, WingFuselageFusedIsOneClosedSurface) {
     EXPECT_NEAR(b.lo.x(), -0.13785, 5e-4);
 }
 
+TEST(MeshCad, FusedOnSeveralThreadsIsTheSameSurface) {
+    // OpenCASCADE's Boolean union runs in parallel above one thread (Geometry.OCCParallel): the
+    // rocket's body, fins and nozzle fused give the same nodes and faces, bit for bit.
+    CadParams p;
+    p.fuse = true;
+    p.size = 0.05;
+    p.threads = 1;
+    const SurfaceMesh one = mesh_cad(example_data("../sweep/rocket.geo"), p);
+    p.threads = 2;
+    const SurfaceMesh two = mesh_cad(example_data("../sweep/rocket.geo"), p);
+    expect_well_formed(two);
+    EXPECT_TRUE(closed(two));
+    EXPECT_EQ(one.points, two.points);
+    EXPECT_EQ(one.face_offsets, two.face_offsets);
+    EXPECT_EQ(one.face_nodes, two.face_nodes);
+    EXPECT_EQ(one.face_patch, two.face_patch);
+    p.threads = -1;
+    EXPECT_THROW(mesh_cad(example_data("../sweep/rocket.geo"), p), InputError);
+}
+
 TEST(MeshCad, StepAndIgesAreReadInTheUnitTheyDeclareOrTheOneAsked) {
     // wing_fuselage.step declares metres, onera_m6_sharp_te.stp millimetres, the IGES box mm.
     CadUnits u;

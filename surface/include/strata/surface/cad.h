@@ -60,6 +60,11 @@ struct CadParams {
     /// reject. Needs OpenCASCADE entities (STEP/IGES/BREP, or SetFactory("OpenCASCADE") in a
     /// .geo). Faces the union changes lose their physical group.
     bool fuse = false;
+    /// Threads (0: all cores). Above one, OpenCASCADE's Boolean operations (fuse, and those a
+    /// .geo script makes) run in parallel on its own thread pool (Gmsh's Geometry.OCCParallel);
+    /// their result is the same for any count. Gmsh's surface meshing stays on one thread: its
+    /// meshes differ with the thread count.
+    int threads = 0;
     /// Gmsh 2D algorithm (Mesh.Algorithm): 1 MeshAdapt, 2 Automatic, 5 Delaunay,
     /// 6 Frontal-Delaunay (default), 9 packing of parallelograms. 7 (BAMG) and 8 (Frontal-
     /// Delaunay for quads) are refused: in Gmsh 4.8.4 they abort the process (BAMG on curved
