@@ -304,7 +304,7 @@ void add_table_options(CLI::App& cmd, strata::Options& o, std::initializer_list<
         if (spec.show_default && !std::holds_alternative<bool& (*)(strata::Options&)>(spec.field))
             opt->capture_default_str();
         if (spec.flag == "--layers") opt->required();
-        if (spec.flag == "--remesh") opt->check(CLI::NonNegativeNumber);
+        if (spec.flag == "--remesh" || spec.flag == "--wrap") opt->check(CLI::NonNegativeNumber);
         if (spec.flag == "--fan-angle" || spec.flag == "--sharp-edge-stop") opt->check(CLI::Range(0.0, 180.0));
         if (spec.flag == "--mixed") opt->excludes(cmd.get_option("--quads"));
     }
@@ -603,6 +603,20 @@ void print_remesh(const strata::ReportNode& r) {
         r.number("sharpest_after_deg"));
 }
 
+/// What the alpha wrap did (the surface report's "wrap").
+void print_wrap(const strata::ReportNode& w) {
+    std::printf(
+        "wrapped: %d faces -> one watertight surface of %d triangles (--wrap: alpha %s, offset %s, %.2f s); it lies "
+        "within %s of the input (farthest at %s), and every point of the input within %s of it (farthest at %s%s)\n",
+        count(w, "input_faces"), count(w, "faces"), strata::format_number(w.number("alpha")).c_str(),
+        strata::format_number(w.number("offset")).c_str(), w.number("seconds"),
+        strata::format_number(w.number("wrap_to_input")).c_str(), point_at(w, "wrap_to_input_at").c_str(),
+        strata::format_number(w.number("input_to_wrap")).c_str(), point_at(w, "input_to_wrap_at").c_str(),
+        w.number("input_to_wrap") > 2.0 * w.number("alpha")
+            ? ": inside the wrap, where parts overlap, or a gap narrower than alpha closed over"
+            : "");
+}
+
 /// The surface and what preparing it did (the report's "surface", surface_report).
 void print_surface_summary(const strata::ReportNode& s) {
     std::printf("surface: %d nodes, %d triangles, %d quadrilaterals, %d patches\n", count(s, "nodes"),
@@ -659,6 +673,7 @@ void print_surface_summary(const strata::ReportNode& s) {
             e.integer("left") > 0
                 ? (", " + std::to_string(e.integer("left")) + " left where collapsing was not safe").c_str()
                 : "");
+    if (s.flag("wrapped")) print_wrap(s.node("wrap"));
     if (s.flag("remeshed")) print_remesh(s.node("remesh"));
     if (s.flag("blossom_folded"))
         std::printf(
@@ -1181,11 +1196,11 @@ int main(int argc, char** argv) {
     reportcmd->add_option("--plots", report_dir, "directory for the plots (created)")->required();
     reportcmd->add_flag("-q,--quiet", report_quiet, "print nothing but errors");
 
-    // --remesh takes an optional SIZE: "--remesh 20" is "--remesh=20", a bare "--remesh" is
-    // "--remesh=0" (automatic size), so that "--remesh wing.stl" leaves the input alone.
+    // --remesh and --wrap take an optional SIZE: "--remesh 20" is "--remesh=20", a bare
+    // "--remesh" is "--remesh=0" (automatic size), so that "--remesh wing.stl" leaves the input alone.
     std::vector<std::string> args(argv + 1, argv + argc);
     for (std::size_t i = 0; i < args.size(); ++i) {
-        if (args[i] != "--remesh") continue;
+        if (args[i] != "--remesh" && args[i] != "--wrap") continue;
         char* end = nullptr;
         const bool size = i + 1 < args.size() && !args[i + 1].empty() &&
                           (std::strtod(args[i + 1].c_str(), &end), end && *end == '\0');

@@ -43,6 +43,8 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
     }
     const CadParams none;
     p.fuse = p.cad.fuse;  // --fuse: CAD solids by OpenCASCADE, overlapping mesh components by CGAL
+    p.wrap = c.wrap >= 0.0;
+    p.wrapping.alpha = std::max(c.wrap, 0.0);
     p.remesh = c.remesh >= 0.0;
     if (p.remesh) {
         // The surface-meshing options apply to the new mesh as they do to CAD.
@@ -85,7 +87,7 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
     // Walls sized for the first layer: CAD in its own unit (before --scale), a remeshed surface
     // in the model's (after it).
     p.remeshing.max_aspect_ratio = p.cad.max_aspect_ratio;
-    if (layers) p.cad.threads = layers->threads;
+    if (layers) p.cad.threads = p.wrapping.threads = layers->threads;
     if (layers && (any_cad || p.remesh) && p.cad.max_aspect_ratio > 0.0) {
         const double h = resolve(layers->distribution).first_height;
         const double fan = layers->min_quality > 0.0 ? layers->fan_angle_deg : 0.0;
@@ -213,6 +215,16 @@ void add_surface_options(std::vector<OptionSpec>& t) {
         "None, or mesh the surface again with Gmsh (a dirty STL's needle faces, the cuts of fuse) with this element "
         "size (0: size, or the input's median edge): sharp edges (feature_angle_deg) and patches are kept";
     t.push_back(std::move(remesh));
+    OptionSpec wrap = no_default(spec(
+        "--wrap", "wrap", "", Stage::Surface, [](Options& o) -> double& { return o.surface.wrap; },
+        "--wrap [SIZE]: replace the walls by one watertight surface wrapped round them (CGAL's alpha wrap), for a "
+        "surface nothing repairs in place (non-manifold edges, holes, parts through or against each other); SIZE "
+        "is the narrowest gap or hole the wrap follows (default: a hundredth of the model's diagonal), the wrap "
+        "lies SIZE/30 outside the input; with --remesh the wrap is meshed again"));
+    wrap.keyword_help =
+        "None, or replace the walls by one watertight surface wrapped round them (CGAL's alpha wrap) with this "
+        "size, the narrowest gap it follows (0: a hundredth of the model's diagonal); with remesh, meshed again";
+    t.push_back(std::move(wrap));
     t.push_back(spec(
         "--feature-angle", "feature_angle_deg", "RemeshParams::feature_angle_deg", Stage::Surface,
         [](Options& o) -> double& { return o.surface.prepare.remeshing.feature_angle_deg; },
@@ -498,6 +510,7 @@ std::vector<std::pair<std::string, std::string>> names_for(bool keywords) {
     n.emplace_back("CadParams::elements", keywords ? "quads/mixed" : "--quads/--mixed");
     n.emplace_back("HybridParams::threads", keywords ? "threads" : "--threads");
     n.emplace_back("PrepareParams::remesh", keywords ? "remesh" : "--remesh");
+    n.emplace_back("PrepareParams::wrap", keywords ? "wrap" : "--wrap");
     if (keywords)
         for (const OptionSpec& o : option_table())
             if (!o.keyword.empty() && !o.flag.empty()) n.emplace_back(o.flag, o.keyword);

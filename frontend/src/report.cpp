@@ -89,6 +89,15 @@ ReportNode remesh_report(const RemeshReport& r) {
     return n;
 }
 
+ReportNode wrap_report(const WrapReport& r) {
+    ReportNode n;
+    n.set("alpha", r.alpha).set("offset", r.offset).set("input_faces", r.input_faces).set("faces", r.faces);
+    n.set("wrap_to_input", r.wrap_to_input).set("wrap_to_input_at", point(r.wrap_to_input_at));
+    n.set("input_to_wrap", r.input_to_wrap).set("input_to_wrap_at", point(r.input_to_wrap_at));
+    n.set("hausdorff", r.hausdorff()).set("seconds", r.seconds);
+    return n;
+}
+
 /// The wall's needle faces (a corner under kNeedleCornerDeg), which cap the layer cells on them.
 ReportNode needles_report(const SurfaceMesh& mesh) {
     const NeedleReport n = needle_faces(mesh, kNeedleCornerDeg, {PatchKind::Wall});
@@ -304,6 +313,8 @@ ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r, bool cad
     edges.set("collapsed", e.collapsed).set("longest", e.longest).set("largest_share", e.largest_share);
     edges.set("where", point(e.where)).set("left", e.left);
     n.set("short_edges", std::move(edges));
+    n.set("wrapped", r.wrapped);
+    if (r.wrapped) n.set("wrap", wrap_report(r.wrap));
     if (r.remeshed) n.set("remesh", remesh_report(r.remesh));
     n.set("needles", needles_report(s));
     return n;

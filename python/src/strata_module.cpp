@@ -87,8 +87,28 @@ void bind(Keyword& k, T& (*field)(Options&)) {
     };
 }
 
+/// A keyword that is None (off) or a size >= 0 (0: automatic), stored in \p member as a
+/// negative number for off (SurfaceOptions::remesh, SurfaceOptions::wrap).
+void optional_size(Keyword& k, double SurfaceOptions::*member) {
+    k.get = [member](const Options& o) -> py::object {
+        if (o.surface.*member < 0.0) return py::none();
+        return py::float_(o.surface.*member);
+    };
+    k.set = [member, name = k.name](Options& o, py::handle v) {
+        if (v.is_none()) {
+            o.surface.*member = -1.0;
+            return;
+        }
+        const double size = v.cast<double>();
+        if (!(size >= 0.0))
+            throw InputError(name + "=" + py::repr(v).cast<std::string>() +
+                             ": expected None or a size >= 0 (0: automatic)");
+        o.surface.*member = size;
+    };
+}
+
 /// The front-ends' option table (frontend/options.h) as keywords: its flags in the help named
-/// as keywords; remesh is None or a size, patches None or a dict.
+/// as keywords; remesh and wrap are None or a size, patches None or a dict.
 const std::vector<Keyword>& keywords() {
     static const std::vector<Keyword> table = [] {
         std::vector<Keyword> t;
@@ -117,21 +137,9 @@ const std::vector<Keyword>& keywords() {
                       {}};
             std::visit([&k](auto field) { bind(k, field); }, spec.field);
             if (spec.keyword == "remesh") {
-                k.get = [](const Options& o) -> py::object {
-                    if (o.surface.remesh < 0.0) return py::none();
-                    return py::float_(o.surface.remesh);
-                };
-                k.set = [](Options& o, py::handle v) {
-                    if (v.is_none()) {
-                        o.surface.remesh = -1.0;
-                        return;
-                    }
-                    const double size = v.cast<double>();
-                    if (!(size >= 0.0))
-                        throw InputError("remesh=" + py::repr(v).cast<std::string>() +
-                                         ": expected None or a size >= 0 (0: automatic)");
-                    o.surface.remesh = size;
-                };
+                optional_size(k, &SurfaceOptions::remesh);
+            } else if (spec.keyword == "wrap") {
+                optional_size(k, &SurfaceOptions::wrap);
             } else if (spec.keyword == "patches") {
                 k.get = [](const Options& o) -> py::object {
                     if (o.surface.patches.empty()) return py::none();

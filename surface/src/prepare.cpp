@@ -175,14 +175,19 @@ Index remove_touching_faces(SurfaceMesh& mesh) {
     return static_cast<Index>(back_to_back.size());
 }
 
-/// check_surface; without fusing, its TopologyError says where bodies touch back to back.
+/// What check_merged_surface adds to an error where the surface cannot be mended in place.
+constexpr const char* kWrapHint =
+    " (where the surface cannot be repaired, PrepareParams::wrap replaces it by a watertight surface wrapped "
+    "round it)";
+
+/// check_surface; without fusing, its TopologyError says where bodies touch back to back; any
+/// other names the wrap.
 void check_merged_surface(const SurfaceMesh& merged, const PrepareParams& params, const std::string& source) {
     try {
         check_surface(merged, source);
     } catch (const TopologyError& e) {
-        if (params.fuse) throw;
-        const std::vector<Index> back_to_back = touching_faces(merged);
-        if (back_to_back.empty()) throw;
+        const std::vector<Index> back_to_back = params.fuse ? std::vector<Index>{} : touching_faces(merged);
+        if (back_to_back.empty()) throw TopologyError(std::string(e.what()) + (params.wrap ? "" : kWrapHint));
         throw TopologyError(std::string(e.what()) + ". Bodies touch there: " + std::to_string(back_to_back.size()) +
                             " faces lie back to back on another body's (the first, " +
                             describe_face(merged, back_to_back.front()) +
@@ -224,6 +229,23 @@ SurfaceMesh fuse_bodies(SurfaceMesh oriented, const PrepareParams& params, const
     return naming(source, [&] { return orient_surface(fused, &rep.orient, params.internal_flow); });
 }
 
+/// \p raw replaced by its alpha wrap (PrepareParams::wrap), its figures in \p rep; InputError
+/// naming the first patch that is not a wall's (a wrap would close a symmetry plane's cut or
+/// turn a farfield into a body).
+SurfaceMesh wrap_soup(const SurfaceMesh& raw, const PrepareParams& params, const std::string& source,
+                      PrepareReport& rep) {
+    for (const Patch& p : raw.patches)
+        if (p.kind != PatchKind::Wall)
+            throw InputError(source + ": PrepareParams::wrap wraps the walls as one closed body, but patch '" +
+                             p.name + "' is " + std::string(to_string(p.kind)) +
+                             " (a wrap would close over it); wrap the body alone, or make the patch a wall "
+                             "(PrepareParams::patch_kinds " +
+                             p.name + "=wall)");
+    SurfaceMesh wrapped = naming(source, [&] { return wrap_surface(raw, params.wrapping, &rep.wrap); });
+    rep.wrapped = true;
+    return wrapped;
+}
+
 /// \p oriented remeshed (remesh_surface), merged, checked and oriented again.
 SurfaceMesh remesh_oriented(const SurfaceMesh& oriented, const PrepareParams& params, const std::string& source,
                             PrepareReport& rep) {
@@ -240,6 +262,8 @@ SurfaceMesh remesh_oriented(const SurfaceMesh& oriented, const PrepareParams& pa
 void copy_prepare_report(const PrepareReport& rep, const PrepareParams& params, PrepareReport& report) {
     report.short_edges = rep.short_edges;
     report.remeshed = params.remesh;
+    report.wrapped = rep.wrapped;
+    report.wrap = rep.wrap;
     report.remesh = rep.remesh;
     report.recombination = rep.remesh.recombination;
     report.scale = params.scale;
@@ -277,6 +301,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
     if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
     PrepareReport rep;
+    if (params.wrap) raw = wrap_soup(raw, params, source, rep);
     SurfaceMesh merged = clean_faces(raw, params, source, rep);
     raw = SurfaceMesh{};  // the input copy is no longer needed
     strata::report(progress, "surface", 0.7);

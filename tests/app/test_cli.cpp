@@ -351,6 +351,32 @@ TEST(Cli, LayersOnQuadSphere) {
 // sharpest needle and says to remesh. Ten of its edges are under 1 % of the edges around them
 // (--collapse-edges): collapsed, they take 20 faces and 19 needles with them; the rest are
 // slivers, not short edges.
+TEST(Cli, WrapMeshesAnStlNothingRepairsInPlace) {
+    // examples/data/dirty_body.stl: fins touching the body along a line, a canopy half inside
+    // it, a hole, a facet written twice, a flap on one edge. Refused as it is, naming --wrap;
+    // wrapped, a valid mesh checkMesh would pass, the wrap's distances in the summary and the
+    // report, the same bytes twice.
+    test::ScratchDir dir("cli_wrap");
+    const std::string input = "'" + example_data("dirty_body.stl") + "'";
+    const std::string layers = " --layers 10 --first-height 5e-4 --growth 1.2";
+    const CliResult refused = strata_cli(dir, "mesh " + input + " -o no.msh" + layers);
+    EXPECT_NE(refused.code, 0);
+    test::expect_contains(refused.err, {"dirty_body.stl", "non-manifold edge", "--wrap"});
+    for (const char* out : {"a.msh", "b.msh"}) {
+        const CliResult r = strata_cli(dir, "mesh --wrap " + input + " -o " + out + layers);
+        ASSERT_EQ(r.code, 0) << r.err;
+        test::expect_contains(r.out, {"wrapped: 3135 faces -> one watertight surface of ", "alpha 0.0113525",
+                                      "checkMesh would say \"Mesh OK\"", "  fins ", "  canopy "});
+    }
+    EXPECT_TRUE(slurp(dir.file("a.msh")) == slurp(dir.file("b.msh")));
+    const std::string json = slurp(dir.file("a.msh.report.json"));
+    test::expect_contains(json, {"\"wrapped\": true", "\"wrap_to_input\"", "\"input_to_wrap\"", "\"hausdorff\""});
+    // A size given: the narrowest gap the wrap follows.
+    const CliResult sized = strata_cli(dir, "surface --wrap 0.02 " + input + " -o s.msh");
+    ASSERT_EQ(sized.code, 0) << sized.err;
+    test::expect_contains(sized.out, {"alpha 0.02, offset 0.000666667"});
+}
+
 TEST(Cli, NeedleStlGivesAValidMeshAndSaysRemesh) {
     test::ScratchDir dir("cli_needles");
     CliResult r = strata_cli(dir, "mesh '" + example_data("onera_m6_brepmesh_needles.stl") +

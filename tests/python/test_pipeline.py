@@ -247,6 +247,25 @@ def test_holes_are_closed_on_request():
     assert r["closed_components"] == 1
 
 
+def test_a_surface_nothing_repairs_is_wrapped_on_request():
+    # examples/data/dirty_body.stl (fins touching the body along a line, a canopy inside it, a
+    # hole, a facet twice, a flap): refused, naming the wrap keyword; wrap=None is off, 0 the
+    # default size, a number the narrowest gap the wrap follows.
+    dirty = os.path.join(EXAMPLES, "dirty_body.stl")
+    with pytest.raises(strata.TopologyError, match=r"wrap replaces it"):
+        strata.surface(dirty)
+    s = strata.surface(dirty, wrap=0)
+    w = s.report["wrap"]
+    assert s.report["wrapped"] and w["input_faces"] == 3135 and w["faces"] == s.report["triangles"]
+    assert w["alpha"] == pytest.approx(0.0113525, rel=1e-5) and w["offset"] == pytest.approx(w["alpha"] / 30)
+    assert 0 < w["wrap_to_input"] < w["alpha"] and w["hausdorff"] == max(w["wrap_to_input"], w["input_to_wrap"])
+    assert s.report["closed_components"] == 1 and s.report["open_loops"] == 0
+    assert sorted(s.patch_names) == ["body", "canopy", "fins"]
+    assert strata.surface(dirty, wrap=0.02).report["wrap"]["alpha"] == 0.02
+    with pytest.raises(strata.InputError, match=r"wrap=-1"):
+        strata.surface(dirty, wrap=-1)
+
+
 def test_a_gmsh_abort_is_an_error_and_the_session_goes_on():
     # Gmsh 4.8 throws out of its OpenMP meshing loop on a face it cannot mesh, a std::terminate
     # that ended the whole process (this interpreter, a FreeCAD session) with one line. The

@@ -2,6 +2,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/format.h>
 #include <strata/geometry/primitives.h>
 #include <strata/geometry/topology.h>
 #include <strata/io/read_surface.h>
@@ -229,6 +230,58 @@ TEST(Prepare, AFaceWrittenTwiceIsRemovedAndTheMergeToleranceChecked) {
     p.merge_tolerance = 0.01;
     test::expect_error<InputError>([&] { (void)prepare_surface(path, p); },
                                    {"twice.stl", "merge_tolerance = 0.01", "[0, 0.001]"});
+}
+
+/// Sphere "a" through sphere "b", a hole in a, a face of b written twice and a fin on an edge of
+/// a: a surface nothing repairs in place (non-manifold edges, a hole, self-intersections).
+SurfaceMesh dirty_spheres() {
+    SurfaceMesh a = icosphere(Vec3::Zero(), 1.0, 3, {"a", PatchKind::Wall});
+    std::vector<char> drop(static_cast<std::size_t>(a.num_faces()), 0);
+    drop[0] = drop[1] = 1;
+    SurfaceMesh soup = test::merged(remove_faces(a, drop), icosphere(Vec3(1.2, 0.1, 0), 0.8, 3, {"b", PatchKind::Wall}));
+    soup.add_face(soup.face_begin(soup.num_faces() - 1), 3, 1);
+    const Index* e = soup.face_begin(100);
+    soup.points.push_back(0.5 * (soup.points[e[0]] + soup.points[e[1]]) * 1.05);
+    const std::array<Index, 3> fin{e[0], e[1], static_cast<Index>(soup.points.size() - 1)};
+    soup.add_face(fin.data(), 3, 0);
+    return soup;
+}
+
+TEST(Prepare, ASurfaceNothingRepairsIsWrappedAndRemeshed) {
+    test::ScratchDir dir("prepare_wrap");
+    write_ascii_stl(dirty_spheres(), dir.file("dirty.stl"));
+    // Refused as it is, and the error names the wrap.
+    test::expect_error<TopologyError>([&] { (void)prepare_surface(dir.file("dirty.stl"), {}); },
+                                      {"dirty.stl", "PrepareParams::wrap"});
+    PrepareParams p;
+    p.wrap = true;
+    p.wrapping.alpha = 0.1;
+    p.remesh = true;
+    p.remeshing.size = 0.08;
+    PrepareReport rep;
+    const SurfaceMesh m = prepare_surface(dir.file("dirty.stl"), p, &rep);
+    EXPECT_TRUE(rep.wrapped);
+    EXPECT_TRUE(rep.remeshed);
+    EXPECT_EQ(rep.wrap.input_faces, 2 * 1280 - 2 + 2);
+    EXPECT_LT(rep.wrap.wrap_to_input, 0.1);
+    EXPECT_TRUE(test::closed_manifold(m));
+    Index nc = 0;
+    face_components(m, &nc);
+    EXPECT_EQ(nc, 1);
+    // The remeshed wrap keeps to the spheres: every node away from the fin (which it wraps too)
+    // within the offset and a facet's depth, but where the spheres cross: the wrap bridges
+    // that concave crease, nothing of it narrower than α (0.1) followed.
+    const Vec3 fin = dirty_spheres().points.back();
+    for (const Vec3& x : m.points) {
+        if ((x - fin).norm() < 0.2) continue;
+        const double to_a = std::abs(x.norm() - 1.0), to_b = std::abs((x - Vec3(1.2, 0.1, 0)).norm() - 0.8);
+        const bool crease = to_a < 0.1 && to_b < 0.1;
+        EXPECT_LT(std::min(to_a, to_b), crease ? 0.1 : 0.03) << format_point(x);
+    }
+    // Only walls are wrapped: a symmetry plane's cut would be closed over.
+    p.patch_kinds = {{"hull", PatchKind::Symmetry}};
+    test::expect_error<InputError>([&] { (void)prepare_surface(dir.file("dirty.stl"), p); },
+                                   {"dirty.stl", "'hull' is symmetry", "hull=wall"});
 }
 
 TEST(Prepare, ParsePatchKind) {

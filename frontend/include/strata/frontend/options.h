@@ -25,6 +25,7 @@ struct SurfaceOptions {
     std::string input;                 ///< the inputs as one name, for messages (input_name)
     bool quads = false;                ///< recombine into quadrilaterals (CAD, or with remesh)
     double remesh = -1.0;              ///< remesh with this size (0: automatic); negative: no remeshing
+    double wrap = -1.0;                ///< alpha-wrap with this α (0: automatic), then remesh; negative: no wrap
     std::vector<int> mixed;            ///< CAD surface tags meshed with quads, triangles elsewhere
     std::vector<std::string> patches;  ///< "NAME=KIND" each
     PrepareParams prepare;

@@ -9,6 +9,7 @@
 #include <strata/geometry/fill_holes.h>
 #include <strata/geometry/fuse.h>
 #include <strata/geometry/short_edges.h>
+#include <strata/geometry/wrap.h>
 #include <strata/surface/cad.h>
 #include <strata/surface/remesh.h>
 
@@ -39,6 +40,12 @@ struct PrepareParams {
     /// leaves. CAD input is meshed well by Gmsh in the first place; the option applies to it too.
     bool remesh = false;
     RemeshParams remeshing;
+    /// Replace the surface by its alpha wrap (wrap_surface, with \p wrapping) before anything
+    /// else checks it: for a surface that cannot be repaired in place (non-manifold edges, holes,
+    /// self-intersections, parts through or against each other, faces given twice). Walls only
+    /// (a wrap closes a symmetry plane's cut). The wrap is one closed body round all the input.
+    bool wrap = false;
+    WrapParams wrapping;
     /// Edges shorter than this share of their local size are collapsed (collapse_short_edges),
     /// after fusing: the small edges of a CAD model's sliver faces and Boolean seams, whose
     /// needle faces cap the layer cells on them. Not with \p remesh, which rebuilds the surface
@@ -69,6 +76,8 @@ struct PrepareReport {
     bool internal_flow = false;         ///< PrepareParams::internal_flow: oriented for the fluid inside the walls
     ShortEdgeReport short_edges;        ///< PrepareParams::collapse_ratio: the edges collapsed
     HoleReport holes;                   ///< PrepareParams::fill_holes: the loops closed and left
+    bool wrapped = false;               ///< PrepareParams::wrap done; \p wrap says how far from the input
+    WrapReport wrap;
     bool remeshed = false;              ///< PrepareParams::remesh done; \p remesh says how
     RemeshReport remesh;
     OrientReport orient;
@@ -94,7 +103,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
 
 /// The part of prepare_surface after reading, for a mesh that comes from elsewhere (the
 /// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,
-/// then merge_coincident_nodes (\p params.merge_tolerance), remove_collapsed_faces (counted in
+/// with \p params.wrap the alpha wrap (InputError if a patch is not a wall's), then merge_coincident_nodes (\p params.merge_tolerance), remove_collapsed_faces (counted in
 /// \p report->collapsed_faces), remove_duplicate_faces (\p report->duplicate_faces), split_t_junctions
 /// (\p report->t_junctions), with \p params.fuse the
 /// touching_faces removed (counted in \p report->touching_faces), check_surface (whose TopologyError, without \p
