@@ -399,6 +399,11 @@ void print_sewing(const strata::ReportNode& s) {
             "repaired: %d faces of the CAD model written twice (the same place, area and side as another) "
             "removed, the first of each kept\n",
             count(s, "written_twice"));
+    if (s.integer("ignored") > 0)
+        std::printf(
+            "repaired: %d faces of the CAD model that bound none of its solids and are open where they lie (a "
+            "construction profile, a loose sheet) set aside, not meshed (the first, surface %d, at %s)\n",
+            count(s, "ignored"), count(s, "ignored_surface"), point_at(s, "ignored_at").c_str());
     if (s.integer("faces") == 0) return;
     if (s.flag("rejected")) {
         std::printf(

@@ -57,6 +57,7 @@ ReportNode sewing_report(const SewReport& s) {
     n.set("cracks", s.cracks).set("widest_gap", s.widest_gap).set("gap_at", point(s.gap_at));
     n.set("suggested_tolerance", s.suggested_tolerance).set("renumbered", s.renumbered).set("moved", s.moved);
     n.set("rejected", s.rejected).set("gap_before", s.gap_before).set("first_tolerance", s.first_tolerance);
+    n.set("ignored", s.ignored).set("ignored_surface", s.ignored_surface).set("ignored_at", point(s.ignored_at));
     return n;
 }
 

@@ -5,6 +5,7 @@
 #include <strata/core/error.h>
 #include <strata/core/format.h>
 #include <strata/core/parallel.h>
+#include <strata/core/union_find.h>
 #include <strata/geometry/intersections.h>
 #include <strata/geometry/topology.h>
 #include <strata/io/cad_content.h>
@@ -814,6 +815,49 @@ std::map<int, int> sew_model(const std::string& path, CadFormat format, const Ca
     return renamed;
 }
 
+/// In a model with solids, the faces that bound none and whose group of loose faces (joined by
+/// shared curves) still has a free edge: removed from the model, counted in \p r (ignored,
+/// ignored_surface, ignored_at). A closed group of loose faces (a box of faces round the
+/// solids) stays, and so does every loose face where a free edge runs along another (a crack
+/// sewing left: the open surface's error says which tolerance sews it).
+void ignore_open_loose_faces(double diagonal, SewReport& r) {
+    if (entity_tags(3).empty()) return;
+    const std::vector<int> loose = loose_surfaces(entity_tags(2));
+    if (loose.empty()) return;
+    const std::vector<int> free = free_curves(loose, 1e-9 * diagonal);
+    if (free.empty() || measure_gaps(free, 1e-3 * diagonal).cracks > 0) return;
+    // Groups of loose faces by the curves they share; each group with a free curve goes.
+    std::map<int, std::vector<std::size_t>> faces_of_curve;
+    std::vector<std::vector<int>> curves(loose.size());
+    for (std::size_t i = 0; i < loose.size(); ++i) {
+        gmsh::vectorpair boundary;
+        gmsh::model::getBoundary({{2, loose[i]}}, boundary, false, false, false);
+        for (const auto& [dim, c] : boundary) {
+            curves[i].push_back(std::abs(c));
+            faces_of_curve[std::abs(c)].push_back(i);
+        }
+    }
+    UnionFind groups(loose.size());
+    for (const auto& [c, faces] : faces_of_curve)
+        for (std::size_t k = 1; k < faces.size(); ++k)
+            groups.unite(static_cast<Index>(faces[0]), static_cast<Index>(faces[k]));
+    std::set<Index> open;
+    for (const int c : free) open.insert(groups.find(static_cast<Index>(faces_of_curve[c].front())));
+    gmsh::vectorpair gone;
+    for (std::size_t i = 0; i < loose.size(); ++i) {
+        if (!open.count(groups.find(static_cast<Index>(i)))) continue;
+        if (r.ignored++ == 0) {
+            r.ignored_surface = loose[i];
+            double x = 0, y = 0, z = 0;
+            gmsh::model::occ::getCenterOfMass(2, loose[i], x, y, z);
+            r.ignored_at = Vec3(x, y, z);
+        }
+        gone.emplace_back(2, loose[i]);
+    }
+    gmsh::model::occ::remove(gone, true);
+    gmsh::model::occ::synchronize();
+}
+
 /// The diagonal of the model's bounding box (InputError where it has no extent).
 double model_diagonal(const std::string& path) {
     double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
@@ -1009,6 +1053,9 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     SewReport sewn;
     // The file's surface tag → its tag after sewing, where they differ.
     const std::map<int, int> renamed = script ? std::map<int, int>{} : sew_model(path, *format, params, sewn);
+    if (!script)
+        gmsh_call(path + ": setting aside the faces that bound no solid",
+                  [&] { ignore_open_loose_faces(model_diagonal(path), sewn); });
     if (sew) *sew = sewn;
     if (params.fuse) fuse_volumes(path);
     const std::vector<int> surfaces = entity_tags(2);

@@ -56,6 +56,10 @@ SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const
         // Several inputs: the first file whose recombination fell back says so.
         if (recombination && recombination->blossom_failure.empty()) *recombination = recombined;
         if (sew) sew->written_twice += sewn.written_twice;
+        if (sew && sewn.ignored > 0) {  // several inputs: summed, the first located
+            if (sew->ignored == 0) sew->ignored_surface = sewn.ignored_surface, sew->ignored_at = sewn.ignored_at;
+            sew->ignored += sewn.ignored;
+        }
         if (sew && sewn.faces > 0) {
             // Several inputs: summed, the widest gap and the largest tolerance kept.
             sew->faces += sewn.faces;

@@ -1223,6 +1223,19 @@ TEST(Cli, SurfaceMeshTooCoarseForTheFirstLayerIsForecast) {
     EXPECT_EQ(r.out.find("cells with an aspect ratio above 1000"), std::string::npos) << r.out;
 }
 
+TEST(Cli, ARevolvesProfileLeftBesideItsSolidIsSetAsideAndSaid) {
+    // A STEP holding a cylinder and the rectangle it was revolved from: refused as open before
+    // ("a hole or a crack"); the rectangle is set aside, the summary and the report say which.
+    test::ScratchDir dir("cli_loose_profile");
+    const CliResult r = strata_cli(dir, "mesh '" + test::test_data("cad_cylinder_and_profile.step") +
+                                            "' -o c.msh --layers 5 --first-height 1e-3");
+    ASSERT_EQ(r.code, 0) << r.err;
+    test::expect_contains(r.out, {"repaired: 1 faces of the CAD model that bound none of its solids",
+                                  "set aside, not meshed (the first, surface 4, at (0.5, 0.65, 0))",
+                                  "checkMesh would say \"Mesh OK\""});
+    test::expect_contains(slurp(dir.file("c.msh.report.json")), {"\"ignored\": 1"});
+}
+
 TEST(Cli, LooseCadFacesAreSewnAndWiderGapsNamedWithTheirRemedy) {
     // A box of six faces that miss each other (tests/data/cad_box_loose_faces.py): by 1e-7 they
     // are sewn and meshed; by 3e-5, wider than sewing goes unasked, strata mesh refuses the open

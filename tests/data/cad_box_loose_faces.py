@@ -12,6 +12,11 @@ edges), which sewing must leave alone:
 And of cad_solid_and_loose_face.brep: a unit cube, a loose unit square beside it (x = 2..3) and
 a free line (construction geometry), in one file: the square must be read, the line ignored.
     /usr/bin/python3 cad_box_loose_faces.py mixed cad_solid_and_loose_face.brep
+And of cad_cylinder_and_profile.step: a cylinder and the rectangle a revolve was made from,
+lying beside it (a STEP with a solid and a loose face), and of cad_sphere_in_box_faces.brep: a
+sphere solid inside six loose faces of a box (a closed group of faces bounding no solid):
+    /usr/bin/python3 cad_box_loose_faces.py profile cad_cylinder_and_profile.step
+    /usr/bin/python3 cad_box_loose_faces.py boxed cad_sphere_in_box_faces.brep
 And of cad_box_face_written_twice.brep: the six faces of the box, exact, the first written twice.
     /usr/bin/python3 cad_box_loose_faces.py twice cad_box_face_written_twice.brep
 """
@@ -28,6 +33,24 @@ if sys.argv[1] == "mixed":
     o.addBox(0, 0, 0, 1, 1, 1)
     o.addRectangle(2, 0, 0, 1, 1)
     o.addLine(o.addPoint(0, 3, 0), o.addPoint(1, 3, 0))
+    o.synchronize()
+    gmsh.write(out)
+    gmsh.finalize()
+    sys.exit(0)
+if sys.argv[1] == "profile":
+    o.addCylinder(0, 0, 0, 1, 0, 0, 0.3)
+    o.addRectangle(0, 0.5, 0, 1, 0.3)  # the profile a revolve was made from, left beside it
+    o.synchronize()
+    gmsh.write(out)
+    gmsh.finalize()
+    sys.exit(0)
+if sys.argv[1] == "boxed":
+    o.addSphere(0, 0, 0, 0.5)
+    o.addBox(-2, -2, -2, 4, 4, 4)
+    box = [e for e in o.getEntities(3) if e[1] != 1]
+    o.copy([f for f in o.getEntities(2) if f[1] > 1])
+    o.remove(box, recursive=False)
+    o.remove([(2, t) for t in range(2, 8)], recursive=True)
     o.synchronize()
     gmsh.write(out)
     gmsh.finalize()

@@ -1159,18 +1159,43 @@ TEST(CadSewing, SolidsAndClosedFacesAreLeftAlone) {
     EXPECT_THROW(mesh_cad(test_data("cad_box_with_hole.igs"), p), InputError);
 }
 
-TEST(CadSewing, ALooseFaceBesideASolidIsReadAndFreeCurvesIgnored) {
+TEST(CadSewing, ALooseFaceBesideASolidIsSetAsideAndSaidAndFreeCurvesIgnored) {
     // A cube, a square beside it and a free line in one file (cad_solid_and_loose_face.brep):
-    // reading the solids only, the square was lost without a word; it is read (nothing to sew:
-    // no edge of it runs along another), and the line, bounding nothing, is left out.
+    // the square bounds no solid and is open where it lies (a construction profile left in the
+    // file), so no layer could grow on it and the surface would be refused as open: it is set
+    // aside, counted and located; the line, bounding nothing, is left out.
     SewReport r;
     const SurfaceMesh m = mesh_cad(test_data("cad_solid_and_loose_face.brep"), {}, nullptr, nullptr, &r);
-    EXPECT_EQ(m.patches.size(), 7u);
+    EXPECT_EQ(m.patches.size(), 6u);
     EXPECT_EQ(r.faces, 0);
+    EXPECT_EQ(r.ignored, 1);
+    EXPECT_LT((r.ignored_at - Vec3(2.5, 0.5, 0.0)).norm(), 0.6) << r.ignored_at.transpose();
     double far = 0.0;
     for (const Vec3& x : m.points) far = std::max(far, x.x());
-    EXPECT_NEAR(far, 3.0, 1e-9);
+    EXPECT_NEAR(far, 1.0, 1e-9);
+    EXPECT_TRUE(closed(m));
     for (Index f = 0; f < m.num_faces(); ++f) EXPECT_GT(face_area_vector(m, f).norm(), 0.0);
+}
+
+TEST(CadSewing, ARevolvesProfileIsSetAsideButLooseFacesClosedRoundASolidStay) {
+    // A STEP of a cylinder and the rectangle it was revolved from, beside it: meshed, the
+    // rectangle left the surface open ("a hole or a crack"); set aside, the cylinder meshes.
+    SewReport r;
+    const SurfaceMesh m = mesh_cad(test_data("cad_cylinder_and_profile.step"), {}, nullptr, nullptr, &r);
+    EXPECT_EQ(r.ignored, 1);
+    EXPECT_EQ(m.patches.size(), 3u);
+    EXPECT_TRUE(closed(m));
+    // A sphere solid inside six loose faces of a box: sewn, they close round it, and stay.
+    SewReport boxed;
+    const SurfaceMesh both = mesh_cad(test_data("cad_sphere_in_box_faces.brep"), {}, nullptr, nullptr, &boxed);
+    EXPECT_EQ(boxed.ignored, 0);
+    EXPECT_EQ(both.patches.size(), 7u);
+    EXPECT_TRUE(closed(both));
+    // Without a solid, loose faces are sewn as before (cad_box_loose_faces_1e-7.brep).
+    SewReport box;
+    EXPECT_TRUE(closed(mesh_cad(test_data("cad_box_loose_faces_1e-7.brep"), {}, nullptr, nullptr, &box)));
+    EXPECT_EQ(box.ignored, 0);
+    EXPECT_EQ(box.faces, 6);
 }
 
 TEST(CadSewing, AFaceWrittenTwiceIsRemovedBeforeSewing) {

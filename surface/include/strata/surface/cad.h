@@ -209,6 +209,13 @@ struct SewReport {
     /// \p rejected and the file meshed unsewn, as it is.
     double moved = 0.0;
     bool rejected = false;
+    /// In a model with solids: faces that bound none and are open where they stand (sewn or
+    /// not, a free edge left in their group of loose faces): a construction profile or a loose
+    /// sheet beside the solids, which no layer can grow on. Not meshed: how many, and the first's
+    /// tag and centre.
+    Index ignored = 0;
+    int ignored_surface = 0;
+    Vec3 ignored_at = Vec3::Zero();
 };
 
 /// What CadParams::max_aspect_ratio did.
