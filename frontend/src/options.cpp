@@ -9,6 +9,7 @@
 #include <strata/surface/cad.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 
 namespace strata {
@@ -23,13 +24,38 @@ bool any_cad_input(const std::vector<std::string>& inputs) {
     return std::any_of(inputs.begin(), inputs.end(), [](const std::string& f) { return is_cad_file(f); });
 }
 
+namespace {
+
+/// "NAME=KIND[:NEW]" as its three parts (NEW empty where not given).
+std::array<std::string, 3> patch_option_parts(const std::string& s) {
+    const auto eq = s.rfind('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == s.size())
+        throw InputError("--patch '" + s +
+                         "': expected NAME=KIND or NAME=KIND:NEWNAME, e.g. --patch symmetry_plane=symmetry or "
+                         "--patch surface_3=wall:fuselage");
+    const std::string rest = s.substr(eq + 1);
+    const auto colon = rest.find(':');
+    if (colon != std::string::npos && colon + 1 == rest.size())
+        throw InputError("--patch '" + s + "': no new name after ':'; give NAME=KIND:NEWNAME");
+    return {s.substr(0, eq), rest.substr(0, colon), colon == std::string::npos ? "" : rest.substr(colon + 1)};
+}
+
+}  // namespace
+
 std::vector<std::pair<std::string, PatchKind>> parse_patch_options(const std::vector<std::string>& items) {
     std::vector<std::pair<std::string, PatchKind>> out;
     for (const std::string& s : items) {
-        const auto eq = s.rfind('=');
-        if (eq == std::string::npos || eq == 0 || eq + 1 == s.size())
-            throw InputError("--patch '" + s + "': expected NAME=KIND, e.g. --patch symmetry_plane=symmetry");
-        out.emplace_back(s.substr(0, eq), parse_patch_kind(s.substr(eq + 1)));
+        const auto [name, kind, rename] = patch_option_parts(s);
+        out.emplace_back(name, parse_patch_kind(kind));
+    }
+    return out;
+}
+
+std::vector<std::pair<std::string, std::string>> parse_patch_renames(const std::vector<std::string>& items) {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const std::string& s : items) {
+        const auto [name, kind, rename] = patch_option_parts(s);
+        if (!rename.empty()) out.emplace_back(name, rename);
     }
     return out;
 }
@@ -84,6 +110,7 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
                          "' is a surface mesh, which carries no unit: --units applies to STEP and IGES "
                          "only; use --scale to convert");
     p.patch_kinds = parse_patch_options(c.patches);
+    p.patch_names = parse_patch_renames(c.patches);
     // Walls sized for the first layer: CAD in its own unit (before --scale), a remeshed surface
     // in the model's (after it).
     p.remeshing.max_aspect_ratio = p.cad.max_aspect_ratio;
@@ -274,9 +301,10 @@ void add_surface_options(std::vector<OptionSpec>& t) {
     OptionSpec patches = no_default(spec(
         "--patch", "patches", "PrepareParams::patch_kinds", Stage::Patches,
         [](Options& o) -> std::vector<std::string>& { return o.surface.patches; },
-        "set a patch's kind, NAME=KIND with KIND wall|symmetry|farfield|other "
-        "(repeatable)"));
-    patches.keyword_help = "None, or {patch name: 'wall' | 'symmetry' | 'farfield' | 'other'}";
+        "set a patch's kind, NAME=KIND with KIND wall|symmetry|farfield|other, and rename it with "
+        "NAME=KIND:NEWNAME (patches given one name become one) (repeatable)"));
+    patches.keyword_help =
+        "None, or {patch name: 'wall' | 'symmetry' | 'farfield' | 'other', or 'KIND:NEWNAME' to rename it too}";
     t.push_back(std::move(patches));
 }
 
@@ -511,6 +539,7 @@ std::vector<std::pair<std::string, std::string>> names_for(bool keywords) {
     n.emplace_back("HybridParams::threads", keywords ? "threads" : "--threads");
     n.emplace_back("PrepareParams::remesh", keywords ? "remesh" : "--remesh");
     n.emplace_back("PrepareParams::wrap", keywords ? "wrap" : "--wrap");
+    n.emplace_back("PrepareParams::patch_names", keywords ? "patches" : "--patch");
     if (keywords)
         for (const OptionSpec& o : option_table())
             if (!o.keyword.empty() && !o.flag.empty()) n.emplace_back(o.flag, o.keyword);

@@ -144,8 +144,11 @@ const std::vector<Keyword>& keywords() {
                 k.get = [](const Options& o) -> py::object {
                     if (o.surface.patches.empty()) return py::none();
                     py::dict d;
-                    for (const auto& [name, kind] : parse_patch_options(o.surface.patches))
-                        d[py::str(name)] = to_string(kind);
+                    (void)parse_patch_options(o.surface.patches);  // checked
+                    for (const std::string& item : o.surface.patches) {
+                        const auto eq = item.rfind('=');
+                        d[py::str(item.substr(0, eq))] = item.substr(eq + 1);
+                    }
                     return py::object(std::move(d));
                 };
                 k.set = [](Options& o, py::handle v) {
@@ -498,6 +501,7 @@ py::dict run_gmsh_model(const py::dict& kwargs, const py::object& callback, cons
     const HybridParams hp = hybrid_params(o.layers, o.mesh);
     PrepareParams pp = o.surface.prepare;  // patch kinds, internal flow, merge tolerance: what applies to a model
     pp.patch_kinds = parse_patch_options(o.surface.patches);
+    pp.patch_names = parse_patch_renames(o.surface.patches);
     return with_progress(callback, timeout, [&](Progress* progress) {
         const auto t0 = std::chrono::steady_clock::now();
         const HybridReport hr = mesh_current_gmsh_model(hp, pp, progress);

@@ -14,6 +14,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <set>
 
 namespace strata {
 namespace {
@@ -110,6 +111,25 @@ SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const
 
 }  // namespace
 
+namespace {
+
+/// The patches of \p mesh, "a, b, c", for messages.
+std::string patch_list(const SurfaceMesh& mesh) {
+    std::string list;
+    for (const Patch& p : mesh.patches) list += (list.empty() ? "" : ", ") + p.name;
+    return list;
+}
+
+/// A patch name OpenFOAM and CGNS both take as it is.
+bool solver_name(const std::string& name) {
+    if (name.empty() || name.size() > 32 || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
+        return false;
+    return std::all_of(name.begin(), name.end(),
+                       [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-'; });
+}
+
+}  // namespace
+
 PatchKind patch_kind_of(const std::string& name, const std::vector<std::pair<std::string, PatchKind>>& kinds) {
     for (auto it = kinds.rbegin(); it != kinds.rend(); ++it)
         if (it->first == name) return it->second;
@@ -125,13 +145,48 @@ void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::stri
     for (const auto& [name, kind] : kinds) {
         const Index i = find_patch(mesh, name);
         if (i == kNone) {
-            std::string list;
-            for (const Patch& p : mesh.patches) list += (list.empty() ? "" : ", ") + p.name;
             throw InputError(source + ": PrepareParams::patch_kinds " + name + "=" + std::string(to_string(kind)) +
-                             ": no patch named '" + name + "'; the patches are: " + list);
+                             ": no patch named '" + name + "'; the patches are: " + patch_list(mesh));
         }
         mesh.patches[static_cast<std::size_t>(i)].kind = kind;
     }
+}
+
+void rename_patches(SurfaceMesh& mesh, const std::vector<std::pair<std::string, std::string>>& names,
+                    const std::string& source) {
+    if (names.empty()) return;
+    for (const auto& [from, to] : names) {
+        const Index i = find_patch(mesh, from);
+        if (i == kNone)
+            throw InputError(source + ": PrepareParams::patch_names " + from + " -> " + to + ": no patch named '" +
+                             from + "'; the patches are: " + patch_list(mesh));
+        if (!solver_name(to))
+            throw InputError(source + ": PrepareParams::patch_names " + from + " -> '" + to +
+                             "': a patch name must start with a letter or _ and hold only letters, digits, _ and -, "
+                             "at most 32 (OpenFOAM and CGNS take it as it is)");
+        mesh.patches[static_cast<std::size_t>(i)].name = to;
+    }
+    // Patches that now carry a name given by a rename become the first patch of that name.
+    std::set<std::string> given;
+    for (const auto& n : names) given.insert(n.second);
+    std::vector<Index> into(mesh.patches.size());
+    std::vector<Patch> kept;
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const Patch& p = mesh.patches[i];
+        auto same = std::find_if(kept.begin(), kept.end(), [&](const Patch& k) { return k.name == p.name; });
+        if (!given.count(p.name) || same == kept.end()) {
+            into[i] = static_cast<Index>(kept.size());
+            kept.push_back(p);
+            continue;
+        }
+        if (same->kind != p.kind)
+            throw InputError(source + ": PrepareParams::patch_names gives patches of kinds " +
+                             std::string(to_string(same->kind)) + " and " + std::string(to_string(p.kind)) +
+                             " one name, '" + p.name + "'; give them one kind or two names");
+        into[i] = static_cast<Index>(same - kept.begin());
+    }
+    for (Index& p : mesh.face_patch) p = into[static_cast<std::size_t>(p)];
+    mesh.patches = std::move(kept);
 }
 
 namespace {
@@ -302,6 +357,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     if (params.scale != 1.0)
         for (Vec3& x : raw.points) x *= params.scale;
     assign_patch_kinds(raw, params.patch_kinds, source);
+    rename_patches(raw, params.patch_names, source);
     // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
     if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
     PrepareReport rep;

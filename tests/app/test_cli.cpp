@@ -1223,6 +1223,27 @@ TEST(Cli, SurfaceMeshTooCoarseForTheFirstLayerIsForecast) {
     EXPECT_EQ(r.out.find("cells with an aspect ratio above 1000"), std::string::npos) << r.out;
 }
 
+TEST(Cli, PatchesAreRenamedWithTheirKindsAndThoseGivenOneNameAreOne) {
+    // --patch NAME=KIND:NEWNAME: the fused wing-fuselage's two largest faces as one patch
+    // "fuselage", named so in the summary and in OpenFOAM's boundary file; a name OpenFOAM would
+    // not take is refused.
+    test::ScratchDir dir("cli_patch_rename");
+    std::filesystem::create_directories(dir.file("case/constant"));
+    const std::string step = "'" + example_data("wing_fuselage.step") + "'";
+    const CliResult r = strata_cli(dir, "mesh " + step +
+                                            " --fuse --patch surface_1=wall:fuselage --patch surface_2=wall:fuselage "
+                                            "--layers 3 --first-height 1e-3 -o case/constant/polyMesh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    test::expect_contains(r.out, {"  patch 1 fuselage ", "13 patches"});
+    const std::string boundary = slurp(dir.file("case/constant/polyMesh/boundary"));
+    test::expect_contains(boundary, {"    fuselage\n", "inGroups        1(wall);"});
+    EXPECT_EQ(boundary.find("    surface_1\n"), std::string::npos);
+    EXPECT_EQ(boundary.find("    surface_2\n"), std::string::npos);
+    const CliResult bad = strata_cli(dir, "surface " + step + " --patch 'surface_1=wall:wing (left)' -o s.msh");
+    EXPECT_NE(bad.code, 0);
+    test::expect_contains(bad.err, {"--patch", "'wing (left)'", "must start with a letter or _"});
+}
+
 TEST(Cli, ARevolvesProfileLeftBesideItsSolidIsSetAsideAndSaid) {
     // A STEP holding a cylinder and the rectangle it was revolved from: refused as open before
     // ("a hole or a crack"); the rectangle is set aside, the summary and the report say which.

@@ -204,6 +204,15 @@ def test_patches_keyword(tmp_path):
         strata.surface(os.path.join(TEST_DATA, "cad_box_groups.geo"), patches={"nosuch": "wall"})
 
 
+def test_patches_keyword_renames_too():
+    box = os.path.join(TEST_DATA, "cad_box_groups.geo")
+    first, second = strata.surface(box).patch_names[:2]
+    s = strata.surface(box, patches={first: "wall:sides", second: "wall:sides"})
+    assert s.patch_names[0] == "sides" and first not in s.patch_names and second not in s.patch_names
+    with pytest.raises(strata.InputError, match=r"patches .*'a b'.*must start with a letter"):
+        strata.surface(box, patches={first: "wall:a b"})
+
+
 def test_cad_walls_are_meshed_finer_for_the_first_layers_aspect_ratio():
     # The unit box under a first layer of 5e-5: its prisms would be near 1900 in OpenFOAM's
     # aspect ratio (checkMesh fails above 1000); layers() and mesh() mesh its walls finer,

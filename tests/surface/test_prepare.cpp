@@ -284,6 +284,34 @@ TEST(Prepare, ASurfaceNothingRepairsIsWrappedAndRemeshed) {
                                    {"dirty.stl", "'hull' is symmetry", "hull=wall"});
 }
 
+TEST(Prepare, PatchesAreRenamedAndThoseGivenOneNameMerged) {
+    SurfaceMesh m = test::merged(test::merged(icosphere(Vec3::Zero(), 1.0, 1, {"surface_1", PatchKind::Wall}),
+                                              icosphere(Vec3(3, 0, 0), 1.0, 1, {"surface_2", PatchKind::Wall})),
+                                 icosphere(Vec3(6, 0, 0), 1.0, 1, {"surface_3", PatchKind::Symmetry}));
+    const Index faces = m.num_faces();
+    SurfaceMesh one = m;
+    rename_patches(one, {{"surface_1", "fuselage"}, {"surface_2", "fuselage"}, {"surface_3", "mirror-plane"}}, "t");
+    ASSERT_EQ(one.patches.size(), 2u);
+    EXPECT_EQ(one.patches[0].name, "fuselage");
+    EXPECT_EQ(one.patches[1].name, "mirror-plane");
+    EXPECT_EQ(one.patches[1].kind, PatchKind::Symmetry);
+    EXPECT_EQ(one.num_faces(), faces);
+    EXPECT_EQ(std::count(one.face_patch.begin(), one.face_patch.end(), 0), 2 * faces / 3);
+    // Unknown patch, a name a solver would not take, two kinds under one name: refused by name.
+    test::expect_error<InputError>([&] { rename_patches(m, {{"wing", "w"}}, "t.stl"); },
+                                   {"t.stl", "no patch named 'wing'", "surface_1, surface_2, surface_3"});
+    for (const char* bad : {"has space", "1st", "a/b", "x(1)", "abcdefghijabcdefghijabcdefghijabc"})
+        test::expect_error<InputError>([&] { rename_patches(m, {{"surface_1", bad}}, "t.stl"); },
+                                       {"t.stl", bad, "must start with a letter or _"});
+    test::expect_error<InputError>([&] { rename_patches(m, {{"surface_1", "surface_3"}}, "t.stl"); },
+                                   {"kinds wall and symmetry", "'surface_3'"});
+    // A patch that keeps its name is not merged with another of the same name it did not get.
+    SurfaceMesh twice = test::merged(icosphere(Vec3::Zero(), 1.0, 1, {"p", PatchKind::Wall}),
+                                     icosphere(Vec3(3, 0, 0), 1.0, 1, {"p", PatchKind::Wall}));
+    rename_patches(twice, {}, "t");
+    EXPECT_EQ(twice.patches.size(), 2u);
+}
+
 TEST(Prepare, ParsePatchKind) {
     EXPECT_EQ(parse_patch_kind("Symmetry"), PatchKind::Symmetry);
     EXPECT_EQ(parse_patch_kind("farfield"), PatchKind::Farfield);

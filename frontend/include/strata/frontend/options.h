@@ -37,8 +37,11 @@ std::string input_name(const std::vector<std::string>& inputs);
 /// Some input is a CAD file (the rest may be surface meshes).
 bool any_cad_input(const std::vector<std::string>& inputs);
 
-/// Parse "NAME=KIND" items (InputError naming the item otherwise).
+/// Parse "NAME=KIND" and "NAME=KIND:NEWNAME" items into kinds (InputError naming the item otherwise).
 std::vector<std::pair<std::string, PatchKind>> parse_patch_options(const std::vector<std::string>& items);
+
+/// The renames of "NAME=KIND:NEWNAME" items (NAME, NEWNAME), in order; items without one add none.
+std::vector<std::pair<std::string, std::string>> parse_patch_renames(const std::vector<std::string>& items);
 
 /// The surface parameters from the options; surface-meshing options on a surface mesh, two
 /// sizes at once and --mixed with --remesh are refused (InputError). With \p layers (the

@@ -22,6 +22,10 @@ namespace strata {
 struct PrepareParams {
     CadParams cad;                                               ///< used for CAD input only
     std::vector<std::pair<std::string, PatchKind>> patch_kinds;  ///< --patch NAME=KIND
+    /// Patches renamed (--patch NAME=KIND:NEW), after their kinds are set: the new name a valid
+    /// OpenFOAM and CGNS one (a letter or _, then letters, digits, _ or -, at most 32); patches
+    /// given one name become one patch (their kinds must agree).
+    std::vector<std::pair<std::string, std::string>> patch_names;
     double merge_tolerance = 1e-9;                               ///< relative to the bounding-box diagonal
     /// The fluid is inside the closed walls (a duct, a wind tunnel), not around them: the
     /// outermost closed surface points inward (orient_surface), and build_hybrid_mesh fills it
@@ -119,6 +123,12 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
 /// \p kinds that names it, else symmetry or farfield if the name contains the word (any case),
 /// else a wall.
 PatchKind patch_kind_of(const std::string& name, const std::vector<std::pair<std::string, PatchKind>>& kinds);
+
+/// Rename \p mesh's patches by \p names (old name, new name), merging patches given one name;
+/// InputError naming \p source for an unknown patch, a name OpenFOAM or CGNS would not take, or
+/// patches of different kinds given one name.
+void rename_patches(SurfaceMesh& mesh, const std::vector<std::pair<std::string, std::string>>& names,
+                    const std::string& source);
 
 /// Apply the naming rule and mappings above to \p mesh's patch table.
 void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::string, PatchKind>>& kinds,
