@@ -678,6 +678,10 @@ void print_surface_summary(const strata::ReportNode& s) {
             e.integer("left") > 0
                 ? (", " + std::to_string(e.integer("left")) + " left where collapsing was not safe").c_str()
                 : "");
+    if (s.flag("touching_wrapped"))
+        std::printf(
+            "fused: parts touch along a line or a point only, which no Boolean union joins (--fuse), so the walls "
+            "were wrapped into one instead (--wrap; a smaller --wrap SIZE keeps more detail)\n");
     if (s.flag("wrapped")) print_wrap(s.node("wrap"));
     if (s.flag("remeshed")) print_remesh(s.node("remesh"));
     if (s.flag("blossom_folded"))

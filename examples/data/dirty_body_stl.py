@@ -7,6 +7,9 @@ into it, a hole where three of its facets are missing, one facet written twice, 
 flap sharing one of its edges (a non-manifold edge). Each part is an STL solid of its own
 (patches body, fins, canopy). Nothing here is repaired in place: the check stops on the first
 defect it meets. Deterministic (no randomness): python3 dirty_body_stl.py OUT.stl
+With --touching, the body and its fins only, each part closed and clean, the fins touching the
+body along a line (fins_touching_body.stl: what --fuse must join):
+python3 dirty_body_stl.py fins_touching_body.stl --touching
 """
 import math
 import sys
@@ -67,17 +70,18 @@ def sphere(centre, radius, n=12):
     return pts, tris
 
 
-def main(out):
+def main(out, clean=False):
     solids = []
     pts, tris = body()
     v = lambda k: pts[k]
     faces = [tuple(v(k) for k in t) for t in tris]
-    hole = {600, 601, 602}
+    hole = set() if clean else {600, 601, 602}
     flap_edge = faces[900][:2]
     faces = [f for i, f in enumerate(faces) if i not in hole]
-    faces.append(faces[500])  # written twice
-    mid = tuple(0.5 * (a + b) for a, b in zip(*flap_edge))
-    faces.append((flap_edge[0], flap_edge[1], (mid[0], mid[1] * 1.6, mid[2] * 1.6)))  # a flap: 3 faces on an edge
+    if not clean:
+        faces.append(faces[500])  # written twice
+        mid = tuple(0.5 * (a + b) for a, b in zip(*flap_edge))
+        faces.append((flap_edge[0], flap_edge[1], (mid[0], mid[1] * 1.6, mid[2] * 1.6)))  # a flap: 3 faces on an edge
     solids.append(("body", faces))
     fins = []
     for k in range(4):  # roots on the cylinder's vertex lines at 0, 90, 180, 270 degrees
@@ -87,8 +91,9 @@ def main(out):
         c, bt = box((0.72, -0.004, 0.0), (0.95, 0.004, 0.09), frame)
         fins += [tuple(c[i] for i in t3) for t3 in bt]
     solids.append(("fins", fins))
-    sp, stris = sphere((0.35, 0.0, 0.1), 0.06)
-    solids.append(("canopy", [tuple(sp[i] for i in t) for t in stris]))
+    if not clean:
+        sp, stris = sphere((0.35, 0.0, 0.1), 0.06)
+        solids.append(("canopy", [tuple(sp[i] for i in t) for t in stris]))
     with open(out, "w") as f:
         for name, faces in solids:
             f.write(f"solid {name}\n")
@@ -101,4 +106,5 @@ def main(out):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "dirty_body.stl")
+    # --touching: the body and its fins only, closed and clean (fins_touching_body.stl)
+    main(sys.argv[1] if len(sys.argv) > 1 else "dirty_body.stl", "--touching" in sys.argv[2:])

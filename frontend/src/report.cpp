@@ -314,7 +314,7 @@ ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r, bool cad
     edges.set("collapsed", e.collapsed).set("longest", e.longest).set("largest_share", e.largest_share);
     edges.set("where", point(e.where)).set("left", e.left);
     n.set("short_edges", std::move(edges));
-    n.set("wrapped", r.wrapped);
+    n.set("wrapped", r.wrapped).set("touching_wrapped", r.touching_wrapped);
     if (r.wrapped) n.set("wrap", wrap_report(r.wrap));
     if (r.remeshed) n.set("remesh", remesh_report(r.remesh));
     n.set("needles", needles_report(s));

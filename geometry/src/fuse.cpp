@@ -157,7 +157,7 @@ Mesh union_of(const SurfaceMesh& mesh, const Components& comps, const std::vecto
                                 " with the others (" + e.what() + "); check that each is closed and outward");
         }
         if (!ok)
-            throw TopologyError("fuse: the union of the component of " + describe_face(mesh, first) +
+            throw TouchingPartsError("fuse: the union of the component of " + describe_face(mesh, first) +
                                 " with the others would not bound a volume (they touch along an edge or a "
                                 "point only, or one is not closed); move them apart or overlap them more");
         result = std::move(united);

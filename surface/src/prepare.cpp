@@ -254,12 +254,54 @@ void check_merged_surface(const SurfaceMesh& merged, const PrepareParams& params
     }
 }
 
+/// \p raw replaced by its alpha wrap (PrepareParams::wrap), its figures in \p rep; InputError
+/// naming the first patch that is not a wall's (a wrap would close a symmetry plane's cut or
+/// turn a farfield into a body).
+SurfaceMesh wrap_soup(const SurfaceMesh& raw, const PrepareParams& params, const std::string& source,
+                      PrepareReport& rep) {
+    for (const Patch& p : raw.patches)
+        if (p.kind != PatchKind::Wall)
+            throw InputError(source + ": PrepareParams::wrap wraps the walls as one closed body, but patch '" +
+                             p.name + "' is " + std::string(to_string(p.kind)) +
+                             " (a wrap would close over it); wrap the body alone, or make the patch a wall "
+                             "(PrepareParams::patch_kinds " +
+                             p.name + "=wall)");
+    SurfaceMesh wrapped = naming(source, [&] { return wrap_surface(raw, params.wrapping, &rep.wrap); });
+    rep.wrapped = true;
+    return wrapped;
+}
+
+/// \p oriented, whose parts touch along a line or a point only (\p why: fuse_components'
+/// TouchingPartsError), wrapped into one (wrap_soup), checked and oriented; TopologyError where
+/// a patch is not a wall's, which a wrap would close over.
+SurfaceMesh wrap_touching(const SurfaceMesh& oriented, const PrepareParams& params, const std::string& source,
+                          const std::string& why, PrepareReport& rep) {
+    if (std::any_of(oriented.patches.begin(), oriented.patches.end(),
+                    [](const Patch& p) { return p.kind != PatchKind::Wall; }))
+        throw TopologyError(source + ": " + why +
+                            "; PrepareParams::wrap would join them, but it wraps walls only");
+    rep.touching_wrapped = true;
+    const SurfaceMesh wrapped = wrap_soup(oriented, params, source, rep);
+    check_surface(wrapped, source + " (wrapped)");
+    return naming(source, [&] { return orient_surface(wrapped, &rep.orient, params.internal_flow); });
+}
+
 /// \p oriented with its overlapping bodies replaced by their union (fuse_components), then
 /// merged, cleaned, checked and oriented again; \p rep counts what that did.
 SurfaceMesh fuse_bodies(SurfaceMesh oriented, const PrepareParams& params, const std::string& source,
                         PrepareReport& rep) {
     FuseReport fuse;
-    SurfaceMesh fused = naming(source, [&] { return fuse_components(oriented, &fuse); });
+    bool touching = false;
+    std::string why;
+    SurfaceMesh fused = naming(source, [&] {
+        try {
+            return fuse_components(oriented, &fuse);
+        } catch (const TouchingPartsError& e) {
+            touching = true, why = e.what();
+            return SurfaceMesh{};
+        }
+    });
+    if (touching) return wrap_touching(oriented, params, source, why, rep);
     rep.fused_components = fuse.fused;
     if (fuse.fused == 0) return oriented;
     // The union's faces with the untouched components: checked and oriented again.
@@ -288,23 +330,6 @@ SurfaceMesh fuse_bodies(SurfaceMesh oriented, const PrepareParams& params, const
     return naming(source, [&] { return orient_surface(fused, &rep.orient, params.internal_flow); });
 }
 
-/// \p raw replaced by its alpha wrap (PrepareParams::wrap), its figures in \p rep; InputError
-/// naming the first patch that is not a wall's (a wrap would close a symmetry plane's cut or
-/// turn a farfield into a body).
-SurfaceMesh wrap_soup(const SurfaceMesh& raw, const PrepareParams& params, const std::string& source,
-                      PrepareReport& rep) {
-    for (const Patch& p : raw.patches)
-        if (p.kind != PatchKind::Wall)
-            throw InputError(source + ": PrepareParams::wrap wraps the walls as one closed body, but patch '" +
-                             p.name + "' is " + std::string(to_string(p.kind)) +
-                             " (a wrap would close over it); wrap the body alone, or make the patch a wall "
-                             "(PrepareParams::patch_kinds " +
-                             p.name + "=wall)");
-    SurfaceMesh wrapped = naming(source, [&] { return wrap_surface(raw, params.wrapping, &rep.wrap); });
-    rep.wrapped = true;
-    return wrapped;
-}
-
 /// \p oriented remeshed (remesh_surface), merged, checked and oriented again.
 SurfaceMesh remesh_oriented(const SurfaceMesh& oriented, const PrepareParams& params, const std::string& source,
                             PrepareReport& rep) {
@@ -322,6 +347,7 @@ void copy_prepare_report(const PrepareReport& rep, const PrepareParams& params, 
     report.short_edges = rep.short_edges;
     report.remeshed = params.remesh;
     report.wrapped = rep.wrapped;
+    report.touching_wrapped = rep.touching_wrapped;
     report.wrap = rep.wrap;
     report.remesh = rep.remesh;
     report.recombination = rep.remesh.recombination;

@@ -1223,6 +1223,19 @@ TEST(Cli, SurfaceMeshTooCoarseForTheFirstLayerIsForecast) {
     EXPECT_EQ(r.out.find("cells with an aspect ratio above 1000"), std::string::npos) << r.out;
 }
 
+TEST(Cli, FuseWrapsPartsThatTouchAlongALineOnly) {
+    // examples/data/fins_touching_body.stl: four fins whose flat roots sit on a round body,
+    // touching it along a line. Unfused they intersect; fused, no union bounds a volume, so the
+    // walls are wrapped into one, and the summary says which it did.
+    test::ScratchDir dir("cli_fuse_touching");
+    const CliResult r = strata_cli(dir, "mesh --fuse '" + example_data("fins_touching_body.stl") +
+                                            "' -o f.msh --layers 10 --first-height 5e-4 --growth 1.2");
+    ASSERT_EQ(r.code, 0) << r.err;
+    test::expect_contains(r.out, {"fused: parts touch along a line or a point only", "the walls were wrapped",
+                                  "wrapped: 2608 faces -> one watertight surface", "checkMesh would say \"Mesh OK\""});
+    test::expect_contains(slurp(dir.file("f.msh.report.json")), {"\"touching_wrapped\": true"});
+}
+
 TEST(Cli, PatchesAreRenamedWithTheirKindsAndThoseGivenOneNameAreOne) {
     // --patch NAME=KIND:NEWNAME: the fused wing-fuselage's two largest faces as one patch
     // "fuselage", named so in the summary and in OpenFOAM's boundary file; a name OpenFOAM would

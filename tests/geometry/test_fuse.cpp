@@ -130,5 +130,27 @@ TEST(Fuse, ApartOrNotWallsTheyStayAsTheyAre) {
     EXPECT_EQ(u.face_patch, m.face_patch);
 }
 
+/// A unit cube of triangles at \p offset, patch \p name, outward.
+SurfaceMesh triangle_cube(const Vec3& offset, const std::string& name) {
+    SurfaceMesh m = test::cube_corners(offset);
+    m.patches[0].name = name;
+    for (const auto& q : {std::array<Index, 4>{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2},
+                          {1, 3, 7, 5}}) {
+        m.add_face({q[0], q[1], q[2]}, 0);
+        m.add_face({q[0], q[2], q[3]}, 0);
+    }
+    return m;
+}
+
+TEST(Fuse, PartsTouchingAlongAnEdgeOnlyAreATouchingPartsError) {
+    // Two cubes sharing one edge and nothing else (fins whose roots sit on a body along a line):
+    // their union would not bound a volume; the error says so by its type, for a caller that
+    // joins them another way (prepare_mesh wraps them).
+    const SurfaceMesh m = test::merged(triangle_cube(Vec3::Zero(), "a"), triangle_cube(Vec3(1, 1, 0), "b"));
+    ASSERT_GT(test::enclosed_volume(m), 0.0);
+    EXPECT_THROW(fuse_components(m), TouchingPartsError);
+    test::expect_error<TopologyError>([&] { fuse_components(m); }, {"would not bound a volume", "touch along an edge"});
+}
+
 }  // namespace
 }  // namespace strata

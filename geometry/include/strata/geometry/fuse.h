@@ -4,9 +4,18 @@
 /// given as separate STL files), by exact corefinement: CGAL's
 /// Polygon_mesh_processing::corefine_and_compute_union, each face keeping its patch.
 
+#include <strata/core/error.h>
 #include <strata/core/surface_mesh.h>
 
 namespace strata {
+
+/// The TopologyError of fuse_components where parts touch along an edge or a point only (the
+/// union of fins whose flat roots sit on a curved body would not bound a volume): a caller may
+/// join them another way (prepare_mesh wraps them, PrepareParams::wrap).
+class TouchingPartsError : public TopologyError {
+public:
+    using TopologyError::TopologyError;
+};
 
 /// What fuse_components did.
 struct FuseReport {
@@ -23,7 +32,7 @@ struct FuseReport {
 /// face they came from (split faces: of the face they were cut from); quads of the components
 /// unioned become two triangles. Deterministic. TopologyError naming the component (its first
 /// face and patch) where one that must be unioned intersects itself, or where CGAL's union
-/// fails (the result would not bound a volume).
+/// fails; TouchingPartsError where the result would not bound a volume.
 SurfaceMesh fuse_components(const SurfaceMesh& mesh, FuseReport* report = nullptr);
 
 }  // namespace strata

@@ -81,6 +81,9 @@ struct PrepareReport {
     ShortEdgeReport short_edges;        ///< PrepareParams::collapse_ratio: the edges collapsed
     HoleReport holes;                   ///< PrepareParams::fill_holes: the loops closed and left
     bool wrapped = false;               ///< PrepareParams::wrap done; \p wrap says how far from the input
+    /// PrepareParams::fuse met parts that touch along a line or a point only, which no union
+    /// joins, and wrapped the walls instead (\p wrapped and \p wrap say how)
+    bool touching_wrapped = false;
     WrapReport wrap;
     bool remeshed = false;              ///< PrepareParams::remesh done; \p remesh says how
     RemeshReport remesh;
