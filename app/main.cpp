@@ -643,7 +643,13 @@ void print_surface_summary(const strata::ReportNode& s) {
             "repaired: %d faces split where nodes of the faces beside them lay inside their edge (T-junctions)\n",
             count(s, "t_junctions"));
     const strata::ReportNode& holes = s.node("holes");
-    if (holes.integer("filled") > 0)
+    if (holes.integer("filled") > 0 && holes.flag("caps"))
+        std::printf(
+            "caps: %d openings closed each by a cap of its own, %d triangles (--fill-holes --caps: patches cap_1 to "
+            "cap_%d, kind other unless --patch says otherwise; the largest opening, %d edges, around %s)\n",
+            count(holes, "filled"), count(holes, "triangles"), count(holes, "filled"), count(holes, "largest"),
+            point_at(holes, "where").c_str());
+    else if (holes.integer("filled") > 0)
         std::printf("repaired: %d holes closed with %d triangles (--fill-holes; the largest, %d edges, around %s)\n",
                     count(holes, "filled"), count(holes, "triangles"), count(holes, "largest"),
                     point_at(holes, "where").c_str());

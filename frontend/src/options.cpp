@@ -293,6 +293,11 @@ void add_surface_options(std::vector<OptionSpec>& t) {
         "close the surface's open loops of at most this many edges with triangles (the few triangles an STL lost; 0: "
         "none, as a half model's cut is open on purpose)"));
     t.push_back(no_default(spec(
+        "--caps", "caps", "PrepareParams::caps", Stage::Patches, [](Options& o) -> bool& { return o.surface.prepare.caps; },
+        "with --fill-holes: close each open loop by a cap of its own (the inlet and outlets of a vessel cut open): "
+        "patches cap_1, cap_2, ... of kind other, meshed inside, which the layers meet as an outflow plane; name "
+        "them with --patch cap_1=other:inlet")));
+    t.push_back(no_default(spec(
         "--internal", "internal_flow", "PrepareParams::internal_flow", Stage::Patches,
         [](Options& o) -> bool& { return o.surface.prepare.internal_flow; },
         "the fluid is inside the closed walls (a duct, a wind tunnel), not around them: "

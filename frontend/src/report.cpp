@@ -306,7 +306,7 @@ ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r, bool cad
     ReportNode holes;
     holes.set("filled", r.holes.holes).set("triangles", r.holes.triangles).set("largest", r.holes.largest);
     holes.set("where", point(r.holes.where)).set("left", r.holes.left).set("largest_left", r.holes.largest_left);
-    holes.set("max_edges", r.holes.max_edges);
+    holes.set("max_edges", r.holes.max_edges).set("caps", r.holes.caps);
     n.set("holes", std::move(holes)).set("sewn", sewing_report(r.sew)).set("steps", steps_report(r.steps));
     n.set("aspect_remesh", aspect_remesh_report(r.aspect_remesh));
     const ShortEdgeReport& e = r.short_edges;

@@ -202,10 +202,46 @@ void check_prepare_params(const PrepareParams& params, const std::string& source
     if (!(params.fill_holes >= 0 && params.fill_holes <= 10000))
         throw InputError(source + ": PrepareParams::fill_holes = " + std::to_string(params.fill_holes) +
                          ": need a number of edges in [0, 10000] (0: no hole filled)");
+    if (params.caps && params.fill_holes == 0)
+        throw InputError(source + ": PrepareParams::caps closes the loops PrepareParams::fill_holes closes, and that "
+                                  "is 0: give the most edges an opening has (PrepareParams::fill_holes 1000)");
     if (!(params.merge_tolerance >= 0.0 && params.merge_tolerance <= 1e-3))
         throw InputError(source + ": PrepareParams::merge_tolerance = " + format_number(params.merge_tolerance) +
                          ": need a share of the model's size in [0, 0.001] (nodes closer than it are one; a larger "
                          "one would merge the nodes of real features)");
+}
+
+/// PrepareParams::patch_kinds and patch_names split: those naming a cap the surface has not got
+/// yet (PrepareParams::caps; cap_1, cap_2, ...) and the others.
+struct CapOptions {
+    std::vector<std::pair<std::string, PatchKind>> cap_kinds, other_kinds;
+    std::vector<std::pair<std::string, std::string>> cap_names, other_names;
+};
+
+CapOptions cap_options(const SurfaceMesh& raw, const PrepareParams& params) {
+    const auto is_cap = [&](const std::string& name) {
+        return params.caps && name.rfind("cap_", 0) == 0 && find_patch(raw, name) == kNone;
+    };
+    CapOptions o;
+    for (const auto& k : params.patch_kinds) (is_cap(k.first) ? o.cap_kinds : o.other_kinds).push_back(k);
+    for (const auto& n : params.patch_names) (is_cap(n.first) ? o.cap_names : o.other_names).push_back(n);
+    return o;
+}
+
+/// The kinds and names \p o gives the caps, applied to \p capped; InputError naming a cap it
+/// has not got.
+void name_caps(SurfaceMesh& capped, const CapOptions& o, const std::string& source) {
+    for (const auto& [name, kind] : o.cap_kinds) {
+        const Index i = find_patch(capped, name);
+        if (i == kNone)
+            throw InputError(source + ": PrepareParams::patch_kinds " + name + "=" + std::string(to_string(kind)) +
+                             ": no cap named '" + name + "' (PrepareParams::caps closed " +
+                             std::to_string(std::count_if(capped.patches.begin(), capped.patches.end(),
+                                                          [](const Patch& p) { return p.name.rfind("cap_", 0) == 0; })) +
+                             " loops); the patches are: " + patch_list(capped));
+        capped.patches[static_cast<std::size_t>(i)].kind = kind;
+    }
+    rename_patches(capped, o.cap_names, source);
 }
 
 /// \p raw with coincident nodes merged, faces with a repeated node and copies of faces removed,
@@ -382,8 +418,10 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     check_prepare_params(params, source);
     if (params.scale != 1.0)
         for (Vec3& x : raw.points) x *= params.scale;
-    assign_patch_kinds(raw, params.patch_kinds, source);
-    rename_patches(raw, params.patch_names, source);
+    // With caps, the mappings naming caps (cap_1, ...) apply once the caps exist.
+    const CapOptions later = cap_options(raw, params);
+    assign_patch_kinds(raw, later.other_kinds, source);
+    rename_patches(raw, later.other_names, source);
     // Check the raw mesh for NaN and emptiness before merging (merging NaN points is meaningless).
     if (raw.num_faces() == 0) throw InputError(source + ": no faces; it holds no surface mesh");
     PrepareReport rep;
@@ -394,7 +432,11 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     if (params.fuse) rep.touching_faces = remove_touching_faces(merged);
     check_merged_surface(merged, params, source);
     if (params.fill_holes > 0)
-        merged = naming(source, [&] { return fill_holes(merged, params.fill_holes, &rep.holes); });
+        merged = naming(source, [&] {
+            return params.caps ? cap_holes(merged, params.fill_holes, &rep.holes)
+                               : fill_holes(merged, params.fill_holes, &rep.holes);
+        });
+    if (params.caps) name_caps(merged, later, source);
     strata::report(progress, "surface", 0.8);
     SurfaceMesh oriented = naming(source, [&] { return orient_surface(merged, &rep.orient, params.internal_flow); });
     if (params.fuse) oriented = fuse_bodies(std::move(oriented), params, source, rep);

@@ -1223,6 +1223,28 @@ TEST(Cli, SurfaceMeshTooCoarseForTheFirstLayerIsForecast) {
     EXPECT_EQ(r.out.find("cells with an aspect ratio above 1000"), std::string::npos) << r.out;
 }
 
+TEST(Cli, AVesselsOpeningsAreCappedEachWithAPatchOfItsOwn) {
+    // tests/data/vessel_three_cuts.stl: a tube with a branch, open at three planar cuts (an
+    // inlet, two outlets), internal flow. --fill-holes alone closes them into the wall patch, so
+    // layers grow from the openings and no inflow patch exists; with --caps each is a patch of
+    // its own (kind other, named with --patch), the wall's layers meet it as an outflow plane.
+    test::ScratchDir dir("cli_caps");
+    const std::string vessel = "'" + test::test_data("vessel_three_cuts.stl") + "'";
+    const std::string rest = " --internal --fill-holes 1000 --layers 5 --first-height 0.005 --growth 1.2";
+    const CliResult r = strata_cli(dir, "mesh " + vessel + rest +
+                                            " --caps --patch cap_1=other:inlet --patch cap_3=other:outlet_b -o v.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    test::expect_contains(r.out, {"caps: 3 openings closed each by a cap of its own", "  patch 2 inlet ",
+                                  "  patch 3 cap_2 ", "  patch 4 outlet_b ", "checkMesh would say \"Mesh OK\""});
+    const CliResult bad = strata_cli(dir, "surface " + vessel + rest.substr(0, rest.find(" --layers")) +
+                                              " --caps --patch cap_4=other -o s.msh");
+    EXPECT_NE(bad.code, 0);
+    test::expect_contains(bad.err, {"no cap named 'cap_4'", "closed 3 loops"});
+    const CliResult no_holes = strata_cli(dir, "surface " + vessel + " --caps -o s.msh");
+    EXPECT_NE(no_holes.code, 0);
+    test::expect_contains(no_holes.err, {"--caps closes the loops --fill-holes closes"});
+}
+
 TEST(Cli, FuseWrapsPartsThatTouchAlongALineOnly) {
     // examples/data/fins_touching_body.stl: four fins whose flat roots sit on a round body,
     // touching it along a line. Unfused they intersect; fused, no union bounds a volume, so the

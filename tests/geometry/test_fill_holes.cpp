@@ -12,7 +12,9 @@
 
 #include "test_support.h"
 
+#include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 
 namespace strata {
@@ -109,6 +111,64 @@ TEST(FillHolesLimits, LoopsLargerThanAskedStayOpen) {
     // Nothing asked: nothing changes.
     EXPECT_EQ(fill_holes(holed, 0).num_faces(), holed.num_faces());
     EXPECT_TRUE(test::closed_manifold(fill_holes(holed, big)));
+}
+
+/// A tube of radius 0.5 along x from 0 to 3, open at both ends: \p around nodes per ring, 20
+/// rings, triangles in patch "vessel", oriented outward.
+SurfaceMesh open_tube(int around) {
+    SurfaceMesh m;
+    m.patches.push_back({"vessel", PatchKind::Wall});
+    const int rings = 20;
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < around; ++j) {
+            const double t = 2.0 * std::numbers::pi * j / around;
+            m.points.emplace_back(3.0 * i / (rings - 1), 0.5 * std::cos(t), 0.5 * std::sin(t));
+        }
+    const auto at = [&](int i, int j) { return static_cast<Index>(i * around + (j % around)); };
+    for (int i = 0; i + 1 < rings; ++i)
+        for (int j = 0; j < around; ++j) {
+            m.add_face({at(i, j), at(i, j + 1), at(i + 1, j + 1)}, 0);
+            m.add_face({at(i, j), at(i + 1, j + 1), at(i + 1, j)}, 0);
+        }
+    return m;
+}
+
+TEST(CapHoles, EachOpeningGetsAPlanarCapOfItsOwnWithNodesInside) {
+    const SurfaceMesh tube = open_tube(32);
+    HoleReport r;
+    const SurfaceMesh m = cap_holes(tube, 64, &r);
+    EXPECT_TRUE(r.caps);
+    EXPECT_EQ(r.holes, 2);
+    EXPECT_EQ(r.largest, 32);
+    EXPECT_TRUE(oriented_closed(m));
+    ASSERT_EQ(m.patches.size(), 3u);
+    EXPECT_EQ(m.patches[1].name, "cap_1");
+    EXPECT_EQ(m.patches[2].name, "cap_2");
+    EXPECT_EQ(m.patches[1].kind, PatchKind::Other);
+    EXPECT_EQ(m.patches[2].kind, PatchKind::Other);
+    // Nodes inside each cap (a fan of 30 triangles from the rim would be needles), every one in
+    // its cut's plane, and the caps' faces facing out of the tube.
+    EXPECT_GT(m.num_points(), tube.num_points() + 20);
+    std::set<Index> cap_nodes;
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        if (m.face_patch[f] == 0) continue;
+        const double x = m.face_patch[f] == 1 ? 0.0 : 3.0;
+        const Vec3 c = face_centroid(m, m.points, f);
+        EXPECT_NEAR(c.x(), x, 1e-12);
+        EXPECT_GT(face_area_vector(m, f).x() * (x == 0.0 ? -1.0 : 1.0), 0.0) << "face " << f;
+        for (Index i = 0; i < 3; ++i) cap_nodes.insert(m.face_node(f, i));
+    }
+    EXPECT_GT(cap_nodes.size(), 64u + 20u);
+    // The tube's own faces unchanged; the same bytes twice.
+    for (Index f = 0; f < tube.num_faces(); ++f) EXPECT_EQ(m.face_patch[f], 0);
+    const SurfaceMesh again = cap_holes(tube, 64);
+    EXPECT_EQ(again.points, m.points);
+    EXPECT_EQ(again.face_nodes, m.face_nodes);
+    // Loops larger than asked stay open and take no patch.
+    HoleReport none;
+    const SurfaceMesh open = cap_holes(tube, 16, &none);
+    EXPECT_EQ(none.left, 2);
+    EXPECT_EQ(open.patches.size(), 1u);
 }
 
 }  // namespace

@@ -275,6 +275,16 @@ def test_a_surface_nothing_repairs_is_wrapped_on_request():
         strata.surface(dirty, wrap=-1)
 
 
+def test_a_vessels_openings_are_capped_each_with_a_patch_of_its_own():
+    vessel = os.path.join(TEST_DATA, "vessel_three_cuts.stl")
+    s = strata.surface(vessel, fill_holes=1000, caps=True, internal_flow=True, patches={"cap_2": "other:outlet"})
+    assert s.patch_names == ["vessel", "cap_1", "outlet", "cap_3"]
+    assert s.patch_kinds == ["wall", "other", "other", "other"]
+    assert s.report["holes"]["caps"] and s.report["holes"]["filled"] == 3 and s.report["closed_components"] == 1
+    with pytest.raises(strata.InputError, match=r"caps closes the loops fill_holes closes"):
+        strata.surface(vessel, caps=True)
+
+
 def test_a_gmsh_abort_is_an_error_and_the_session_goes_on():
     # Gmsh 4.8 throws out of its OpenMP meshing loop on a face it cannot mesh, a std::terminate
     # that ended the whole process (this interpreter, a FreeCAD session) with one line. The

@@ -20,6 +20,7 @@ struct HoleReport {
     Vec3 where = Vec3::Zero();  ///< the centre of that loop
     Index left = 0;             ///< loops left open: more edges than asked, or no triangulation found
     Index largest_left = 0;     ///< edges of the largest of those
+    bool caps = false;          ///< closed by cap_holes: each loop its own patch, cap_1, cap_2, ...
 };
 
 /// \p mesh (manifold: every edge on at most two faces) with each boundary loop of at most
@@ -30,5 +31,13 @@ struct HoleReport {
 /// A loop CGAL cannot triangulate (a degenerate one) is left, and counted in \p report->left.
 /// Deterministic. TopologyError where boundary loops touch (boundary_loops).
 SurfaceMesh fill_holes(const SurfaceMesh& mesh, Index max_edges, HoleReport* report = nullptr);
+
+/// The openings of a vessel or a duct (an artery cut at its inlet and outlets) closed as
+/// fill_holes closes them, but each loop by a cap of its own: the loop's triangulation refined
+/// with nodes inside it (CGAL's refine, Liepa's scheme: spacing as the loop's edges, in the
+/// loop's plane where it is planar) in a new patch cap_1, cap_2, ... (in the order of
+/// boundary_loops), of kind Other, which layers meet as they meet an outflow plane and a user
+/// renames (an inlet, an outlet). \p report->caps is set. Deterministic.
+SurfaceMesh cap_holes(const SurfaceMesh& mesh, Index max_edges, HoleReport* report = nullptr);
 
 }  // namespace strata

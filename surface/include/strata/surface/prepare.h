@@ -59,6 +59,10 @@ struct PrepareParams {
     /// checks and before orienting): the few triangles an STL lost. 0 (default): none, as a
     /// surface's openings may be meant (a half model's cut). At most 10000.
     int fill_holes = 0;
+    /// With fill_holes: each loop closed by a cap of its own (cap_holes: patches cap_1, cap_2,
+    /// ... of kind Other, refined inside), for the openings of a vessel or a duct; patch_kinds
+    /// and patch_names may name the caps.
+    bool caps = false;
 };
 
 /// What prepare_surface did, for the CLI's summary.
