@@ -5,22 +5,22 @@
 
 #include <strata/geometry/cgal_kernel.h>
 
+#include "cgal_mesh.h"
+
 #include <CGAL/Polygon_mesh_processing/refine.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
-#include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
-#include <array>
-#include <string>
 #include <iterator>
 #include <map>
+#include <string>
 #include <vector>
 
 namespace strata {
 
 namespace {
 
-using CapMesh = CGAL::Surface_mesh<cgal::Point>;
+using CapMesh = cgal::TriangleMesh;
 
 /// The patch most of loop \p v's (\p n nodes) edges' faces belong to (the lowest of equals).
 Index loop_patch(const SurfaceMesh& mesh, const EdgeTable& edges, const Index* v, Index n) {
@@ -63,19 +63,7 @@ bool close_loop(SurfaceMesh& out, const Index* v, Index n, Index patch, bool ref
     // The cap's nodes: the loop's first, then those refine added, appended to out in order.
     std::vector<Index> node(cap.number_of_vertices(), kNone);
     for (Index k = 0; k < n; ++k) node[static_cast<std::size_t>(at[static_cast<std::size_t>(k)])] = v[k];
-    for (const CapMesh::Vertex_index x : cap.vertices()) {
-        if (node[static_cast<std::size_t>(x)] != kNone) continue;
-        const cgal::Point& p = cap.point(x);
-        node[static_cast<std::size_t>(x)] = static_cast<Index>(out.points.size());
-        out.points.emplace_back(p.x(), p.y(), p.z());
-    }
-    for (const CapMesh::Face_index f : cap.faces()) {
-        std::array<Index, 3> tri{};
-        int k = 0;
-        for (const CapMesh::Vertex_index x : CGAL::vertices_around_face(cap.halfedge(f), cap))
-            tri[static_cast<std::size_t>(k++)] = node[static_cast<std::size_t>(x)];
-        out.add_face(tri.data(), 3, patch);
-    }
+    cgal::append_triangles(cap, node, out, patch);
     return true;
 }
 

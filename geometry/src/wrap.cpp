@@ -2,6 +2,8 @@
 
 #include <strata/geometry/cgal_kernel.h>
 
+#include "cgal_mesh.h"
+
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
 #include <strata/core/format.h>
@@ -12,14 +14,13 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/alpha_wrap_3.h>
 
 #include <array>
 #include <chrono>
-#include <tuple>
 #include <cmath>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 namespace strata {
@@ -86,28 +87,6 @@ void check_wrap_input(const SurfaceMesh& soup, const WrapParams& p) {
     check_threads(p.threads, "WrapParams::threads");
 }
 
-/// CGAL's Surface_mesh as a SurfaceMesh of triangles, with \p soup's patch table (no face yet
-/// has a patch).
-SurfaceMesh from_cgal(const CGAL::Surface_mesh<cgal::Point>& wrap, const SurfaceMesh& soup) {
-    using Mesh = CGAL::Surface_mesh<cgal::Point>;
-    SurfaceMesh out;
-    out.patches = soup.patches;
-    std::vector<Index> index(wrap.number_of_vertices() + wrap.number_of_removed_vertices(), kNone);
-    for (const Mesh::Vertex_index v : wrap.vertices()) {
-        const cgal::Point& p = wrap.point(v);
-        index[static_cast<std::size_t>(v)] = static_cast<Index>(out.points.size());
-        out.points.emplace_back(p.x(), p.y(), p.z());
-    }
-    for (const Mesh::Face_index f : wrap.faces()) {
-        std::array<Index, 3> n{};
-        int k = 0;
-        for (const Mesh::Vertex_index v : CGAL::vertices_around_face(wrap.halfedge(f), wrap))
-            if (k < 3) n[static_cast<std::size_t>(k++)] = index[static_cast<std::size_t>(v)];
-        out.add_face(n.data(), 3, 0);
-    }
-    return out;
-}
-
 }  // namespace
 
 SurfaceMesh wrap_surface(const SurfaceMesh& soup, const WrapParams& params, WrapReport* report) {
@@ -125,13 +104,16 @@ SurfaceMesh wrap_surface(const SurfaceMesh& soup, const WrapParams& params, Wrap
     for (const SurfaceTriangle& t : surface_triangles(soup))
         triangles.push_back({static_cast<std::size_t>(t.v[0]), static_cast<std::size_t>(t.v[1]),
                              static_cast<std::size_t>(t.v[2])});
-    CGAL::Surface_mesh<cgal::Point> wrapped;
+    cgal::TriangleMesh wrapped;
     CGAL::alpha_wrap_3(points, triangles, alpha, offset, wrapped);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (wrapped.number_of_faces() == 0)
         throw TopologyError("wrap_surface: CGAL's alpha wrap of the " + std::to_string(soup.num_faces()) +
                             " faces (alpha " + format_number(alpha) + ") is empty; give a smaller alpha");
-    SurfaceMesh out = from_cgal(wrapped, soup);
+    SurfaceMesh out;
+    out.patches = soup.patches;
+    std::vector<Index> node;
+    cgal::append_triangles(wrapped, node, out, 0);  // each face's patch below
 
     // Each face's patch: the nearest input face's.
     const Soup in = soup_of(soup);

@@ -29,21 +29,24 @@ out = sys.argv[2]
 gmsh.initialize()
 gmsh.option.setNumber("General.Verbosity", 1)
 o = gmsh.model.occ
+
+
+def finish():
+    o.synchronize()
+    gmsh.write(out)
+    gmsh.finalize()
+    sys.exit(0)
+
+
 if sys.argv[1] == "mixed":
     o.addBox(0, 0, 0, 1, 1, 1)
     o.addRectangle(2, 0, 0, 1, 1)
     o.addLine(o.addPoint(0, 3, 0), o.addPoint(1, 3, 0))
-    o.synchronize()
-    gmsh.write(out)
-    gmsh.finalize()
-    sys.exit(0)
+    finish()
 if sys.argv[1] == "profile":
     o.addCylinder(0, 0, 0, 1, 0, 0, 0.3)
     o.addRectangle(0, 0.5, 0, 1, 0.3)  # the profile a revolve was made from, left beside it
-    o.synchronize()
-    gmsh.write(out)
-    gmsh.finalize()
-    sys.exit(0)
+    finish()
 if sys.argv[1] == "boxed":
     o.addSphere(0, 0, 0, 0.5)
     o.addBox(-2, -2, -2, 4, 4, 4)
@@ -51,28 +54,19 @@ if sys.argv[1] == "boxed":
     o.copy([f for f in o.getEntities(2) if f[1] > 1])
     o.remove(box, recursive=False)
     o.remove([(2, t) for t in range(2, 8)], recursive=True)
-    o.synchronize()
-    gmsh.write(out)
-    gmsh.finalize()
-    sys.exit(0)
+    finish()
 if sys.argv[1] == "twice":
     o.addBox(0, 0, 0, 1, 0.5, 0.3)
     box_faces = o.getEntities(2)
     o.copy(box_faces)
     o.copy(box_faces[:1])
     o.remove(o.getEntities(3), recursive=True)
-    o.synchronize()
-    gmsh.write(out)
-    gmsh.finalize()
-    sys.exit(0)
+    finish()
 if sys.argv[1] == "sphere":
     o.addSphere(0, 0, 0, 0.5)
     o.copy(o.getEntities(2))
     o.remove(o.getEntities(3), recursive=True)
-    o.synchronize()
-    gmsh.write(out)
-    gmsh.finalize()
-    sys.exit(0)
+    finish()
 gap = float(sys.argv[1])
 random.seed(1)
 faces = [[(0, 0, 0), (1, 0, 0), (1, 0.5, 0), (0, 0.5, 0)], [(0, 0, 0.3), (1, 0, 0.3), (1, 0.5, 0.3), (0, 0.5, 0.3)],
@@ -82,6 +76,4 @@ for f in faces:
     p = [o.addPoint(*(c + random.uniform(-gap, gap) for c in corner)) for corner in f]
     lines = [o.addLine(p[i], p[(i + 1) % 4]) for i in range(4)]
     o.addSurfaceFilling(o.addCurveLoop(lines))
-o.synchronize()
-gmsh.write(out)
-gmsh.finalize()
+finish()
