@@ -304,7 +304,7 @@ void add_table_options(CLI::App& cmd, strata::Options& o, std::initializer_list<
         if (spec.show_default && !std::holds_alternative<bool& (*)(strata::Options&)>(spec.field))
             opt->capture_default_str();
         if (spec.flag == "--layers") opt->required();
-        if (spec.flag == "--remesh" || spec.flag == "--wrap") opt->check(CLI::NonNegativeNumber);
+        if (spec.optional_size) opt->check(CLI::NonNegativeNumber);
         if (spec.flag == "--fan-angle" || spec.flag == "--sharp-edge-stop") opt->check(CLI::Range(0.0, 180.0));
         if (spec.flag == "--mixed") opt->excludes(cmd.get_option("--quads"));
     }
@@ -1211,11 +1211,17 @@ int main(int argc, char** argv) {
     reportcmd->add_option("--plots", report_dir, "directory for the plots (created)")->required();
     reportcmd->add_flag("-q,--quiet", report_quiet, "print nothing but errors");
 
-    // --remesh and --wrap take an optional SIZE: "--remesh 20" is "--remesh=20", a bare
-    // "--remesh" is "--remesh=0" (automatic size), so that "--remesh wing.stl" leaves the input alone.
+    // An optional SIZE (OptionSpec::optional_size: --remesh, --wrap): "--remesh 20" is
+    // "--remesh=20", a bare "--remesh" is "--remesh=0" (automatic size), so that
+    // "--remesh wing.stl" leaves the input alone.
     std::vector<std::string> args(argv + 1, argv + argc);
+    const auto& table = strata::option_table();
+    const auto takes_size = [&](const std::string& a) {
+        return std::any_of(table.begin(), table.end(),
+                           [&](const strata::OptionSpec& s) { return s.optional_size && s.flag == a; });
+    };
     for (std::size_t i = 0; i < args.size(); ++i) {
-        if (args[i] != "--remesh" && args[i] != "--wrap") continue;
+        if (!takes_size(args[i])) continue;
         char* end = nullptr;
         const bool size = i + 1 < args.size() && !args[i + 1].empty() &&
                           (std::strtod(args[i + 1].c_str(), &end), end && *end == '\0');

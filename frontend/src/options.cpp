@@ -188,6 +188,14 @@ OptionSpec no_default(OptionSpec o) {
     return o;
 }
 
+/// An optional size (OptionSpec::optional_size), Python's doc \p keyword_help.
+OptionSpec optional_size(OptionSpec o, std::string keyword_help) {
+    o.show_default = false;
+    o.optional_size = true;
+    o.keyword_help = std::move(keyword_help);
+    return o;
+}
+
 /// A switch on by default that the CLI's flag turns off; \p keyword_help says what it does on.
 OptionSpec turned_off(OptionSpec o, std::string keyword_help) {
     o.flag_sets_false = true;
@@ -233,25 +241,21 @@ void add_surface_options(std::vector<OptionSpec>& t) {
         "fuse overlapping bodies into one: a CAD file's solids before meshing "
         "(OpenCASCADE), overlapping closed surface-mesh components after reading (exact "
         "corefinement, CGAL)")));
-    OptionSpec remesh = no_default(spec(
-        "--remesh", "remesh", "", Stage::Surface, [](Options& o) -> double& { return o.surface.remesh; },
-        "--remesh [SIZE]: mesh the surface again with Gmsh (a dirty STL's needle faces, the cuts of --fuse): sharp "
-        "edges (--feature-angle) and patches are kept; SIZE, or --size, is the element size (default: the "
-        "input's median edge); --size-min, --curvature and --quads apply"));
-    remesh.keyword_help =
+    t.push_back(optional_size(
+        spec("--remesh", "remesh", "", Stage::Surface, [](Options& o) -> double& { return o.surface.remesh; },
+             "--remesh [SIZE]: mesh the surface again with Gmsh (a dirty STL's needle faces, the cuts of --fuse): "
+             "sharp edges (--feature-angle) and patches are kept; SIZE, or --size, is the element size (default: "
+             "the input's median edge); --size-min, --curvature and --quads apply"),
         "None, or mesh the surface again with Gmsh (a dirty STL's needle faces, the cuts of fuse) with this element "
-        "size (0: size, or the input's median edge): sharp edges (feature_angle_deg) and patches are kept";
-    t.push_back(std::move(remesh));
-    OptionSpec wrap = no_default(spec(
-        "--wrap", "wrap", "", Stage::Surface, [](Options& o) -> double& { return o.surface.wrap; },
-        "--wrap [SIZE]: replace the walls by one watertight surface wrapped round them (CGAL's alpha wrap), for a "
-        "surface nothing repairs in place (non-manifold edges, holes, parts through or against each other); SIZE "
-        "is the narrowest gap or hole the wrap follows (default: a hundredth of the model's diagonal), the wrap "
-        "lies SIZE/30 outside the input; with --remesh the wrap is meshed again"));
-    wrap.keyword_help =
+        "size (0: size, or the input's median edge): sharp edges (feature_angle_deg) and patches are kept"));
+    t.push_back(optional_size(
+        spec("--wrap", "wrap", "", Stage::Surface, [](Options& o) -> double& { return o.surface.wrap; },
+             "--wrap [SIZE]: replace the walls by one watertight surface wrapped round them (CGAL's alpha wrap), "
+             "for a surface nothing repairs in place (non-manifold edges, holes, parts through or against each "
+             "other); SIZE is the narrowest gap or hole the wrap follows (default: a hundredth of the model's "
+             "diagonal), the wrap lies SIZE/30 outside the input; with --remesh the wrap is meshed again"),
         "None, or replace the walls by one watertight surface wrapped round them (CGAL's alpha wrap) with this "
-        "size, the narrowest gap it follows (0: a hundredth of the model's diagonal); with remesh, meshed again";
-    t.push_back(std::move(wrap));
+        "size, the narrowest gap it follows (0: a hundredth of the model's diagonal); with remesh, meshed again"));
     t.push_back(spec(
         "--feature-angle", "feature_angle_deg", "RemeshParams::feature_angle_deg", Stage::Surface,
         [](Options& o) -> double& { return o.surface.prepare.remeshing.feature_angle_deg; },

@@ -87,23 +87,24 @@ void bind(Keyword& k, T& (*field)(Options&)) {
     };
 }
 
-/// A keyword that is None (off) or a size >= 0 (0: automatic), stored in \p member as a
-/// negative number for off (SurfaceOptions::remesh, SurfaceOptions::wrap).
-void optional_size(Keyword& k, double SurfaceOptions::*member) {
-    k.get = [member](const Options& o) -> py::object {
-        if (o.surface.*member < 0.0) return py::none();
-        return py::float_(o.surface.*member);
+/// A keyword that is None (off) or a size >= 0 (0: automatic), stored in \p field as a
+/// negative number for off (OptionSpec::optional_size).
+void optional_size(Keyword& k, double& (*field)(Options&)) {
+    k.get = [field](const Options& o) -> py::object {
+        const double size = field(const_cast<Options&>(o));
+        if (size < 0.0) return py::none();
+        return py::float_(size);
     };
-    k.set = [member, name = k.name](Options& o, py::handle v) {
+    k.set = [field, name = k.name](Options& o, py::handle v) {
         if (v.is_none()) {
-            o.surface.*member = -1.0;
+            field(o) = -1.0;
             return;
         }
         const double size = v.cast<double>();
         if (!(size >= 0.0))
             throw InputError(name + "=" + py::repr(v).cast<std::string>() +
                              ": expected None or a size >= 0 (0: automatic)");
-        o.surface.*member = size;
+        field(o) = size;
     };
 }
 
@@ -136,10 +137,8 @@ const std::vector<Keyword>& keywords() {
                       {},
                       {}};
             std::visit([&k](auto field) { bind(k, field); }, spec.field);
-            if (spec.keyword == "remesh") {
-                optional_size(k, &SurfaceOptions::remesh);
-            } else if (spec.keyword == "wrap") {
-                optional_size(k, &SurfaceOptions::wrap);
+            if (spec.optional_size) {
+                optional_size(k, std::get<double& (*)(Options&)>(spec.field));
             } else if (spec.keyword == "patches") {
                 k.get = [](const Options& o) -> py::object {
                     if (o.surface.patches.empty()) return py::none();

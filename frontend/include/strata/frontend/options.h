@@ -110,6 +110,9 @@ struct OptionSpec {
     Field field;
     bool flag_sets_false = false;  ///< a switch the flag turns off (--no-control: control_functions false)
     bool show_default = true;      ///< the CLI's help shows the default
+    /// A size or nothing (a double field, negative for off): on the command line the flag alone
+    /// (0: an automatic size) or followed by a number; in Python None or a number >= 0.
+    bool optional_size = false;
 };
 
 /// Every option, in the order of the CLI's help.
