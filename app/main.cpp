@@ -304,7 +304,16 @@ void add_table_options(CLI::App& cmd, strata::Options& o, std::initializer_list<
         if (spec.show_default && !std::holds_alternative<bool& (*)(strata::Options&)>(spec.field))
             opt->capture_default_str();
         if (spec.flag == "--layers") opt->required();
-        if (spec.optional_size) opt->check(CLI::NonNegativeNumber);
+        if (spec.optional_size)
+            opt->check(CLI::Validator(
+                [](std::string& text) -> std::string {
+                    char* end = nullptr;
+                    const double v = std::strtod(text.c_str(), &end);
+                    if (end && *end == '\0' && v >= 0.0) return "";
+                    return "'" + text + "' is not a size: give a number >= 0 after the flag, or the flag alone for "
+                                        "an automatic size";
+                },
+                "SIZE"));
         if (spec.flag == "--fan-angle" || spec.flag == "--sharp-edge-stop") opt->check(CLI::Range(0.0, 180.0));
         if (spec.flag == "--mixed") opt->excludes(cmd.get_option("--quads"));
     }

@@ -375,6 +375,10 @@ TEST(Cli, WrapMeshesAnStlNothingRepairsInPlace) {
     const CliResult sized = strata_cli(dir, "surface --wrap 0.02 " + input + " -o s.msh");
     ASSERT_EQ(sized.code, 0) << sized.err;
     test::expect_contains(sized.out, {"alpha 0.02, offset 0.000666667"});
+    const CliResult negative = strata_cli(dir, "surface --wrap -1 " + input + " -o n.msh");
+    EXPECT_NE(negative.code, 0);
+    test::expect_contains(negative.err, {"--wrap", "'-1' is not a size", "a number >= 0"});
+    EXPECT_FALSE(std::filesystem::exists(dir.file("n.msh")));
 }
 
 TEST(Cli, NeedleStlGivesAValidMeshAndSaysRemesh) {
