@@ -1157,6 +1157,31 @@ int run_mesh(const Common& c, const PlotOptions& po) {
     return rc;
 }
 
+/// The command line's arguments with each optional SIZE (OptionSpec::optional_size: --remesh,
+/// --wrap) joined to its flag: "--remesh 20" is "--remesh=20", a bare "--remesh" is
+/// "--remesh=0" (automatic size), so that "--remesh wing.stl" leaves the input alone.
+std::vector<std::string> with_optional_sizes(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    const auto& table = strata::option_table();
+    const auto takes_size = [&](const std::string& a) {
+        return std::any_of(table.begin(), table.end(),
+                           [&](const strata::OptionSpec& s) { return s.optional_size && s.flag == a; });
+    };
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        if (!takes_size(args[i])) continue;
+        char* end = nullptr;
+        const bool size = i + 1 < args.size() && !args[i + 1].empty() &&
+                          (std::strtod(args[i + 1].c_str(), &end), end && *end == '\0');
+        if (size) {
+            args[i] += "=" + args[i + 1];
+            args.erase(args.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+        } else {
+            args[i] += "=0";
+        }
+    }
+    return args;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1220,27 +1245,7 @@ int main(int argc, char** argv) {
     reportcmd->add_option("--plots", report_dir, "directory for the plots (created)")->required();
     reportcmd->add_flag("-q,--quiet", report_quiet, "print nothing but errors");
 
-    // An optional SIZE (OptionSpec::optional_size: --remesh, --wrap): "--remesh 20" is
-    // "--remesh=20", a bare "--remesh" is "--remesh=0" (automatic size), so that
-    // "--remesh wing.stl" leaves the input alone.
-    std::vector<std::string> args(argv + 1, argv + argc);
-    const auto& table = strata::option_table();
-    const auto takes_size = [&](const std::string& a) {
-        return std::any_of(table.begin(), table.end(),
-                           [&](const strata::OptionSpec& s) { return s.optional_size && s.flag == a; });
-    };
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        if (!takes_size(args[i])) continue;
-        char* end = nullptr;
-        const bool size = i + 1 < args.size() && !args[i + 1].empty() &&
-                          (std::strtod(args[i + 1].c_str(), &end), end && *end == '\0');
-        if (size) {
-            args[i] += "=" + args[i + 1];
-            args.erase(args.begin() + static_cast<std::ptrdiff_t>(i) + 1);
-        } else {
-            args[i] += "=0";
-        }
-    }
+    std::vector<std::string> args = with_optional_sizes(argc, argv);
     std::reverse(args.begin(), args.end());  // CLI11 takes them last first
     try {
         app.parse(args);
