@@ -408,6 +408,12 @@ void print_sewing(const strata::ReportNode& s) {
             "repaired: %d faces of the CAD model written twice (the same place, area and side as another) "
             "removed, the first of each kept\n",
             count(s, "written_twice"));
+    if (s.integer("coincident") > 0)
+        std::printf(
+            "repaired: %d faces the CAD model holds twice (bounded by the same edges as another face and lying on "
+            "it, within %s) not meshed (the first, surface %d, a copy of surface %d, at %s)\n",
+            count(s, "coincident"), strata::format_number(s.number("coincident_distance")).c_str(),
+            count(s, "coincident_surface"), count(s, "coincident_with"), point_at(s, "coincident_at").c_str());
     if (s.integer("ignored") > 0)
         std::printf(
             "repaired: %d faces of the CAD model that bound none of its solids and are open where they lie (a "

@@ -58,6 +58,9 @@ ReportNode sewing_report(const SewReport& s) {
     n.set("suggested_tolerance", s.suggested_tolerance).set("renumbered", s.renumbered).set("moved", s.moved);
     n.set("rejected", s.rejected).set("gap_before", s.gap_before).set("first_tolerance", s.first_tolerance);
     n.set("ignored", s.ignored).set("ignored_surface", s.ignored_surface).set("ignored_at", point(s.ignored_at));
+    n.set("coincident", s.coincident).set("coincident_surface", s.coincident_surface);
+    n.set("coincident_with", s.coincident_with).set("coincident_at", point(s.coincident_at));
+    n.set("coincident_distance", s.coincident_distance);
     return n;
 }
 

@@ -858,6 +858,111 @@ void ignore_open_loose_faces(double diagonal, SewReport& r) {
     gmsh::model::occ::synchronize();
 }
 
+/// Up to 5 x 5 points inside surface \p s, evaluated from a grid over its parameters (those
+/// Gmsh says lie on the trimmed face); empty where Gmsh cannot tell.
+std::vector<Vec3> points_inside(int s) {
+    std::vector<double> lo, hi;
+    gmsh::model::getParametrizationBounds(2, s, lo, hi);
+    std::vector<Vec3> out;
+    if (lo.size() < 2 || hi.size() < 2) return out;
+    for (int i = 1; i <= 5; ++i)
+        for (int j = 1; j <= 5; ++j) {
+            const std::vector<double> uv{lo[0] + (hi[0] - lo[0]) * i / 6.0, lo[1] + (hi[1] - lo[1]) * j / 6.0};
+            if (gmsh::model::isInside(2, s, uv) != 1) continue;
+            std::vector<double> xyz;
+            gmsh::model::getValue(2, s, uv, xyz);
+            if (xyz.size() >= 3) out.emplace_back(xyz[0], xyz[1], xyz[2]);
+        }
+    return out;
+}
+
+/// The largest distance from \p points to surface \p s (infinity where it cannot be measured).
+double farthest_from(const std::vector<Vec3>& points, int s) {
+    if (points.empty()) return std::numeric_limits<double>::infinity();
+    double far = 0.0;
+    for (const Vec3& p : points) {
+        std::vector<double> closest, uv;
+        gmsh::model::getClosestPoint(2, s, {p.x(), p.y(), p.z()}, closest, uv);
+        if (closest.size() < 3) return std::numeric_limits<double>::infinity();
+        far = std::max(far, (Vec3(closest[0], closest[1], closest[2]) - p).norm());
+    }
+    return far;
+}
+
+/// Surface \p s's unit normal at the point of it nearest \p p (zero where Gmsh has none).
+Vec3 normal_near(int s, const Vec3& p) {
+    std::vector<double> closest, uv, n;
+    gmsh::model::getClosestPoint(2, s, {p.x(), p.y(), p.z()}, closest, uv);
+    gmsh::model::getNormal(s, uv, n);
+    return n.size() >= 3 ? Vec3(n[0], n[1], n[2]) : Vec3::Zero();
+}
+
+/// Of two surfaces \p a < \p b bounded by the same curves and lying on each other, the one the
+/// model holds twice (0: both stay). Faces of two different solids are where those touch (two
+/// bodies' copies of their common face: --fuse removes both); two loose faces facing opposite
+/// ways likewise. Else the loose one goes, or the higher tag.
+int copy_of_pair(int a, int b, const Vec3& at) {
+    std::vector<int> up_a, up_b, down;
+    gmsh::model::getAdjacencies(2, a, up_a, down);
+    gmsh::model::getAdjacencies(2, b, up_b, down);
+    if (!up_a.empty() && !up_b.empty()) {
+        std::sort(up_a.begin(), up_a.end());
+        std::sort(up_b.begin(), up_b.end());
+        return up_a == up_b ? b : 0;
+    }
+    if (up_a.empty() && up_b.empty()) return normal_near(a, at).dot(normal_near(b, at)) > 0.99 ? b : 0;
+    return up_a.empty() ? a : b;
+}
+
+/// Faces the model holds twice with different geometry (a shell listing a face and a copy
+/// remade on the same edges): surfaces bounded by exactly the same curves that lie on each
+/// other, each within 1e-6 of the model's size (\p diagonal) of the other at up to 25 points.
+/// Meshed both, each on those edges with its own interior, three faces on each edge round
+/// them. The copy (copy_of_pair) is removed (a solid it bounds is removed first, its other faces
+/// kept), counted in \p r (coincident, coincident_surface, coincident_with, coincident_at,
+/// coincident_distance).
+void remove_coincident_faces(double diagonal, SewReport& r) {
+    std::map<std::vector<int>, std::vector<int>> by_curves;
+    for (const int s : entity_tags(2)) {
+        gmsh::vectorpair boundary;
+        gmsh::model::getBoundary({{2, s}}, boundary, false, false, false);
+        std::vector<int> curves;
+        for (const auto& [dim, c] : boundary) curves.push_back(std::abs(c));
+        std::sort(curves.begin(), curves.end());
+        curves.erase(std::unique(curves.begin(), curves.end()), curves.end());
+        if (!curves.empty()) by_curves[curves].push_back(s);
+    }
+    const double tolerance = 1e-6 * diagonal;
+    std::set<int> gone;
+    for (const auto& [curves, group] : by_curves)
+        for (std::size_t i = 0; i < group.size(); ++i)
+            for (std::size_t j = i + 1; j < group.size(); ++j) {
+                const int a = group[i], b = group[j];
+                if (gone.count(a) || gone.count(b)) continue;
+                const std::vector<Vec3> on_a = points_inside(a), on_b = points_inside(b);
+                const double d = std::max(farthest_from(on_a, b), farthest_from(on_b, a));
+                if (!(d <= tolerance)) continue;
+                const int copy = copy_of_pair(a, b, on_a.front());
+                if (copy == 0) continue;
+                if (r.coincident++ == 0) {
+                    r.coincident_surface = copy;
+                    r.coincident_with = copy == a ? b : a;
+                    r.coincident_at = (copy == a ? on_a : on_b).front();
+                }
+                r.coincident_distance = std::max(r.coincident_distance, d);
+                gone.insert(copy);
+            }
+    for (const int s : gone) {
+        std::vector<int> up, down;
+        gmsh::model::getAdjacencies(2, s, up, down);
+        gmsh::vectorpair solids;
+        for (const int v : up) solids.emplace_back(3, v);
+        if (!solids.empty()) gmsh::model::occ::remove(solids, false);
+        gmsh::model::occ::remove({{2, s}}, true);
+    }
+    if (!gone.empty()) gmsh::model::occ::synchronize();
+}
+
 /// The diagonal of the model's bounding box (InputError where it has no extent).
 double model_diagonal(const std::string& path) {
     double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
@@ -1053,9 +1158,12 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     SewReport sewn;
     // The file's surface tag → its tag after sewing, where they differ.
     const std::map<int, int> renamed = script ? std::map<int, int>{} : sew_model(path, *format, params, sewn);
-    if (!script)
+    if (!script) {
+        gmsh_call(path + ": removing the faces the model holds twice",
+                  [&] { remove_coincident_faces(model_diagonal(path), sewn); });
         gmsh_call(path + ": setting aside the faces that bound no solid",
                   [&] { ignore_open_loose_faces(model_diagonal(path), sewn); });
+    }
     if (sew) *sew = sewn;
     if (params.fuse) fuse_volumes(path);
     const std::vector<int> surfaces = entity_tags(2);

@@ -57,6 +57,13 @@ SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const
         // Several inputs: the first file whose recombination fell back says so.
         if (recombination && recombination->blossom_failure.empty()) *recombination = recombined;
         if (sew) sew->written_twice += sewn.written_twice;
+        if (sew && sewn.coincident > 0) {  // several inputs: summed, the first located
+            if (sew->coincident == 0)
+                sew->coincident_surface = sewn.coincident_surface, sew->coincident_with = sewn.coincident_with,
+                sew->coincident_at = sewn.coincident_at;
+            sew->coincident += sewn.coincident;
+            sew->coincident_distance = std::max(sew->coincident_distance, sewn.coincident_distance);
+        }
         if (sew && sewn.ignored > 0) {  // several inputs: summed, the first located
             if (sew->ignored == 0) sew->ignored_surface = sewn.ignored_surface, sew->ignored_at = sewn.ignored_at;
             sew->ignored += sewn.ignored;

@@ -1296,6 +1296,24 @@ TEST(Cli, ARevolvesProfileLeftBesideItsSolidIsSetAsideAndSaid) {
     test::expect_contains(slurp(dir.file("c.msh.report.json")), {"\"ignored\": 1"});
 }
 
+TEST(Cli, AHalfModelWhoseShellHoldsItsNoseFaceTwiceIsMeshedWithTheCopySaid) {
+    // A half model in its box whose shell holds the flat nose face twice, the copy remade on the
+    // same edges (cad_half_model_nose_twice.py): refused before ("non-manifold edge ... shared by
+    // 3 faces"); the copy is not meshed, and the summary and the report say which.
+    test::ScratchDir dir("cli_nose_twice");
+    std::string patches = " --patch surface_6=symmetry";
+    for (const int s : {5, 7, 8, 9, 10}) patches += " --patch surface_" + std::to_string(s) + "=farfield";
+    const CliResult r = strata_cli(dir, "mesh '" + test_data("cad_half_model_nose_twice_shell.brep") + "'" +
+                                            patches + " -o h.msh --layers 5 --first-height 1e-3");
+    ASSERT_EQ(r.code, 0) << r.err;
+    test::expect_contains(r.out, {"repaired: 1 faces the CAD model holds twice (bounded by the same edges as another "
+                                  "face and lying on it, within ",
+                                  "not meshed (the first, surface 11, a copy of surface 2, at (-0.5, ",
+                                  "every layer on 100.0 %", "checkMesh would say \"Mesh OK\""});
+    test::expect_contains(slurp(dir.file("h.msh.report.json")),
+                          {"\"coincident\": 1", "\"coincident_surface\": 11", "\"coincident_with\": 2"});
+}
+
 TEST(Cli, LooseCadFacesAreSewnAndWiderGapsNamedWithTheirRemedy) {
     // A box of six faces that miss each other (tests/data/cad_box_loose_faces.py): by 1e-7 they
     // are sewn and meshed; by 3e-5, wider than sewing goes unasked, strata mesh refuses the open

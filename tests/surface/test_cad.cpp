@@ -1209,6 +1209,37 @@ TEST(CadSewing, AFaceWrittenTwiceIsRemovedBeforeSewing) {
     EXPECT_EQ(m.patches.size(), 6u);
 }
 
+TEST(CadSewing, ANoseFaceHeldTwiceWithGeometryOfItsOwnIsMeshedOnce) {
+    // A half model in its box whose flat nose face is held twice, the copy a B-spline filling
+    // on the same edges (cad_half_model_nose_twice.py): meshed both, three faces met on each edge
+    // round the nose ("non-manifold edge ... shared by 3 faces"). The copy is not meshed, whether
+    // the solid's shell lists it (it goes, the solid with it) or it lies beside the solid.
+    for (const char* file : {"cad_half_model_nose_twice_shell.brep", "cad_half_model_nose_twice_loose.brep"}) {
+        SCOPED_TRACE(file);
+        SewReport r;
+        const SurfaceMesh m = mesh_cad(test_data(file), {}, nullptr, nullptr, &r);
+        EXPECT_EQ(r.coincident, 1);
+        EXPECT_EQ(r.coincident_surface, 11);  // the filling, read last
+        EXPECT_EQ(r.ignored, 0);
+        EXPECT_LT(r.coincident_distance, 1e-9);
+        EXPECT_NEAR(r.coincident_at.x(), -0.5, 1e-9);
+        EXPECT_EQ(m.patches.size(), 10u);
+        EXPECT_TRUE(closed(m));
+        const EdgeTable et = edge_table(m);
+        for (Index e = 0; e < et.faces.rows(); ++e) ASSERT_EQ(et.faces.row_size(e), 2) << "edge " << e;
+    }
+}
+
+TEST(CadSewing, FacesLyingOnEachOtherThatAreNotCopiesStay) {
+    // Nothing repeats in a box of six loose faces; two bodies touching along a face hold it
+    // twice, once each, lying on each other on the same edges once sewn: not a copy.
+    SewReport r;
+    (void)mesh_cad(test_data("cad_box_loose_faces_1e-7.brep"), {}, nullptr, nullptr, &r);
+    EXPECT_EQ(r.coincident, 0);
+    (void)mesh_cad(test_data("cad_two_boxes_trimmed_faces.igs"), {}, nullptr, nullptr, &r);
+    EXPECT_EQ(r.coincident, 0);  // each copy bounds a solid of its own: both stay
+}
+
 TEST(CadSewing, TwoBodiesTouchingAlongAFaceGetNoFanWhereTheirCopiesOfItMeet) {
     // Two boxes touching along y = 0.5 as IGES trimmed faces (cad_two_boxes_trimmed_faces.geo):
     // sewn, the two copies of the face between them lie back to back, whose common edges turn

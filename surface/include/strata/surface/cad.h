@@ -216,6 +216,16 @@ struct SewReport {
     Index ignored = 0;
     int ignored_surface = 0;
     Vec3 ignored_at = Vec3::Zero();
+    /// Faces the model holds twice with geometry of their own: bounded by exactly the same
+    /// edges as another face and lying on it (within 1e-6 of the model's size), the copy of a
+    /// pair not meshed (the loose one, else the higher tag; the faces of two touching solids
+    /// stay). How many, the first's tag, the face it copies, a point on it, and the largest
+    /// distance measured between a pair.
+    Index coincident = 0;
+    int coincident_surface = 0;
+    int coincident_with = 0;
+    Vec3 coincident_at = Vec3::Zero();
+    double coincident_distance = 0.0;
 };
 
 /// What CadParams::max_aspect_ratio did.
