@@ -2,6 +2,8 @@
 #include <strata/core/surface_mesh.h>
 
 #include <algorithm>
+#include <cctype>
+#include <string>
 
 namespace strata {
 
@@ -47,6 +49,25 @@ Index find_patch(const SurfaceMesh& mesh, std::string_view name) {
     for (std::size_t i = 0; i < mesh.patches.size(); ++i)
         if (mesh.patches[i].name == name) return static_cast<Index>(i);
     return kNone;
+}
+
+std::string patch_word(std::string_view name, std::size_t index) {
+    std::string w;
+    bool replaced = false;  // the last character written stands for characters replaced
+    for (const char c : name) {
+        const auto u = static_cast<unsigned char>(c);
+        if (std::isalnum(u) || c == '_' || c == '-' || c == '.') {
+            w += c;
+            replaced = false;
+        } else if (!replaced) {
+            w += '_';
+            replaced = true;
+        }
+    }
+    if (replaced) w.pop_back();
+    if (w.empty()) return "patch_" + std::to_string(index + 1);
+    if (!std::isalpha(static_cast<unsigned char>(w[0])) && w[0] != '_') return "patch_" + w;
+    return w;
 }
 
 }  // namespace strata

@@ -217,23 +217,7 @@ std::vector<std::string> foam_patch_names(const std::vector<std::string>& names)
     std::vector<std::string> out;
     std::set<std::string> taken;
     for (std::size_t i = 0; i < names.size(); ++i) {
-        std::string w;
-        bool replaced = false;  // the last character written stands for characters replaced
-        for (char c : names[i]) {
-            const auto u = static_cast<unsigned char>(c);
-            if (std::isalnum(u) || c == '_' || c == '-' || c == '.') {
-                w += c;
-                replaced = false;
-            } else if (!replaced) {
-                w += '_';
-                replaced = true;
-            }
-        }
-        if (replaced) w.pop_back();
-        if (w.empty())
-            w = "patch_" + std::to_string(i + 1);
-        else if (!std::isalpha(static_cast<unsigned char>(w[0])) && w[0] != '_')
-            w = "patch_" + w;
+        const std::string w = patch_word(names[i], i);
         std::string unique = w;
         for (int k = 2; taken.count(unique); ++k) unique = w + "_" + std::to_string(k);
         taken.insert(unique);

@@ -59,7 +59,7 @@ SurfaceMesh parse_binary(const std::string& path, std::string_view data) {
     if (n == 0) throw InputError("'" + path + "': binary STL holds no facets");
     check_capacity(path, n);
     SurfaceMesh mesh;
-    mesh.patches.push_back({std::filesystem::path(path).stem().string(), PatchKind::Wall});
+    mesh.patches.push_back({patch_word(std::filesystem::path(path).stem().string(), 0), PatchKind::Wall});
     mesh.points.reserve(3 * n);
     mesh.face_nodes.reserve(3 * n);
     mesh.face_offsets.reserve(n + 1);
@@ -203,7 +203,9 @@ SurfaceMesh parse_ascii(const std::string& path, std::string_view text) {
         in.expect("solid", "'solid NAME'");
         std::string name(in.rest_of_line());
         const Index patch = static_cast<Index>(mesh.patches.size());
-        mesh.patches.push_back({name.empty() ? std::string("wall") : name, PatchKind::Wall});
+        // A solid's name as every format writes it ("Wing Body.001 (left)" is Wing_Body.001_left).
+        mesh.patches.push_back({name.empty() ? std::string("wall") : patch_word(name, mesh.patches.size()),
+                                PatchKind::Wall});
         for (;;) {
             std::string_view t = in.next();
             if (iequals(t, "endsolid")) {

@@ -127,6 +127,13 @@ std::string patch_list(const SurfaceMesh& mesh) {
     return list;
 }
 
+/// The patch \p name names: by that name, else by the word the readers make of it (an STL
+/// solid "Wing Body (left)" is the patch Wing_Body_left); kNone.
+Index named_patch(const SurfaceMesh& mesh, const std::string& name) {
+    const Index i = find_patch(mesh, name);
+    return i != kNone || name.empty() ? i : find_patch(mesh, patch_word(name, 0));
+}
+
 /// A patch name OpenFOAM and CGNS both take as it is.
 bool solver_name(const std::string& name) {
     if (name.empty() || name.size() > 32 || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
@@ -150,7 +157,7 @@ void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::stri
                         const std::string& source) {
     for (Patch& p : mesh.patches) p.kind = patch_kind_of(p.name, {});
     for (const auto& [name, kind] : kinds) {
-        const Index i = find_patch(mesh, name);
+        const Index i = named_patch(mesh, name);
         if (i == kNone) {
             throw InputError(source + ": PrepareParams::patch_kinds " + name + "=" + std::string(to_string(kind)) +
                              ": no patch named '" + name + "'; the patches are: " + patch_list(mesh));
@@ -163,7 +170,7 @@ void rename_patches(SurfaceMesh& mesh, const std::vector<std::pair<std::string, 
                     const std::string& source) {
     if (names.empty()) return;
     for (const auto& [from, to] : names) {
-        const Index i = find_patch(mesh, from);
+        const Index i = named_patch(mesh, from);
         if (i == kNone)
             throw InputError(source + ": PrepareParams::patch_names " + from + " -> " + to + ": no patch named '" +
                              from + "'; the patches are: " + patch_list(mesh));
@@ -496,8 +503,10 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
         std::vector<Index> patch_of(one.patches.size());
         for (std::size_t p = 0; p < one.patches.size(); ++p) {
             Patch patch = one.patches[p];
+            // A name an earlier file has: the file's after it, as one word ("part (b.stl)" is
+            // part_b.stl, which --patch takes in either form).
             if (find_patch(all, patch.name) != kNone)
-                patch.name += " (" + path.substr(path.find_last_of('/') + 1) + ")";
+                patch.name = patch_word(patch.name + " (" + path.substr(path.find_last_of('/') + 1) + ")", p);
             patch_of[p] = static_cast<Index>(all.patches.size());
             all.patches.push_back(patch);
         }

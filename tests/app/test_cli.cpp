@@ -186,7 +186,7 @@ TEST(Cli, FiveStlPartsThatOverlapAreFusedIntoOneBody) {
     const VolumeMesh m = read_volume_msh((dir.path() / "fused.msh").string());
     EXPECT_GT(m.prisms.size(), 0u);
     EXPECT_GT(m.tets.size(), 0u);
-    for (const char* patch : {"Created by Gmsh", "Created by Gmsh (fin1.stl)", "Created by Gmsh (fin4.stl)"})
+    for (const char* patch : {"Created_by_Gmsh", "Created_by_Gmsh_fin1.stl", "Created_by_Gmsh_fin4.stl"})
         EXPECT_NE(find_patch(m.boundary, patch), kNone) << patch;
 }
 
@@ -609,7 +609,7 @@ TEST(Cli, RemeshAfterFuseClearsTheCutsNeedles) {
     EXPECT_NE(r.out.find("needle faces 222 -> "), std::string::npos) << r.out;
     expect_needles_after_remesh_below(r.out, 10);
     const VolumeMesh m = read_volume_msh(dir.file("m.msh"));
-    for (const char* patch : {"Created by Gmsh", "Created by Gmsh (fin1.stl)", "Created by Gmsh (fin4.stl)"})
+    for (const char* patch : {"Created_by_Gmsh", "Created_by_Gmsh_fin1.stl", "Created_by_Gmsh_fin4.stl"})
         EXPECT_NE(find_patch(m.boundary, patch), kNone) << patch;
 }
 

@@ -118,7 +118,7 @@ TEST(ReadStl, SphereAsciiCountsAndCoordinates) {
     EXPECT_EQ(m.num_triangles(), 606);
     EXPECT_EQ(m.num_points(), 1818);  // not merged: 3 nodes per facet
     ASSERT_EQ(m.patches.size(), 1u);
-    EXPECT_EQ(m.patches[0].name, "Created by Gmsh");  // what Gmsh writes after "solid"
+    EXPECT_EQ(m.patches[0].name, "Created_by_Gmsh");  // "Created by Gmsh", what Gmsh writes after "solid", as one word
     EXPECT_EQ(m.face_patch, std::vector<Index>(606, 0));
     // First facet, as in the file, nodes in file order.
     EXPECT_EQ(m.face_node(0, 0), 0);
@@ -187,6 +187,22 @@ TEST(ReadStl, MultiSolidAsciiGivesOnePatchPerSolid) {
     EXPECT_EQ(m.points[6], Vec3(0, 0, 2.5));
     EXPECT_EQ(m.points[7], Vec3(0.5, 0.15, 2.5));
     EXPECT_EQ(m.points[8], Vec3(-10, 1, 2.5));
+}
+
+TEST(ReadStl, SolidNamesAreWordsEveryFormatTakes) {
+    // A CAD tool's solid names (spaces, brackets, a leading digit) are the patch names every
+    // format writes, the same in the summary as in OpenFOAM's boundary file.
+    const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                              "endloop\nendfacet\n";
+    const std::string text = "solid Wing Body.001 (left)\n" + facet + "endsolid Wing Body.001 (left)\nsolid 2nd part\n" +
+                             facet + "endsolid\nsolid fin-1_a\n" + facet + "endsolid\n";
+    const SurfaceMesh m = read_stl_bytes(text, "t.stl");
+    ASSERT_EQ(m.patches.size(), 3u);
+    EXPECT_EQ(m.patches[0].name, "Wing_Body.001_left");
+    EXPECT_EQ(m.patches[1].name, "patch_2nd_part");
+    EXPECT_EQ(m.patches[2].name, "fin-1_a");  // a word already: as it is
+    EXPECT_EQ(patch_word("", 4), "patch_5");
+    EXPECT_EQ(patch_word("a  b;;", 0), "a_b");
 }
 
 TEST(ReadStl, MissingFile) {

@@ -167,7 +167,7 @@ TEST(Prepare, SeveralInputsAreOneSurfaceEachKeepingItsPatches) {
     EXPECT_EQ(rep.orient.components, 2);
     ASSERT_EQ(m.patches.size(), 2u);
     EXPECT_EQ(m.patches[0].name, "part");
-    EXPECT_EQ(m.patches[1].name, "part (b.stl)");  // the same name again: the file's after it
+    EXPECT_EQ(m.patches[1].name, "part_b.stl");  // the same name again: the file's after it, one word
     // Both oriented outward, as one file with both would be.
     for (Index f = 0; f < m.num_faces(); ++f) {
         const Vec3 centre = m.face_patch[f] == 0 ? Vec3(0.25, 0.25, 0.25) : Vec3(3.25, 0.25, 0.25);
@@ -305,6 +305,12 @@ TEST(Prepare, PatchesAreRenamedAndThoseGivenOneNameMerged) {
                                        {"t.stl", bad, "must start with a letter or _"});
     test::expect_error<InputError>([&] { rename_patches(m, {{"surface_1", "surface_3"}}, "t.stl"); },
                                    {"kinds wall and symmetry", "'surface_3'"});
+    // An STL solid's name as written in the file names the patch the reader made a word of it.
+    SurfaceMesh solid = icosphere(Vec3::Zero(), 1.0, 1, {"Wing_Body_left", PatchKind::Wall});
+    rename_patches(solid, {{"Wing Body (left)", "wing"}}, "t");
+    EXPECT_EQ(solid.patches[0].name, "wing");
+    assign_patch_kinds(solid, {{"wing", PatchKind::Symmetry}}, "t");
+    EXPECT_EQ(solid.patches[0].kind, PatchKind::Symmetry);
     // A patch that keeps its name is not merged with another of the same name it did not get.
     SurfaceMesh twice = test::merged(icosphere(Vec3::Zero(), 1.0, 1, {"p", PatchKind::Wall}),
                                      icosphere(Vec3(3, 0, 0), 1.0, 1, {"p", PatchKind::Wall}));

@@ -57,4 +57,10 @@ void flip_faces(SurfaceMesh& mesh);
 /// Index of the patch called \p name, or kNone.
 Index find_patch(const SurfaceMesh& mesh, std::string_view name);
 
+/// \p name as a word every format Strata writes takes as it is (an OpenFOAM word): characters
+/// other than letters, digits, '_', '-' and '.' become '_' (a run of them one '_', none at the
+/// end), and a name that does not start with a letter or '_' gets "patch_" in front (OpenFOAM
+/// would read a number); an empty one is "patch_<index + 1>".
+std::string patch_word(std::string_view name, std::size_t index);
+
 }  // namespace strata

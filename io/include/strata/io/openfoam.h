@@ -48,10 +48,8 @@ PolyMesh to_polymesh(const VolumeMesh& mesh, int threads = 0);
 /// The OpenFOAM patch type of a patch kind: "wall", "symmetry", or "patch" (farfield, other).
 std::string_view openfoam_patch_type(PatchKind kind);
 
-/// Patch names as OpenFOAM words, one per name: characters other than letters, digits, '_',
-/// '-' and '.' become '_' (a run of them one '_', none at the end), a name that does not start
-/// with a letter or '_' gets "patch_" in front (OpenFOAM would read a number), an empty one is
-/// "patch_<i+1>", and a name already taken gets "_2", "_3", ... appended.
+/// Patch names as OpenFOAM words, one per name (patch_word, surface_mesh.h), a name already
+/// taken getting "_2", "_3", ... appended.
 std::vector<std::string> foam_patch_names(const std::vector<std::string>& names);
 
 /// Write \p mesh as the OpenFOAM polyMesh directory \p path (its last component is normally
