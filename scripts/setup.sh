@@ -38,6 +38,7 @@ packages=(
   freecad-python3
   python3-matplotlib   # the quality report's plots: strata report, strata mesh --plots (strata.report)
   snakemake            # the workflow meshing a family of variants (examples/pipeline) and its test
+  slurm-wlm munge      # Slurm 22.05 (slurmctld, slurmd, sbatch) and munge: the workflow's test on a one-node Slurm
   time bc              # /usr/bin/time (peak memory) and bc (seconds) in the measuring scripts and their test
 )
 
