@@ -637,6 +637,34 @@ void print_wrap(const strata::ReportNode& w) {
             : "");
 }
 
+/// The CAD bodies the file names and their patches (the patch table's "body"), on one line:
+/// "'Fuselage' (patches 1-6), 'Wing' (patches 7-9, 12)".
+void print_bodies(const std::vector<strata::ReportValue>& table) {
+    auto body = [&](std::size_t i) {
+        const strata::ReportValue* b = table[i].node().find("body");
+        return b ? table[i].node().text("body") : std::string{};
+    };
+    std::vector<std::pair<std::string, std::string>> bodies;  // name, its patches
+    for (std::size_t i = 0; i < table.size(); ++i) {
+        const std::string name = body(i);
+        if (name.empty()) continue;
+        auto it = std::find_if(bodies.begin(), bodies.end(), [&](const auto& b) { return b.first == name; });
+        if (it == bodies.end()) it = bodies.insert(bodies.end(), {name, ""});
+        std::string& list = it->second;
+        const bool run = i > 0 && body(i - 1) == name;  // "1-6" for a run of patches
+        if (run && list.find_last_of("-,") != std::string::npos && list[list.find_last_of("-,")] == '-')
+            list.erase(list.find_last_of('-'));
+        list += (run ? "-" : list.empty() ? "" : ", ") + std::to_string(i + 1);
+    }
+    if (bodies.empty()) return;
+    std::string line;
+    for (const auto& [name, list] : bodies) {
+        const bool one = list.find_first_of("-,") == std::string::npos;
+        line += (line.empty() ? "" : ", ") + ("'" + name + "' (patch" + (one ? " " : "es ") + list + ")");
+    }
+    std::printf("  bodies: %s; --patch BODY=KIND[:NAME] sets all of a body's patches at once\n", line.c_str());
+}
+
 /// The surface and what preparing it did (the report's "surface", surface_report).
 void print_surface_summary(const strata::ReportNode& s) {
     std::printf("surface: %d nodes, %d triangles, %d quadrilaterals, %d patches\n", count(s, "nodes"),
@@ -645,6 +673,7 @@ void print_surface_summary(const strata::ReportNode& s) {
     for (std::size_t i = 0; i < table.size(); ++i)
         std::printf("  patch %zu %-24s %-9s %d faces\n", i + 1, table[i].node().text("name").c_str(),
                     table[i].node().text("kind").c_str(), count(table[i].node(), "faces"));
+    print_bodies(table);
     std::printf(
         "topology: %d connected components (%d closed), %d open boundary loops, %d merged nodes, %d faces "
         "re-oriented\n",

@@ -293,6 +293,7 @@ ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r, bool cad
     for (std::size_t i = 0; i < s.patches.size(); ++i) {
         ReportNode p;
         p.set("name", s.patches[i].name).set("kind", std::string(to_string(s.patches[i].kind))).set("faces", faces[i]);
+        if (!s.patches[i].body.empty()) p.set("body", s.patches[i].body);
         table.emplace_back(std::move(p));
     }
     n.set("patch_table", std::move(table)).set("cad_input", cad_input);

@@ -963,6 +963,34 @@ void remove_coincident_faces(double diagonal, SewReport& r) {
     if (!gone.empty()) gmsh::model::occ::synchronize();
 }
 
+/// The name the file gives the one solid surface \p s bounds (the last part of Gmsh's label
+/// path "Shapes/model/Fuselage/Fuselage"); empty where it bounds none, several or a name-less one.
+std::string body_of(int s) {
+    std::vector<int> up, down;
+    gmsh::model::getAdjacencies(2, s, up, down);
+    if (up.size() != 1) return {};
+    std::string name;
+    gmsh::model::getEntityName(3, up.front(), name);
+    name = name.substr(name.find_last_of('/') + 1);
+    const auto first = name.find_first_not_of(' ');
+    return first == std::string::npos ? std::string{} : name.substr(first, name.find_last_not_of(' ') - first + 1);
+}
+
+/// Each patch of \p mesh given the body its surfaces (\p face_surface) all bound (Patch::body).
+void name_bodies(SurfaceMesh& mesh, const std::vector<int>& face_surface) {
+    std::map<int, std::string> body;
+    std::vector<std::optional<std::string>> of_patch(mesh.patches.size());
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const int s = face_surface[static_cast<std::size_t>(f)];
+        auto it = body.find(s);
+        if (it == body.end()) it = body.emplace(s, body_of(s)).first;
+        auto& p = of_patch[static_cast<std::size_t>(mesh.face_patch[f])];
+        if (!p) p = it->second;
+        else if (*p != it->second) p = std::string{};
+    }
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) mesh.patches[i].body = of_patch[i].value_or("");
+}
+
 /// The diagonal of the model's bounding box (InputError where it has no extent).
 double model_diagonal(const std::string& path) {
     double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
@@ -1208,6 +1236,7 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
                                  generate_surfaces);
     if (walls) *walls = wall_report;
     if (recombination) *recombination = recombined;
+    gmsh_call(path + ": reading the bodies' names", [&] { name_bodies(mesh, face_surface); });
     return mesh;
 }
 

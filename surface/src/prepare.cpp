@@ -122,16 +122,29 @@ namespace {
 
 /// The patches of \p mesh, "a, b, c", for messages.
 std::string patch_list(const SurfaceMesh& mesh) {
-    std::string list;
-    for (const Patch& p : mesh.patches) list += (list.empty() ? "" : ", ") + p.name;
-    return list;
+    std::string list, bodies;
+    std::set<std::string> seen;
+    for (const Patch& p : mesh.patches) {
+        list += (list.empty() ? "" : ", ") + p.name;
+        if (!p.body.empty() && seen.insert(p.body).second) bodies += (bodies.empty() ? "" : "', '") + p.body;
+    }
+    return bodies.empty() ? list : list + "; the bodies (each naming all its patches): '" + bodies + "'";
 }
 
-/// The patch \p name names: by that name, else by the word the readers make of it (an STL
-/// solid "Wing Body (left)" is the patch Wing_Body_left); kNone.
-Index named_patch(const SurfaceMesh& mesh, const std::string& name) {
-    const Index i = find_patch(mesh, name);
-    return i != kNone || name.empty() ? i : find_patch(mesh, patch_word(name, 0));
+/// The patches \p name names: the one of that name, else of the word the readers make of it (an
+/// STL solid "Wing Body (left)" is the patch Wing_Body_left), else every patch of the CAD body
+/// of that name (Patch::body, either form); none.
+std::vector<Index> named_patches(const SurfaceMesh& mesh, const std::string& name) {
+    if (name.empty()) return {};
+    const std::string word = patch_word(name, 0);
+    for (const std::string& n : {name, word})
+        if (const Index i = find_patch(mesh, n); i != kNone) return {i};
+    std::vector<Index> of_body;
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const std::string& body = mesh.patches[i].body;
+        if (!body.empty() && (body == name || patch_word(body, 0) == word)) of_body.push_back(static_cast<Index>(i));
+    }
+    return of_body;
 }
 
 /// A patch name OpenFOAM and CGNS both take as it is.
@@ -157,12 +170,12 @@ void assign_patch_kinds(SurfaceMesh& mesh, const std::vector<std::pair<std::stri
                         const std::string& source) {
     for (Patch& p : mesh.patches) p.kind = patch_kind_of(p.name, {});
     for (const auto& [name, kind] : kinds) {
-        const Index i = named_patch(mesh, name);
-        if (i == kNone) {
+        const std::vector<Index> named = named_patches(mesh, name);
+        if (named.empty()) {
             throw InputError(source + ": PrepareParams::patch_kinds " + name + "=" + std::string(to_string(kind)) +
                              ": no patch named '" + name + "'; the patches are: " + patch_list(mesh));
         }
-        mesh.patches[static_cast<std::size_t>(i)].kind = kind;
+        for (const Index i : named) mesh.patches[static_cast<std::size_t>(i)].kind = kind;
     }
 }
 
@@ -170,15 +183,15 @@ void rename_patches(SurfaceMesh& mesh, const std::vector<std::pair<std::string, 
                     const std::string& source) {
     if (names.empty()) return;
     for (const auto& [from, to] : names) {
-        const Index i = named_patch(mesh, from);
-        if (i == kNone)
+        const std::vector<Index> named = named_patches(mesh, from);
+        if (named.empty())
             throw InputError(source + ": PrepareParams::patch_names " + from + " -> " + to + ": no patch named '" +
                              from + "'; the patches are: " + patch_list(mesh));
         if (!solver_name(to))
             throw InputError(source + ": PrepareParams::patch_names " + from + " -> '" + to +
                              "': a patch name must start with a letter or _ and hold only letters, digits, _ and -, "
                              "at most 32 (OpenFOAM and CGNS take it as it is)");
-        mesh.patches[static_cast<std::size_t>(i)].name = to;
+        for (const Index i : named) mesh.patches[static_cast<std::size_t>(i)].name = to;
     }
     // Patches that now carry a name given by a rename become the first patch of that name.
     std::set<std::string> given;

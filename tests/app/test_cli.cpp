@@ -1314,6 +1314,26 @@ TEST(Cli, AHalfModelWhoseShellHoldsItsNoseFaceTwiceIsMeshedWithTheCopySaid) {
                           {"\"coincident\": 1", "\"coincident_surface\": 11", "\"coincident_with\": 2"});
 }
 
+TEST(Cli, StepBodyNamesAreSaidAndNameAllTheirPatches) {
+    // A STEP whose two solids the CAD tool named (cad_named_bodies.py): each face is still a
+    // patch of its own (surface_N), the summary says which body holds which, and --patch BODY=
+    // sets a body's patches at once, here renamed into one patch each (OpenFOAM's boundary file).
+    test::ScratchDir dir("cli_named_bodies");
+    const std::string in = "mesh '" + test_data("cad_named_bodies.step") + "' --layers 3 --first-height 0.01";
+    CliResult r = strata_cli(dir, in + " -o a.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    test::expect_contains(r.out, {"9 patches", "  bodies: 'Fuselage' (patches 1-6), 'Wing' (patches 7-9); --patch "
+                                  "BODY=KIND[:NAME] sets all of a body's patches at once"});
+    test::expect_contains(slurp(dir.file("a.msh.report.json")), {"\"body\": \"Wing\""});
+    std::filesystem::create_directories(dir.path() / "case" / "constant");
+    r = strata_cli(dir, in + " --patch Fuselage=wall:fuselage --patch Wing=wall:wing -o case/constant/polyMesh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    test::expect_contains(r.out, {"2 patches", "patch 1 fuselage", "patch 2 wing"});
+    test::expect_contains(slurp(dir.file("case/constant/polyMesh/boundary")), {"fuselage", "wing"});
+    expect_clean_failure(in + " --patch Tail=wall -o t.msh", "the bodies (each naming all its patches): 'Fuselage', 'Wing'",
+                         "named_bodies");
+}
+
 TEST(Cli, LooseCadFacesAreSewnAndWiderGapsNamedWithTheirRemedy) {
     // A box of six faces that miss each other (tests/data/cad_box_loose_faces.py): by 1e-7 they
     // are sewn and meshed; by 3e-5, wider than sewing goes unasked, strata mesh refuses the open

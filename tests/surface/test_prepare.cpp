@@ -311,6 +311,19 @@ TEST(Prepare, PatchesAreRenamedAndThoseGivenOneNameMerged) {
     EXPECT_EQ(solid.patches[0].name, "wing");
     assign_patch_kinds(solid, {{"wing", PatchKind::Symmetry}}, "t");
     EXPECT_EQ(solid.patches[0].kind, PatchKind::Symmetry);
+    // A CAD body's name (either form) names all its patches: kinds and a new name set at once.
+    SurfaceMesh bodies = test::merged(test::merged(icosphere(Vec3::Zero(), 1.0, 1, {"surface_1", PatchKind::Wall, "Part 2"}),
+                                                   icosphere(Vec3(3, 0, 0), 1.0, 1, {"surface_2", PatchKind::Wall, "Part 2"})),
+                                      icosphere(Vec3(6, 0, 0), 1.0, 1, {"surface_3", PatchKind::Wall, "Part 1"}));
+    assign_patch_kinds(bodies, {{"Part_2", PatchKind::Symmetry}}, "t");
+    EXPECT_EQ(bodies.patches[0].kind, PatchKind::Symmetry);
+    EXPECT_EQ(bodies.patches[1].kind, PatchKind::Symmetry);
+    EXPECT_EQ(bodies.patches[2].kind, PatchKind::Wall);
+    rename_patches(bodies, {{"Part 2", "mirror"}}, "t");
+    ASSERT_EQ(bodies.patches.size(), 2u);
+    EXPECT_EQ(bodies.patches[0].name, "mirror");
+    test::expect_error<InputError>([&] { assign_patch_kinds(bodies, {{"Part 3", PatchKind::Wall}}, "t.step"); },
+                                   {"no patch named 'Part 3'", "the bodies (each naming all its patches): 'Part 2', 'Part 1'"});
     // A patch that keeps its name is not merged with another of the same name it did not get.
     SurfaceMesh twice = test::merged(icosphere(Vec3::Zero(), 1.0, 1, {"p", PatchKind::Wall}),
                                      icosphere(Vec3(3, 0, 0), 1.0, 1, {"p", PatchKind::Wall}));

@@ -23,6 +23,10 @@ PatchKind parse_patch_kind(std::string_view text);
 struct Patch {
     std::string name;
     PatchKind kind = PatchKind::Wall;
+    /// The CAD body (a solid the file names, as STEP's products) whose faces the patch holds
+    /// (empty: none, several, or a name-less one): PrepareParams::patch_kinds and patch_names
+    /// take it for all of that body's patches at once.
+    std::string body;
 };
 
 /// Surface mesh of arbitrary topology. Faces are triangles or quadrilaterals, nodes
