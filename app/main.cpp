@@ -682,6 +682,12 @@ void print_surface_summary(const strata::ReportNode& s) {
     if (s.integer("collapsed_faces") > 0)
         std::printf("repaired: %d faces with a repeated node (no area) removed or made triangles\n",
                     count(s, "collapsed_faces"));
+    if (s.node("cracks").integer("split_faces") > 0)
+        std::printf(
+            "repaired: cracks closed where each side of an edge was meshed with nodes of its own, %d faces split at "
+            "the other side's nodes, gaps up to %s (the widest at %s)\n",
+            count(s.node("cracks"), "split_faces"), strata::format_number(s.node("cracks").number("widest_gap")).c_str(),
+            point_at(s.node("cracks"), "at").c_str());
     if (s.integer("t_junctions") > 0)
         std::printf(
             "repaired: %d faces split where nodes of the faces beside them lay inside their edge (T-junctions)\n",

@@ -300,6 +300,9 @@ ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r, bool cad
     n.set("open_loops", boundary_loops(s).rows());
     n.set("merged_nodes", r.merged_nodes).set("collapsed_faces", r.collapsed_faces);
     n.set("duplicate_faces", r.duplicate_faces).set("t_junctions", r.t_junctions);
+    ReportNode cracks;
+    cracks.set("split_faces", r.cracks.split).set("widest_gap", r.cracks.widest).set("at", point(r.cracks.at));
+    n.set("cracks", std::move(cracks));
     n.set("flipped_faces", r.orient.flipped_faces).set("components", r.orient.components);
     n.set("closed_components", r.orient.closed_components).set("fused_components", r.fused_components);
     n.set("fused_slivers", r.fused_slivers).set("touching_faces", r.touching_faces).set("remeshed", r.remeshed);

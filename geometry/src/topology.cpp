@@ -233,8 +233,12 @@ SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, Index* split) {
     return split_t_junctions(mesh, edge_table(mesh), split);
 }
 
-SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, const EdgeTable& et, Index* split) {
-    if (split) *split = 0;
+namespace {
+
+/// split_t_junctions with nodes within \p share of an open edge's length of it; \p r counts the
+/// faces split and keeps the widest gap so closed.
+SurfaceMesh split_near_open_edges(const SurfaceMesh& mesh, const EdgeTable& et, double share, Stitching& r) {
+    r = Stitching{};
     // The open edges and the nodes on them.
     std::vector<Index> open_edges;
     std::vector<char> on_open(static_cast<std::size_t>(mesh.num_points()), 0);
@@ -259,7 +263,7 @@ SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, const EdgeTable& et, Inde
         const Vec3 ab = pb - pa;
         const double len2 = ab.squaredNorm();
         if (!(len2 > 0.0)) continue;
-        const double tol = 1e-6 * std::sqrt(len2);
+        const double tol = share * std::sqrt(len2);
         std::vector<std::pair<double, Index>> inside;
         const auto from = std::lower_bound(open_nodes.begin(), open_nodes.end(), std::min(pa.x(), pb.x()) - tol,
                                            [&](Index v, double x) { return x_of(v) < x; });
@@ -269,7 +273,10 @@ SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, const EdgeTable& et, Inde
             const Vec3 am = mesh.points[static_cast<std::size_t>(m)] - pa;
             const double t = am.dot(ab) / len2;
             if (!(t > 1e-6 && t < 1.0 - 1e-6)) continue;
-            if ((am - t * ab).norm() <= tol) inside.emplace_back(t, m);
+            const double gap = (am - t * ab).norm();
+            if (!(gap <= tol)) continue;
+            inside.emplace_back(t, m);
+            if (gap > r.widest) r.widest = gap, r.at = mesh.points[static_cast<std::size_t>(m)];
         }
         if (inside.empty()) continue;
         const Index f = et.faces.row_begin(e)[0];
@@ -323,7 +330,31 @@ SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, const EdgeTable& et, Inde
         for (std::size_t i = 0; i + 1 < ring.size(); ++i) out.add_face({top, ring[i], ring[i + 1]}, mesh.face_patch[f]);
         ++count;
     }
-    if (split) *split = count;
+    r.split = count;
+    return out;
+}
+
+}  // namespace
+
+SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, const EdgeTable& et, Index* split) {
+    Stitching r;
+    SurfaceMesh out = split_near_open_edges(mesh, et, 1e-6, r);
+    if (split) *split = r.split;
+    return out;
+}
+
+SurfaceMesh stitch_cracks(const SurfaceMesh& mesh, double share, Stitching* report) {
+    if (report) *report = Stitching{};
+    const EdgeTable et = edge_table(mesh);
+    Stitching r;
+    SurfaceMesh out = split_near_open_edges(mesh, et, share, r);
+    if (r.split == 0) return mesh;
+    // All or nothing: every edge of the result between two faces, or the input as it was (an
+    // opening meant to be there, a half model's cut, stays open and untouched).
+    const EdgeTable after = edge_table(out);
+    for (Index e = 0; e < after.faces.rows(); ++e)
+        if (after.faces.row_size(e) != 2) return mesh;
+    if (report) *report = r;
     return out;
 }
 

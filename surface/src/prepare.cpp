@@ -271,8 +271,12 @@ void name_caps(SurfaceMesh& capped, const CapOptions& o, const std::string& sour
     rename_patches(capped, o.cap_names, source);
 }
 
+/// How far off the edge beside them (a share of its length) nodes of a crack may lie: a curved
+/// edge's sagitta over its chord is about an eighth of the angle the chord spans, 0.1 at 45°.
+constexpr double kCrackShare = 0.1;
+
 /// \p raw with coincident nodes merged, faces with a repeated node and copies of faces removed,
-/// and T-junctions split; \p rep counts each.
+/// T-junctions split, and cracks closed where that closes the surface; \p rep counts each.
 SurfaceMesh clean_faces(const SurfaceMesh& raw, const PrepareParams& params, const std::string& source,
                         PrepareReport& rep) {
     SurfaceMesh merged = naming(source, [&] { return merge_coincident_nodes(raw, params.merge_tolerance); });
@@ -283,6 +287,10 @@ SurfaceMesh clean_faces(const SurfaceMesh& raw, const PrepareParams& params, con
     merged = remove_duplicate_faces(merged, edges, &rep.duplicate_faces);
     merged = rep.duplicate_faces > 0 ? split_t_junctions(merged, &rep.t_junctions)
                                      : split_t_junctions(merged, edges, &rep.t_junctions);
+    const EdgeTable now = rep.duplicate_faces > 0 || rep.t_junctions > 0 ? edge_table(merged) : edges;
+    bool open = false;
+    for (Index e = 0; e < now.faces.rows() && !open; ++e) open = now.faces.row_size(e) == 1;
+    if (open) merged = stitch_cracks(merged, kCrackShare, &rep.cracks);
     return merged;
 }
 
@@ -423,6 +431,7 @@ void copy_prepare_report(const PrepareReport& rep, const PrepareParams& params, 
     report.collapsed_faces = rep.collapsed_faces;
     report.duplicate_faces = rep.duplicate_faces;
     report.t_junctions = rep.t_junctions;
+    report.cracks = rep.cracks;
     report.holes = rep.holes;
     report.orient = rep.orient;
 }

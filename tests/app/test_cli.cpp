@@ -1314,6 +1314,21 @@ TEST(Cli, AHalfModelWhoseShellHoldsItsNoseFaceTwiceIsMeshedWithTheCopySaid) {
                           {"\"coincident\": 1", "\"coincident_surface\": 11", "\"coincident_with\": 2"});
 }
 
+TEST(Cli, AnStlWhoseFacesWereTessellatedApartHasItsCracksClosedAndSaid) {
+    // A cylinder whose side and ends were meshed each with nodes of their own round the end
+    // circles (tests/data/cylinder_cracks.py): refused before ("two boundary loops touch"); the
+    // cracks are closed, said with the widest gap, and the cylinder gets every layer.
+    test::ScratchDir dir("cli_cracks");
+    const CliResult r = strata_cli(dir, "mesh '" + test_data("cylinder_cracks.stl") +
+                                            "' -o c.msh --layers 5 --first-height 1e-3");
+    ASSERT_EQ(r.code, 0) << r.err;
+    test::expect_contains(r.out, {"1 connected components (1 closed), 0 open boundary loops",
+                                  "repaired: cracks closed where each side of an edge was meshed with nodes of its "
+                                  "own, 80 faces split at the other side's nodes, gaps up to 0.00427757",
+                                  "every layer on 100.0 %", "checkMesh would say \"Mesh OK\""});
+    test::expect_contains(slurp(dir.file("c.msh.report.json")), {"\"split_faces\": 80"});
+}
+
 TEST(Cli, StepBodyNamesAreSaidAndNameAllTheirPatches) {
     // A STEP whose two solids the CAD tool named (cad_named_bodies.py): each face is still a
     // patch of its own (surface_N), the summary says which body holds which, and --patch BODY=

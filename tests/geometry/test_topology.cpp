@@ -509,6 +509,47 @@ TEST(TJunctions, ATriangleIsSplitWhereTheFacesBesideItHaveANodeOnItsEdge) {
     EXPECT_EQ(same.face_nodes, sheet.face_nodes);
 }
 
+/// The unit cube in triangles, the side y = 0 meshed with a node of its own on its top edge,
+/// \p lift above it (a curved edge's sagitta), and the top face left out if \p open.
+SurfaceMesh cube_with_a_crack(double lift, bool open) {
+    SurfaceMesh m = test::cube_corners();
+    m.points.emplace_back(0.5, 0.0, 1.0 + lift);  // node 8, by edge 4-5
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) {
+        if (open && q[0] == 4) continue;
+        if (q[0] == 0 && q[1] == 1) {
+            m.add_face({0, 1, 5}, 0);
+            m.add_face({0, 5, 8}, 0);
+            m.add_face({0, 8, 4}, 0);
+            continue;
+        }
+        m.add_face({q[0], q[1], q[2]}, 0);
+        m.add_face({q[0], q[2], q[3]}, 0);
+    }
+    return m;
+}
+
+TEST(StitchCracks, ANodeOffTheEdgeBesideItClosesTheSurfaceAndNothingElseChanges) {
+    // The side's node 0.02 above the top's edge (2 % of it): no T-junction, a crack. Stitched,
+    // the top's triangle is split at it and every edge bounds two faces.
+    const SurfaceMesh m = cube_with_a_crack(0.02, false);
+    Index split = -1;
+    EXPECT_EQ(split_t_junctions(m, &split).face_nodes, m.face_nodes);
+    EXPECT_EQ(split, 0);
+    Stitching r;
+    const SurfaceMesh c = stitch_cracks(m, 0.1, &r);
+    EXPECT_EQ(r.split, 1);
+    EXPECT_NEAR(r.widest, 0.02, 1e-12);
+    EXPECT_EQ(r.at, Vec3(0.5, 0.0, 1.02));
+    EXPECT_TRUE(test::closed_manifold(c));
+    // Farther than the share, or a surface the stitch would leave open: the input as it was.
+    for (const SurfaceMesh& left : {cube_with_a_crack(0.2, false), cube_with_a_crack(0.02, true)}) {
+        const SurfaceMesh same = stitch_cracks(left, 0.1, &r);
+        EXPECT_EQ(same.face_nodes, left.face_nodes);
+        EXPECT_EQ(r.split, 0);
+    }
+}
+
 TEST(CollapsedFaces, FacePatchWithoutAnEntryPerFaceIsAnInputError) {
     // Faces are copied with their patch entry, which must exist (a fuzzer's find: it was read
     // past the end of face_patch).

@@ -82,6 +82,20 @@ SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, Index* split = nullptr);
 /// The same with \p mesh's edge_table, already made.
 SurfaceMesh split_t_junctions(const SurfaceMesh& mesh, const EdgeTable& edges, Index* split);
 
+/// What stitch_cracks did: faces split, and the widest gap closed and where (a node of it).
+struct Stitching {
+    Index split = 0;
+    double widest = 0.0;
+    Vec3 at = Vec3::Zero();
+};
+
+/// \p mesh with its cracks closed: where two sides of a curved edge were meshed each with nodes
+/// of its own (an exporter that tessellated each face alone: one side's nodes lie off the other
+/// side's chords by their sagitta), the T-junction split of split_t_junctions with nodes within
+/// \p share of an open edge's length of it, kept only where every edge then bounds two faces;
+/// else \p mesh unchanged and nothing in \p report.
+SurfaceMesh stitch_cracks(const SurfaceMesh& mesh, double share, Stitching* report = nullptr);
+
 /// Closed loops of boundary edges (edges with one face) of an open surface, each loop a
 /// node cycle in the direction of its face's orientation; empty for a closed surface.
 /// Throws TopologyError at a node where boundary loops touch non-manifoldly.

@@ -9,6 +9,7 @@
 #include <strata/geometry/fill_holes.h>
 #include <strata/geometry/fuse.h>
 #include <strata/geometry/short_edges.h>
+#include <strata/geometry/topology.h>
 #include <strata/geometry/wrap.h>
 #include <strata/surface/cad.h>
 #include <strata/surface/remesh.h>
@@ -71,6 +72,10 @@ struct PrepareReport {
     Index collapsed_faces = 0;          ///< faces with a repeated node removed (remove_collapsed_faces)
     Index duplicate_faces = 0;          ///< faces written twice, the copies removed (remove_duplicate_faces)
     Index t_junctions = 0;              ///< faces split where a node lay inside their open edge (split_t_junctions)
+    /// Cracks closed where a surface left open by them alone (every edge then bounds two faces)
+    /// had each side of an edge meshed with nodes of its own (stitch_cracks, nodes within a
+    /// tenth of the edge beside them).
+    Stitching cracks;
     CadUnits units;                     ///< CAD input: the unit read in and the one the file declares
     WallSizeReport walls;               ///< CAD input: what CadParams::max_aspect_ratio did (sizes as CadParams's)
     SewReport sew;                      ///< CAD input: what CadParams::sew_tolerance did (several files: summed)
@@ -116,7 +121,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
 /// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,
 /// with \p params.wrap the alpha wrap (InputError if a patch is not a wall's), then merge_coincident_nodes (\p params.merge_tolerance), remove_collapsed_faces (counted in
 /// \p report->collapsed_faces), remove_duplicate_faces (\p report->duplicate_faces), split_t_junctions
-/// (\p report->t_junctions), with \p params.fuse the
+/// (\p report->t_junctions), stitch_cracks where that alone closes the surface (\p report->cracks), with \p params.fuse the
 /// touching_faces removed (counted in \p report->touching_faces), check_surface (whose TopologyError, without \p
 /// params.fuse, says where bodies touch and suggests fusing them), fill_holes (\p params.fill_holes, \p
 /// report->holes), orient_surface, and if asked fuse_components, then
