@@ -688,6 +688,13 @@ void print_surface_summary(const strata::ReportNode& s) {
             "the other side's nodes, gaps up to %s (the widest at %s)\n",
             count(s.node("cracks"), "split_faces"), strata::format_number(s.node("cracks").number("widest_gap")).c_str(),
             point_at(s.node("cracks"), "at").c_str());
+    if (s.node("hanging_sheets").integer("faces") > 0)
+        std::printf(
+            "repaired: %d sheets of %d faces hanging off the surface on edges of three or more faces (a flap, a "
+            "zero-thickness fin: no layer can grow on both sides of one) removed (the first at %s); --wrap keeps such "
+            "a sheet, thickened\n",
+            count(s.node("hanging_sheets"), "sheets"), count(s.node("hanging_sheets"), "faces"),
+            point_at(s.node("hanging_sheets"), "at").c_str());
     if (s.integer("t_junctions") > 0)
         std::printf(
             "repaired: %d faces split where nodes of the faces beside them lay inside their edge (T-junctions)\n",

@@ -5,6 +5,7 @@
 #include <strata/frontend/report.h>
 #include <strata/geometry/check.h>
 #include <strata/geometry/intersections.h>
+#include <strata/core/union_find.h>
 #include <strata/geometry/topology.h>
 #include <strata/module/distribution.h>
 
@@ -283,6 +284,27 @@ ReportNode provenance_report(const Options& options) {
     return n;
 }
 
+namespace {
+
+/// The open boundary loops of \p s, counted as the groups of free edges joined at nodes
+/// (boundary_loops refuses loops that touch at a node, which a surface can have that the mesh
+/// stage goes on to refuse with its own error).
+Index open_loop_count(const SurfaceMesh& s) {
+    const EdgeTable et = edge_table(s);
+    UnionFind joined(static_cast<std::size_t>(s.num_points()));
+    std::vector<char> on_free(static_cast<std::size_t>(s.num_points()), 0);
+    for (std::size_t e = 0; e < et.nodes.size(); ++e)
+        if (et.faces.row_size(static_cast<Index>(e)) == 1) {
+            joined.unite(et.nodes[e][0], et.nodes[e][1]);
+            on_free[static_cast<std::size_t>(et.nodes[e][0])] = on_free[static_cast<std::size_t>(et.nodes[e][1])] = 1;
+        }
+    Index loops = 0;
+    for (Index v = 0; v < s.num_points(); ++v) loops += on_free[static_cast<std::size_t>(v)] && joined.find(v) == v;
+    return loops;
+}
+
+}  // namespace
+
 ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r, bool cad_input) {
     ReportNode n;
     n.set("nodes", s.num_points()).set("triangles", s.num_triangles()).set("quads", s.num_quads());
@@ -297,12 +319,15 @@ ReportNode surface_report(const SurfaceMesh& s, const PrepareReport& r, bool cad
         table.emplace_back(std::move(p));
     }
     n.set("patch_table", std::move(table)).set("cad_input", cad_input);
-    n.set("open_loops", boundary_loops(s).rows());
+    n.set("open_loops", open_loop_count(s));
     n.set("merged_nodes", r.merged_nodes).set("collapsed_faces", r.collapsed_faces);
     n.set("duplicate_faces", r.duplicate_faces).set("t_junctions", r.t_junctions);
     ReportNode cracks;
     cracks.set("split_faces", r.cracks.split).set("widest_gap", r.cracks.widest).set("at", point(r.cracks.at));
     n.set("cracks", std::move(cracks));
+    ReportNode hanging;
+    hanging.set("sheets", r.hanging.sheets).set("faces", r.hanging.faces).set("at", point(r.hanging.at));
+    n.set("hanging_sheets", std::move(hanging));
     n.set("flipped_faces", r.orient.flipped_faces).set("components", r.orient.components);
     n.set("closed_components", r.orient.closed_components).set("fused_components", r.fused_components);
     n.set("fused_slivers", r.fused_slivers).set("touching_faces", r.touching_faces).set("remeshed", r.remeshed);

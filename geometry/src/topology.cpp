@@ -4,6 +4,7 @@
 
 #include <strata/core/error.h>
 #include <strata/core/face_geometry.h>
+#include <strata/core/union_find.h>
 
 #include "model_span.h"
 
@@ -356,6 +357,59 @@ SurfaceMesh stitch_cracks(const SurfaceMesh& mesh, double share, Stitching* repo
         if (after.faces.row_size(e) != 2) return mesh;
     if (report) *report = r;
     return out;
+}
+
+SurfaceMesh remove_hanging_sheets(const SurfaceMesh& mesh, HangingSheets* report) {
+    if (report) *report = HangingSheets{};
+    const EdgeTable et = edge_table(mesh);
+    UnionFind sheet(static_cast<std::size_t>(mesh.num_faces()));
+    bool non_manifold = false;
+    for (Index e = 0; e < et.faces.rows(); ++e) {
+        if (et.faces.row_size(e) == 2) sheet.unite(et.faces.row_begin(e)[0], et.faces.row_begin(e)[1]);
+        non_manifold = non_manifold || et.faces.row_size(e) > 2;
+    }
+    if (!non_manifold) return mesh;
+    std::vector<char> free_edge(static_cast<std::size_t>(mesh.num_faces()), 0), on_fold(free_edge);
+    for (Index e = 0; e < et.faces.rows(); ++e)
+        for (const Index* f = et.faces.row_begin(e); f != et.faces.row_end(e); ++f) {
+            const auto s = static_cast<std::size_t>(sheet.find(*f));
+            if (et.faces.row_size(e) == 1) free_edge[s] = 1;
+            if (et.faces.row_size(e) > 2) on_fold[s] = 1;
+        }
+    // The candidate sheets, smallest first; one goes where every edge of three or more faces it
+    // lies on keeps two faces without it (a flap goes, not the body it hangs on).
+    std::map<Index, std::vector<Index>> faces_of;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const Index s = sheet.find(f);
+        if (free_edge[static_cast<std::size_t>(s)] && on_fold[static_cast<std::size_t>(s)]) faces_of[s].push_back(f);
+    }
+    std::vector<std::pair<std::size_t, Index>> order;
+    for (const auto& [s, faces] : faces_of) order.emplace_back(faces.size(), s);
+    std::sort(order.begin(), order.end());
+    std::vector<Index> kept(static_cast<std::size_t>(et.faces.rows()));
+    for (Index e = 0; e < et.faces.rows(); ++e) kept[static_cast<std::size_t>(e)] = et.faces.row_size(e);
+    std::vector<char> drop(static_cast<std::size_t>(mesh.num_faces()), 0);
+    HangingSheets r;
+    for (const auto& [size, s] : order) {
+        std::map<Index, Index> on_edge;  // fold edge -> this sheet's faces on it
+        for (const Index f : faces_of[s])
+            for (Index c = 0; c < mesh.face_size(f); ++c) {
+                const Index e = find_edge(et, mesh.face_node(f, c), mesh.face_node(f, (c + 1) % mesh.face_size(f)));
+                if (et.faces.row_size(e) > 2) ++on_edge[e];
+            }
+        bool hangs = true;
+        for (const auto& [e, n] : on_edge) hangs = hangs && kept[static_cast<std::size_t>(e)] - n >= 2;
+        if (!hangs) continue;
+        for (const auto& [e, n] : on_edge) kept[static_cast<std::size_t>(e)] -= n;
+        for (const Index f : faces_of[s]) drop[static_cast<std::size_t>(f)] = 1;
+        if (r.sheets++ == 0) r.at = face_centroid(mesh, mesh.points, faces_of[s].front());
+        r.faces += static_cast<Index>(faces_of[s].size());
+    }
+    if (r.faces == 0) return mesh;
+    for (Index e = 0; e < et.faces.rows(); ++e)  // all or nothing: every edge of two faces at most
+        if (kept[static_cast<std::size_t>(e)] > 2) return mesh;
+    if (report) *report = r;
+    return remove_faces(mesh, drop);
 }
 
 SurfaceMesh flip_flat_triangles(const SurfaceMesh& mesh, double rel_height, Index* flipped) {

@@ -276,7 +276,8 @@ void name_caps(SurfaceMesh& capped, const CapOptions& o, const std::string& sour
 constexpr double kCrackShare = 0.1;
 
 /// \p raw with coincident nodes merged, faces with a repeated node and copies of faces removed,
-/// T-junctions split, and cracks closed where that closes the surface; \p rep counts each.
+/// T-junctions split, cracks closed where that closes the surface, and sheets hanging off it
+/// removed where that leaves it manifold; \p rep counts each.
 SurfaceMesh clean_faces(const SurfaceMesh& raw, const PrepareParams& params, const std::string& source,
                         PrepareReport& rep) {
     SurfaceMesh merged = naming(source, [&] { return merge_coincident_nodes(raw, params.merge_tolerance); });
@@ -291,7 +292,7 @@ SurfaceMesh clean_faces(const SurfaceMesh& raw, const PrepareParams& params, con
     bool open = false;
     for (Index e = 0; e < now.faces.rows() && !open; ++e) open = now.faces.row_size(e) == 1;
     if (open) merged = stitch_cracks(merged, kCrackShare, &rep.cracks);
-    return merged;
+    return remove_hanging_sheets(merged, &rep.hanging);
 }
 
 /// Bodies touching along a common face: the walls between them are not the union's, so removed
@@ -322,6 +323,16 @@ void check_merged_surface(const SurfaceMesh& merged, const PrepareParams& params
                             " faces lie back to back on another body's (the first, " +
                             describe_face(merged, back_to_back.front()) +
                             "); fusing the bodies into one (CadParams::fuse) removes them");
+    }
+}
+
+/// TopologyError naming \p source where openings of the oriented surface touch at a node (each
+/// must be a loop of its own for the mesh stage to close or fill it), with the wrap's hint.
+void check_openings(const SurfaceMesh& oriented, const PrepareParams& params, const std::string& source) {
+    try {
+        naming(source, [&] { return boundary_loops(oriented); });
+    } catch (const TopologyError& e) {
+        throw TopologyError(std::string(e.what()) + (params.wrap ? "" : kWrapHint));
     }
 }
 
@@ -432,6 +443,7 @@ void copy_prepare_report(const PrepareReport& rep, const PrepareParams& params, 
     report.duplicate_faces = rep.duplicate_faces;
     report.t_junctions = rep.t_junctions;
     report.cracks = rep.cracks;
+    report.hanging = rep.hanging;
     report.holes = rep.holes;
     report.orient = rep.orient;
 }
@@ -475,6 +487,7 @@ SurfaceMesh prepare_mesh(SurfaceMesh raw, const PrepareParams& params, const std
     if (params.caps) name_caps(merged, later, source);
     strata::report(progress, "surface", 0.8);
     SurfaceMesh oriented = naming(source, [&] { return orient_surface(merged, &rep.orient, params.internal_flow); });
+    check_openings(oriented, params, source);
     if (params.fuse) oriented = fuse_bodies(std::move(oriented), params, source, rep);
     // Not before remeshing, which rebuilds the surface from the input's own edges: given the
     // collapsed glider STL, Gmsh's surfaces kept 148 needles instead of 4.

@@ -550,6 +550,50 @@ TEST(StitchCracks, ANodeOffTheEdgeBesideItClosesTheSurfaceAndNothingElseChanges)
     }
 }
 
+/// The unit cube in triangles (outward), without its top's second triangle if \p hole.
+SurfaceMesh cube_triangles(bool hole = false) {
+    SurfaceMesh m = test::cube_corners();
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) {
+        m.add_face({q[0], q[1], q[2]}, 0);
+        if (!(hole && q[0] == 4)) m.add_face({q[0], q[2], q[3]}, 0);
+    }
+    return m;
+}
+
+TEST(HangingSheets, AFlapOnAnEdgeGoesAndTheBodyItHangsOnStays) {
+    // A flap of two triangles on the cube's edge 0-1, sticking out below it.
+    SurfaceMesh m = cube_triangles();
+    m.points.emplace_back(0.0, 0.0, -1.0);  // 8
+    m.points.emplace_back(1.0, 0.0, -1.0);  // 9
+    m.add_face({0, 1, 9}, 0);
+    m.add_face({0, 9, 8}, 0);
+    HangingSheets r;
+    const SurfaceMesh c = remove_hanging_sheets(m, &r);
+    EXPECT_EQ(r.sheets, 1);
+    EXPECT_EQ(r.faces, 2);
+    EXPECT_NEAR(r.at.z(), -1.0 / 3.0, 1e-12);
+    EXPECT_TRUE(test::closed_manifold(c));
+    EXPECT_EQ(c.num_points(), 8);
+    // The body open too (a hole in its top): the flap, the smaller, still goes, the body stays.
+    SurfaceMesh open = cube_triangles(true);
+    open.points = m.points;
+    open.add_face({0, 1, 9}, 0);
+    open.add_face({0, 9, 8}, 0);
+    const SurfaceMesh left = remove_hanging_sheets(open, &r);
+    EXPECT_EQ(r.faces, 2);
+    EXPECT_EQ(left.num_faces(), 11);
+    // Two cubes sharing an edge (four faces on it) have no free edge: nothing hangs, nothing goes.
+    const SurfaceMesh two = test::merged(cube_triangles(), [] {
+        SurfaceMesh b = cube_triangles();
+        for (Vec3& p : b.points) p += Vec3(1.0, 1.0, 0.0);
+        return b;
+    }());
+    const SurfaceMesh same = remove_hanging_sheets(merge_coincident_nodes(two), &r);
+    EXPECT_EQ(r.faces, 0);
+    EXPECT_EQ(same.num_faces(), 24);
+}
+
 TEST(CollapsedFaces, FacePatchWithoutAnEntryPerFaceIsAnInputError) {
     // Faces are copied with their patch entry, which must exist (a fuzzer's find: it was read
     // past the end of face_patch).

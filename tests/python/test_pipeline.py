@@ -329,7 +329,7 @@ def test_errors_carry_strata_messages_in_keyword_names(tmp_path):
         with pytest.raises(strata.InputError, match=r"sharp_edge_stop_deg = \S+: need an angle in \[0, 180\]"):
             strata.layers(SPHERE_STL, sharp_edge_stop_deg=bad, **SMALL)
     with pytest.raises(strata.TopologyError):
-        strata.surface(os.path.join(TEST_DATA, "cli_nonmanifold.stl"))
+        strata.surface(os.path.join(TEST_DATA, "cli_nonmanifold_edge.stl"))
     with pytest.raises(strata.InputError):
         strata.mesh(SPHERE_STL, output=str(tmp_path / "x.unknown"), **SMALL)
 

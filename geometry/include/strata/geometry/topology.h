@@ -96,6 +96,20 @@ struct Stitching {
 /// else \p mesh unchanged and nothing in \p report.
 SurfaceMesh stitch_cracks(const SurfaceMesh& mesh, double share, Stitching* report = nullptr);
 
+/// What remove_hanging_sheets did: the sheets and faces removed, and a point of the first.
+struct HangingSheets {
+    Index sheets = 0;
+    Index faces = 0;
+    Vec3 at = Vec3::Zero();
+};
+
+/// \p mesh without the sheets that hang off it: faces joined across edges of two faces into
+/// sheets, a sheet with both a free edge and an edge of three or more faces (a flap on an
+/// edge, a zero-thickness fin) goes, kept only if no edge is then of three or more faces and no
+/// edge of two faces became free; else \p mesh unchanged and nothing in \p report. Nodes no
+/// face uses any more are dropped (remove_faces).
+SurfaceMesh remove_hanging_sheets(const SurfaceMesh& mesh, HangingSheets* report = nullptr);
+
 /// Closed loops of boundary edges (edges with one face) of an open surface, each loop a
 /// node cycle in the direction of its face's orientation; empty for a closed surface.
 /// Throws TopologyError at a node where boundary loops touch non-manifoldly.

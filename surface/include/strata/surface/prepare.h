@@ -76,6 +76,9 @@ struct PrepareReport {
     /// had each side of an edge meshed with nodes of its own (stitch_cracks, nodes within a
     /// tenth of the edge beside them).
     Stitching cracks;
+    /// Sheets hanging off the surface on edges of three or more faces (a flap, a zero-thickness
+    /// fin) removed where that leaves every edge of two faces at most (remove_hanging_sheets).
+    HangingSheets hanging;
     CadUnits units;                     ///< CAD input: the unit read in and the one the file declares
     WallSizeReport walls;               ///< CAD input: what CadParams::max_aspect_ratio did (sizes as CadParams's)
     SewReport sew;                      ///< CAD input: what CadParams::sew_tolerance did (several files: summed)
@@ -121,7 +124,7 @@ SurfaceMesh prepare_surfaces(const std::vector<std::string>& paths, const Prepar
 /// current Gmsh model, a caller's own reader): assign_patch_kinds with \p params.patch_kinds,
 /// with \p params.wrap the alpha wrap (InputError if a patch is not a wall's), then merge_coincident_nodes (\p params.merge_tolerance), remove_collapsed_faces (counted in
 /// \p report->collapsed_faces), remove_duplicate_faces (\p report->duplicate_faces), split_t_junctions
-/// (\p report->t_junctions), stitch_cracks where that alone closes the surface (\p report->cracks), with \p params.fuse the
+/// (\p report->t_junctions), stitch_cracks where that alone closes the surface (\p report->cracks), remove_hanging_sheets (\p report->hanging), with \p params.fuse the
 /// touching_faces removed (counted in \p report->touching_faces), check_surface (whose TopologyError, without \p
 /// params.fuse, says where bodies touch and suggests fusing them), fill_holes (\p params.fill_holes, \p
 /// report->holes), orient_surface, and if asked fuse_components, then
