@@ -190,80 +190,79 @@ std::string flow_comment(const FoamCaseParams& p) {
            "them.\n\n";
 }
 
+/// A dictionary of system/ or constant/: its header, \p intro, what it says of the flow, \p body.
+std::string dictionary(const char* location, const char* object, const FoamCaseParams& p, const std::string& body,
+                       const std::string& intro = "") {
+    return foam_header("dictionary", location, object) + intro + flow_comment(p) + body + std::string(kFoamFooter);
+}
+
 std::string control_dict(const FoamCaseParams& p) {
-    std::string s = foam_header("dictionary", "system", "controlDict");
-    s +=
+    return dictionary(
+        "system", "controlDict", p,
+        "application     simpleFoam;\n\nstartFrom       startTime;\n\nstartTime       0;\n\n"
+        "stopAt          endTime;\n\nendTime         " +
+            std::to_string(p.iterations) +
+            ";\n\ndeltaT          1;\n\nwriteControl    timeStep;\n\nwriteInterval   100;\n\n"
+            "purgeWrite      0;\n\nwriteFormat     ascii;\n\nwritePrecision  8;\n\nwriteCompression off;\n\n"
+            "timeFormat      general;\n\ntimePrecision   6;\n\nrunTimeModifiable true;\n\n"
+            "functions\n{\n    // y+ of the first cells on the walls, at each write (postProcessing/yPlus)\n"
+            "    yPlus\n    {\n        type            yPlus;\n"
+            "        libs            (\"libfieldFunctionObjects.so\");\n        writeControl    writeTime;\n    "
+            "}\n}\n\n",
         "// A steady incompressible RANS start, written by Strata with the mesh (constant/polyMesh):\n"
         "//   potentialFoam -case CASE   a potential flow in 0/U to start from (optional)\n"
-        "//   simpleFoam -case CASE      k-omega SST to endTime, or sooner where residualControl (fvSolution) is met\n";
-    s += flow_comment(p);
-    s += "application     simpleFoam;\n\nstartFrom       startTime;\n\nstartTime       0;\n\nstopAt          "
-         "endTime;\n\n"
-         "endTime         " +
-         std::to_string(p.iterations) +
-         ";\n\ndeltaT          1;\n\nwriteControl    timeStep;\n\n"
-         "writeInterval   100;\n\npurgeWrite      0;\n\nwriteFormat     ascii;\n\nwritePrecision  8;\n\n"
-         "writeCompression off;\n\ntimeFormat      general;\n\ntimePrecision   6;\n\nrunTimeModifiable true;\n\n"
-         "functions\n{\n    // y+ of the first cells on the walls, at each write (postProcessing/yPlus)\n"
-         "    yPlus\n    {\n        type            yPlus;\n        libs            (\"libfieldFunctionObjects.so\");\n"
-         "        writeControl    writeTime;\n    }\n}\n\n";
-    return s + std::string(kFoamFooter);
+        "//   simpleFoam -case CASE      k-omega SST to endTime, or sooner where residualControl (fvSolution) is "
+        "met\n");
 }
 
 std::string fv_schemes(const FoamCaseParams& p) {
-    std::string s = foam_header("dictionary", "system", "fvSchemes");
-    s += flow_comment(p);
-    s += "ddtSchemes\n{\n    default         steadyState;\n}\n\n"
-         "// Limited: the tetrahedra's and the thin layer cells' gradients (unlimited gradients of k and omega\n"
-         "// diverged on Strata's meshes)\n"
-         "gradSchemes\n{\n    default         cellLimited Gauss linear 1;\n}\n\n"
-         "divSchemes\n{\n    default         none;\n"
-         "    // First order for a robust start; once it has converged, second order for U:\n"
-         "    //     div(phi,U)      bounded Gauss linearUpwind grad(U);\n"
-         "    div(phi,U)      bounded Gauss upwind;\n"
-         "    div(phi,k)      bounded Gauss upwind;\n    div(phi,omega)  bounded Gauss upwind;\n"
-         "    div((nuEff*dev2(T(grad(U))))) Gauss linear;\n}\n\n"
-         "laplacianSchemes\n{\n    default         Gauss linear limited corrected 0.5;\n}\n\n"
-         "interpolationSchemes\n{\n    default         linear;\n}\n\n"
-         "snGradSchemes\n{\n    default         limited corrected 0.5;\n}\n\n"
-         "wallDist\n{\n    method          meshWave;\n}\n\n";
-    return s + std::string(kFoamFooter);
+    return dictionary("system", "fvSchemes", p,
+                      "ddtSchemes\n{\n    default         steadyState;\n}\n\n"
+                      "// Limited: the tetrahedra's and the thin layer cells' gradients (unlimited gradients of k and "
+                      "omega\n// diverged on Strata's meshes)\n"
+                      "gradSchemes\n{\n    default         cellLimited Gauss linear 1;\n}\n\n"
+                      "divSchemes\n{\n    default         none;\n"
+                      "    // First order for a robust start; once it has converged, second order for U:\n"
+                      "    //     div(phi,U)      bounded Gauss linearUpwind grad(U);\n"
+                      "    div(phi,U)      bounded Gauss upwind;\n"
+                      "    div(phi,k)      bounded Gauss upwind;\n    div(phi,omega)  bounded Gauss upwind;\n"
+                      "    div((nuEff*dev2(T(grad(U))))) Gauss linear;\n}\n\n"
+                      "laplacianSchemes\n{\n    default         Gauss linear limited corrected 0.5;\n}\n\n"
+                      "interpolationSchemes\n{\n    default         linear;\n}\n\n"
+                      "snGradSchemes\n{\n    default         limited corrected 0.5;\n}\n\n"
+                      "wallDist\n{\n    method          meshWave;\n}\n\n");
 }
 
 std::string fv_solution(const FoamCaseParams& p) {
-    std::string s = foam_header("dictionary", "system", "fvSolution");
-    s += flow_comment(p);
-    s += "solvers\n{\n"
-         "    p\n    {\n        solver          GAMG;\n        smoother        GaussSeidel;\n"
-         "        tolerance       1e-07;\n        relTol          0.05;\n    }\n\n"
-         "    // potentialFoam's potential\n    Phi\n    {\n        $p;\n        tolerance       1e-08;\n"
-         "        relTol          0;\n    }\n\n"
-         "    \"(U|k|omega)\"\n    {\n        solver          smoothSolver;\n        smoother        symGaussSeidel;\n"
-         "        tolerance       1e-08;\n        relTol          0.1;\n    }\n}\n\n"
-         "SIMPLE\n{\n    // one corrector for the tetrahedra's non-orthogonality (up to about 65 degrees)\n"
-         "    nNonOrthogonalCorrectors 1;\n    consistent      no;\n\n"
-         "    // simpleFoam stops here before endTime\n    residualControl\n    {\n        p               1e-04;\n"
-         "        U               1e-05;\n        \"(k|omega)\"     1e-05;\n    }\n}\n\n"
-         "potentialFlow\n{\n    nNonOrthogonalCorrectors 3;\n}\n\n"
-         "relaxationFactors\n{\n    fields\n    {\n        p               0.3;\n    }\n"
-         "    equations\n    {\n        U               0.7;\n        k               0.5;\n"
-         "        omega           0.5;\n    }\n}\n\n";
-    return s + std::string(kFoamFooter);
+    return dictionary(
+        "system", "fvSolution", p,
+        "solvers\n{\n"
+        "    p\n    {\n        solver          GAMG;\n        smoother        GaussSeidel;\n"
+        "        tolerance       1e-07;\n        relTol          0.05;\n    }\n\n"
+        "    // potentialFoam's potential\n    Phi\n    {\n        $p;\n        tolerance       1e-08;\n"
+        "        relTol          0;\n    }\n\n"
+        "    \"(U|k|omega)\"\n    {\n        solver          smoothSolver;\n        smoother        symGaussSeidel;\n"
+        "        tolerance       1e-08;\n        relTol          0.1;\n    }\n}\n\n"
+        "SIMPLE\n{\n    // one corrector for the tetrahedra's non-orthogonality (up to about 65 degrees)\n"
+        "    nNonOrthogonalCorrectors 1;\n    consistent      no;\n\n"
+        "    // simpleFoam stops here before endTime\n    residualControl\n    {\n        p               1e-04;\n"
+        "        U               1e-05;\n        \"(k|omega)\"     1e-05;\n    }\n}\n\n"
+        "potentialFlow\n{\n    nNonOrthogonalCorrectors 3;\n}\n\n"
+        "relaxationFactors\n{\n    fields\n    {\n        p               0.3;\n    }\n"
+        "    equations\n    {\n        U               0.7;\n        k               0.5;\n"
+        "        omega           0.5;\n    }\n}\n\n");
 }
 
 std::string transport_properties(const FoamCaseParams& p) {
-    std::string s = foam_header("dictionary", "constant", "transportProperties");
-    s += flow_comment(p);
-    s += "transportModel  Newtonian;\n\n// |Uinf| L / Re\nnu              " + number(foam_viscosity(p)) + ";\n\n";
-    return s + std::string(kFoamFooter);
+    return dictionary(
+        "constant", "transportProperties", p,
+        "transportModel  Newtonian;\n\n// |Uinf| L / Re\nnu              " + number(foam_viscosity(p)) + ";\n\n");
 }
 
 std::string turbulence_properties(const FoamCaseParams& p) {
-    std::string s = foam_header("dictionary", "constant", "turbulenceProperties");
-    s += flow_comment(p);
-    s += "simulationType  RAS;\n\nRAS\n{\n    RASModel        kOmegaSST;\n\n    turbulence      on;\n\n"
-         "    printCoeffs     on;\n}\n\n";
-    return s + std::string(kFoamFooter);
+    return dictionary("constant", "turbulenceProperties", p,
+                      "simulationType  RAS;\n\nRAS\n{\n    RASModel        kOmegaSST;\n\n    turbulence      on;\n\n"
+                      "    printCoeffs     on;\n}\n\n");
 }
 
 void check_params(const FoamCaseParams& p) {
@@ -426,10 +425,13 @@ FoamCaseWritten write_foam_case(const VolumeMesh& mesh, const std::string& case_
         std::string text = f.text;
         std::error_code ec;
         if (fs::exists(target, ec)) {
-            w.kept.push_back(f.path);
-            if (field) {
-                text = read_whole_file(target);
-                check_kept_field(target, text, patches, w.warnings);
+            const std::string there = read_whole_file(target);
+            if (there == text) {
+                w.unchanged.push_back(f.path);
+            } else {
+                w.kept.push_back(f.path);
+                if (field) check_kept_field(target, there, patches, w.warnings);
+                text = there;
             }
         } else {
             AtomicFile& out = set.file(target);

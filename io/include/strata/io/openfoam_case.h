@@ -72,19 +72,23 @@ std::vector<std::string> check_foam_case_output(const std::string& case_dir);
 /// What write_foam_case did.
 struct FoamCaseWritten {
     std::string case_dir;
-    std::vector<std::string> written;   ///< case files written, paths in the case ("system/controlDict")
-    std::vector<std::string> kept;      ///< case files that were there already and were left as they were
+    std::vector<std::string> written;    ///< case files written, paths in the case ("system/controlDict")
+    std::vector<std::string> unchanged;  ///< case files there already with the bytes Strata would write
+    /// Case files there already with other bytes (the user's edits, or Strata's for another
+    /// flow), left as they were.
+    std::vector<std::string> kept;
     std::vector<std::string> warnings;  ///< what the user should know: a kept field without a patch, old results
 };
 
 /// Write \p mesh as the case \p case_dir (foam_case_directory of `-o`): created if it does not
 /// exist (its parent must), with `constant/`, `system/` and `0.orig/`; the polyMesh replaced
 /// whole (write_polymesh); each file of foam_case_files written only where the case has none
-/// (a file the user edited is kept, and said); `0/` replaced whole by a copy of `0.orig/` (the
-/// files there, the user's or Strata's), since what a solver left in `0/` (potentialFoam's
-/// field) belongs to the previous mesh. Staged in \p outputs (committed with the run's other
-/// outputs) or, without it, committed here: all or nothing, the directories made for it
-/// removed again on failure. Throws what write_polymesh and the checks throw.
+/// (one with other bytes, the user's edits, is kept and said in FoamCaseWritten::kept); `0/`
+/// replaced whole by a copy of `0.orig/` (the files there, the user's or Strata's), since what a
+/// solver left in `0/` (potentialFoam's field) belongs to the previous mesh. Staged in \p outputs
+/// (committed with the run's other outputs) or, without it, committed here: all or nothing, the
+/// directories made for it removed again on failure. Throws what write_polymesh and the checks
+/// throw.
 FoamCaseWritten write_foam_case(const VolumeMesh& mesh, const std::string& case_dir, const FoamCaseParams& params,
                                 Progress* progress = nullptr, OutputSet* outputs = nullptr);
 
