@@ -1001,7 +1001,7 @@ void print_times(const strata::ReportNode& r) {
 
 /// What --foam-case wrote (nothing without it): the case's flow, its files written and kept,
 /// how to run it, and what the user should know (warnings).
-void print_foam_case(const strata::Written& written, const strata::Options& options) {
+void print_foam_case(const strata::WrittenOutputs& written, const strata::Options& options) {
     if (!written.foam_case) return;
     const strata::FoamCaseWritten& w = *written.foam_case;
     const strata::FoamCaseParams p = strata::foam_case_params(options);
@@ -1013,7 +1013,8 @@ void print_foam_case(const strata::Written& written, const strata::Options& opti
     std::printf("case: %s, simpleFoam with k-omega SST: U (%s %s %s), Re %s on L %s, nu %s", w.case_dir.c_str(),
                 strata::format_number(p.velocity.x()).c_str(), strata::format_number(p.velocity.y()).c_str(),
                 strata::format_number(p.velocity.z()).c_str(), strata::format_number(p.reynolds).c_str(),
-                strata::format_number(p.reference_length).c_str(), strata::format_number(strata::foam_viscosity(p)).c_str());
+                strata::format_number(p.reference_length).c_str(),
+                strata::format_number(strata::foam_viscosity(p)).c_str());
     if (p.yplus > 0.0) std::printf(", first cells at y+ about %s", strata::format_number(p.yplus, 3).c_str());
     std::printf("; wrote %s%s0/ (a copy of 0.orig/)", joined(w.written).c_str(), w.written.empty() ? "" : " ");
     if (!w.kept.empty())
@@ -1135,7 +1136,7 @@ int run_layers(const Common& c) {
     warn_if_short_of_space(c, r.layers.mesh.points.size(), static_cast<std::size_t>(r.layers.mesh.num_cells()));
     begin_writing();
     strata::OutputSet outputs;  // the mesh and its report (a case's files), all or none
-    const strata::Written written = strata::write_outputs(r, c.output, msh, &terminal, outputs);
+    const strata::WrittenOutputs written = strata::write_outputs(r, c.output, msh, &terminal, outputs);
     outputs.commit();
     strata::set_time(r.report, "write", seconds_since(t1));
     if (c.quiet) return 0;
@@ -1160,7 +1161,7 @@ int run_mesh(const Common& c, const PlotOptions& po) {
     warn_if_short_of_space(c, r.mesh.points.size(), static_cast<std::size_t>(r.mesh.num_cells()));
     begin_writing();
     strata::OutputSet outputs;  // the mesh, its report (a case's files) and the plots' data, all or none
-    const strata::Written written = strata::write_outputs(r, c.output, msh, &terminal, outputs);
+    const strata::WrittenOutputs written = strata::write_outputs(r, c.output, msh, &terminal, outputs);
     if (!po.dir.empty())
         strata::write_plot_data(strata::node_layers(r.hybrid.coverage, r.surface.points.size()),
                                 strata::node_shares(r.hybrid.coverage, r.surface.points.size()), r.surface, r.mesh,

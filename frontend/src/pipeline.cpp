@@ -244,9 +244,9 @@ FoamCaseParams foam_case_params(const Options& options) {
     return p;
 }
 
-Written write_outputs(const Result& result, const std::string& output, MshFormat msh, Progress* progress,
-                      OutputSet& outputs) {
-    Written w;
+WrittenOutputs write_outputs(const Result& result, const std::string& output, MshFormat msh, Progress* progress,
+                             OutputSet& outputs) {
+    WrittenOutputs w;
     const OutputOptions& how = result.options.output;
     w.files = output_files(result.job, output, how);
     if (result.job == Job::Surface) {

@@ -725,7 +725,8 @@ TEST(Cli, FoamCaseWritesACaseThatRunsAndKeepsTheUsersFiles) {
     // case: and run: lines; a rerun keeps an edited file, makes 0/ anew and says so; the same
     // bytes run after run. (OpenFOAM runs such a case: OpenFOAM.SimpleFoamHemisphereCylinderFoamCase.)
     test::ScratchDir dir("cli_foam_case");
-    const std::string mesh = "mesh '" + example_data("sphere.stl") + "' --layers 3 --first-height 2e-3 --farfield-size 6";
+    const std::string mesh =
+        "mesh '" + example_data("sphere.stl") + "' --layers 3 --first-height 2e-3 --farfield-size 6";
     CliResult r = strata_cli(dir, mesh + " -o run/case --foam-case");
     EXPECT_NE(r.code, 0);
     EXPECT_NE(r.err.find("cannot write the OpenFOAM case 'run/case': directory 'run' does not exist"),

@@ -132,7 +132,7 @@ void check_outputs(Job job, const std::string& output, MshFormat msh, const std:
 FoamCaseParams foam_case_params(const Options& options);
 
 /// What write_outputs wrote.
-struct Written {
+struct WrittenOutputs {
     std::vector<std::string> files;            ///< the mesh's files and its report, as a summary names them
     std::optional<FoamCaseWritten> foam_case;  ///< with OutputOptions::foam_case: the case's files
 };
@@ -141,7 +141,7 @@ struct Written {
 /// (result.report at report_path), into \p outputs (the caller commits them, with any of its own);
 /// with result.options.output.foam_case, the case (write_foam_case, foam_case_params) and the
 /// report beside its polyMesh.
-Written write_outputs(const Result& result, const std::string& output, MshFormat msh, Progress* progress,
-                      OutputSet& outputs);
+WrittenOutputs write_outputs(const Result& result, const std::string& output, MshFormat msh, Progress* progress,
+                             OutputSet& outputs);
 
 }  // namespace strata
