@@ -1041,9 +1041,28 @@ void print_times(const strata::ReportNode& r) {
     std::printf("time: %s\n", line.c_str());
 }
 
-std::vector<std::string> with_report(std::vector<std::string> files, const std::string& output) {
-    files.push_back(strata::report_path(output));
-    return files;
+/// What --foam-case wrote (nothing without it): the case's flow, its files written and kept,
+/// how to run it, and what the user should know (warnings).
+void print_foam_case(const strata::WrittenOutputs& written, const strata::Options& options) {
+    if (!written.foam_case) return;
+    const strata::FoamCaseWritten& w = *written.foam_case;
+    const strata::FoamCaseParams p = strata::foam_case_params(options);
+    auto joined = [](const std::vector<std::string>& names) {
+        std::string s;
+        for (const std::string& n : names) s += (s.empty() ? "" : " ") + n;
+        return s;
+    };
+    std::printf("case: %s, simpleFoam with k-omega SST: U (%s %s %s), Re %s on L %s, nu %s", w.case_dir.c_str(),
+                strata::format_number(p.velocity.x()).c_str(), strata::format_number(p.velocity.y()).c_str(),
+                strata::format_number(p.velocity.z()).c_str(), strata::format_number(p.reynolds).c_str(),
+                strata::format_number(p.reference_length).c_str(),
+                strata::format_number(strata::foam_viscosity(p)).c_str());
+    if (p.yplus > 0.0) std::printf(", first cells at y+ about %s", strata::format_number(p.yplus, 3).c_str());
+    std::printf("; wrote %s%s0/ (a copy of 0.orig/)", joined(w.written).c_str(), w.written.empty() ? "" : " ");
+    if (!w.kept.empty())
+        std::printf("; kept the case's own %s (delete one to have Strata's)", joined(w.kept).c_str());
+    std::printf("\nrun: potentialFoam -case %s && simpleFoam -case %s\n", w.case_dir.c_str(), w.case_dir.c_str());
+    for (const std::string& warning : w.warnings) std::printf("warning: %s\n", warning.c_str());
 }
 
 void print_written(const std::vector<std::string>& files) {
@@ -1117,7 +1136,7 @@ strata::MshFormat check_run_outputs(const Common& c, strata::Job job, bool plots
     const strata::MshFormat msh(strata::parse_msh_version(c.msh_version), c.binary);
     std::vector<std::string> extra;
     if (plots) extra.push_back(strata::plot_data_path(c.output));
-    strata::check_outputs(job, c.output, msh, c.o.surface.inputs, extra);
+    strata::check_outputs(job, c.output, msh, c.o.surface.inputs, extra, c.o.output);
     return msh;
 }
 
@@ -1158,8 +1177,8 @@ int run_layers(const Common& c) {
     const auto t1 = std::chrono::steady_clock::now();
     warn_if_short_of_space(c, r.layers.mesh.points.size(), static_cast<std::size_t>(r.layers.mesh.num_cells()));
     begin_writing();
-    strata::OutputSet outputs;  // the mesh and its report, both or neither
-    strata::write_outputs(r, c.output, msh, &terminal, outputs);
+    strata::OutputSet outputs;  // the mesh and its report (a case's files), all or none
+    const strata::WrittenOutputs written = strata::write_outputs(r, c.output, msh, &terminal, outputs);
     outputs.commit();
     strata::set_time(r.report, "write", seconds_since(t1));
     if (c.quiet) return 0;
@@ -1169,7 +1188,8 @@ int run_layers(const Common& c) {
     print_coverage(r.report);
     print_cells(r.report, !r.any_cad && !r.prepare.remeshed);
     print_times(r.report);
-    print_written(with_report(strata::volume_output_files(c.output), c.output));
+    print_foam_case(written, r.options);
+    print_written(written.files);
     return 0;
 }
 
@@ -1182,8 +1202,8 @@ int run_mesh(const Common& c, const PlotOptions& po) {
     const auto t1 = std::chrono::steady_clock::now();
     warn_if_short_of_space(c, r.mesh.points.size(), static_cast<std::size_t>(r.mesh.num_cells()));
     begin_writing();
-    strata::OutputSet outputs;  // the mesh, its report and the plots' data, all or none
-    strata::write_outputs(r, c.output, msh, &terminal, outputs);
+    strata::OutputSet outputs;  // the mesh, its report (a case's files) and the plots' data, all or none
+    const strata::WrittenOutputs written = strata::write_outputs(r, c.output, msh, &terminal, outputs);
     if (!po.dir.empty())
         strata::write_plot_data(strata::node_layers(r.hybrid.coverage, r.surface.points.size()),
                                 strata::node_shares(r.hybrid.coverage, r.surface.points.size()), r.surface, r.mesh,
@@ -1195,7 +1215,8 @@ int run_mesh(const Common& c, const PlotOptions& po) {
         print_wall_aspect_forecast(r.report.node("surface"));
         print_hybrid_summary(r.report, !r.any_cad && !r.prepare.remeshed);
         print_times(r.report);
-        std::vector<std::string> files = with_report(strata::volume_output_files(c.output), c.output);
+        print_foam_case(written, r.options);
+        std::vector<std::string> files = written.files;
         if (!po.dir.empty()) files.push_back(strata::plot_data_path(c.output));
         print_written(files);
     }
@@ -1261,7 +1282,7 @@ int main(int argc, char** argv) {
     add_common_options(*layers, lc,
                        "output volume mesh: .msh, .cgr/.cog/.grd (Cobalt60), .cgns (CGNS), CASE/constant/polyMesh "
                        "(OpenFOAM, a directory), .vtk, .su2, ... by extension");
-    add_table_options(*layers, lc.o, {strata::OptionStage::Layers});
+    add_table_options(*layers, lc.o, {strata::OptionStage::Layers, strata::OptionStage::Output});
 
     Common mc;
     CLI::App* meshcmd = app.add_subcommand("mesh",
@@ -1270,7 +1291,8 @@ int main(int argc, char** argv) {
     add_common_options(*meshcmd, mc,
                        "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .cgns (CGNS), CASE/constant/polyMesh "
                        "(OpenFOAM polyMesh, a directory), .msh, .vtk, .su2, ...");
-    add_table_options(*meshcmd, mc.o, {strata::OptionStage::Layers, strata::OptionStage::Mesh});
+    add_table_options(*meshcmd, mc.o,
+                      {strata::OptionStage::Layers, strata::OptionStage::Mesh, strata::OptionStage::Output});
     PlotOptions po;
     meshcmd->add_option("--plots", po.dir,
                         "also draw the quality report's plots into DIR (PNG and index.md: strata report; writes "
@@ -1309,6 +1331,8 @@ int main(int argc, char** argv) {
     }
 
     for (Common* c : {&sc, &lc, &mc}) c->o.surface.input = strata::input_name(c->o.surface.inputs);
+    // A case's mesh is its CASE/constant/polyMesh: the report and the plots' data go beside it.
+    for (Common* c : {&lc, &mc}) c->output = strata::mesh_output(strata::Job::Mesh, c->output, c->o.output);
     const Watchdog watchdog(*surface ? sc.timeout : *layers ? lc.timeout : *meshcmd ? mc.timeout : 0.0);
     try {
         if (*surface) return run_surface(sc);

@@ -21,7 +21,7 @@ packages=(
   libnanoflann-dev     # k-d trees (the tetrahedra's size field, the CAD walls' sizes at the layers' steps)
   libcgal-dev          # exact predicates: the layer front's self-intersection test
   libcgns-dev          # CGNS mid-level library (on HDF5): the .cgns writer
-  openfoam             # checkMesh, OpenFOAM's verdict on our meshes (tests/openfoam)
+  openfoam             # checkMesh, OpenFOAM's verdict on our meshes, and simpleFoam on Strata's case (tests/openfoam)
   libgtest-dev         # GoogleTest
   libcli11-dev         # command-line parsing for the strata program
   # The Python package strata (python/, for Debian's /usr/bin/python3):

@@ -2,6 +2,7 @@
 // Helpers shared by the test suites: data paths, scratch directories, tiny meshes.
 
 #include <strata/core/face_geometry.h>
+#include <strata/core/progress.h>
 #include <strata/core/solver_checks.h>
 #include <strata/core/surface_mesh.h>
 #include <strata/core/volume_mesh.h>
@@ -28,6 +29,16 @@
 #include <vector>
 
 namespace strata::test {
+
+/// Progress that cancels once a stage has reported \p at (a fraction) or more: a writer
+/// cancelled half-way or at its end.
+struct CancelAt : Progress {
+    double at;
+    double last = 0.0;
+    explicit CancelAt(double a) : at(a) {}
+    void report(std::string_view, double fraction) override { last = fraction; }
+    bool cancelled() const override { return last >= at; }
+};
 
 /// The bytes of the file at \p path (empty if it cannot be read).
 inline std::string slurp(const std::filesystem::path& path) {

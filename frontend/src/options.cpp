@@ -340,11 +340,12 @@ void add_distribution_options(std::vector<OptionSpec>& t) {
         "first height from this target y+ (with --reynolds, --ref-length)")));
     t.push_back(no_default(spec(
         "--reynolds", "reynolds", "DistributionParams::reynolds", Stage::Layers,
-        [](Options& o) -> double& { return o.layers.params.distribution.reynolds; }, "Reynolds number for --yplus")));
+        [](Options& o) -> double& { return o.layers.params.distribution.reynolds; },
+        "Reynolds number for --yplus, and of the flow --foam-case writes")));
     t.push_back(spec(
         "--ref-length", "reference_length", "DistributionParams::reference_length", Stage::Layers,
         [](Options& o) -> double& { return o.layers.params.distribution.reference_length; },
-        "reference length of the Reynolds number, model units"));
+        "reference length of the Reynolds number (--yplus, --foam-case), model units"));
     t.push_back(spec(
         "--distribution", "distribution", "DistributionParams::kind", Stage::Layers,
         [](Options& o) -> std::string& { return o.layers.distribution; },
@@ -510,12 +511,23 @@ void add_mesh_options(std::vector<OptionSpec>& t) {
         "sample the size field on a background mesh"));
 }
 
+/// How a volume mesh is written (OutputOptions).
+void add_output_options(std::vector<OptionSpec>& t) {
+    t.push_back(no_default(spec(
+        "--foam-case", "foam_case", "OutputOptions::foam_case", Stage::Output,
+        [](Options& o) -> bool& { return o.output.foam_case; },
+        "the output is an OpenFOAM case directory (-o CASE): CASE/constant/polyMesh and a simpleFoam start "
+        "(k-omega SST; system/, constant/, 0.orig/ written where the case has none, 0/ a copy of 0.orig/), "
+        "every patch given conditions from its kind; U 1 along x, Re from --reynolds (default 1e6) on --ref-length")));
+}
+
 std::vector<OptionSpec> make_table() {
     std::vector<OptionSpec> t;
     add_surface_options(t);
     add_distribution_options(t);
     add_marching_options(t);
     add_mesh_options(t);
+    add_output_options(t);
     return t;
 }
 

@@ -5,13 +5,16 @@
 #include <strata/geometry/point_sizes.h>
 #include <strata/frontend/report.h>
 #include <strata/io/formats.h>
+#include <strata/io/openfoam_case.h>
 #include <strata/io/write_report.h>
 #include <strata/io/write_surface.h>
 #include <strata/io/write_volume.h>
+#include <strata/module/distribution.h>
 #include <strata/module/step_sizes.h>
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <limits>
 #include <utility>
 
@@ -169,6 +172,7 @@ Request make_request(Job job, const Options& options) {
 Result run(const Request& request, Progress* progress) {
     Result r;
     r.job = request.job;
+    r.options = request.options;
     const std::string source = request.source.empty() ? input_name(request.inputs) : request.source;
     r.any_cad = !request.surface && any_cad_input(request.inputs);
     const auto t0 = std::chrono::steady_clock::now();
@@ -183,35 +187,79 @@ Result run(const Request& request, Progress* progress) {
     return r;
 }
 
-std::vector<std::string> output_files(Job job, const std::string& output) {
+std::string mesh_output(Job job, const std::string& output, const OutputOptions& how) {
+    if (!how.foam_case || job == Job::Surface) return output;
+    return foam_polymesh_path(foam_case_directory(output));
+}
+
+std::vector<std::string> output_files(Job job, const std::string& output, const OutputOptions& how) {
     if (job == Job::Surface) return {output};
-    std::vector<std::string> files = volume_output_files(output);
-    files.push_back(report_path(output));
+    const std::string mesh = mesh_output(job, output, how);
+    std::vector<std::string> files = how.foam_case ? std::vector<std::string>{mesh} : volume_output_files(mesh);
+    files.push_back(report_path(mesh));
     return files;
 }
 
 void check_outputs(Job job, const std::string& output, MshFormat msh, const std::vector<std::string>& inputs,
-                   const std::vector<std::string>& extra) {
-    if (job == Job::Surface)
+                   const std::vector<std::string>& extra, const OutputOptions& how) {
+    const bool foam = how.foam_case && job != Job::Surface;
+    std::error_code ec;
+    if (job != Job::Surface && !foam && !is_polymesh_path(output) && std::filesystem::is_directory(output, ec))
+        throw InputError("cannot write '" + output +
+                         "': it is a directory; for an OpenFOAM case there add OutputOptions::foam_case = true, "
+                         "else name a mesh file");
+    // No output replaces an input, and every output can be created (a run that takes minutes
+    // should not end on a name that cannot be written); the first is the format's check's.
+    std::vector<std::string> files = output_files(job, output, how);
+    files.insert(files.end(), extra.begin(), extra.end());
+    std::vector<std::string> in_case;  // a case's polyMesh, 0/ and files, which its own check checks
+    if (foam)
+        in_case = check_foam_case_output(foam_case_directory(output));
+    else if (job == Job::Surface)
         check_surface_output(output, msh);
     else
         check_volume_output(output, msh);
-    // No output replaces an input, and every output can be created (a run that takes minutes
-    // should not end on a name that cannot be written); the first is the format's check's.
-    std::vector<std::string> files = output_files(job, output);
-    files.insert(files.end(), extra.begin(), extra.end());
-    check_outputs_are_not_inputs(files, inputs);
-    for (std::size_t i = 1; i < files.size(); ++i) check_output_path(files[i]);
+    std::vector<std::string> all = files;
+    all.insert(all.end(), in_case.begin(), in_case.end());
+    check_outputs_are_not_inputs(all, inputs);
+    for (std::size_t i = 1; i < files.size(); ++i) {
+        // In a case directory still to be made (the case, its constant/): its check made one.
+        const std::filesystem::path parent = std::filesystem::path(files[i]).parent_path();
+        const bool made_later = foam && !std::filesystem::is_directory(parent, ec);
+        if (!made_later) check_output_path(files[i]);
+    }
 }
 
-void write_outputs(const Result& result, const std::string& output, MshFormat msh, Progress* progress,
-                   OutputSet& outputs) {
+FoamCaseParams foam_case_params(const Options& options) {
+    FoamCaseParams p;
+    const DistributionParams& d = options.layers.params.distribution;
+    if (d.reynolds > 0.0) p.reynolds = d.reynolds;
+    p.reference_length = d.reference_length;
+    try {
+        p.first_height = resolve(d).first_height;
+        p.yplus = p.first_height / first_height_from_yplus(1.0, p.reynolds, p.reference_length);
+    } catch (const InputError&) {
+        p.first_height = p.yplus = 0.0;  // not said: the layers' own check names the problem
+    }
+    return p;
+}
+
+WrittenOutputs write_outputs(const Result& result, const std::string& output, MshFormat msh, Progress* progress,
+                             OutputSet& outputs) {
+    WrittenOutputs w;
+    const OutputOptions& how = result.options.output;
+    w.files = output_files(result.job, output, how);
     if (result.job == Job::Surface) {
         write_surface(result.surface, output, msh, progress, &outputs);
-        return;
+        return w;
     }
-    write_volume(result.volume(), output, msh, progress, &outputs);
-    write_report(result.report, report_path(output), &outputs);
+    if (how.foam_case)
+        w.foam_case = write_foam_case(result.volume(), foam_case_directory(output), foam_case_params(result.options),
+                                      progress, &outputs);
+    else
+        write_volume(result.volume(), output, msh, progress, &outputs);
+    write_report(result.report, report_path(mesh_output(result.job, output, how)), &outputs);
+    return w;
 }
 
 }  // namespace strata

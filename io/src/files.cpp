@@ -60,25 +60,33 @@ namespace {
 constexpr int kSlots = 64;
 constexpr std::size_t kSlotPath = 4096;
 
+/// What a slot holds: a file, a directory removed with its files, or a directory made for
+/// outputs (OutputSet::make_directory), removed only once empty.
+enum class SlotKind { File, Tree, Made };
+
 struct Slot {
     std::atomic<int> state{0};  // 0 free, 1 being filled, 2 registered
-    bool directory = false;
+    SlotKind kind = SlotKind::File;
     char path[kSlotPath] = {};
 };
 
 Slot g_slots[kSlots];
 
-int register_temporary(const std::string& path, bool directory) {
+int register_temporary(const std::string& path, SlotKind kind) {
     if (path.size() >= kSlotPath) return -1;
     for (int i = 0; i < kSlots; ++i) {
         int expected = 0;
         if (!g_slots[i].state.compare_exchange_strong(expected, 1)) continue;
         std::memcpy(g_slots[i].path, path.c_str(), path.size() + 1);
-        g_slots[i].directory = directory;
+        g_slots[i].kind = kind;
         g_slots[i].state.store(2);
         return i;
     }
     return -1;  // more than kSlots outputs at once: removed by the destructors only
+}
+
+int register_temporary(const std::string& path, bool directory) {
+    return register_temporary(path, directory ? SlotKind::Tree : SlotKind::File);
 }
 
 void unregister_temporary(int slot) {
@@ -122,11 +130,19 @@ ScopedTemporary::~ScopedTemporary() {
 
 void remove_temporaries() noexcept {
     for (Slot& s : g_slots) {
-        if (s.state.load() != 2) continue;
-        if (s.directory)
+        if (s.state.load() != 2 || s.kind == SlotKind::Made) continue;
+        if (s.kind == SlotKind::Tree)
             remove_directory_now(s.path);
         else
             ::unlink(s.path);
+    }
+    // Then the directories made for outputs, once the temporaries in them are gone: a directory
+    // inside another is emptied by an earlier pass, whatever the slots' order.
+    for (int pass = 0; pass < kSlots; ++pass) {
+        bool removed = false;
+        for (Slot& s : g_slots)
+            if (s.state.load() == 2 && s.kind == SlotKind::Made && ::rmdir(s.path) == 0) removed = true;
+        if (!removed) break;
     }
 }
 
@@ -439,6 +455,33 @@ void AtomicDirectory::commit() {
     fs::remove_all(old, ec);
 }
 
+OutputSet::~OutputSet() {
+    files_.clear();  // their temporaries first, then the directories they were in
+    directories_.clear();
+    for (auto m = made_.rbegin(); m != made_.rend(); ++m) {
+        if (!committed_) ::rmdir(m->first.c_str());  // only if nothing else was put in it
+        unregister_temporary(m->second);
+    }
+}
+
+void OutputSet::make_directory(const std::string& path) {
+    const std::string dir = without_trailing_slash(path);
+    std::error_code ec;
+    if (fs::is_directory(dir, ec)) return;
+    require_parent_directory(dir);
+    if (fs::exists(dir, ec))
+        throw InputError("cannot write into '" + dir +
+                         "': it is a file, not a directory; remove it or choose another output path");
+    // Registered before it exists, so that a signal between the two still finds it.
+    const int slot = register_temporary(dir, SlotKind::Made);
+    if (::mkdir(dir.c_str(), 0777) != 0) {
+        const int err = errno;
+        unregister_temporary(slot);
+        throw OutputError(write_failure(dir, err));
+    }
+    made_.emplace_back(dir, slot);
+}
+
 AtomicFile& OutputSet::file(const std::string& target) {
     files_.push_back(std::make_unique<AtomicFile>(target));
     return *files_.back();
@@ -501,6 +544,8 @@ void OutputSet::commit() {
     for (const Replaced& r : done)
         if (!r.backup.empty()) ::unlink(r.backup.c_str());
     for (const auto& f : files_) sync_directory(parent_of(f->target_));
+    committed_ = true;  // the directories made for the outputs stay
+    for (const auto& m : made_) sync_directory(parent_of(m.first));
 }
 
 }  // namespace strata

@@ -193,7 +193,10 @@ void write_volume(const VolumeMesh& mesh, const std::string& path, MshFormat msh
                   OutputSet* outputs) {
     check_volume_output(path, msh);
     if (is_cobalt_path(path)) return write_cobalt(mesh, path, progress, outputs);
-    if (is_polymesh_path(path)) return write_polymesh(mesh, path, progress, outputs);
+    if (is_polymesh_path(path)) {
+        write_polymesh(mesh, path, progress, outputs);
+        return;
+    }
     if (is_cgns_path(path)) return write_cgns(mesh, path, progress, outputs);
     require_sound(check_volume_arrays(mesh), "cannot write '" + path + "': ");
     if (lower_extension(path) == ".msh" && msh.version == 4.1 && !msh.binary)

@@ -23,6 +23,7 @@
 #include <strata/io/openfoam.h>
 
 #include "buffered_file.h"
+#include "foam_dictionary.h"
 
 #include <algorithm>
 #include <array>
@@ -101,27 +102,8 @@ PolyMesh build_polymesh(const VolumeMesh& mesh, const std::string& where, int th
 // The files.
 
 void put_header(BufferedFile& out, std::string_view cls, std::string_view object, std::string_view note = {}) {
-    out.put(
-        "/*--------------------------------*- C++ -*----------------------------------*\\\n"
-        "  Written by Strata, a near-body hybrid mesh generator, for OpenFOAM\n"
-        "\\*---------------------------------------------------------------------------*/\n"
-        "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       ");
-    out.put(cls);
-    out.put(";\n");
-    if (!note.empty()) {
-        out.put("    note        \"");
-        out.put(note);
-        out.put("\";\n");
-    }
-    out.put("    location    \"constant/polyMesh\";\n    object      ");
-    out.put(object);
-    out.put(
-        ";\n}\n"
-        "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //\n\n");
+    out.put(foam_header(cls, "constant/polyMesh", object, note));
 }
-
-constexpr std::string_view kFooter =
-    "// ************************************************************************* //\n";
 
 void put_labels(BufferedFile& out, const std::vector<Index>& labels) {
     out.put('\n');
@@ -132,7 +114,7 @@ void put_labels(BufferedFile& out, const std::vector<Index>& labels) {
         out.put('\n');
     }
     out.put(")\n\n\n");
-    out.put(kFooter);
+    out.put(kFoamFooter);
 }
 
 void write_points(BufferedFile& out, const VolumeMesh& mesh) {
@@ -146,7 +128,7 @@ void write_points(BufferedFile& out, const VolumeMesh& mesh) {
         out.put(")\n");
     }
     out.put(")\n\n\n");
-    out.put(kFooter);
+    out.put(kFoamFooter);
 }
 
 void write_faces(BufferedFile& out, const PolyMesh& pm, Progress* progress) {
@@ -168,7 +150,7 @@ void write_faces(BufferedFile& out, const PolyMesh& pm, Progress* progress) {
         out.put(")\n");
     }
     out.put(")\n\n\n");
-    out.put(kFooter);
+    out.put(kFoamFooter);
 }
 
 void write_boundary(BufferedFile& out, const PolyMesh& pm) {
@@ -195,7 +177,7 @@ void write_boundary(BufferedFile& out, const PolyMesh& pm) {
         out.put(";\n    }\n");
     }
     out.put(")\n\n");
-    out.put(kFooter);
+    out.put(kFoamFooter);
 }
 
 }  // namespace
@@ -230,7 +212,8 @@ PolyMesh to_polymesh(const VolumeMesh& mesh, int threads) {
     return build_polymesh(mesh, "cannot convert to an OpenFOAM polyMesh: ", threads);
 }
 
-void write_polymesh(const VolumeMesh& mesh, const std::string& path, Progress* progress, OutputSet* outputs) {
+std::vector<PolyPatch> write_polymesh(const VolumeMesh& mesh, const std::string& path, Progress* progress,
+                                      OutputSet* outputs) {
     report(progress, "writing", 0.0);
     const std::string where = "cannot write OpenFOAM polyMesh '" + path + "': ";
     check_output_directory(path);  // before the work: a bad path should not cost the conversion
@@ -272,6 +255,7 @@ void write_polymesh(const VolumeMesh& mesh, const std::string& path, Progress* p
     }
     report(progress, "writing", 1.0);  // cancelled here: the temporary directory goes, nothing is written
     if (!outputs) own.commit();
+    return pm.patches;
 }
 
 }  // namespace strata

@@ -129,6 +129,9 @@ const std::vector<Keyword>& keywords() {
                 case OptionStage::Mesh:
                     takes = kMesh | kGmshModel;
                     break;
+                case OptionStage::Output:  // with output=: a Gmsh model's mesh stays in Gmsh
+                    takes = kLayers | kMesh;
+                    break;
             }
             Keyword k{spec.keyword,
                       spec.param,
@@ -464,7 +467,10 @@ py::object run_job(Job job, const py::object& input, const py::dict& kwargs, con
     o.surface.input = input_name(o.surface.inputs);
     const Request request = make_request(job, o);
     const MshFormat msh(parse_msh_version(msh_version), binary);
-    if (output) check_outputs(job, *output, msh, request.inputs);
+    if (o.output.foam_case && !output)
+        throw InputError("OutputOptions::foam_case = true writes an OpenFOAM case: name its directory, "
+                         "output=\"CASE\"");
+    if (output) check_outputs(job, *output, msh, request.inputs, {}, o.output);
     return with_progress(callback, timeout, [&](Progress* progress) -> py::object {
         Result r = run(request, progress);
         const auto t = std::chrono::steady_clock::now();

@@ -7,6 +7,7 @@
     m.patch_names, m.faces("farfield")["triangle"]
     m.report["quality"]["min_scaled_jacobian"], m.report["patches"]   # OUT.report.json's keys
     m.write("sphere.cgr")   # or output="sphere.cgr" in the call
+    strata.mesh("sphere.stl", layers=10, first_height=1e-3, output="case", foam_case=True)  # an OpenFOAM case
 
 surface(), layers() and mesh() are the strata program's subcommands. Their keywords are the
 Params structs' fields (strata.keywords() lists each with its default and the C++ parameter
@@ -137,4 +138,5 @@ mesh = _pipeline(
     "mesh",
     "mesh(input, ...) -> Mesh: the whole pipeline: surface, boundary layers, pyramids, tetrahedra "
     "to the farfield; one validated hybrid mesh. output: also write it (.cgr with its .bc map, "
-    ".msh, .vtk, .su2, ...) and OUTPUT.report.json.")
+    ".msh, .vtk, .su2, ...) and OUTPUT.report.json; with foam_case=True, output is an OpenFOAM case "
+    "directory (its constant/polyMesh and a simpleFoam start round it).")

@@ -728,6 +728,52 @@ TEST(Cli, MeshToOpenFoamPolyMeshAndCgns) {
     EXPECT_TRUE(fs::exists(dir.file("s.cgns.report.json")));
 }
 
+TEST(Cli, FoamCaseWritesACaseThatRunsAndKeepsTheUsersFiles) {
+    // -o CASE --foam-case: the polyMesh, its report and the case made from nothing; the summary's
+    // case: and run: lines; a rerun keeps an edited file, makes 0/ anew and says so; the same
+    // bytes run after run. (OpenFOAM runs such a case: OpenFOAM.SimpleFoamHemisphereCylinderFoamCase.)
+    test::ScratchDir dir("cli_foam_case");
+    const std::string mesh =
+        "mesh '" + example_data("sphere.stl") + "' --layers 3 --first-height 2e-3 --farfield-size 6";
+    CliResult r = strata_cli(dir, mesh + " -o run/case --foam-case");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.err.find("cannot write the OpenFOAM case 'run/case': directory 'run' does not exist"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(files_in(dir).empty());
+    r = strata_cli(dir, mesh + " -o case --foam-case --reynolds 2e5");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("case: case, simpleFoam with k-omega SST: U (1 0 0), Re 200000 on L 1, nu 5e-06, first cells "
+                         "at y+ about "),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("wrote system/controlDict system/fvSchemes system/fvSolution constant/transportProperties "
+                         "constant/turbulenceProperties 0.orig/U 0.orig/p 0.orig/k 0.orig/omega 0.orig/nut 0/ (a copy "
+                         "of 0.orig/)\nrun: potentialFoam -case case && simpleFoam -case case\n"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("wrote case/constant/polyMesh and case/constant/polyMesh.report.json"), std::string::npos)
+        << r.out;
+    const std::vector<std::string> texts = {"system/controlDict", "system/fvSolution", "0.orig/U", "0/nut",
+                                            "constant/polyMesh/boundary", "constant/polyMesh/points"};
+    std::vector<std::string> first;
+    for (const std::string& f : texts) first.push_back(slurp(dir.file("case/" + f)));
+    EXPECT_NE(first[2].find("type            freestreamVelocity;"), std::string::npos) << first[2];
+    // The user edits the numerics; potentialFoam wrote 0/U; the mesh is written again, through
+    // the polyMesh's own path this time (the same case).
+    std::ofstream(dir.file("case/system/fvSchemes")) << "mine";
+    std::ofstream(dir.file("case/0/U")) << "potentialFoam's";
+    r = strata_cli(dir, mesh + " -o case/constant/polyMesh --foam-case --reynolds 2e5");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("; kept the case's own system/fvSchemes (delete one to have Strata's)"), std::string::npos)
+        << r.out;
+    EXPECT_EQ(slurp(dir.file("case/system/fvSchemes")), "mine");
+    for (std::size_t i = 0; i < texts.size(); ++i)
+        EXPECT_TRUE(slurp(dir.file("case/" + texts[i])) == first[i]) << texts[i] << " differs on the rerun";
+    // A directory named without the flag: refused before any work, saying what to add.
+    expect_clean_failure(mesh + " -o .", "it is a directory; for an OpenFOAM case there add --foam-case", "dir");
+}
+
 TEST(Cli, BadOutputPathsFailCleanly) {
     const std::string in = "mesh '" + example_data("sphere.stl") + "' --layers 3 --first-height 2e-3 -o ";
     expect_clean_failure(in + "nocase/constant/polyMesh", "directory 'nocase/constant' does not exist", "polymesh_dir");

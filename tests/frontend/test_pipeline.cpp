@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -139,4 +140,40 @@ TEST(Pipeline, NoInputIsAnInputError) {
     Request r;
     r.job = Job::Surface;
     EXPECT_THROW(run(r), InputError);
+}
+
+TEST(Pipeline, AFoamCasesOutputsAndFlow) {
+    // -o CASE with foam_case: the mesh is CASE/constant/polyMesh, its report beside it; the flow
+    // from the layer options (Re from DistributionParams::reynolds where given, y+ of the first height).
+    OutputOptions foam;
+    foam.foam_case = true;
+    EXPECT_EQ(mesh_output(Job::Mesh, "run/case", foam), "run/case/constant/polyMesh");
+    EXPECT_EQ(mesh_output(Job::Layers, "run/case/constant/polyMesh", foam), "run/case/constant/polyMesh");
+    EXPECT_EQ(mesh_output(Job::Mesh, "run/case", {}), "run/case");
+    EXPECT_EQ(output_files(Job::Mesh, "case", foam),
+              (std::vector<std::string>{"case/constant/polyMesh", "case/constant/polyMesh.report.json"}));
+    Options o;
+    o.layers.params.distribution.first_height = 1e-3;
+    FoamCaseParams p = foam_case_params(o);
+    EXPECT_EQ(p.reynolds, 1e6);
+    EXPECT_EQ(p.reference_length, 1.0);
+    EXPECT_EQ(p.first_height, 1e-3);
+    EXPECT_NEAR(p.yplus, 1e-3 * 1e6 * std::sqrt(0.5 * 0.026 * std::pow(1e6, -1.0 / 7.0)), 1e-9);
+    o.layers.params.distribution.reynolds = 2e5;
+    o.layers.params.distribution.reference_length = 0.5;
+    p = foam_case_params(o);
+    EXPECT_EQ(p.reynolds, 2e5);
+    EXPECT_EQ(p.reference_length, 0.5);
+    EXPECT_DOUBLE_EQ(foam_viscosity(p), 0.5 / 2e5);
+
+    // Checked before the work: a directory without the flag is refused saying what to add; with
+    // it, a case in a directory that does not exist, naming it.
+    test::ScratchDir dir("pipeline_foam_case");
+    const std::vector<std::string> inputs = {test::example_data("sphere.stl")};
+    test::expect_error<InputError>([&] { check_outputs(Job::Mesh, dir.path().string(), {}, inputs); },
+                                   {"it is a directory", "OutputOptions::foam_case = true"});
+    EXPECT_NO_THROW(check_outputs(Job::Mesh, dir.file("case"), {}, inputs, {}, foam));
+    test::expect_error<InputError>([&] { check_outputs(Job::Mesh, dir.file("no/case"), {}, inputs, {}, foam); },
+                                   {"cannot write the OpenFOAM case", "does not exist"});
+    EXPECT_TRUE(test::dir_entries(dir.path()).empty());  // checking writes nothing
 }

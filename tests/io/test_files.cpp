@@ -195,3 +195,47 @@ TEST(RemoveTemporaries, RemovesUncommittedFilesAndDirectoriesAtOnce) {
     EXPECT_EQ(test::dir_entries(dir.path()), std::vector<std::string>{"kept"});
     EXPECT_EQ(slurp(dir.file("kept")), "old");
 }
+
+TEST(OutputSet, DirectoriesMadeForTheOutputsStayOnlyWithThem) {
+    ScratchDir dir("files_made_directories");
+    {
+        OutputSet set;
+        set.make_directory(dir.file("case"));
+        set.make_directory(dir.file("case/system/"));
+        set.make_directory(dir.file("case"));  // made already: nothing more
+        std::ofstream(set.file(dir.file("case/system/controlDict")).temp_path()) << "dict";
+        AtomicDirectory& d = set.directory(dir.file("case/0"));
+        std::ofstream(d.file("U")) << "U";
+        EXPECT_EQ(test::dir_entries(dir.file("case")).size(), 2u);  // system/ and 0/'s temporary
+    }  // not committed: the temporaries go, then the directories made for them
+    EXPECT_TRUE(test::dir_entries(dir.path()).empty());
+    test::expect_error<InputError>([&] { OutputSet().make_directory(dir.file("no/case")); },
+                                   {"no/case", "directory '" + dir.file("no") + "' does not exist"});
+    std::ofstream(dir.file("file")) << "x";
+    test::expect_error<InputError>([&] { OutputSet().make_directory(dir.file("file")); }, {"file", "is a file"});
+    fs::remove(dir.file("file"));
+    {
+        OutputSet set;
+        set.make_directory(dir.file("case"));
+        set.make_directory(dir.file("case/system"));
+        std::ofstream(set.file(dir.file("case/system/controlDict")).temp_path()) << "dict";
+        set.commit();
+    }
+    EXPECT_EQ(slurp(dir.file("case/system/controlDict")), "dict");
+    // A directory that was there is never removed, even empty.
+    fs::create_directory(dir.file("case/constant"));
+    { OutputSet().make_directory(dir.file("case/constant")); }
+    EXPECT_EQ(test::dir_entries(dir.file("case")), (std::vector<std::string>{"constant", "system"}));
+}
+
+TEST(RemoveTemporaries, RemovesTheDirectoriesMadeForOutputsInnermostFirst) {
+    ScratchDir dir("files_remove_made");
+    OutputSet set;
+    set.make_directory(dir.file("case"));
+    set.make_directory(dir.file("case/constant"));
+    AtomicDirectory& poly = set.directory(dir.file("case/constant/polyMesh"));
+    std::ofstream(poly.file("points")) << "points";
+    std::ofstream(set.file(dir.file("case/constant/transportProperties")).temp_path()) << "nu";
+    remove_temporaries();  // what a signal handler calls
+    EXPECT_TRUE(test::dir_entries(dir.path()).empty());
+}

@@ -26,6 +26,7 @@
 #include <vector>
 
 using namespace strata;
+using strata::test::CancelAt;
 using strata::test::ScratchDir;
 namespace fs = std::filesystem;
 
@@ -296,16 +297,6 @@ TEST(WritePolyMesh, ByteIdenticalRerunsAndTheDirectoryReplacedWhole) {
     ASSERT_EQ(test::dir_entries(path), (std::vector<std::string>{"boundary", "faces", "neighbour", "owner", "points"}));
     for (const auto& [f, text] : first) EXPECT_TRUE(slurp(path + "/" + f) == text) << f;
 }
-
-namespace {
-struct CancelAt : Progress {
-    double at;
-    double last = 0.0;
-    explicit CancelAt(double a) : at(a) {}
-    void report(std::string_view, double fraction) override { last = fraction; }
-    bool cancelled() const override { return last >= at; }
-};
-}  // namespace
 
 TEST(WritePolyMesh, BadPathsBadMeshesAndCancellingLeaveNothing) {
     ScratchDir dir("polymesh_bad");

@@ -490,3 +490,27 @@ def test_binary_msh_output(tmp_path):
     assert not (tmp_path / "x.cgr").exists()
     with pytest.raises(TypeError, match="binary"):
         strata.layers(SPHERE_STL, binary="yes", **SMALL)
+
+
+def test_foam_case_is_the_shared_options_keyword(tmp_path):
+    # --foam-case through the option table: layers() and mesh() take it, surface() and a Gmsh
+    # model (which stays in Gmsh) do not.
+    for function in (strata.mesh, strata.layers):
+        assert inspect.signature(function).parameters["foam_case"].default is False
+    assert "foam_case" not in inspect.signature(strata.surface).parameters
+    assert "foam_case" not in [k["name"] for k in strata.keywords("gmsh")]
+    assert {k["name"]: k["param"] for k in strata.keywords()}["foam_case"] == "OutputOptions::foam_case"
+    case = tmp_path / "case"
+    m = strata.mesh(SPHERE_STL, output=str(case), foam_case=True, reynolds=2e5, **SMALL)
+    assert len(m.prisms) > 0
+    for f in ("constant/polyMesh/boundary", "constant/polyMesh.report.json", "system/controlDict",
+              "system/fvSchemes", "system/fvSolution", "constant/transportProperties",
+              "constant/turbulenceProperties", "0.orig/U", "0/U", "0/omega"):
+        assert (case / f).is_file(), f
+    assert "nu              5e-06;" in (case / "constant/transportProperties").read_text()
+    assert (case / "0/nut").read_text() == (case / "0.orig/nut").read_text()
+    with pytest.raises(strata.InputError, match=r"foam_case=True writes an OpenFOAM case"):
+        strata.mesh(SPHERE_STL, foam_case=True, **SMALL)
+    # A case directory named without foam_case is refused before any work, saying what to add.
+    with pytest.raises(strata.InputError, match=r"it is a directory; for an OpenFOAM case there add foam_case=True"):
+        strata.mesh(SPHERE_STL, output=str(case), **SMALL)

@@ -75,11 +75,21 @@ struct MeshOptions {
 /// The HybridParams of \p layers and \p mesh: the layers' threads are every stage's.
 HybridParams hybrid_params(const LayerOptions& layers, const MeshOptions& mesh);
 
-/// Everything a front-end sets: how the surface is made, the layers, the rest of the mesh.
+/// How a volume mesh is written besides its format (the layers and mesh commands).
+struct OutputOptions {
+    /// The output names an OpenFOAM case directory (CASE, or CASE/constant/polyMesh): the
+    /// polyMesh and a ready-to-run simpleFoam case round it (io/openfoam_case.h, pipeline.h's
+    /// foam_case_params).
+    bool foam_case = false;
+};
+
+/// Everything a front-end sets: how the surface is made, the layers, the rest of the mesh, how
+/// it is written.
 struct Options {
     SurfaceOptions surface;
     LayerOptions layers;
     MeshOptions mesh;
+    OutputOptions output;
 };
 
 /// The options that give \p mesh and \p prepare (their names for the enums: layer_params and
@@ -90,8 +100,9 @@ Options options_of(const HybridParams& mesh, const PrepareParams& prepare);
 /// Where an option applies: how the surface is made (every CLI command; Python's surface(),
 /// layers() and mesh()), the patches and orientation (those, and a Gmsh model meshed in
 /// place: Python's gmsh.mesh_current_model()), the layers (layers and mesh, and a Gmsh
-/// model), the rest of the hybrid mesh (mesh, and a Gmsh model).
-enum class OptionStage { Surface, Patches, Layers, Mesh };
+/// model), the rest of the hybrid mesh (mesh, and a Gmsh model), how a volume mesh is written
+/// (layers and mesh; not a Gmsh model, which stays in Gmsh).
+enum class OptionStage { Surface, Patches, Layers, Mesh, Output };
 
 /// One option of the front-ends: the CLI's flag, the Python keyword, the library parameter it
 /// sets, its help and the field it binds. The one list of them (option_table): the CLI

@@ -21,6 +21,7 @@
 #include <strata/hybrid/hybrid_mesh.h>
 #include <strata/io/files.h>
 #include <strata/io/formats.h>
+#include <strata/io/openfoam_case.h>
 #include <strata/module/layers.h>
 #include <strata/surface/prepare.h>
 
@@ -79,6 +80,8 @@ struct Result {
     SurfaceMesh surface;    ///< the surface the layers grew from (Job::Surface: the result)
     PrepareReport prepare;  ///< how it was made
     bool any_cad = false;   ///< some input was a CAD file
+    /// The options it ran with (Request::options): write_outputs reads how to write (OutputOptions).
+    Options options;
     /// Job::Layers: the layers, their coverage and their check.
     LayerMesh layers;
     LayerReport coverage;
@@ -106,18 +109,39 @@ struct Result {
 /// Throws what the stages throw.
 Result run(const Request& request, Progress* progress = nullptr);
 
-/// Every file run() writes for \p output: the mesh (and Cobalt60's .bc) and, for a volume, its
-/// report (report_path).
-std::vector<std::string> output_files(Job job, const std::string& output);
+/// The mesh's own path for `-o` \p output: \p output, or with OutputOptions::foam_case (for a
+/// volume) the case's CASE/constant/polyMesh (foam_case_directory: \p output is CASE, or that
+/// path already). The report and the plots' data go beside it (report_path, plot_data_path).
+std::string mesh_output(Job job, const std::string& output, const OutputOptions& how = {});
 
-/// Before run(): \p output (its format, with \p msh) and every file output_files names can
-/// be written, and none is one of \p inputs; \p extra outputs (the plots' data) too.
+/// Every file run() writes for \p output: the mesh (and Cobalt60's .bc) and, for a volume, its
+/// report (report_path); with a case, its polyMesh and report only (check_outputs checks the rest).
+std::vector<std::string> output_files(Job job, const std::string& output, const OutputOptions& how = {});
+
+/// Before run(): \p output (its format, with \p msh; with \p how's foam_case the case,
+/// check_foam_case_output) and every file output_files names can be written, and none is one of
+/// \p inputs; \p extra outputs (the plots' data) too. A directory that is not a polyMesh is
+/// refused without foam_case, which the message names.
 void check_outputs(Job job, const std::string& output, MshFormat msh, const std::vector<std::string>& inputs,
-                   const std::vector<std::string>& extra = {});
+                   const std::vector<std::string>& extra = {}, const OutputOptions& how = {});
+
+/// The flow of the case OutputOptions::foam_case writes for \p options: the Reynolds number of
+/// DistributionParams::reynolds where given (else FoamCaseParams' 1e6) on
+/// DistributionParams::reference_length, U 1 along x; the layers' first height and the y+ it
+/// gives at that Reynolds number (flat plate, first_height_from_yplus's estimate) for the comments.
+FoamCaseParams foam_case_params(const Options& options);
+
+/// What write_outputs wrote.
+struct WrittenOutputs {
+    std::vector<std::string> files;            ///< the mesh's files and its report, as a summary names them
+    std::optional<FoamCaseWritten> foam_case;  ///< with OutputOptions::foam_case: the case's files
+};
 
 /// Write \p result to \p output: the surface (Job::Surface), or the volume mesh and its report
-/// (result.report at report_path), into \p outputs (the caller commits them, with any of its own).
-void write_outputs(const Result& result, const std::string& output, MshFormat msh, Progress* progress,
-                   OutputSet& outputs);
+/// (result.report at report_path), into \p outputs (the caller commits them, with any of its own);
+/// with result.options.output.foam_case, the case (write_foam_case, foam_case_params) and the
+/// report beside its polyMesh.
+WrittenOutputs write_outputs(const Result& result, const std::string& output, MshFormat msh, Progress* progress,
+                             OutputSet& outputs);
 
 }  // namespace strata

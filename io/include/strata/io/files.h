@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace strata {
@@ -145,6 +146,7 @@ private:
 class OutputSet {
 public:
     OutputSet() = default;
+    ~OutputSet();
     OutputSet(const OutputSet&) = delete;
     OutputSet& operator=(const OutputSet&) = delete;
 
@@ -152,12 +154,21 @@ public:
     AtomicFile& file(const std::string& target);
     /// A new directory output for \p target (AtomicDirectory); committed after the files.
     AtomicDirectory& directory(const std::string& target);
+    /// Create the directory \p path, for outputs of this set to go in, if it does not exist yet
+    /// (an OpenFOAM case's `system/`): kept by commit(); removed again when the set is destroyed
+    /// without commit(), and by remove_temporaries(), if nothing else was put in it. An existing
+    /// directory is left as it is. InputError if its parent does not exist or \p path is a file,
+    /// OutputError (write_failure) if it cannot be created.
+    void make_directory(const std::string& path);
     /// Put every output in place, or none (see the class).
     void commit();
 
 private:
+    /// The directories made, each with its slot in remove_temporaries' registry.
+    std::vector<std::pair<std::string, int>> made_;
     std::vector<std::unique_ptr<AtomicFile>> files_;
     std::vector<std::unique_ptr<AtomicDirectory>> directories_;
+    bool committed_ = false;
 };
 
 }  // namespace strata

@@ -59,8 +59,9 @@ std::vector<std::string> foam_patch_names(const std::vector<std::string>& names)
 /// under a temporary name next to \p path and put in place only once complete; an existing
 /// directory is replaced as a whole. Does not validate: callers run require_valid_mesh first.
 /// InputError (missing parent directory, \p path a file, malformed arrays), TopologyError
-/// (faces that do not match). \p progress: stage "writing"; cancelled, nothing is left.
-void write_polymesh(const VolumeMesh& mesh, const std::string& path, Progress* progress = nullptr,
-                    OutputSet* outputs = nullptr);
+/// (faces that do not match). \p progress: stage "writing"; cancelled, nothing is left. Returns
+/// the patches written (the boundary file's, for a case's fields: openfoam_case.h).
+std::vector<PolyPatch> write_polymesh(const VolumeMesh& mesh, const std::string& path, Progress* progress = nullptr,
+                                      OutputSet* outputs = nullptr);
 
 }  // namespace strata
