@@ -6,6 +6,7 @@
 
 #include <initializer_list>
 #include <string>
+#include <utility>
 #include <string_view>
 #include <vector>
 
@@ -21,6 +22,10 @@ PatchKind parse_patch_kind(std::string_view text);
 
 /// A named group of faces (a Gmsh physical group, an STL solid, a CAD surface).
 struct Patch {
+    Patch() = default;
+    Patch(std::string name_, PatchKind kind_ = PatchKind::Wall, std::string body_ = {})
+        : name(std::move(name_)), kind(kind_), body(std::move(body_)) {}
+
     std::string name;
     PatchKind kind = PatchKind::Wall;
     /// The CAD body (a solid the file names, as STEP's products) whose faces the patch holds
