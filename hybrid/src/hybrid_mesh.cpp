@@ -12,7 +12,10 @@
 #include <strata/hybrid/outer_boundary.h>
 #include <strata/module/step_sizes.h>
 
+#include "tet_fill_parts.h"
+
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -509,6 +512,46 @@ std::optional<Repair> front_repair(const SurfaceMesh& region, Index top_patch, c
     return repair;
 }
 
+/// InputError where \p region encloses no volume (its faces point into what it bounds): the
+/// input's walls hold the domain from outside, as an air domain's outer boundary does. The
+/// wall patch of \p surface whose bounding box holds every other patch's is named, with the
+/// kinds that say what it is.
+void check_not_inside_out(const SurfaceMesh& region, const SurfaceMesh& surface) {
+    const double volume = tet_fill::enclosed_volume(region);
+    if (volume > 0.0) return;
+    std::vector<std::array<Vec3, 2>> box(surface.patches.size(),
+                                         {Vec3::Constant(std::numeric_limits<double>::infinity()),
+                                          Vec3::Constant(-std::numeric_limits<double>::infinity())});
+    for (Index f = 0; f < surface.num_faces(); ++f)
+        for (const Index* v = surface.face_begin(f); v != surface.face_end(f); ++v) {
+            auto& b = box[static_cast<std::size_t>(surface.face_patch[f])];
+            b[0] = b[0].cwiseMin(surface.points[static_cast<std::size_t>(*v)]);
+            b[1] = b[1].cwiseMax(surface.points[static_cast<std::size_t>(*v)]);
+        }
+    std::string outer;
+    for (std::size_t p = 0; p < box.size() && outer.empty(); ++p) {
+        if (surface.patches[p].kind != PatchKind::Wall) continue;
+        const double tol = 1e-9 * (box[p][1] - box[p][0]).norm();
+        bool holds = true;
+        for (std::size_t q = 0; q < box.size() && holds; ++q)
+            holds = q == p || !(box[q][0].x() <= box[q][1].x()) ||
+                    ((box[q][0].array() >= box[p][0].array() - tol).all() &&
+                     (box[q][1].array() <= box[p][1].array() + tol).all());
+        if (holds && box.size() > 1) outer = surface.patches[p].name;
+    }
+    std::string msg = "the region to fill between the layers and the farfield is inside out (its boundary encloses a "
+                      "volume of " + format_number(volume, 6) + "): the walls hold the domain from outside";
+    if (!outer.empty())
+        msg += "; the wall patch '" + outer + "' holds every other patch within its bounding box, as an air "
+               "domain's outer boundary does: if the input is the air round a body, give it "
+               "PrepareParams::patch_kinds " + outer + "=farfield (and the planes the domain is cut by symmetry or "
+               "other); if the flow is inside it, PrepareParams::internal_flow";
+    else
+        msg += ": give the input's outer boundary the kind farfield (PrepareParams::patch_kinds NAME=farfield), or "
+               "PrepareParams::internal_flow for a flow inside the walls";
+    throw InputError(msg);
+}
+
 /// fill_with_tets by the mesher \p params asks; where HXT fails (a configuration its Delaunay
 /// or boundary recovery cannot handle), TetGen fills the region instead and \p fallback says why.
 TetFill fill_falling_back(const SurfaceMesh& region, const std::vector<Vec3>& holes, const TetFillParams& params,
@@ -648,6 +691,7 @@ Outcome<Stages> attempt(const HybridParams& params, Rounds& rounds, HybridReport
     t0 = clock::now();
     s.outer = outer_part(rounds.surface, s.lm, rounds.has_outer, params.farfield, params.tets.growth);
     s.region = region_to_fill(rounds.surface.patches, s.pyr, s.outer, rounds.farfield_patch, s.top_patch);
+    check_not_inside_out(s.region, rounds.surface);
     const std::vector<double>& limit = rounds.constraints.node_thickness_limit;
     std::optional<Repair> crossing = front_repair(s.region, s.top_patch, s.lm, s.pyr, rounds.reach, limit, params.threads);
     rep.seconds_tets += seconds_since(t0);

@@ -1383,6 +1383,18 @@ TEST(Cli, AnStlWhoseFacesWereTessellatedApartHasItsCracksClosedAndSaid) {
     test::expect_contains(slurp(dir.file("c.msh.report.json")), {"\"split_faces\": 80"});
 }
 
+TEST(Cli, AnAirDomainWhoseOuterBoundaryIsLeftAWallIsRefusedNamingIt) {
+    // The hemisphere-cylinder's air domain with only its symmetry plane mapped: the outer sphere
+    // stays a wall round everything, and the region to fill is inside out. The error names the
+    // patch and the kinds to give it (it was "fill_with_tets: the boundary encloses a volume of
+    // -1.1e6", with nothing to act on).
+    const std::string args = "mesh '" + example_data("hemisphere_cylinder_halfdomain.stp") +
+                             "' --size 10 --layers 5 --first-height 0.02 --patch surface_2=symmetry -o h.msh";
+    expect_clean_failure(args, "the wall patch 'surface_1' holds every other patch within its bounding box, as an air "
+                               "domain's outer boundary does: if the input is the air round a body, give it --patch "
+                               "surface_1=farfield", "inside_out");
+}
+
 TEST(Cli, StepBodyNamesAreSaidAndNameAllTheirPatches) {
     // A STEP whose two solids the CAD tool named (cad_named_bodies.py): each face is still a
     // patch of its own (surface_N), the summary says which body holds which, and --patch BODY=
