@@ -478,37 +478,6 @@ TEST(DuplicateFaces, ACopyGoesTheOtherWayRoundStays) {
     EXPECT_EQ(r.num_faces(), quads + 1);
 }
 
-TEST(TJunctions, ATriangleIsSplitWhereTheFacesBesideItHaveANodeOnItsEdge) {
-    // The unit cube in triangles, one of its side's two triangles replaced by two meeting at the
-    // midpoint m of the edge it shares with the top (an exporter that meshed that edge twice): the
-    // top's triangle on that edge has m inside its open edge. Split there, the cube is closed.
-    SurfaceMesh m = test::cube_corners();
-    m.points.emplace_back(0.5, 0.0, 1.0);  // node 8, on edge 4-5
-    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) {
-        if (q[0] == 0 && q[1] == 1) {  // the side y = 0: (0, 1, 5) and (0, 5, 8), (0, 8, 4)
-            m.add_face({0, 1, 5}, 0);
-            m.add_face({0, 5, 8}, 0);
-            m.add_face({0, 8, 4}, 0);
-            continue;
-        }
-        m.add_face({q[0], q[1], q[2]}, 0);
-        m.add_face({q[0], q[2], q[3]}, 0);
-    }
-    EXPECT_FALSE(test::closed_manifold(m));
-    Index split = -1;
-    const SurfaceMesh r = split_t_junctions(m, &split);
-    EXPECT_EQ(split, 1);
-    EXPECT_EQ(r.num_faces(), m.num_faces() + 1);
-    EXPECT_TRUE(test::closed_manifold(r));
-    EXPECT_NEAR(test::enclosed_volume(r), 1.0, 1e-12);
-    // An open sheet's boundary has no node inside another's edge: nothing changes.
-    const SurfaceMesh sheet = quad_grid(3, 2);
-    const SurfaceMesh same = split_t_junctions(sheet, &split);
-    EXPECT_EQ(split, 0);
-    EXPECT_EQ(same.face_nodes, sheet.face_nodes);
-}
-
 /// The unit cube in triangles, the side y = 0 meshed with a node of its own on its top edge,
 /// \p lift above it (a curved edge's sagitta), and the top face left out if \p open.
 SurfaceMesh cube_with_a_crack(double lift, bool open) {
@@ -527,6 +496,25 @@ SurfaceMesh cube_with_a_crack(double lift, bool open) {
         m.add_face({q[0], q[2], q[3]}, 0);
     }
     return m;
+}
+
+TEST(TJunctions, ATriangleIsSplitWhereTheFacesBesideItHaveANodeOnItsEdge) {
+    // The unit cube in triangles, one of its side's two triangles replaced by two meeting at the
+    // midpoint m of the edge it shares with the top (an exporter that meshed that edge twice): the
+    // top's triangle on that edge has m inside its open edge. Split there, the cube is closed.
+    const SurfaceMesh m = cube_with_a_crack(0.0, false);  // node 8 on edge 4-5
+    EXPECT_FALSE(test::closed_manifold(m));
+    Index split = -1;
+    const SurfaceMesh r = split_t_junctions(m, &split);
+    EXPECT_EQ(split, 1);
+    EXPECT_EQ(r.num_faces(), m.num_faces() + 1);
+    EXPECT_TRUE(test::closed_manifold(r));
+    EXPECT_NEAR(test::enclosed_volume(r), 1.0, 1e-12);
+    // An open sheet's boundary has no node inside another's edge: nothing changes.
+    const SurfaceMesh sheet = quad_grid(3, 2);
+    const SurfaceMesh same = split_t_junctions(sheet, &split);
+    EXPECT_EQ(split, 0);
+    EXPECT_EQ(same.face_nodes, sheet.face_nodes);
 }
 
 TEST(StitchCracks, ANodeOffTheEdgeBesideItClosesTheSurfaceAndNothingElseChanges) {
