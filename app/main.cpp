@@ -1267,6 +1267,7 @@ int main(int argc, char** argv) {
                          std::string("strata ") + STRATA_VERSION + " (commit " + strata::strata_commit() + ")");
     app.footer(
         "Volume outputs (layers, mesh: -o OUT) by name: .cgr/.cog/.grd Cobalt60 (with a .bc patch map), .cgns CGNS, "
+        ".vtu/.vtm VTK XML for ParaView (cell quality fields; .vtm adds a block per patch), "
         "a directory named polyMesh (CASE/constant/polyMesh) OpenFOAM, .msh (--msh-version 4.1 or 2.2), and through "
         "Gmsh .vtk .su2 .unv .mesh .bdf .nas .inp .med .key.");
     app.require_subcommand(1);
@@ -1280,8 +1281,8 @@ int main(int argc, char** argv) {
     CLI::App* layers =
         app.add_subcommand("layers", "extrude boundary-layer prisms and hexahedra from the walls; write the layers");
     add_common_options(*layers, lc,
-                       "output volume mesh: .msh, .cgr/.cog/.grd (Cobalt60), .cgns (CGNS), CASE/constant/polyMesh "
-                       "(OpenFOAM, a directory), .vtk, .su2, ... by extension");
+                       "output volume mesh: .msh, .cgr/.cog/.grd (Cobalt60), .cgns (CGNS), .vtu/.vtm (ParaView), "
+                       "CASE/constant/polyMesh (OpenFOAM, a directory), .vtk, .su2, ... by extension");
     add_table_options(*layers, lc.o, {strata::OptionStage::Layers, strata::OptionStage::Output});
 
     Common mc;
@@ -1289,8 +1290,8 @@ int main(int argc, char** argv) {
                                            "the whole pipeline: surface, boundary layers, pyramids, tetrahedra; "
                                            "write one validated hybrid mesh");
     add_common_options(*meshcmd, mc,
-                       "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .cgns (CGNS), CASE/constant/polyMesh "
-                       "(OpenFOAM polyMesh, a directory), .msh, .vtk, .su2, ...");
+                       "output: .cgr/.cog/.grd (Cobalt60, with a .bc patch map), .cgns (CGNS), .vtu/.vtm (ParaView), "
+                       "CASE/constant/polyMesh (OpenFOAM polyMesh, a directory), .msh, .vtk, .su2, ...");
     add_table_options(*meshcmd, mc.o,
                       {strata::OptionStage::Layers, strata::OptionStage::Mesh, strata::OptionStage::Output});
     PlotOptions po;

@@ -37,6 +37,7 @@ packages=(
   # installed on a machine that already had the packages above (Qt 5, PySide2, VTK 9, Coin).
   freecad-python3
   python3-matplotlib   # the quality report's plots: strata report, strata mesh --plots (strata.report)
+  python3-vtk9         # VTK's own XML readers read Strata's .vtu/.vtm back in the tests (tests/io/read_vtk.py)
   snakemake            # the workflow meshing a family of variants (examples/pipeline) and its test
   slurm-wlm munge      # Slurm 22.05 (slurmctld, slurmd, sbatch) and munge: the workflow's test on a one-node Slurm
   time bc              # /usr/bin/time (peak memory) and bc (seconds) in the measuring scripts and their test

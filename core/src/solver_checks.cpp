@@ -322,11 +322,44 @@ void count_unused_points(const VolumeMesh& mesh, SolverChecks& r) {
     }
 }
 
+/// The figures of the face in slot \p s (outward from its cell, the owner) that checkMesh
+/// judges, \p centre the cells' centres: its geometry, the cosine of its non-orthogonality (an
+/// interior face) and its skewness.
+struct FaceFigures {
+    FaceGeometry f;
+    const Vec3* owner = nullptr;      ///< the centre of the slot's cell
+    const Vec3* neighbour = nullptr;  ///< the centre of the cell across; null at the boundary
+    double cos = 1.0;                 ///< between the centres' line and the area vector (interior)
+    double skew = 0.0;
+};
+
+FaceFigures face_figures(const FaceMatch& match, const std::vector<Vec3>& p, const std::vector<Vec3>& centre,
+                         std::uint64_t s) {
+    const FaceSlots& slots = match.slots;
+    const std::int64_t other = match.across[s];
+    Index v[4];
+    const int n = slots.nodes(s, v);
+    FaceFigures r;
+    r.f = face_geometry(p.data(), v, n);
+    r.owner = &centre[static_cast<std::size_t>(slots.cell(s))];
+    if (other >= 0) {
+        r.neighbour = &centre[static_cast<std::size_t>(slots.cell(static_cast<std::uint64_t>(other)))];
+        const Vec3 d = *r.neighbour - *r.owner;
+        r.cos = d.dot(r.f.area) / (d.norm() * r.f.area.norm() + kRootVSmall);
+    }
+    r.skew = skewness_of(p.data(), v, n, r.f, *r.owner, r.neighbour);
+    return r;
+}
+
+/// The angle of cosine \p c in degrees.
+double degrees(double c) {
+    return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
 /// The faces of the slots [\p begin, \p end) checked into \p q: each interior face once (from
 /// its lower slot), each boundary face from its cell; \p centre the cells' centres.
 void check_faces(const FaceMatch& match, const std::vector<Vec3>& p, const std::vector<Vec3>& centre,
                  std::uint64_t begin, std::uint64_t end, bool keep_skewed, Partial& q) {
-    const FaceSlots& slots = match.slots;
     const double severe_cos = std::cos(kFoamNonOrthogonalDeg * std::numbers::pi / 180.0);
     auto pyramid = [&q](const Vec3& area, const Vec3& fc, const Vec3& cc, std::uint64_t s) {
         if (!inverted_pyramid(area, fc, cc)) return;
@@ -336,32 +369,21 @@ void check_faces(const FaceMatch& match, const std::vector<Vec3>& p, const std::
     for (auto s = begin; s < end; ++s) {
         const std::int64_t other = match.across[s];
         if (other == FaceMatch::kUnmatched) continue;
-        const bool interior = other >= 0;
-        if (interior && static_cast<std::uint64_t>(other) < s) continue;
-        Index v[4];
-        const int n = slots.nodes(s, v);
-        const FaceGeometry f = face_geometry(p.data(), v, n);  // outward from the owner, cell(s)
-        const Vec3& co = centre[static_cast<std::size_t>(slots.cell(s))];
-        double skew = 0.0;
-        if (interior) {
-            const Vec3& cn = centre[static_cast<std::size_t>(slots.cell(static_cast<std::uint64_t>(other)))];
-            const Vec3 d = cn - co;
-            const double cos = d.dot(f.area) / (d.norm() * f.area.norm() + kRootVSmall);
+        if (other >= 0 && static_cast<std::uint64_t>(other) < s) continue;
+        const FaceFigures ff = face_figures(match, p, centre, s);
+        if (ff.neighbour) {
             ++q.faces;
-            q.sum_cos += cos;
-            if (cos < severe_cos) ++(cos > 1e-15 ? q.severe : q.errors);
-            if (cos < q.min_cos) q.min_cos = cos, q.worst_ortho = s, q.has_ortho = true;
-            skew = skewness_of(p.data(), v, n, f, co, &cn);
-            pyramid(-f.area, f.centre, cn, s);  // the neighbour's: its outward area is -area
-        } else {
-            skew = skewness_of(p.data(), v, n, f, co, nullptr);
+            q.sum_cos += ff.cos;
+            if (ff.cos < severe_cos) ++(ff.cos > 1e-15 ? q.severe : q.errors);
+            if (ff.cos < q.min_cos) q.min_cos = ff.cos, q.worst_ortho = s, q.has_ortho = true;
+            pyramid(-ff.f.area, ff.f.centre, *ff.neighbour, s);  // the neighbour's: its outward area is -area
         }
-        if (skew > kFoamSkewness) {
+        if (ff.skew > kFoamSkewness) {
             ++q.skew;
             if (keep_skewed) q.skewed.push_back(s);
         }
-        if (skew > q.max_skew) q.max_skew = skew, q.worst_skew = s, q.has_skew = true;
-        pyramid(f.area, f.centre, co, s);
+        if (ff.skew > q.max_skew) q.max_skew = ff.skew, q.worst_skew = s, q.has_skew = true;
+        pyramid(ff.f.area, ff.f.centre, *ff.owner, s);
     }
 }
 
@@ -398,7 +420,6 @@ void name_worst_faces(const FaceMatch& match, const std::vector<Vec3>& p, const 
         if (other >= 0) who += " and " + cell_name(slots, static_cast<std::uint64_t>(other));
         return "the face at " + format_point(f.centre) + " of " + who;
     };
-    auto degrees = [](double c) { return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi; };
     if (all.has_ortho) {
         r.max_non_orthogonality_deg = degrees(all.min_cos);
         r.mean_non_orthogonality_deg = degrees(all.sum_cos / static_cast<double>(all.faces));
@@ -435,6 +456,35 @@ SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int t
     }
     const Partial all = merge_partials(part, r, skewed);
     name_worst_faces(match, mesh.points, all, r);
+    return r;
+}
+
+CellSolverFigures cell_solver_figures(const VolumeMesh& mesh, const FaceMatch& match, int threads) {
+    CellSolverFigures r;
+    const FaceSlots& slots = match.slots;
+    const CellNumbering& cells = slots.cells();
+    std::vector<Vec3> centre;
+    cell_centres_and_aspects(slots, mesh.points, threads, centre, r.aspect_ratio);
+    const auto nc = static_cast<std::size_t>(cells.count());
+    r.non_orthogonality_deg.assign(nc, 0.0);
+    r.skewness.assign(nc, 0.0);
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads))
+    for (std::int64_t g = 0; g < cells.count(); ++g) {
+        const CellNumbering::Cell c = cells.locate(g);
+        const auto count = static_cast<std::uint64_t>(cell_faces(c.type).count);
+        const std::uint64_t s0 = slots.start(c.type) + static_cast<std::uint64_t>(c.index) * count;
+        double& ortho = r.non_orthogonality_deg[static_cast<std::size_t>(g)];
+        double& skew = r.skewness[static_cast<std::size_t>(g)];
+        for (std::uint64_t s = s0; s < s0 + count; ++s) {
+            const std::int64_t other = match.across[s];
+            if (other == FaceMatch::kUnmatched) continue;
+            // From the lower slot, as solver_checks takes each interior face: the same figures.
+            const bool lower = other < 0 || static_cast<std::uint64_t>(other) > s;
+            const FaceFigures ff = face_figures(match, mesh.points, centre, lower ? s : static_cast<std::uint64_t>(other));
+            if (ff.neighbour) ortho = std::max(ortho, degrees(ff.cos));
+            skew = std::max(skew, ff.skew);
+        }
+    }
     return r;
 }
 

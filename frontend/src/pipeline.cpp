@@ -226,7 +226,9 @@ void check_outputs(Job job, const std::string& output, MshFormat msh, const std:
         // In a case directory still to be made (the case, its constant/): its check made one.
         const std::filesystem::path parent = std::filesystem::path(files[i]).parent_path();
         const bool made_later = foam && !std::filesystem::is_directory(parent, ec);
-        if (!made_later) check_output_path(files[i]);
+        // A .vtm's blocks' directory: check_volume_output checked it as a directory.
+        const bool blocks = !foam && is_vtm_path(output) && files[i] == vtm_block_directory(output);
+        if (!made_later && !blocks) check_output_path(files[i]);
     }
 }
 

@@ -6,6 +6,7 @@
 #include <strata/core/error.h>
 #include <strata/core/mesh_check.h>
 #include <strata/io/cgns.h>
+#include <strata/io/vtk_xml.h>
 #include <strata/io/cobalt.h>
 #include <strata/io/files.h>
 #include <strata/io/formats.h>
@@ -198,6 +199,8 @@ void write_volume(const VolumeMesh& mesh, const std::string& path, MshFormat msh
         return;
     }
     if (is_cgns_path(path)) return write_cgns(mesh, path, progress, outputs);
+    if (is_vtu_path(path)) return write_vtu(mesh, path, progress, outputs);
+    if (is_vtm_path(path)) return write_vtm(mesh, path, progress, outputs);
     require_sound(check_volume_arrays(mesh), "cannot write '" + path + "': ");
     if (lower_extension(path) == ".msh" && msh.version == 4.1 && !msh.binary)
         return write_msh41_ascii(mesh, path, progress, outputs);  // Strata's own: Gmsh's printf()s took minutes

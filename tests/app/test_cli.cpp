@@ -728,6 +728,39 @@ TEST(Cli, MeshToOpenFoamPolyMeshAndCgns) {
     EXPECT_TRUE(fs::exists(dir.file("s.cgns.report.json")));
 }
 
+TEST(Cli, MeshToVtuAndVtmForParaView) {
+    // .vtu and .vtm by extension, with their reports; the .vtm's blocks in s_blocks/ beside it, one
+    // per patch and named after it; byte-identical for 1 and 2 threads. (Read back with VTK in
+    // tests/io/test_vtk_xml.cpp.)
+    test::ScratchDir dir("cli_vtk_xml");
+    const std::string common = " --layers 3 --first-height 2e-3 --farfield-size 6";
+    for (const char* threads : {"1", "2"}) {
+        const std::string sub = std::string("t") + threads;
+        fs::create_directories(dir.file(sub));
+        for (const char* ext : {".vtu", ".vtm"}) {
+            const CliResult r = strata_cli(
+                dir, "mesh '" + example_data("sphere.stl") + "' -o " + sub + "/s" + ext + common + " --threads " + threads);
+            ASSERT_EQ(r.code, 0) << r.err;
+        }
+    }
+    std::vector<std::string> blocks;
+    for (const auto& e : fs::directory_iterator(dir.file("t1/s_blocks"))) blocks.push_back(e.path().filename().string());
+    std::sort(blocks.begin(), blocks.end());
+    EXPECT_EQ(test::dir_entries(dir.file("t1")),
+              (std::vector<std::string>{"s.vtm", "s.vtm.report.json", "s.vtu", "s.vtu.report.json", "s_blocks"}));
+    const std::string vtm = slurp(dir.file("t1/s.vtm"));
+    EXPECT_NE(vtm.find("name=\"volume\" file=\"s_blocks/volume.vtu\""), std::string::npos) << vtm;
+    EXPECT_NE(vtm.find("<Block index=\"1\" name=\"boundary\">"), std::string::npos) << vtm;
+    ASSERT_GE(blocks.size(), 3u);  // the volume, the sphere and the farfield
+    for (const std::string& b : blocks) {
+        EXPECT_NE(vtm.find("s_blocks/" + b), std::string::npos) << b;
+        EXPECT_TRUE(slurp(dir.file("t1/s_blocks/" + b)) == slurp(dir.file("t2/s_blocks/" + b))) << b << " differs";
+    }
+    for (const char* f : {"s.vtu", "s.vtm"})
+        EXPECT_TRUE(slurp(dir.file(std::string("t1/") + f)) == slurp(dir.file(std::string("t2/") + f))) << f;
+    EXPECT_NE(slurp(dir.file("t1/s.vtu")).find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos);
+}
+
 TEST(Cli, FoamCaseWritesACaseThatRunsAndKeepsTheUsersFiles) {
     // -o CASE --foam-case: the polyMesh, its report and the case made from nothing; the summary's
     // case: and run: lines; a rerun keeps an edited file, makes 0/ anew and says so; the same

@@ -67,6 +67,7 @@ Previous previous_outputs(const std::string& dir, const std::string& name) {
         p.add(dir + "/" + name, "old mesh " + name);
     }
     if (name.ends_with(".cgr")) p.add(dir + "/" + name + ".bc", "old patch map");
+    if (name == "out.vtm") p.add(dir + "/out_blocks/volume.vtu", "old volume block");
     if (name != "out.stl") p.add(dir + "/" + name + ".report.json", "old report");
     return p;
 }
@@ -81,6 +82,8 @@ TEST(CliOutputs, AFullDiskFailsWithTheCauseAndKeepsThePreviousOutputOfEveryForma
                                                                 {"mesh", "out.vtk"},
                                                                 {"mesh", "out.cgr"},
                                                                 {"mesh", "out.cgns"},
+                                                                {"mesh", "out.vtu"},
+                                                                {"mesh", "out.vtm"},
                                                                 {"mesh", "polyMesh"},
                                                                 {"layers", "out.su2 --layers 20 --first-height 1e-3"},
                                                                 {"surface", "out.stl"}};
@@ -230,6 +233,7 @@ TEST(CliOutputs, SigtermAndSighupWhileWritingRemoveEveryTemporaryAndKeepThePrevi
                                                                             {SIGTERM, "out.cgr"},
                                                                             {SIGHUP, "out.cgns"},
                                                                             {SIGTERM, "polyMesh"},
+                                                                            {SIGTERM, "out.vtm"},
                                                                             {SIGHUP, "out.vtk"}}) {
         const Previous before = previous_outputs(dir.path().string(), name);
         std::vector<std::string> args{"mesh", kSphere, "-o", name};

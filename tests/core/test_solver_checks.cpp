@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -203,6 +204,34 @@ TEST(SolverChecks, FiguresAreTheSameForAnyThreadCount) {
         EXPECT_EQ(a.severely_non_orthogonal, b.severely_non_orthogonal);
         EXPECT_EQ(a.skew_faces, b.skew_faces);
     }
+    // Per cell (the .vtu's fields): the same for any thread count, and their largest values are
+    // the mesh's, exactly: each face's figures computed as solver_checks computes them.
+    const FaceMatch match = match_faces(m);
+    const CellSolverFigures one = cell_solver_figures(m, match, 1), three = cell_solver_figures(m, match, 3);
+    EXPECT_EQ(one.non_orthogonality_deg, three.non_orthogonality_deg);
+    EXPECT_EQ(one.skewness, three.skewness);
+    EXPECT_EQ(one.aspect_ratio, three.aspect_ratio);
+    ASSERT_EQ(one.skewness.size(), static_cast<std::size_t>(m.num_cells()));
+    EXPECT_EQ(*std::max_element(one.non_orthogonality_deg.begin(), one.non_orthogonality_deg.end()),
+              a.max_non_orthogonality_deg);
+    EXPECT_EQ(*std::max_element(one.skewness.begin(), one.skewness.end()), a.max_skewness);
+    EXPECT_EQ(*std::max_element(one.aspect_ratio.begin(), one.aspect_ratio.end()), a.max_aspect_ratio);
+}
+
+TEST(SolverChecks, PerCellFiguresAreTheLargestOfTheCellsFaces) {
+    // The leaning pair: its one interior face's non-orthogonality is both cells'; the mesh's
+    // worst skewness is one of the two cells'.
+    const VolumeMesh m = leaning_pair(0.5);
+    const SolverChecks s = checks(m);
+    const CellSolverFigures c = cell_solver_figures(m, match_faces(m));
+    ASSERT_EQ(c.non_orthogonality_deg.size(), static_cast<std::size_t>(m.num_cells()));
+    EXPECT_GT(s.max_non_orthogonality_deg, 10.0);
+    const std::size_t n = c.skewness.size();
+    for (std::size_t g = 0; g < n; ++g) {
+        EXPECT_EQ(c.non_orthogonality_deg[g], s.max_non_orthogonality_deg) << g;
+        EXPECT_LE(c.skewness[g], s.max_skewness) << g;
+    }
+    EXPECT_EQ(std::max(c.skewness[0], c.skewness[n - 1]), s.max_skewness);
 }
 
 namespace {

@@ -4,7 +4,7 @@
 // ranges, their boundary conditions (type, range, FaceCenter, family) and the base's families.
 // Errors: a missing directory and a malformed mesh throw and leave nothing behind.
 
-#include "core/box_mesh.h"
+#include "io/every_type_box.h"
 #include "test_support.h"
 
 #include <strata/core/error.h>
@@ -27,22 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Every cell type in a box (the arrangement tests/io/test_write_volume.cpp validates): hexahedra,
-/// six pyramids, two prisms in a row, six tetrahedra on top of the prisms. The y− and y+ sides
-/// hold the prisms' triangular ends and the other cubes' quadrilaterals.
-VolumeMesh every_type_box() {
-    test::BoxMesh box(3, 1, 2, 0.5);
-    box.set(1, 0, 0, test::CubeSplit::Pyramids);
-    box.set(2, 0, 0, test::CubeSplit::Prisms);
-    box.set(2, 0, 1, test::CubeSplit::Kuhn);
-    for (int i = 0; i < 2; ++i) box.remove(i, 0, 1);
-    VolumeMesh m = box.build();
-    m.boundary.patches[0] = {"inlet/left wall", PatchKind::Wall};  // '/' is no CGNS name character
-    m.boundary.patches[2] = {"symmetry", PatchKind::Symmetry};
-    m.boundary.patches[5] = {"farfield", PatchKind::Farfield};
-    m.boundary.patches[3] = {"outflow", PatchKind::Other};
-    return m;
-}
+using test::every_type_box;
 
 #define CG(call) ASSERT_EQ((call), CG_OK) << #call << ": " << cg_get_error()
 

@@ -28,6 +28,11 @@ TEST(Formats, PathsPickTheirWriter) {
     EXPECT_TRUE(is_cobalt_path("wing.cgr"));
     EXPECT_EQ(volume_output_files("case/constant/polyMesh"), std::vector<std::string>{"case/constant/polyMesh"});
     EXPECT_EQ(volume_output_files("m.cgns"), std::vector<std::string>{"m.cgns"});
+    EXPECT_TRUE(is_vtu_path("m.VTU"));
+    EXPECT_TRUE(is_vtm_path("out/m.vtm"));
+    EXPECT_FALSE(is_vtm_path("m.vtu"));
+    EXPECT_EQ(vtm_block_directory("out/m.VTM"), "out/m_blocks");
+    EXPECT_EQ(volume_output_files("m.vtm"), (std::vector<std::string>{"m.vtm", "m_blocks"}));
 }
 
 TEST(Formats, VolumeOutputsAreCheckedBeforeTheWork) {
@@ -37,7 +42,9 @@ TEST(Formats, VolumeOutputsAreCheckedBeforeTheWork) {
     std::filesystem::create_directory(dir.file("polyMesh"));
     EXPECT_NO_THROW(check_volume_output(dir.file("polyMesh")));  // replaced whole when written
     test::expect_error<InputError>([&] { check_volume_output(dir.file("m.xyz")); },
-                                   {"m.xyz", ".cgr", ".cgns (CGNS)", "polyMesh (OpenFOAM", ".msh"});
+                                   {"m.xyz", ".cgr", ".cgns (CGNS)", ".vtu, .vtm (VTK XML", "polyMesh (OpenFOAM", ".msh"});
+    EXPECT_NO_THROW(check_volume_output(dir.file("m.vtu")));
+    EXPECT_NO_THROW(check_volume_output(dir.file("m.vtm")));
     test::expect_error<InputError>([&] { check_volume_output(dir.file("missing/constant/polyMesh")); },
                                    {"missing/constant", "does not exist"});
     test::expect_error<InputError>([&] { check_volume_output(dir.file("missing/m.cgns")); }, {"does not exist"});

@@ -70,6 +70,20 @@ struct SolverChecks {
 SolverChecks solver_checks(const VolumeMesh& mesh, const FaceMatch& match, int threads = 0,
                            std::vector<std::uint64_t>* skewed = nullptr);
 
+/// checkMesh's figures per cell, in CellNumbering order (tetrahedra, pyramids, prisms,
+/// hexahedra): for colouring a mesh by them (the .vtu writer's cell fields).
+struct CellSolverFigures {
+    std::vector<double> non_orthogonality_deg;  ///< the largest over the cell's interior faces, degrees (0: none)
+    std::vector<double> skewness;               ///< the largest over all its faces
+    std::vector<double> aspect_ratio;           ///< the cell's aspect ratio
+};
+
+/// checkMesh's non-orthogonality, skewness and aspect ratio per cell of \p mesh, whose faces
+/// \p match matched: each face's figures exactly as solver_checks computes them (an interior
+/// face from its lower slot, so both its cells see the same value), the cell's the largest over
+/// its faces; faces that are not a clean match are skipped. The same for any \p threads.
+CellSolverFigures cell_solver_figures(const VolumeMesh& mesh, const FaceMatch& match, int threads = 0);
+
 /// checkMesh's skewness of the face with the \p n corners \p v of \p p between the cells whose
 /// centres (OpenFOAM's) are \p owner and \p neighbour, or, \p neighbour null, of a boundary
 /// face of the cell at \p owner: how far the line between the centres (at the boundary, the

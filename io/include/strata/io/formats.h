@@ -29,7 +29,8 @@ struct MshFormat {
 /// choices otherwise.
 void check_surface_output(const std::string& path, MshFormat msh = {});
 
-/// A volume output: Cobalt60 (.cgr, .cog, .grd, with its .bc patch map), CGNS (.cgns), an
+/// A volume output: Cobalt60 (.cgr, .cog, .grd, with its .bc patch map), CGNS (.cgns), VTK XML
+/// (.vtu; .vtm, whose blocks' directory may hold only .vtu and .vtp files if it exists), an
 /// OpenFOAM polyMesh directory (a path whose last component is `polyMesh`: a directory that
 /// does not exist yet or is replaced whole) or a format Gmsh writes volume meshes to (.msh, .vtk,
 /// .su2, .unv, ...; \p msh as for check_surface_output), in a directory that exists: InputError
@@ -42,11 +43,20 @@ bool is_cobalt_path(const std::string& path);
 /// CGNS: .cgns (any case).
 bool is_cgns_path(const std::string& path);
 
+/// VTK XML: .vtu (one UnstructuredGrid) and .vtm (a MultiBlock dataset), any case.
+bool is_vtu_path(const std::string& path);
+bool is_vtm_path(const std::string& path);
+
+/// The directory of a .vtm's datasets, replaced whole when it is written: "<path without its
+/// extension>_blocks" ("out/wing.vtm" -> "out/wing_blocks").
+std::string vtm_block_directory(const std::string& path);
+
 /// An OpenFOAM polyMesh directory: the last component of \p path (trailing slashes aside) is
 /// `polyMesh` (e.g. "case/constant/polyMesh").
 bool is_polymesh_path(const std::string& path);
 
-/// The files write_volume writes for \p path: the grid and, for Cobalt60, "<path>.bc".
+/// The files write_volume writes for \p path: the grid and, for Cobalt60, "<path>.bc"; for a
+/// .vtm, its blocks' directory.
 std::vector<std::string> volume_output_files(const std::string& path);
 
 /// About how many bytes a mesh of \p nodes nodes and \p cells cells (or faces, for a surface)

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Volume meshes to and from files: Cobalt60 (cobalt.h), OpenFOAM polyMesh (openfoam.h), CGNS
-/// (cgns.h) and every format Gmsh writes.
+/// (cgns.h), VTK XML (vtk_xml.h) and every format Gmsh writes.
 
 #include <strata/core/progress.h>
 #include <strata/core/volume_mesh.h>
@@ -14,7 +14,7 @@ namespace strata {
 
 /// Write \p mesh to \p path, the format from the extension (formats.h): .cgr, .cog or .grd as
 /// Cobalt60 with its .bc patch map (write_cobalt); a path whose last component is `polyMesh` as
-/// an OpenFOAM polyMesh directory (write_polymesh); .cgns as CGNS (write_cgns); .msh as MSH \p msh (4.1 or 2.2, ASCII or binary);
+/// an OpenFOAM polyMesh directory (write_polymesh); .cgns as CGNS (write_cgns); .vtu and .vtm as VTK XML (write_vtu, write_vtm); .msh as MSH \p msh (4.1 or 2.2, ASCII or binary);
 /// .vtk, .su2, .unv, ... through Gmsh: one discrete volume with all cells and a physical group "fluid" (3D), one
 /// discrete surface and one 2D physical group per boundary patch, named after the patch (add_volume_to_gmsh_model).
 /// Atomic (temporary name, then rename; every write checked and synced: OutputError on a full
