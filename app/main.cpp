@@ -242,6 +242,10 @@ void install_crash_handler() {
     for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) sigaction(sig, &sa, nullptr);
 }
 
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 /// One-line progress bar on stderr when it is a terminal; cancelled once Ctrl-C was pressed.
 class Terminal : public strata::Progress {
 public:
@@ -249,16 +253,20 @@ public:
     Terminal(bool quiet, std::string_view input) : draw_(!quiet && isatty(2)) { keep(g_input, input); }
     void report(std::string_view stage, double fraction) override {
         set_stage(stage);
+        if (stage != stage_) stage_ = stage, started_ = std::chrono::steady_clock::now();
         if (!draw_) return;
         const int w = 30, n = static_cast<int>(fraction * w + 0.5);
-        std::fprintf(stderr, "\r%-10.*s [%-*s] %3d%%", static_cast<int>(stage.size()), stage.data(), w,
-                     std::string(static_cast<std::size_t>(n), '#').c_str(), static_cast<int>(fraction * 100 + 0.5));
+        std::fprintf(stderr, "\r%-10.*s [%-*s] %3d%% %6.1f s", static_cast<int>(stage.size()), stage.data(), w,
+                     std::string(static_cast<std::size_t>(n), '#').c_str(), static_cast<int>(fraction * 100 + 0.5),
+                     seconds_since(started_));
         if (fraction >= 1.0) std::fprintf(stderr, "\n");
     }
     bool cancelled() const override { return g_interrupted.load(); }
 
 private:
     bool draw_;
+    std::string stage_;  ///< the stage reported last, and when it was first reported
+    std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
 };
 
 // ---------------------------------------------------------------------------------------
@@ -303,7 +311,6 @@ void add_table_options(CLI::App& cmd, strata::Options& o, std::initializer_list<
             spec.field);
         if (spec.show_default && !std::holds_alternative<bool& (*)(strata::Options&)>(spec.field))
             opt->capture_default_str();
-        if (spec.flag == "--layers") opt->required();
         if (spec.optional_size)
             opt->check(CLI::Validator(
                 [](std::string& text) -> std::string {
@@ -350,10 +357,6 @@ void add_common_options(CLI::App& cmd, Common& c, const std::string& output_help
 
 // ---------------------------------------------------------------------------------------
 // Summaries.
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 /// \p key of \p n, an integer of the report, as printf's %d takes it.
 int count(const strata::ReportNode& n, std::string_view key) {
@@ -465,6 +468,14 @@ void print_wall_sizing(const strata::ReportNode& w) {
             strata::format_number(n.number("ratio")).c_str(),
             strata::format_number(n.number("narrowest"), 3).c_str(), count(n, "narrowest_surface"),
             strata::format_number(n.number("size"), 3).c_str(), n.number("faces_estimate"));
+    if (w.number("walls_default_size") > 0.0)
+        std::printf(
+            "size: the walls are meshed at %s, a twentieth of their own bounding box's diagonal, the other faces "
+            "(the domain round them) up to %s, a twentieth of the model's (the default, none asked: --size sets "
+            "one for all)\n",
+            strata::format_number(w.number("walls_default_size"), 3).c_str(),
+            strata::format_number(w.number("thin_size") > 0.0 ? w.number("thin_size") : w.number("default_size"), 3)
+                .c_str());
     if (w.number("thin_size") > 0.0)
         std::printf(
             "size: the default size %s left a part thinner than it with its two sides meshed through the same "
@@ -1030,6 +1041,26 @@ void print_hybrid_summary(const strata::ReportNode& r, bool kept_surface) {
     print_cells(r, kept_surface);
 }
 
+/// "first height:" where none was asked (the report's "automatic_first_height"): the one chosen
+/// and from what.
+void print_first_height(const strata::ReportNode& r, const strata::Options& o) {
+    const strata::ReportValue* chosen = r.find("automatic_first_height");
+    if (!chosen) return;
+    const strata::ReportNode& a = chosen->node();
+    const strata::DistributionParams& d = o.layers.params.distribution;
+    const double growth = d.growth > 0.0 ? d.growth : strata::kDefaultGrowth;
+    const std::string what =
+        a.number("thickness_share") > 0.0
+            ? strata::format_number(100.0 * a.number("thickness_share"), 3) + " % of the walls' length " +
+                  strata::format_number(a.number("walls_length"), 4)
+            : "the thickness " + strata::format_number(d.thickness, 4) + " asked";
+    std::printf(
+        "first height: %s, none asked: %d layers at growth %s reach %s (--first-height H, or --yplus Y with "
+        "--reynolds RE, sets it)\n",
+        strata::format_number(a.number("first_height"), 3).c_str(), d.layers,
+        strata::format_number(growth, 3).c_str(), what.c_str());
+}
+
 /// "time: " and each stage of the report's times with its seconds.
 void print_times(const strata::ReportNode& r) {
     std::string line;
@@ -1184,6 +1215,7 @@ int run_layers(const Common& c) {
     if (c.quiet) return 0;
     print_surface_summary(r.report.node("surface"));
     print_wall_aspect_forecast(r.report.node("surface"));
+    print_first_height(r.report, r.options);
     print_layer_table(r.report);
     print_coverage(r.report);
     print_cells(r.report, !r.any_cad && !r.prepare.remeshed);
@@ -1213,6 +1245,7 @@ int run_mesh(const Common& c, const PlotOptions& po) {
     if (!c.quiet) {
         print_surface_summary(r.report.node("surface"));
         print_wall_aspect_forecast(r.report.node("surface"));
+        print_first_height(r.report, r.options);
         print_hybrid_summary(r.report, !r.any_cad && !r.prepare.remeshed);
         print_times(r.report);
         print_foam_case(written, r.options);

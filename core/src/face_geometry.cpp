@@ -39,6 +39,19 @@ BoundingBox bounding_box(const std::vector<Vec3>& points) {
     return b;
 }
 
+double walls_length(const SurfaceMesh& m) {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (Index f = 0; f < m.num_faces(); ++f) {
+        if (m.patches[static_cast<std::size_t>(m.face_patch[static_cast<std::size_t>(f)])].kind != PatchKind::Wall)
+            continue;
+        for (Index i = 0, k = m.face_size(f); i < k; ++i) {
+            const Vec3& p = m.points[static_cast<std::size_t>(m.face_node(f, i))];
+            lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+        }
+    }
+    return hi.x() >= lo.x() ? (hi - lo).maxCoeff() : 0.0;
+}
+
 double median_edge_length(const SurfaceMesh& m) {
     std::vector<double> len;
     for (Index f = 0; f < m.num_faces(); ++f)

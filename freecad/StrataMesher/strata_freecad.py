@@ -253,8 +253,12 @@ def _summary(m):
     cells = ", ".join(f"{r['cells'].get(k, 0)} {k}" for k in ("hexahedron", "prism", "pyramid", "tetrahedron"))
     patches = ", ".join(m.patch_names)
     sj = r["quality"]["min_scaled_jacobian"]["all"]
+    chosen = r.get("automatic_first_height")
+    first = (f"; first height {chosen['first_height']:.3g} mm chosen (none asked: the layers reach "
+             f"{r['thickness']:.3g} mm, 2 % of the walls' length)" if chosen and chosen["thickness_share"] > 0
+             else f"; first height {chosen['first_height']:.3g} mm chosen (none asked)" if chosen else "")
     return (f"{cells}; {len(m.points)} nodes; min scaled Jacobian {sj:.3g}; "
-            f"patches: {patches}")
+            f"patches: {patches}{first}")
 
 
 def run(obj, progress=None):

@@ -115,15 +115,18 @@ PrepareParams prepare_params(const SurfaceOptions& c, const LayerParams* layers)
     // in the model's (after it).
     p.remeshing.max_aspect_ratio = p.cad.max_aspect_ratio;
     if (layers) p.cad.threads = p.wrapping.threads = layers->threads;
-    if (layers && (any_cad || p.remesh) && p.cad.max_aspect_ratio > 0.0) {
-        const double h = resolve(layers->distribution).first_height;
-        const double fan = layers->min_quality > 0.0 ? layers->fan_angle_deg : 0.0;
-        p.cad.first_height = h / p.scale;
-        p.cad.fan_angle_deg = fan;
-        p.remeshing.first_height = h;
-        p.remeshing.fan_angle_deg = fan;
-    }
+    if (layers && (any_cad || p.remesh) && !automatic_first_height(layers->distribution))
+        size_walls_for_layers(p, *layers, resolve(layers->distribution).first_height);
     return p;
+}
+
+void size_walls_for_layers(PrepareParams& p, const LayerParams& layers, double first_height) {
+    if (!(p.cad.max_aspect_ratio > 0.0)) return;
+    const double fan = layers.min_quality > 0.0 ? layers.fan_angle_deg : 0.0;
+    p.cad.first_height = first_height / p.scale;
+    p.cad.fan_angle_deg = fan;
+    p.remeshing.first_height = first_height;
+    p.remeshing.fan_angle_deg = fan;
 }
 
 std::string sewing_hint(const SewReport& sew) {
@@ -140,7 +143,11 @@ LayerParams layer_params(const LayerOptions& o) {
     p.distribution.kind = parse_distribution(o.distribution);
     p.normals = parse_normal_method(o.normals);
     p.proximity = parse_proximity_mode(o.proximity);
-    (void)resolve(p.distribution);  // its errors before any input is read: an option should not cost a run
+    // Its errors before any input is read (an option should not cost a run), with a first height
+    // chosen as run() would where none is asked: on walls of any length, the same checks.
+    DistributionParams d = p.distribution;
+    if (automatic_first_height(d)) d.first_height = automatic_first_height(d, 1.0);
+    (void)resolve(d);
     return p;
 }
 
@@ -319,13 +326,14 @@ void add_surface_options(std::vector<OptionSpec>& t) {
 
 /// The layers' heights (DistributionParams; enums as text) and the walls sized for them.
 void add_distribution_options(std::vector<OptionSpec>& t) {
-    t.push_back(no_default(spec(
+    t.push_back(spec(
         "--layers", "layers", "DistributionParams::layers", Stage::Layers,
-        [](Options& o) -> int& { return o.layers.params.distribution.layers; }, "number of layers")));
+        [](Options& o) -> int& { return o.layers.params.distribution.layers; }, "number of layers"));
     t.push_back(no_default(spec(
         "--first-height", "first_height", "DistributionParams::first_height", Stage::Layers,
         [](Options& o) -> double& { return o.layers.params.distribution.first_height; },
-        "height of the first layer, model units (or --yplus)")));
+        "height of the first layer, model units (or --yplus); none (0): the one with which the layers reach 2 % "
+        "of the walls' length (or the --thickness given), said in the summary")));
     t.push_back(spec(
         "--growth", "growth", "DistributionParams::growth", Stage::Layers,
         [](Options& o) -> double& { return o.layers.params.distribution.growth; },

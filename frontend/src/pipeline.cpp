@@ -1,4 +1,5 @@
 #include <strata/core/error.h>
+#include <strata/core/face_geometry.h>
 #include <strata/core/solver_checks.h>
 #include <strata/frontend/pipeline.h>
 #include <strata/frontend/prepare_layers.h>
@@ -44,6 +45,43 @@ SurfaceMesh make_surface(const Request& request, const std::string& source, bool
     };
     if (request.job != Job::Mesh) return make(request.prepare, &report);
     return prepare_for_layers(make, remeshable(request, any_cad), request.prepare, request.mesh, &report);
+}
+
+/// \p request with the first height chosen from the walls of \p surface where none was asked
+/// (automatic_first_height): for the layers, the walls' sizing (size_walls_for_layers, where
+/// Strata meshes them) and the options the report and an OpenFOAM case read. Said in
+/// \p r.report's "automatic_first_height" (run_report). A surface without walls keeps it
+/// unset: the layers' own check names what is missing.
+Request with_first_height(const Request& request, const SurfaceMesh& surface, Result& r) {
+    const double length = walls_length(surface);
+    if (!(length > 0.0)) return request;
+    Request sized = request;
+    const DistributionParams& d = request.mesh.layers.distribution;
+    const double h = automatic_first_height(d, length);
+    sized.mesh.layers.distribution.first_height = h;
+    sized.options.layers.params.distribution.first_height = h;
+    if (remeshable(request, r.any_cad)) size_walls_for_layers(sized.prepare, sized.mesh.layers, h);
+    r.first_height = {true, length, d.thickness > 0.0 ? 0.0 : kAutomaticThicknessShare, h};
+    return sized;
+}
+
+/// The surface of \p request, and \p request with its first height chosen where none was asked
+/// (with_first_height): from the walls as they come, which walls Strata meshes (CAD, --remesh)
+/// are then meshed again sized for it.
+SurfaceMesh make_sized_surface(const Request& request, const std::string& source, Result& r, Request& sized,
+                               Progress* progress) {
+    sized = request;
+    const bool automatic =
+        request.job != Job::Surface && automatic_first_height(request.mesh.layers.distribution);
+    if (automatic && remeshable(request, r.any_cad)) {
+        Request plain = request;
+        plain.job = Job::Surface;
+        PrepareReport first;
+        sized = with_first_height(request, make_surface(plain, source, r.any_cad, first, progress), r);
+    }
+    SurfaceMesh surface = make_surface(sized, source, r.any_cad, r.prepare, progress);
+    if (automatic && !remeshable(request, r.any_cad)) sized = with_first_height(request, surface, r);
+    return surface;
 }
 
 /// The layers alone on \p r.surface, checked.
@@ -155,6 +193,12 @@ ReportNode run_report(const Request& request, const Result& r) {
 
 }  // namespace
 
+ReportNode first_height_report(const FirstHeightChoice& c) {
+    ReportNode n;
+    n.set("first_height", c.height).set("walls_length", c.walls_length).set("thickness_share", c.thickness_share);
+    return n;
+}
+
 Request make_request(Job job, const Options& options) {
     Request r;
     r.job = job;
@@ -176,14 +220,20 @@ Result run(const Request& request, Progress* progress) {
     const std::string source = request.source.empty() ? input_name(request.inputs) : request.source;
     r.any_cad = !request.surface && any_cad_input(request.inputs);
     const auto t0 = std::chrono::steady_clock::now();
-    r.surface = make_surface(request, source, r.any_cad, r.prepare, progress);
+    Request sized;
+    r.surface = make_sized_surface(request, source, r, sized, progress);
     r.seconds.surface = seconds_since(t0);
-    if (request.job == Job::Layers) run_layers(request, source, r, progress);
-    if (request.job == Job::Mesh) {
-        run_mesh(request, r, progress);
-        remesh_for_aspect(request, source, r, progress);
+    if (sized.job == Job::Layers) run_layers(sized, source, r, progress);
+    if (sized.job == Job::Mesh) {
+        run_mesh(sized, r, progress);
+        remesh_for_aspect(sized, source, r, progress);
     }
-    r.report = run_report(request, r);
+    r.options = sized.options;
+    r.report = run_report(sized, r);
+    if (r.first_height.automatic) {
+        r.report.set("automatic_first_height", first_height_report(r.first_height));
+        r.report.set("provenance", provenance_report(request.options));  // what was asked
+    }
     return r;
 }
 

@@ -43,6 +43,7 @@ ReportNode walls_report(const WallSizeReport& w) {
     n.set("max_aspect_ratio", w.max_aspect_ratio).set("worst_before", w.worst_before).set("worst_after", w.worst_after);
     n.set("size", w.cap).set("surfaces", w.surfaces).set("curves", w.curves).set("faces_estimate", w.faces_estimate);
     n.set("over_budget", w.over_budget).set("thin_size", w.thin_size).set("default_size", w.default_size);
+    n.set("walls_default_size", w.walls_default_size);
     ReportNode narrow;
     narrow.set("ratio", w.narrow_ratio).set("faces", w.narrow_faces).set("narrowest", w.narrowest);
     narrow.set("narrowest_surface", w.narrowest_surface).set("size", w.narrow_size);

@@ -62,7 +62,8 @@ SurfaceMesh remesh_model(const std::string& source, const std::vector<SizePoint>
 
 }  // namespace
 
-HybridReport mesh_current_gmsh_model(const HybridParams& params, const PrepareParams& prepare, Progress* progress) {
+HybridReport mesh_current_gmsh_model(const HybridParams& params, const PrepareParams& prepare, Progress* progress,
+                                     FirstHeightChoice* first_height) {
     GmshLock lock("strata::mesh_current_gmsh_model");
     std::string model;
     gmsh_call("strata::mesh_current_gmsh_model", [&] { gmsh::model::getCurrent(model); });
@@ -110,6 +111,7 @@ HybridReport mesh_current_gmsh_model(const HybridParams& params, const PreparePa
         for (const std::string& name : names) gmsh::model::removePhysicalName(name);
     });
     add_volume_to_gmsh_model(result.mesh);
+    if (first_height) *first_height = result.first_height;
     return std::move(result.hybrid);
 }
 

@@ -118,6 +118,23 @@ DistributionParams resolve(const DistributionParams& in) {
     return p;
 }
 
+bool automatic_first_height(const DistributionParams& p) {
+    return p.first_height == 0.0 && p.yplus == 0.0;
+}
+
+double automatic_first_height(const DistributionParams& p, double walls_length) {
+    if (!(walls_length > 0.0) || !std::isfinite(walls_length))
+        throw InputError("the walls are " + format_number(walls_length) +
+                         " long: no first layer height can be chosen from them; give DistributionParams::first_height");
+    const double thickness = p.thickness > 0.0 ? p.thickness : kAutomaticThicknessShare * walls_length;
+    const double q = p.growth > 0.0 ? p.growth : kDefaultGrowth;
+    const int n = std::max(p.layers, 1);
+    if (!(q > 1.0)) return thickness / n;  // a growth below 1 is resolve()'s to refuse
+    // T (q - 1) / (q^n - 1), with q^n taken through its logarithm so that many layers do not overflow.
+    const double x = n * std::log1p(q - 1.0);
+    return thickness * (q - 1.0) / std::expm1(x);
+}
+
 double first_height_from_yplus(double yplus, double re, double length) {
     if (!(yplus > 0.0) || !(re > 0.0) || !(length > 0.0))
         throw InputError("DistributionParams::yplus (y+) = " + format_number(yplus) +

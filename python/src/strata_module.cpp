@@ -509,10 +509,12 @@ py::dict run_gmsh_model(const py::dict& kwargs, const py::object& callback, cons
     pp.patch_names = parse_patch_renames(o.surface.patches);
     return with_progress(callback, timeout, [&](Progress* progress) {
         const auto t0 = std::chrono::steady_clock::now();
-        const HybridReport hr = mesh_current_gmsh_model(hp, pp, progress);
+        FirstHeightChoice chosen;
+        const HybridReport hr = mesh_current_gmsh_model(hp, pp, progress, &chosen);
         // The model's mesh is Gmsh's now: the report has its cells (from the validation) but not
         // its nodes or patch names.
         ReportNode report = mesh_run_report(nullptr, hr, nullptr, nullptr, o, {});
+        if (chosen.automatic) report.set("automatic_first_height", first_height_report(chosen));
         set_time(report, "total", seconds_since(t0));
         py::dict d = report_dict(report);
         return d;
@@ -547,6 +549,9 @@ void register_exceptions(py::module_& m) {
     m.attr("BackendError") = py::handle(g_backend_error);
     m.attr("OutputError") = py::handle(g_output_error);
     m.attr("Cancelled") = py::handle(g_cancelled);
+    // The growth ratio geometric layers take when growth is 0 (DistributionParams::growth), for
+    // panels that show it rather than its 0.
+    m.attr("DEFAULT_GROWTH") = kDefaultGrowth;
     py::register_exception_translator(&translate_exception);
 }
 

@@ -24,8 +24,8 @@ from . import gmsh as strata_gmsh
 
 # The panel: ONELAB name -> keyword of strata.gmsh.mesh_current_model. The numeric prefix
 # orders the panel (Gmsh does not show it); each default is the keyword's default (the C++
-# Params struct's), except the first height, which the library cannot guess (0 asks for
-# yplus): the panel suggests 1/1000 of the model's size.
+# Params struct's): a first height of 0 is chosen from the walls (the layers reach 2 % of their
+# length, said in the console), and the growth shows the ratio its 0 stands for.
 PANEL = [
     ("Strata/1Layers", "layers"),
     ("Strata/2First height", "first_height"),
@@ -50,18 +50,6 @@ def _keyword_table():
     return {k["name"]: k for k in keywords("gmsh")}
 
 
-def model_size():
-    """The diagonal of the current model's bounding box (entities, or the mesh's nodes)."""
-    xmin, ymin, zmin, xmax, ymax, zmax = gmsh.model.getBoundingBox(-1, -1)
-    if not all(math.isfinite(v) for v in (xmin, ymin, zmin, xmax, ymax, zmax)) or xmax < xmin:
-        _, coords, _ = gmsh.model.mesh.getNodes()
-        if len(coords) == 0:
-            return 1.0
-        xs, ys, zs = coords[0::3], coords[1::3], coords[2::3]
-        xmin, xmax, ymin, ymax, zmin, zmax = min(xs), max(xs), min(ys), max(ys), min(zs), max(zs)
-    return math.sqrt((xmax - xmin) ** 2 + (ymax - ymin) ** 2 + (zmax - zmin) ** 2) or 1.0
-
-
 def define_parameters():
     """Put Strata's parameters into the ONELAB database (defaults: the keywords')."""
     table = _keyword_table()
@@ -70,8 +58,8 @@ def define_parameters():
         k = table[keyword]
         default = k["default"]
         p = {"name": name, "attributes": {"Help": k["doc"]}}
-        if keyword == "first_height":
-            default = float(f"{model_size() * 1e-3:.3g}")
+        if keyword == "growth" and default == 0:
+            default = _strata.DEFAULT_GROWTH
         if isinstance(default, bool):
             p.update(type="number", values=[int(default)], choices=[0, 1])
         elif isinstance(default, str):
@@ -122,6 +110,12 @@ def coverage_lines(report):
     for kind in ("hexahedron", "prism", "pyramid", "tetrahedron"):
         if kind in sj:
             lines.append(f"Strata:   {kind:12s} min scaled Jacobian {sj[kind]:.3g}")
+    chosen = report.get("automatic_first_height")
+    if chosen:
+        lines.append(f"Strata: first height {chosen['first_height']:.3g}, none asked: the layers reach "
+                     f"{100 * chosen['thickness_share']:.3g} % of the walls' length {chosen['walls_length']:.4g}"
+                     if chosen["thickness_share"] > 0 else
+                     f"Strata: first height {chosen['first_height']:.3g}, none asked: the layers reach the thickness")
     lines.append(f"Strata: coverage, {report['layers']} layers asked, {report['thickness']:.4g} thick "
                  f"(first {report['first_height']:.3g}):")
     for c in report["patches"]:

@@ -714,11 +714,53 @@ Index shared_chords(const SurfaceMesh& mesh) {
     return n;
 }
 
+/// The default size (a twentieth of the model's bounding-box diagonal) on the walls of a model
+/// that is mostly something else: an air domain's farfield, symmetry and outflow faces round a
+/// body give it the domain's diagonal, and the body a handful of faces (a hemisphere-cylinder in
+/// its box: 50 wall nodes). Its wall surfaces then get the same share of their own diagonal.
+struct WallDefaultSizes {
+    std::vector<int> walls;  ///< wall surfaces, or none: the default serves them
+    double share = 1.0;      ///< their size over Mesh.MeshSizeMax
+    /// The walls' sizes at the current Mesh.MeshSizeMax (halved with it by mend_default_size),
+    /// on their curves and points too.
+    EntitySizes sizes() const {
+        EntitySizes s;
+        const double size = share * get_number("Mesh.MeshSizeMax");
+        for (const int w : walls) s.cap_surface(w, size);
+        return s;
+    }
+};
+
+/// The walls' default sizes of a model of diagonal \p diagonal meshed at the default size:
+/// none unless it has faces other than walls and the walls' bounding box (CAD boxes, which may be
+/// a little loose) spans less than half its diagonal.
+WallDefaultSizes wall_default_sizes(const CadParams& params, const std::vector<int>& surfaces, bool default_size,
+                                    double diagonal) {
+    WallDefaultSizes d;
+    if (!default_size) return d;
+    std::vector<int> walls;
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const auto& [s, name] : surface_patch_names(surfaces)) {
+        if (patch_kind_of(name, params.wall_patch_kinds) != PatchKind::Wall) continue;
+        walls.push_back(s);
+        double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
+        gmsh::model::getBoundingBox(2, s, x0, y0, z0, x1, y1, z1);
+        lo = lo.cwiseMin(Vec3(x0, y0, z0)), hi = hi.cwiseMax(Vec3(x1, y1, z1));
+    }
+    if (walls.empty() || walls.size() == surfaces.size()) return d;
+    const double share = (hi - lo).norm() / diagonal;
+    if (!(share < 0.5)) return d;
+    d.walls = std::move(walls);
+    d.share = share;
+    return d;
+}
+
 /// CadParams::max_aspect_ratio on the mesh just made (refine_walls): its wall surfaces by the
 /// patch each will belong to, each round the whole model meshed again (so the curves the walls
 /// share with the other surfaces stay conforming).
 SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, const std::vector<int>& surfaces,
-                              const std::vector<const PointSizes*>& points, SurfaceMesh mesh,
+                              const std::vector<const PointSizes*>& points, const WallDefaultSizes& defaults,
+                              SurfaceMesh mesh,
                               std::vector<int>& face_surface,
                               WallSizeReport& r, const SurfaceGenerator& generate_surfaces) {
     std::set<int> walls;
@@ -740,7 +782,10 @@ SurfaceMesh limit_wall_aspect(const std::string& path, const CadParams& params, 
             const auto generate = [&] {
                 std::optional<SizeCallback> callback;
                 gmsh::model::mesh::clear();
-                callback.emplace(entity_sizes(caps), factor, points);
+                EntitySizes sizes = defaults.sizes();
+                const EntitySizes capped = entity_sizes(caps);
+                for (const auto& [entity, size] : capped.sizes()) sizes.cap(entity.first, entity.second, size);
+                callback.emplace(sizes, factor, points);
                 gmsh::model::mesh::generate(2);
             };
             generate_surfaces(context, generate);
@@ -1206,10 +1251,15 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     // and the narrow faces' (CadParams::narrow_face_ratio).
     WallSizeReport wall_report;
     const PointSizes asked(params.size_points, params.size_point_growth);
+    WallDefaultSizes defaults;
+    gmsh_call(path + ": measuring the walls for the default size",
+              [&] { defaults = wall_default_sizes(params, surfaces, sizes.default_size, model_diagonal(path)); });
+    const double face_size = defaults.share * sizes.size;  // the walls', narrow faces are measured against
+    if (!defaults.walls.empty()) wall_report.walls_default_size = face_size, wall_report.default_size = sizes.size;
     std::vector<SizePoint> narrow_points;
     gmsh_call(path + ": measuring the CAD faces' widths", [&] {
         narrow_points =
-            narrow_face_points(surfaces, params, sizes.size, std::max(sizes.size / 8.0, params.size_min), wall_report);
+            narrow_face_points(surfaces, params, face_size, std::max(face_size / 8.0, params.size_min), wall_report);
     });
     const PointSizes narrow(std::move(narrow_points), kNarrowFaceGrowth);
     const std::vector<const PointSizes*> points{&asked, &narrow};
@@ -1218,7 +1268,8 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
                                 "); try a smaller size, another algorithm, or repair the CAD";
     const std::function<void()> generate = [&] {
         std::optional<SizeCallback> callback;
-        if (!asked.empty() || !narrow.empty()) callback.emplace(EntitySizes{}, size_factor, points);
+        if (!asked.empty() || !narrow.empty() || !defaults.walls.empty())
+            callback.emplace(defaults.sizes(), size_factor, points);
         gmsh::model::mesh::generate(2);
     };
     const bool quads = get_number("Mesh.RecombineAll") > 0.0 || params.elements == SurfaceElements::Mixed;
@@ -1231,9 +1282,10 @@ SurfaceMesh mesh_cad(const std::string& path, const CadParams& params, CadUnits*
     if (sizes.default_size)
         mesh = mend_default_size(path, surfaces, sizes, generate_surfaces, generate, std::move(mesh), face_surface,
                                  wall_report);
+    if (!defaults.walls.empty()) wall_report.walls_default_size = defaults.share * get_number("Mesh.MeshSizeMax");
     if (params.first_height > 0.0 && params.max_aspect_ratio > 0.0)
-        mesh = limit_wall_aspect(path, params, surfaces, points, std::move(mesh), face_surface, wall_report,
-                                 generate_surfaces);
+        mesh = limit_wall_aspect(path, params, surfaces, points, defaults, std::move(mesh), face_surface,
+                                 wall_report, generate_surfaces);
     if (walls) *walls = wall_report;
     if (recombination) *recombination = recombined;
     gmsh_call(path + ": reading the bodies' names", [&] { name_bodies(mesh, face_surface); });

@@ -96,6 +96,11 @@ SurfaceMesh read_any(const std::string& path, const PrepareParams& params, const
             walls->over_budget = walls->over_budget || one.over_budget;
             if (one.thin_size > 0.0 && (walls->thin_size == 0.0 || one.thin_size < walls->thin_size))
                 walls->thin_size = one.thin_size, walls->default_size = one.default_size;
+            if (one.walls_default_size > 0.0 && (walls->walls_default_size == 0.0 ||
+                                                  one.walls_default_size < walls->walls_default_size)) {
+                walls->walls_default_size = one.walls_default_size;
+                walls->default_size = one.default_size;
+            }
             walls->narrow_ratio = one.narrow_ratio;
             if (one.narrow_faces > 0 && (walls->narrow_faces == 0 || one.narrowest < walls->narrowest))
                 walls->narrowest = one.narrowest, walls->narrowest_surface = one.narrowest_surface;

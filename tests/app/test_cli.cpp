@@ -21,6 +21,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 namespace strata {
@@ -651,8 +652,8 @@ TEST(Cli, RemeshBadOptionsFailCleanly) {
 
 TEST(Cli, LayersBadInputsFailCleanly) {
     const std::string in = "layers '" + example_data("sphere_pyhyp_quads.msh") + "' -o out.msh";
-    expect_clean_failure(in + " --first-height 1e-3", "--layers", "nolayers");
-    expect_clean_failure(in + " --layers 5", "first layer height", "noheight");
+    expect_clean_failure(in + " --layers 0 --first-height 1e-3", "--layers", "nolayers");
+    expect_clean_failure(in + " --layers 5 --first-height=-1e-3", "first layer height", "noheight");
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --yplus 1 --reynolds 1e6", "--yplus", "twoheights");
     expect_clean_failure(in + " --layers 5 --first-height 1e-3 --growth 1.2 --thickness 0.1", "--thickness",
                          "overdetermined");
@@ -1334,6 +1335,72 @@ TEST(Cli, AVesselsOpeningsAreCappedEachWithAPatchOfItsOwn) {
     const CliResult no_holes = strata_cli(dir, "surface " + vessel + " --caps -o s.msh");
     EXPECT_NE(no_holes.code, 0);
     test::expect_contains(no_holes.err, {"--caps closes the loops --fill-holes closes"});
+}
+
+TEST(Cli, OnATerminalEachStagesBarSaysTheSecondsItHasTaken) {
+    // Under a pseudo-terminal (script(1)), as a user at a shell sees it: each stage's bar ends with
+    // its seconds so far; the surface, layers and tetrahedra each reach 100 %.
+    test::ScratchDir dir("cli_progress_tty");
+    const std::string cmd = "cd '" + dir.path().string() + "' && script -qec \"'" + std::string(STRATA_CLI) +
+                            "' mesh '" + example_data("sphere.stl") +
+                            "' -o s.msh --layers 5 --first-height 0.01\" /dev/null > tty.txt 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    const std::string tty = slurp(dir.file("tty.txt"));
+    for (const char* stage : {"layers", "tetrahedra"}) {
+        const std::regex done(std::string(stage) + R"re( *\[#{30}\] 100% +[0-9]+\.[0-9] s)re");
+        EXPECT_TRUE(std::regex_search(tty, done)) << stage << " in:\n" << tty;
+    }
+    EXPECT_NE(tty.find("wrote s.msh"), std::string::npos) << tty;
+}
+
+/// The first height a run chose (its report's "automatic_first_height"), as the report wrote it.
+std::string chosen_first_height(const std::string& report) {
+    std::smatch m;
+    const std::regex chosen(R"re("automatic_first_height": \{"first_height": ([-+.0-9eE]+))re");
+    return std::regex_search(report, m, chosen) ? m[1].str() : std::string();
+}
+
+TEST(Cli, WithNoFirstHeightOneIsChosenFromTheWallsSaidAndTheSameAsAsked) {
+    // No --layers, no --first-height: 20 layers whose first height makes them 2 % of the walls'
+    // length thick, said in the summary and the report; the mesh is the one that height asked for
+    // gives, byte for byte. The STL sphere (radius 1) as it is; the CAD hemisphere-cylinder in its
+    // air domain, whose walls are sized for the layers (a first pass measures them) and meshed at
+    // their own twentieth, not the domain's.
+    test::ScratchDir dir("cli_automatic_first_height");
+    const std::string sphere = "'" + example_data("sphere.stl") + "'";
+    const CliResult r = strata_cli(dir, "mesh " + sphere + " -o a.msh");
+    ASSERT_EQ(r.code, 0) << r.err;
+    test::expect_contains(r.out, {"first height: 0.000214, none asked: 20 layers at growth 1.2 reach 2 % of the walls' "
+                                  "length 2 (--first-height H",
+                                  "coverage: 20 layers asked, 0.04 thick", "checkMesh would say \"Mesh OK\""});
+    const std::string report = slurp(dir.file("a.msh.report.json"));
+    test::expect_contains(report, {"\"walls_length\": 2,", "\"options\": {}"});  // what was asked: nothing
+    const std::string h = chosen_first_height(report);
+    ASSERT_FALSE(h.empty()) << report;
+    const CliResult asked = strata_cli(dir, "mesh " + sphere + " -o b.msh --layers 20 --first-height " + h + " -q");
+    ASSERT_EQ(asked.code, 0) << asked.err;
+    EXPECT_TRUE(slurp(dir.file("a.msh")) == slurp(dir.file("b.msh")));
+
+    const std::string domain = "'" + example_data("hemisphere_cylinder_halfdomain.stp") +
+                               "' --patch surface_1=farfield --patch surface_2=symmetry --patch surface_3=other";
+    const CliResult cad = strata_cli(dir, "mesh " + domain + " --layers 10 -o c.msh");
+    ASSERT_EQ(cad.code, 0) << cad.err;
+    test::expect_contains(cad.out, {"size: the walls are meshed at 0.503, a twentieth of their own bounding box's "
+                                    "diagonal, the other faces (the domain round them) up to 12.3",
+                                    "none asked: 10 layers at growth 1.2 reach 2 % of the walls' length 10",
+                                    "every layer on 100.0 %", "checkMesh would say \"Mesh OK\""});
+    const std::string hc = chosen_first_height(slurp(dir.file("c.msh.report.json")));
+    ASSERT_FALSE(hc.empty());
+    const CliResult cad_asked = strata_cli(dir, "mesh " + domain + " --layers 10 -o d.msh -q --first-height " + hc);
+    ASSERT_EQ(cad_asked.code, 0) << cad_asked.err;
+    EXPECT_TRUE(slurp(dir.file("c.msh")) == slurp(dir.file("d.msh")));
+    // A thickness given is reached instead, and a y+ is no automatic height.
+    const CliResult thick = strata_cli(dir, "layers " + sphere + " -o t.msh --layers 5 --thickness 0.1");
+    ASSERT_EQ(thick.code, 0) << thick.err;
+    test::expect_contains(thick.out, {"5 layers at growth 1.2 reach the thickness 0.1 asked", "0.1 thick"});
+    const CliResult yplus = strata_cli(dir, "layers " + sphere + " -o y.msh --yplus 1 --reynolds 1e6");
+    ASSERT_EQ(yplus.code, 0) << yplus.err;
+    EXPECT_EQ(yplus.out.find("none asked"), std::string::npos) << yplus.out;
 }
 
 TEST(Cli, FuseWrapsPartsThatTouchAlongALineOnly) {

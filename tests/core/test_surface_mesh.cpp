@@ -68,5 +68,19 @@ TEST(FaceGeometry, MedianEdgeLength) {
     EXPECT_DOUBLE_EQ(median_edge_length(SurfaceMesh{}), 0.0);
 }
 
+TEST(FaceGeometry, WallsLengthIsTheWallsLargestExtent) {
+    // A 1.5 x 1 grid of walls and a farfield face far off: only the walls count.
+    SurfaceMesh g = test::quad_grid(3, 2, 0.5);
+    EXPECT_DOUBLE_EQ(walls_length(g), 1.5);
+    g.patches.push_back({"far", PatchKind::Farfield});
+    const Index far = static_cast<Index>(g.points.size());
+    g.points.insert(g.points.end(), {Vec3(0, 0, 40), Vec3(1, 0, 40), Vec3(0, 1, 40)});
+    g.add_face({far, far + 1, far + 2}, 1);
+    EXPECT_DOUBLE_EQ(walls_length(g), 1.5);
+    g.patches[0].kind = PatchKind::Symmetry;  // no wall left
+    EXPECT_DOUBLE_EQ(walls_length(g), 0.0);
+    EXPECT_DOUBLE_EQ(walls_length(SurfaceMesh{}), 0.0);
+}
+
 }  // namespace
 }  // namespace strata

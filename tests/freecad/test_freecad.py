@@ -278,8 +278,40 @@ def test_defaults_and_errors():
     FreeCAD.closeDocument(doc.Name)
 
 
+def test_one_click_with_the_defaults():
+    # What pressing Mesh gives with the panel as it opens: a box, and the hemisphere-cylinder air
+    # domain with only its patches' kinds set. The first height is chosen from the walls, the
+    # body inside its domain is meshed at its own twentieth, not the domain's.
+    doc = FreeCAD.newDocument("StrataOneClick")
+    box = doc.addObject("Part::Box", "Box")  # 10 mm
+    domain = doc.addObject("Part::Feature", "HemisphereCylinder")
+    domain.Shape = Part.read(HEMISPHERE_CYLINDER)
+    doc.recompute()
+    for part, patches, walls_length in ((box, None, 10.0),
+                                        (domain, {"surface_1": "farfield", "surface_2": "symmetry",
+                                                  "surface_3": "other"}, 10.0)):
+        obj = strata_freecad.make_mesh_object(doc, part)
+        if patches:
+            obj.PatchKinds = patches
+        check(obj.FirstHeight.Value == 0.0 and obj.Size.Value == 0.0, "the panel's defaults changed")
+        report = strata_freecad.run(obj).report
+        check("first height" in obj.Report and "chosen" in obj.Report, obj.Report)
+        chosen = report["automatic_first_height"]
+        print(part.Name, "first height", chosen, "cells", report["cells"])
+        check(abs(chosen["walls_length"] - walls_length) < 1e-5 * walls_length, f"walls {chosen}")
+        check(abs(report["thickness"] - 0.02 * chosen["walls_length"]) < 1e-9, f"thickness {report['thickness']}")
+        check(report["quality"]["openfoam"]["check_mesh_ok"], f"{part.Name}: {report['quality']['openfoam']}")
+        walls = [c for c in report["patches"]]
+        nodes = sum(c["nodes"] for c in walls)
+        full = sum(c["full_nodes"] for c in walls)
+        check(nodes > 100, f"{part.Name}: only {nodes} wall nodes")
+        check(full >= 0.95 * nodes, f"{part.Name}: every layer on {full} of {nodes} wall nodes")
+    FreeCAD.closeDocument(doc.Name)
+
+
 def main():
-    tests = [test_imports, test_reorder_on_single_cells, test_defaults_and_errors, test_mesh_shape_hemisphere_cylinder]
+    tests = [test_imports, test_reorder_on_single_cells, test_defaults_and_errors, test_mesh_shape_hemisphere_cylinder,
+             test_one_click_with_the_defaults]
     freecad_checks.run(tests, "strata_freecad tests")
 
 

@@ -91,13 +91,13 @@ def test_task_panel():
     check(panel.progress.value() == 1000 and "prism" in panel.report.toPlainText(), panel.report.toPlainText())
     volumes = fm.VolumeCount
     # An error is shown in the panel, not raised into Qt's event loop.
-    w["first_height"].setValue(0.0)
+    w["growth"].setValue(0.5)
     panel.mesh_button.click()
-    check("first" in panel.report.toPlainText(), panel.report.toPlainText())
+    check("growth" in panel.report.toPlainText(), panel.report.toPlainText())
     check(obj.FemMesh.VolumeCount == volumes, "a failed run changed the mesh")
     panel.reject()  # Close: the panel goes, the option stays as typed
     check(not FreeCADGui.Control.activeDialog(), "task panel still open")
-    check(obj.FirstHeight.Value == 0.0, "Close did not apply the options")
+    check(obj.Growth == 0.5, "Close did not apply the options")
     FreeCAD.closeDocument(doc.Name)
 
 

@@ -178,6 +178,42 @@ TEST(Distribution, LayerHeightsDerivesFirstHeightFromYplus) {
 
 // ---------------------------------------------------------------- defaults and inference
 
+TEST(Distribution, AnAutomaticFirstHeightGivesTheLayersTheShareOfTheWallsOrTheThicknessAsked) {
+    DistributionParams p;  // no first height, no y+: chosen
+    EXPECT_TRUE(automatic_first_height(p));
+    for (const int n : {1, 5, 20, 60}) {
+        p.layers = n;
+        p.first_height = automatic_first_height(p, 10.0);
+        // The geometric layers at the default growth then reach the share of the walls' length.
+        EXPECT_NEAR(total(layer_heights(p), n), kAutomaticThicknessShare * 10.0, 1e-12) << n;
+        EXPECT_FALSE(automatic_first_height(p));
+        p.first_height = 0.0;
+    }
+    p.layers = 20;
+    EXPECT_NEAR(automatic_first_height(p, 1.0), 1.07e-4, 0.005e-4);  // the share's figure, by hand
+    p.growth = 1.0;  // uniform layers: the share over their count
+    EXPECT_DOUBLE_EQ(automatic_first_height(p, 10.0), 0.01);
+    p.growth = 1.3;
+    p.first_height = automatic_first_height(p, 10.0);
+    EXPECT_NEAR(total(layer_heights(p), 20), 0.2, 1e-12);
+    // A thickness given is reached instead, whatever the walls' length (the Thickness kind).
+    DistributionParams t;
+    t.layers = 8;
+    t.thickness = 0.05;
+    t.first_height = automatic_first_height(t, 1000.0);
+    const DistributionParams r = resolve(t);
+    EXPECT_EQ(r.kind, Distribution::Thickness);
+    const std::vector<double> d = layer_heights(t);
+    EXPECT_NEAR(d[1] / d[0], kDefaultGrowth, 1e-9);  // the growth the Thickness kind solves for
+    EXPECT_NEAR(total(d, 8), 0.05, 1e-15);
+    // A y+ or a first height given is not automatic; walls of no length choose nothing.
+    DistributionParams y;
+    y.yplus = 1.0;
+    EXPECT_FALSE(automatic_first_height(y));
+    expect_input_error([&] { (void)automatic_first_height(p, 0.0); }, "DistributionParams::first_height");
+    expect_input_error([&] { (void)automatic_first_height(p, std::nan("")); }, "no first layer height");
+}
+
 TEST(Distribution, AutoInfersTheKindFromWhatIsGiven) {
     DistributionParams p;  // the defaults: Auto, no growth, no thickness
     p.layers = 3;

@@ -38,10 +38,28 @@ def test_panel_defaults_are_the_keywords_defaults(session):
     options = gmsh_gui.options_from_parameters()
     defaults = {k["name"]: k["default"] for k in strata.keywords("gmsh")}
     for keyword, value in options.items():
-        if keyword != "first_height":  # suggested from the model's size instead of 0
+        if keyword != "growth":  # the ratio its 0 stands for
             assert value == defaults[keyword], keyword
-    assert 0 < options["first_height"] < 0.01  # 1/1000 of the unit sphere's diagonal, 3.46
+    assert defaults["growth"] == 0 and options["growth"] == 1.2
+    assert options["first_height"] == 0  # chosen from the walls
     assert gmsh.onelab.getString(gmsh_gui.BUTTON)[1] == gmsh_gui.ACTION_NAME
+
+
+def test_one_click_with_the_panels_defaults_gives_a_mesh_checkmesh_passes(session):
+    # The unit sphere as the window opens it, the button pressed with nothing changed.
+    gmsh_gui.open_model(os.path.join(TEST_DATA, "cad_unit_sphere.geo"))
+    gmsh_gui.define_parameters()
+    report = gmsh_gui.run_action()
+    chosen = report["automatic_first_height"]
+    assert chosen["walls_length"] == pytest.approx(2.0, rel=0.02)
+    # 20 layers at 1.2 reach 2 % of the sphere's diameter
+    assert chosen["first_height"] == pytest.approx(0.04 * 0.2 / (1.2 ** 20 - 1), rel=0.02)
+    assert report["layers"] == 20 and report["first_height"] == pytest.approx(chosen["first_height"])
+    assert report["thickness"] == pytest.approx(0.04, rel=0.02)
+    assert elements(3).get(PRISM, 0) > 0 and report["quality"]["openfoam"]["check_mesh_ok"]
+    assert all(c["full_nodes"] == c["nodes"] for c in report["patches"])
+    log = "\n".join(gmsh.logger.get())
+    assert "Strata: first height" in log and "none asked" in log, log
 
 
 def test_action_meshes_the_open_model_with_the_panel_values(session):

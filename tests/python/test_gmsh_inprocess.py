@@ -127,7 +127,7 @@ def test_failure_leaves_the_model_as_it_was(session):
     sphere_surface()
     before = count(2)
     with pytest.raises(strata.InputError):
-        strata.gmsh.mesh_current_model(layers=2, first_height=0.0)  # no first height, no y+
+        strata.gmsh.mesh_current_model(layers=2, first_height=-0.01)  # a negative first height
     assert count(2) == before and count(3) == {}
 
 

@@ -30,6 +30,10 @@ struct BoundingBox {
 };
 BoundingBox bounding_box(const std::vector<Vec3>& points);
 
+/// The walls' length: the largest side of the bounding box of the nodes of the faces on wall
+/// patches (PatchKind::Wall); 0 without wall faces. A body's length, a wing's span.
+double walls_length(const SurfaceMesh& mesh);
+
 /// The median length of the faces' edges (each counted once per face using it); 0 without faces.
 double median_edge_length(const SurfaceMesh& mesh);
 

@@ -47,7 +47,14 @@ std::vector<std::pair<std::string, std::string>> parse_patch_renames(const std::
 /// sizes at once and --mixed with --remesh are refused (InputError). With \p layers (the
 /// layers and mesh commands), CAD walls are sized for the first layer's height
 /// (CadParams::first_height, in the CAD's unit: the height over PrepareParams::scale).
+/// With no first height asked (automatic_first_height), the walls are not sized until it is
+/// chosen from them (run(), size_walls_for_layers).
 PrepareParams prepare_params(const SurfaceOptions& options, const LayerParams* layers = nullptr);
+
+/// \p p's walls sized for a first layer \p first_height high (CadParams::first_height in the
+/// CAD's unit, RemeshParams::first_height) and \p layers' fans, where a wall aspect ratio is
+/// asked (CadParams::max_aspect_ratio).
+void size_walls_for_layers(PrepareParams& p, const LayerParams& layers, double first_height);
 
 /// What to add to an error about an open surface when sewing a CAD model's faces left cracks
 /// (SewReport::cracks): "; ... --sew-tolerance T sews them", or empty.
@@ -62,7 +69,7 @@ struct LayerOptions {
 };
 
 /// The LayerParams of \p options (InputError for an unknown enum name, a negative thread count,
-/// or a distribution that resolve() refuses).
+/// or a distribution that resolve() refuses; with no first height, as it would with one chosen).
 LayerParams layer_params(const LayerOptions& options);
 
 /// Hybrid options: the HybridParams fields beyond the layers.

@@ -75,6 +75,17 @@ struct StageSeconds {
 };
 
 /// What run() made, and its reports.
+/// The first height run() chose where none was asked (automatic_first_height).
+struct FirstHeightChoice {
+    bool automatic = false;
+    double walls_length = 0.0;     ///< walls_length of the walls it was chosen on
+    double thickness_share = 0.0;  ///< kAutomaticThicknessShare, or 0 when the thickness was given
+    double height = 0.0;           ///< the first height chosen
+};
+
+/// The report's "automatic_first_height" of \p c: first_height, walls_length, thickness_share.
+ReportNode first_height_report(const FirstHeightChoice& c);
+
 struct Result {
     Job job = Job::Mesh;
     SurfaceMesh surface;    ///< the surface the layers grew from (Job::Surface: the result)
@@ -90,6 +101,7 @@ struct Result {
     VolumeMesh mesh;
     HybridReport hybrid;
     StageSeconds seconds;
+    FirstHeightChoice first_height;  ///< where none was asked, the one chosen
     /// The run's report (report.h: surface_run_report, layers_run_report or mesh_run_report),
     /// which write_outputs writes as JSON, the CLI prints and Python returns as a dict.
     ReportNode report;

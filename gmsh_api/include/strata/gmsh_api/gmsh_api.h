@@ -18,6 +18,8 @@
 
 namespace strata {
 
+struct FirstHeightChoice;  // strata/frontend/pipeline.h
+
 /// Replace the current Gmsh model's surface mesh by a hybrid volume mesh built on it.
 ///
 /// Reads the model's 3-node triangles and 4-node quadrangles with one patch per 2D physical
@@ -43,7 +45,9 @@ namespace strata {
 /// on other threads wait. If reading or meshing fails (InputError, TopologyError, BackendError
 /// naming the model), the model is left as it was (its mesh put back where it was meshed again); only a Gmsh failure
 /// while adding the new mesh can leave it partly replaced. \p progress as for build_hybrid_mesh.
+/// With no first height asked (automatic_first_height), the one chosen from the walls goes into
+/// \p first_height where given.
 HybridReport mesh_current_gmsh_model(const HybridParams& params, const PrepareParams& prepare = {},
-                                     Progress* progress = nullptr);
+                                     Progress* progress = nullptr, FirstHeightChoice* first_height = nullptr);
 
 }  // namespace strata

@@ -48,6 +48,21 @@ DistributionParams resolve(const DistributionParams& p);
 /// First cell height for a target y+ at Reynolds number \p re over length \p length.
 double first_height_from_yplus(double yplus, double re, double length);
 
+/// The share of the walls' length (walls_length) that the layers reach in all when no first
+/// height is given: a turbulent boundary layer is 0.37 Re^(-1/5) of the length it grew on
+/// (2.3 % at Re 1e6, 1.5 % at Re 1e7); 20 layers at growth 1.2 then start at 1.1e-4 of the
+/// length, y+ about 4.5 at Re 1e6 (White's flat plate, first_height_from_yplus).
+inline constexpr double kAutomaticThicknessShare = 0.02;
+
+/// Whether \p p leaves the first height to be chosen: neither a first height nor a y+ given.
+bool automatic_first_height(const DistributionParams& p);
+
+/// The first height chosen for \p p when automatic_first_height(p), on walls \p walls_length
+/// long: the geometric layers of p's growth (kDefaultGrowth if none) that reach p's thickness,
+/// or kAutomaticThicknessShare of \p walls_length if p gives none (p's layers and growth are
+/// then what resolve() checks). InputError if \p walls_length is not positive.
+double automatic_first_height(const DistributionParams& p, double walls_length);
+
 /// Marching distances δ_0 .. δ_N (N+1 values: the reference mesh of layer N−1 needs δ_N for
 /// its level 2) of resolve(p). Σ_{k<N} δ_k is the total thickness. Throws InputError naming the
 /// bad parameter.

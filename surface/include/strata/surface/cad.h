@@ -246,6 +246,12 @@ struct WallSizeReport {
     /// used (0: the default served), and the default.
     double thin_size = 0.0;
     double default_size = 0.0;
+    /// Where the default size served a model whose walls are less than half its size (an air
+    /// domain round its body: its farfield, symmetry and outflow faces), the walls' own default,
+    /// a twentieth of their bounding box's diagonal as the model's is, on the wall surfaces, their
+    /// curves and points (the other faces grade from them); 0: not (\p default_size is then 0
+    /// unless thin_size says otherwise).
+    double walls_default_size = 0.0;
     /// CadParams::narrow_face_ratio: the ratio asked (0: off), the faces narrower than the size
     /// over it, the narrowest's width and surface tag, the smallest size asked along them, the
     /// faces estimated to be added (an upper bound) and whether that exceeded the budget (then
