@@ -701,8 +701,10 @@ Outcome<Stages> attempt(const HybridParams& params, Rounds& rounds, HybridReport
     TetFillParams tet_params = params.tets;
     tet_params.background_mesh = params.tets.background_mesh && s.outer.remeshed.empty();  // see TetFillParams
     tet_params.threads = params.threads;
-    Outcome<TetFill> fill =
-        fill_region(s.region, s.top_patch, s.lm, s.pyr, rounds.reach, limit, tet_params, progress, rep.tets_fallback);
+    // TetGen's phases up to 0.9 of the stage, the improvement's passes after.
+    ProgressRange filling(progress, 0.0, 0.9), improving(progress, 0.9, 1.0);
+    Outcome<TetFill> fill = fill_region(s.region, s.top_patch, s.lm, s.pyr, rounds.reach, limit, tet_params,
+                                        progress ? &filling : nullptr, rep.tets_fallback);
     if (auto* repair = std::get_if<Repair>(&fill)) {
         rep.seconds_tets += seconds_since(t0);
         return std::move(*repair);
@@ -710,7 +712,7 @@ Outcome<Stages> attempt(const HybridParams& params, Rounds& rounds, HybridReport
     s.fill = std::get<TetFill>(std::move(fill));
     TetImproveParams improve = params.improve;
     improve.threads = params.threads;
-    rep.tet_improve = improve_tets(s.fill, s.region.num_points(), improve, progress);
+    rep.tet_improve = improve_tets(s.fill, s.region.num_points(), improve, progress ? &improving : nullptr);
     rep.seconds_tets += seconds_since(t0);
     strata::report(progress, "tetrahedra", 1.0);
     return s;

@@ -715,8 +715,7 @@ void check_tet_improve_params(const TetImproveParams& params) {
                          ": need at least 1");
 }
 
-TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImproveParams& params,
-                              const Progress* progress) {
+TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImproveParams& params, Progress* progress) {
     check_tet_improve_params(params);
     if (num_fixed < 0 || num_fixed > static_cast<Index>(fill.points.size()))
         throw InputError("improve_tets: num_fixed = " + std::to_string(num_fixed) + " for " +
@@ -730,10 +729,15 @@ TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImprovePa
     im.set_budget(static_cast<std::uint64_t>(params.evaluations_floor +
                                              params.evaluations_per_tet * static_cast<double>(num_tets)));
     im.measure(rep.below_before, rep.min_before);
+    // Reported after each pass as a share of the most passes it may make (its insertion pass and
+    // the three after it included), never 1: the caller ends the stage.
+    const auto passed = [&] { report(progress, "tetrahedra", rep.passes / (params.max_passes + 5.0)); };
     while (rep.passes < params.max_passes) {
         check_cancelled(progress);
         ++rep.passes;
-        if (!im.pass(rep, progress)) break;
+        const bool changed = im.pass(rep, progress);
+        passed();
+        if (!changed) break;
     }
     if (im.insertion_pass(rep, progress))
         for (int extra = 0; extra < 3; ++extra) {

@@ -184,7 +184,7 @@ TetMesher parse_tet_mesher(std::string_view text) {
 }
 
 TetFill fill_with_tets(const SurfaceMesh& boundary, const std::vector<Vec3>& holes, const TetFillParams& params,
-                       const Progress* progress) {
+                       Progress* progress) {
     tet_fill::check_input(boundary, holes, params);
     const double volume = tet_fill::enclosed_volume(boundary);
     if (!(volume > 0.0))

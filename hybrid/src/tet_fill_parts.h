@@ -61,7 +61,7 @@ void check_fill(const SurfaceMesh& b, const FaceIndex& face_of, const TetFill& f
 
 /// TetGen's fill (tetgen_fill.cpp) of a boundary that passed check_input and encloses \p volume.
 TetFill fill_with_tetgen(const SurfaceMesh& boundary, const FaceIndex& face_of, double volume,
-                         const std::vector<Vec3>& holes, const TetFillParams& params, const Progress* progress);
+                         const std::vector<Vec3>& holes, const TetFillParams& params, Progress* progress);
 
 /// HXT's fill (hxt_fill.cpp), the same contract but for the hole points: the region filled is
 /// the one every connected part of the boundary bounds, what one part alone encloses is left

@@ -51,8 +51,12 @@ Library load(const Symbols& symbols = {});
 /// \p progress can stop it: Cancelled within 0.1 s of progress->cancelled(), the child killed.
 /// TetGen's failures are BackendError with its code explained (failure_message), LocalFailure
 /// where it failed at a place, including a crash (signal).
+/// Where TetGen's printing is redirected (Library::print_slots), the child runs it without Q and
+/// \p progress hears its phases as it announces them (Delaunay, boundary recovery, ...,
+/// refinement, optimisation) as "tetrahedra" at each one's share of the run, within 0.1 s; the
+/// mesh is the same.
 void run(const std::string& switches, tetgenio& in, tetgenio& out, tetgenio* background,
-         const Progress* progress = nullptr);
+         Progress* progress = nullptr);
 
 /// A TetGen failure met at one place of the boundary, which locate_failure may find: one of
 /// its assert()s (a configuration it assumes cannot happen) or its codes 2 to 5 (an internal

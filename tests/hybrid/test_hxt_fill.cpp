@@ -157,7 +157,7 @@ struct CancelAfter : Progress {
 // Cancelled before HXT starts, and while it runs (its child process is asked every 0.1 s).
 TEST(HxtFill, CancelledBeforeAndDuringTheRun) {
     const SurfaceMesh b = jittered(cube_in_box(20, 5, false, 6.0), 0.005);
-    const CancelAfter now(0), later(1);
+    CancelAfter now(0), later(1);
     EXPECT_THROW(fill_with_tets(b, {}, hxt(1, 0.05), &now), Cancelled);
     EXPECT_THROW(fill_with_tets(b, {}, hxt(1, 0.05), &later), Cancelled);
     EXPECT_GT(later.asked, 1);

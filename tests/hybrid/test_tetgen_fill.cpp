@@ -150,6 +150,33 @@ TEST(TetgenFill, Deterministic) {
     EXPECT_EQ(f1.tets, f2.tets);
 }
 
+/// The "tetrahedra" fractions a run reports.
+class PhaseRecorder : public Progress {
+public:
+    std::vector<double> heard;
+    void report(std::string_view stage, double fraction) override {
+        if (stage == "tetrahedra") heard.push_back(fraction);
+    }
+};
+
+TEST(TetgenFill, ProgressHearsTetGensPhasesInOrderAndTheMeshIsTheSame) {
+    // A cube of 10,800 wall triangles graded out to a box 13 wide: a run of a second or more, so
+    // that the parent, which looks every 0.1 s, hears TetGen's refinement at least (its share of
+    // the main run, after the background mesh's 20 %), and nothing past the end of the run.
+    const SurfaceMesh b = cube_in_box(30, 5, false, 6.0);
+    TetFillParams p;
+    p.growth = 0.1;
+    PhaseRecorder r;
+    const TetFill heard = fill_with_tets(b, kCubeHole, p, &r);
+    const TetFill quiet = fill_with_tets(b, kCubeHole, p);
+    EXPECT_EQ(heard.points, quiet.points);  // announcing its phases changes nothing TetGen makes
+    EXPECT_EQ(heard.tets, quiet.tets);
+    ASSERT_FALSE(r.heard.empty());
+    EXPECT_TRUE(std::is_sorted(r.heard.begin(), r.heard.end()));
+    EXPECT_GE(r.heard.back(), 0.2 + 0.2 * 0.8 - 1e-12) << "the refinement was not heard";
+    EXPECT_LT(r.heard.back(), 1.0);
+}
+
 // Fine wall (edge 0.1) in a coarse farfield (edge 2.6): with growth > 0 the tets grade from the
 // wall's size out, following h(d) = 0.1 + growth·d (TetFillParams::growth).
 TEST(TetgenFill, SizeGradingFollowsGrowth) {

@@ -59,6 +59,25 @@ private:
     mutable bool expired_ = false;
 };
 
+/// A part of a stage that reports its own 0 to 1 (TetGen's run, then the tetrahedra's
+/// improvement), its fractions mapped into [\p from, \p to] of the stage for \p inner (may be
+/// null: nothing is reported). Cancellation and the children watched pass through.
+class ProgressRange : public Progress {
+public:
+    ProgressRange(Progress* inner, double from, double to) : inner_(inner), from_(from), to_(to) {}
+    void report(std::string_view stage, double fraction) override {
+        if (inner_) inner_->report(stage, from_ + (fraction < 0.0 ? 0.0 : fraction > 1.0 ? 1.0 : fraction) * (to_ - from_));
+    }
+    bool cancelled() const override { return inner_ && inner_->cancelled(); }
+    void watch_child(int pid) const override {
+        if (inner_) inner_->watch_child(pid);
+    }
+
+private:
+    Progress* inner_;
+    double from_, to_;
+};
+
 /// Thrown by a stage that saw Progress::cancelled().
 class Cancelled : public std::exception {
 public:

@@ -86,6 +86,6 @@ void check_tet_improve_params(const TetImproveParams& params);
 /// threads only read. Throws InputError as check_tet_improve_params does, and for \p num_fixed
 /// outside the points.
 TetImproveReport improve_tets(TetFill& fill, Index num_fixed, const TetImproveParams& params = {},
-                              const Progress* progress = nullptr);
+                              Progress* progress = nullptr);
 
 }  // namespace strata
