@@ -468,21 +468,18 @@ void print_wall_sizing(const strata::ReportNode& w) {
             strata::format_number(n.number("ratio")).c_str(),
             strata::format_number(n.number("narrowest"), 3).c_str(), count(n, "narrowest_surface"),
             strata::format_number(n.number("size"), 3).c_str(), n.number("faces_estimate"));
+    const auto size = [&w](const char* key) { return strata::format_number(w.number(key), 3); };
+    const bool thin = w.number("thin_size") > 0.0;
     if (w.number("walls_default_size") > 0.0)
-        std::printf(
-            "size: the walls are meshed at %s, a twentieth of their own bounding box's diagonal, the other faces "
-            "(the domain round them) up to %s, a twentieth of the model's (the default, none asked: --size sets "
-            "one for all)\n",
-            strata::format_number(w.number("walls_default_size"), 3).c_str(),
-            strata::format_number(w.number("thin_size") > 0.0 ? w.number("thin_size") : w.number("default_size"), 3)
-                .c_str());
-    if (w.number("thin_size") > 0.0)
-        std::printf(
-            "size: the default size %s left a part thinner than it with its two sides meshed through the same "
-            "nodes (edges of four faces) or faces crossing where parts meet closer than it; meshed at %s instead "
-            "(--size sets it)\n",
-            strata::format_number(w.number("default_size"), 3).c_str(),
-            strata::format_number(w.number("thin_size"), 3).c_str());
+        std::printf("size: the walls are meshed at %s, a twentieth of their own bounding box's diagonal, the other "
+                    "faces (the domain round them) up to %s, a twentieth of the model's (the default, none asked: "
+                    "--size sets one for all)\n",
+                    size("walls_default_size").c_str(), size(thin ? "thin_size" : "default_size").c_str());
+    if (thin)
+        std::printf("size: the default size %s left a part thinner than it with its two sides meshed through the "
+                    "same nodes (edges of four faces) or faces crossing where parts meet closer than it; meshed at "
+                    "%s instead (--size sets it)\n",
+                    size("default_size").c_str(), size("thin_size").c_str());
     if (w.integer("surfaces") > 0 || w.integer("curves") > 0)
         std::printf(
             "walls: meshed again finer (%d surfaces, %d curves under fans; size %s) so that the first "

@@ -276,6 +276,16 @@ VolumeMesh assemble(const LayerMesh& lm, const PyramidLayer& pyr, const SurfaceM
     mesh.hexes = lm.mesh.hexes;
     append_cells(mesh.pyramids, pyr.pyramids, node);
     append_cells(mesh.tets, fill.tets, node);
+    // The layers' cells keep their layer, the pyramids and tetrahedra added have none (0).
+    const std::vector<std::int32_t> layers = layer_of_cells(lm);
+    const std::size_t lm_tets = lm.mesh.tets.size(), lm_pyramids = lm.mesh.pyramids.size();
+    mesh.cell_layers.assign(layers.begin(), layers.begin() + static_cast<std::ptrdiff_t>(lm_tets));
+    mesh.cell_layers.resize(mesh.tets.size(), 0);
+    mesh.cell_layers.insert(mesh.cell_layers.end(), layers.begin() + static_cast<std::ptrdiff_t>(lm_tets),
+                            layers.begin() + static_cast<std::ptrdiff_t>(lm_tets + lm_pyramids));
+    mesh.cell_layers.resize(mesh.tets.size() + mesh.pyramids.size(), 0);
+    mesh.cell_layers.insert(mesh.cell_layers.end(), layers.begin() + static_cast<std::ptrdiff_t>(lm_tets + lm_pyramids),
+                            layers.end());
 
     mesh.boundary.patches = patches;
     const SurfaceMesh& lb = lm.mesh.boundary;

@@ -184,6 +184,8 @@ Dataset volume_dataset(const VolumeMesh& mesh, const std::string& path) {
     d.cell_data.push_back(make_array("non_orthogonality", "Float64", 1, foam.non_orthogonality_deg));
     d.cell_data.push_back(make_array("skewness", "Float64", 1, foam.skewness));
     d.cell_data.push_back(make_array("aspect_ratio", "Float64", 1, foam.aspect_ratio));
+    if (mesh.cell_layers.size() == static_cast<std::size_t>(d.cells))
+        d.cell_data.push_back(make_array("layer", "Int32", 1, mesh.cell_layers));
     return d;
 }
 

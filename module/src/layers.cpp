@@ -1681,6 +1681,7 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
         if (col.levels[static_cast<std::size_t>(i)] < layers)
             out.stop_reason[static_cast<std::size_t>(i)] = col.reason[static_cast<std::size_t>(i)];
     build_layer_cells(col, w.mesh, w.loops, side_patches(surface, w), out);
+    out.mesh.cell_layers = layer_of_cells(out);
     if (!fans.empty() && rules.quality) {
         // Fans whose cells have faces checkMesh would fail as skewed: no fan at those wall
         // nodes, and march again (each round marks new nodes, so this ends). Other columns
@@ -1692,6 +1693,19 @@ LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, 
     out.stop_limit = constraints.node_stop_limit, out.stop_limit_reason = constraints.node_stop_reason;
     out.stop_marches = constraints.stop_marches;
     return out;
+}
+
+std::vector<std::int32_t> layer_of_cells(const LayerMesh& lm) {
+    std::vector<std::int32_t> layers;
+    layers.reserve(static_cast<std::size_t>(lm.mesh.num_cells()));
+    for (const CellType t : kCellTypes)
+        for (std::size_t i = 0; i < lm.mesh.num_cells(t); ++i) {
+            const Index* c = lm.mesh.cell(t, i);
+            int level = 0;
+            for (int k = 0; k < cell_corners(t); ++k) level = std::max(level, lm.level_of(c[k]));
+            layers.push_back(level);
+        }
+    return layers;
 }
 
 LayerMesh extrude_layers(const SurfaceMesh& surface, const LayerParams& params, Progress* progress) {

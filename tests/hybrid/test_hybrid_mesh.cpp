@@ -80,6 +80,17 @@ TEST(HybridMesh, SpherePrismsPyramidsFreeTetsValid) {
     EXPECT_GT(m.tets.size(), 1000u);
     EXPECT_TRUE(rep.validation.ok());
     EXPECT_GT(rep.validation.min_scaled_jacobian, 0.0);
+    // Each cell's layer: the 606 prisms of each of the 8 layers, the tetrahedra (first) in none.
+    ASSERT_EQ(m.cell_layers.size(), static_cast<std::size_t>(m.num_cells()));
+    std::vector<std::size_t> per_layer(9, 0);
+    for (std::size_t c = 0; c < m.cell_layers.size(); ++c) {
+        const std::int32_t layer = m.cell_layers[c];
+        ASSERT_TRUE(layer >= 0 && layer <= 8) << layer;
+        ++per_layer[static_cast<std::size_t>(layer)];
+        EXPECT_EQ(layer == 0, c < m.tets.size()) << "cell " << c;
+    }
+    EXPECT_EQ(per_layer[0], m.tets.size());
+    for (int k = 1; k <= 8; ++k) EXPECT_EQ(per_layer[static_cast<std::size_t>(k)], 606u) << "layer " << k;
 }
 
 // --tets hxt where HXT 4.8 stops (the regular grids of a cube wall's layer top in a generated

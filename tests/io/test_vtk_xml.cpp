@@ -98,6 +98,12 @@ void expect_volume(const ReadBack& b, const VolumeMesh& m) {
     EXPECT_EQ(values(b.named("array", "non_orthogonality")), foam.non_orthogonality_deg);
     EXPECT_EQ(values(b.named("array", "skewness")), foam.skewness);
     EXPECT_EQ(values(b.named("array", "aspect_ratio")), foam.aspect_ratio);
+    if (m.cell_layers.size() == static_cast<std::size_t>(m.num_cells())) {
+        EXPECT_EQ(values(b.named("array", "layer")), std::vector<double>(m.cell_layers.begin(), m.cell_layers.end()));
+    } else {
+        for (auto [it, end] = b.facts.equal_range("array"); it != end; ++it)
+            EXPECT_NE(it->second[1], "layer") << "a layer field for a mesh that has none";
+    }
 }
 
 class VtkXml : public testing::Test {
@@ -121,6 +127,13 @@ TEST_F(VtkXml, VtuReadBackWithVtk) {
     double largest = 0.0;
     for (const double a : foam.non_orthogonality_deg) largest = std::max(largest, a);
     EXPECT_GT(largest, 1.0);
+    // With each cell's layer, a layer field too.
+    VolumeMesh layered = m;
+    for (Index c = 0; c < m.num_cells(); ++c) layered.cell_layers.push_back(c % 4);
+    write_volume(layered, dir.file("layered.vtu"));
+    const ReadBack l = read_back(dir, dir.file("layered.vtu"));
+    ASSERT_EQ(l.code, 0) << l.err;
+    expect_volume(l, layered);
 }
 
 TEST_F(VtkXml, VtmBlocksNamedAfterThePatches) {

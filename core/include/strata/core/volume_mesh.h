@@ -37,6 +37,11 @@ struct VolumeMesh {
     /// Boundary faces (3 or 4 nodes) in CSR with a patch each, right-hand normals pointing out
     /// of the meshed region.
     SurfaceMesh boundary;  ///< boundary.points unused (faces index `points`)
+    /// Per cell in CellNumbering order, the boundary layer it belongs to (1: on the wall), 0 for
+    /// cells outside the layers (the pyramids on their top, the tetrahedra beyond); empty where
+    /// not known (a mesh read from a file). Writers that carry it (.vtu) use it only when it
+    /// has one entry per cell.
+    std::vector<std::int32_t> cell_layers;
 
     Index num_cells() const { return static_cast<Index>(tets.size() + pyramids.size() + prisms.size() + hexes.size()); }
     /// Cells of type \p t.

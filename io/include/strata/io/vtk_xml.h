@@ -23,8 +23,9 @@ namespace strata {
 ///   non_orthogonality  Float64  checkMesh's, degrees, the largest over the cell's interior faces
 ///   skewness           Float64  checkMesh's, the largest over the cell's faces
 ///   aspect_ratio       Float64  checkMesh's
-/// (cell_solver_figures, solver_checks.h). The layer index of a cell is not written: the volume
-/// mesh does not keep it once the layers are assembled with the tetrahedra.
+///   layer              Int32    VolumeMesh::cell_layers (1 on the wall; 0 outside the layers),
+///                               where the mesh has one per cell
+/// (cell_solver_figures, solver_checks.h).
 /// Atomic (temporary name, then rename), or staged in \p outputs. Does not validate (callers run
 /// require_valid_mesh first); InputError for malformed arrays or a missing directory, OutputError
 /// on a failed write (a full disk). \p progress: stage "writing".

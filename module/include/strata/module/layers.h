@@ -256,6 +256,10 @@ private:
     std::vector<Index> level_start_;  ///< first node of each level, and the node count last
 };
 
+/// Per cell of \p lm.mesh in CellNumbering order, its layer: the highest level among its nodes
+/// (a prism from level k - 1 to k is in layer k, a cell closing a step in the layer it reaches).
+std::vector<std::int32_t> layer_of_cells(const LayerMesh& lm);
+
 /// The coverage report of \p lm (layer_report.h): per wall patch (the patches of lm.top), the
 /// layers and thickness each column reached (its length) against lm.asked_thickness, and
 /// every node that something limited, with the reason: why it stopped if it did, else
