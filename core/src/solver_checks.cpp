@@ -295,7 +295,8 @@ void count_high_aspect(const VolumeMesh& mesh, const CellNumbering& cells, const
         if (a > kFoamAspectRatio) {
             ++r.high_aspect_cells;
             const CellNumbering::Cell c = cells.locate(g);
-            r.high_aspect.push_back({centre[static_cast<std::size_t>(g)], a, longest_edge(mesh, c.type, static_cast<Index>(c.index))});
+            const double edge = longest_edge(mesh, c.type, static_cast<Index>(c.index));
+            r.high_aspect.push_back({centre[static_cast<std::size_t>(g)], a, edge});
         }
         if (a > r.max_aspect_ratio) {
             r.max_aspect_ratio = a;

@@ -544,7 +544,8 @@ bool in_child(const std::function<void(Bytes&)>& body, Bytes& result, const Prog
 class SharedPhase {
 public:
     SharedPhase() {
-        void* page = ::mmap(nullptr, sizeof(std::atomic<int>), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+        const int shared = MAP_SHARED | MAP_ANONYMOUS;
+        void* page = ::mmap(nullptr, sizeof(std::atomic<int>), PROT_READ | PROT_WRITE, shared, -1, 0);
         if (page != MAP_FAILED) phase_ = new (page) std::atomic<int>(-1);
     }
     ~SharedPhase() {

@@ -66,7 +66,8 @@ class ProgressRange : public Progress {
 public:
     ProgressRange(Progress* inner, double from, double to) : inner_(inner), from_(from), to_(to) {}
     void report(std::string_view stage, double fraction) override {
-        if (inner_) inner_->report(stage, from_ + (fraction < 0.0 ? 0.0 : fraction > 1.0 ? 1.0 : fraction) * (to_ - from_));
+        const double f = fraction < 0.0 ? 0.0 : fraction > 1.0 ? 1.0 : fraction;
+        if (inner_) inner_->report(stage, from_ + f * (to_ - from_));
     }
     bool cancelled() const override { return inner_ && inner_->cancelled(); }
     void watch_child(int pid) const override {
