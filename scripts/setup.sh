@@ -30,7 +30,9 @@ packages=(
   python3-numpy        # the meshes' arrays are NumPy views
   python3-gmsh         # Gmsh's Python API on the same libgmsh: strata.gmsh, strata.gmsh_gui
   python3-pytest       # the package's tests (tests/python)
-  xvfb xauth           # a virtual display for the Gmsh-window test of strata-gmsh (tests/python)
+  xvfb xauth           # a virtual display for the Gmsh-window tests of strata-gmsh and strata-gmsh-onelab (tests/python)
+  gmsh                 # the gmsh program (4.8.4, on the same libgmsh) in which Strata is a ONELAB solver (strata-gmsh-onelab)
+  xdotool              # clicks in that program's window in its test, as a user would (tests/python/test_gmsh_onelab.py)
   # FreeCAD 0.20 for Strata's FreeCAD module (freecad/, tests/freecad): freecad-python3 holds
   # freecadcmd and the GUI; it is what the metapackage `freecad` depends on, without the
   # metapackage's recommends (CalculiX, Graphviz). Still large: 206 packages, ~1.5 GB

@@ -21,7 +21,8 @@ Errors raise strata.InputError (also a ValueError), TopologyError, BackendError,
 RuntimeError), with Strata's message in keyword names.
 
 strata.gmsh.mesh_current_model(...) meshes the model of Python's own gmsh module in place;
-python3 -m strata.gmsh_gui MODEL opens Gmsh's window with Strata's options (strata-gmsh).
+python3 -m strata.gmsh_gui MODEL opens Gmsh's window with Strata's options (strata-gmsh);
+strata.gmsh_onelab makes Strata a ONELAB solver of the gmsh program itself (strata-gmsh-onelab).
 """
 
 import inspect as _inspect

@@ -50,8 +50,9 @@ def _keyword_table():
     return {k["name"]: k for k in keywords("gmsh")}
 
 
-def define_parameters():
-    """Put Strata's parameters into the ONELAB database (defaults: the keywords')."""
+def parameter_definitions():
+    """Strata's ONELAB parameters for the open model, as dicts with the keys of ONELAB's JSON
+    (gmsh.onelab.set): one per PANEL entry with its default, and the read-only Result."""
     table = _keyword_table()
     params = []
     for name, keyword in PANEL:
@@ -69,23 +70,35 @@ def define_parameters():
             if isinstance(default, int):
                 p.update(min=1, max=200, step=1)
         params.append(p)
-    params.append({"type": "string", "name": RESULT, "values": [""], "readOnly": True,
-                   "attributes": {"Kind": "multiline"}})
-    gmsh.onelab.set(json.dumps(params))
+    params.append(result_parameter(""))
+    return params
+
+
+def result_parameter(text):
+    """The read-only Result parameter (a dict, as in parameter_definitions) holding text."""
+    return {"type": "string", "name": RESULT, "values": [text], "readOnly": True, "attributes": {"Kind": "multiline"}}
+
+
+def define_parameters():
+    """Put Strata's parameters into the ONELAB database (defaults: the keywords') and the button."""
+    gmsh.onelab.set(json.dumps(parameter_definitions()))
     gmsh.onelab.setString(BUTTON, ["Strata: hybrid mesh", ACTION_NAME])
     gmsh.onelab.set(json.dumps({"type": "string", "name": ACTION, "values": [""], "visible": False}))
 
 
-def options_from_parameters():
-    """The keywords of mesh_current_model from the ONELAB parameters."""
+def options_from_parameters(get_number=None, get_string=None):
+    """The keywords of mesh_current_model from the ONELAB parameters, read with get_number and
+    get_string (name -> values; by default gmsh.onelab's, the database of this process)."""
+    get_number = get_number or gmsh.onelab.getNumber
+    get_string = get_string or gmsh.onelab.getString
     table = _keyword_table()
     options = {}
     for name, keyword in PANEL:
         default = table[keyword]["default"]
         if isinstance(default, str):
-            values = gmsh.onelab.getString(name)
+            values = get_string(name)
         else:
-            values = gmsh.onelab.getNumber(name)
+            values = get_number(name)
         if len(values) == 0:
             raise InputError(f"ONELAB parameter '{name}' is missing: call define_parameters() first")
         value = values[0]
@@ -139,16 +152,27 @@ def _has_surface_mesh():
     return len(types) > 0
 
 
+def result_text(lines):
+    """The Result parameter's text: the report's lines without their "Strata: " prefix."""
+    return "\n".join(line.replace("Strata: ", "", 1) for line in lines)
+
+
+def mesh_open_model(options, progress=None, log=None):
+    """Strata on the open model with options (mesh_current_model's keywords), after meshing its
+    surface if it has no surface mesh yet; log (default: Gmsh's logger) says so. The report."""
+    log = log or gmsh.logger.write
+    if not _has_surface_mesh():
+        log("Strata: the model has no surface mesh; meshing it in 2D first")
+        gmsh.model.mesh.generate(2)
+    return strata_gmsh.mesh_current_model(progress=progress, **options)
+
+
 def run_action(progress=None):
     """The button's action on the current model: surface mesh if there is none, then the hybrid
     mesh with the ONELAB parameters. Writes the report to Gmsh's console and the Result
     parameter; returns it. Strata's errors are written there too, then raised."""
     try:
-        options = options_from_parameters()
-        if not _has_surface_mesh():
-            gmsh.logger.write("Strata: the model has no surface mesh; meshing it in 2D first")
-            gmsh.model.mesh.generate(2)
-        report = strata_gmsh.mesh_current_model(progress=progress, **options)
+        report = mesh_open_model(options_from_parameters(), progress)
     except Exception as e:  # shown to the user in the window, then raised to the caller
         try:
             gmsh.logger.write(f"Strata: {e}", "error")
@@ -159,26 +183,26 @@ def run_action(progress=None):
     lines = coverage_lines(report)
     for line in lines:
         gmsh.logger.write(line)
-    gmsh.onelab.setString(RESULT, ["\n".join(line.replace("Strata: ", "", 1) for line in lines)])
+    gmsh.onelab.setString(RESULT, [result_text(lines)])
     return report
 
 
-def show_volume():
-    """Show the new volume mesh as a user would look into it: the cells cut by the model's
-    mid-plane (z), coloured by type (prisms, pyramids, tetrahedra), seen from the cut side."""
+def volume_view_options():
+    """The Gmsh options that show the new volume mesh as a user would look into it: the cells cut
+    by the model's mid-plane (z), coloured by type (prisms, pyramids, tetrahedra), seen from the
+    cut side. (name, value) pairs."""
     xmin, ymin, zmin, xmax, ymax, zmax = gmsh.model.getBoundingBox(-1, -1)
     mid = 0.5 * (zmin + zmax) if math.isfinite(zmin + zmax) else 0.0
-    gmsh.option.setNumber("Mesh.SurfaceFaces", 0)
-    gmsh.option.setNumber("Mesh.VolumeFaces", 1)
-    gmsh.option.setNumber("Mesh.VolumeEdges", 1)
-    gmsh.option.setNumber("Mesh.ColorCarousel", 0)  # by element type
-    gmsh.option.setNumber("Mesh.Clip", 1)
-    gmsh.option.setNumber("General.ClipWholeElements", 1)
-    gmsh.option.setNumber("General.ClipOnlyDrawIntersectingVolume", 1)
-    gmsh.option.setNumber("General.Clip0A", 0)
-    gmsh.option.setNumber("General.Clip0B", 0)
-    gmsh.option.setNumber("General.Clip0C", -1)
-    gmsh.option.setNumber("General.Clip0D", mid)
+    return [("Mesh.SurfaceFaces", 0), ("Mesh.VolumeFaces", 1), ("Mesh.VolumeEdges", 1),
+            ("Mesh.ColorCarousel", 0),  # by element type
+            ("Mesh.Clip", 1), ("General.ClipWholeElements", 1), ("General.ClipOnlyDrawIntersectingVolume", 1),
+            ("General.Clip0A", 0), ("General.Clip0B", 0), ("General.Clip0C", -1), ("General.Clip0D", mid)]
+
+
+def show_volume():
+    """Show the new volume mesh cut by the mid-plane (volume_view_options)."""
+    for option, value in volume_view_options():
+        gmsh.option.setNumber(option, value)
 
 
 def open_model(path, trust_geo=False):
