@@ -62,13 +62,12 @@ def _open(model):
         gmsh_gui.open_model(model)
 
 
-def _define_missing(client, model):
+def _define_missing(client):
     """Define the panel's parameters Gmsh does not have yet (a value the user set stays)."""
     names = [name for name, _ in gmsh_gui.PANEL] + [gmsh_gui.RESULT]
     missing = {name for name in names if not (client.get(name, "number") or client.get(name, "string"))}
     if not missing:
         return
-    _open(model)  # the defaults may depend on the model
     for p in gmsh_gui.parameter_definitions():
         if p["name"] in missing:
             client.set(p)
@@ -117,7 +116,7 @@ def _run(client, action):
         gmsh.option.setNumber("General.Terminal", 0)
         client.set(AUTOMESH_OFF)
         model = model_file(client)
-        _define_missing(client, model)
+        _define_missing(client)
         return _compute(client, model) if action == "compute" else None
     finally:
         gmsh.finalize()

@@ -280,8 +280,9 @@ def test_defaults_and_errors():
 
 def test_one_click_with_the_defaults():
     # What pressing Mesh gives with the panel as it opens: a box, and the hemisphere-cylinder air
-    # domain with only its patches' kinds set. The first height is chosen from the walls, the
-    # body inside its domain is meshed at its own twentieth, not the domain's.
+    # domain with only its patches' kinds set (its outflow plane renamed, as the CLI's --patch
+    # surface_3=other:outlet does). The first height is chosen from the walls, the body inside
+    # its domain is meshed at its own twentieth, not the domain's.
     doc = FreeCAD.newDocument("StrataOneClick")
     box = doc.addObject("Part::Box", "Box")  # 10 mm
     domain = doc.addObject("Part::Feature", "HemisphereCylinder")
@@ -289,13 +290,18 @@ def test_one_click_with_the_defaults():
     doc.recompute()
     for part, patches, walls_length in ((box, None, 10.0),
                                         (domain, {"surface_1": "farfield", "surface_2": "symmetry",
-                                                  "surface_3": "other"}, 10.0)):
+                                                  "surface_3": "other:outlet"}, 10.0)):
         obj = strata_freecad.make_mesh_object(doc, part)
         if patches:
             obj.PatchKinds = patches
         check(obj.FirstHeight.Value == 0.0 and obj.Size.Value == 0.0, "the panel's defaults changed")
-        report = strata_freecad.run(obj).report
+        m = strata_freecad.run(obj)
+        report = m.report
         check("first height" in obj.Report and "chosen" in obj.Report, obj.Report)
+        if patches:
+            groups = {obj.FemMesh.getGroupName(g) for g in obj.FemMesh.Groups}
+            check("outlet" in m.patch_names and "surface_3" not in m.patch_names, f"patches {m.patch_names}")
+            check("outlet" in groups, f"FEM groups {sorted(groups)}")
         chosen = report["automatic_first_height"]
         print(part.Name, "first height", chosen, "cells", report["cells"])
         check(abs(chosen["walls_length"] - walls_length) < 1e-5 * walls_length, f"walls {chosen}")
