@@ -65,7 +65,10 @@ GmshSession::GmshSession(const std::string& model_name) : lock_(gmsh_mutex()) {
     if (strata_sessions() == 0 && !user_initialised()) {
         // Gmsh 4.8 has no isInitialized(); Strata's own entry points decide. The Gmsh-API
         // entry points (user already initialised) mark that through GmshLock.
-        gmsh::initialize();
+        // Not the user's ~/.gmshrc and ~/.gmsh-options: options saved there (a mesh size factor,
+        // an algorithm, the solvers Strata registers with the gmsh program) would change or slow
+        // Strata's meshes from one account to the next.
+        gmsh::initialize(0, nullptr, false);
         initialised_here_ = true;
         gmsh::option::setNumber("General.Terminal", 0);
         gmsh::option::setNumber("General.Verbosity", 2);

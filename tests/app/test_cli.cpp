@@ -1337,6 +1337,29 @@ TEST(Cli, AVesselsOpeningsAreCappedEachWithAPatchOfItsOwn) {
     test::expect_contains(no_holes.err, {"--caps closes the loops --fill-holes closes"});
 }
 
+TEST(Cli, TheUsersGmshOptionsFilesDoNotChangeTheMesh) {
+    // A home whose ~/.gmsh-options saves another algorithm, a finer size factor, smoothing and a
+    // random factor (as Gmsh's File > Save Options As Default does) and whose ~/.gmshrc is not
+    // Gmsh's at all: the CAD model is meshed as in an empty home, byte for byte, and Gmsh says
+    // nothing about them (read, they made Gmsh abort meshing this model, and the .gmshrc's
+    // syntax errors were printed three times).
+    test::ScratchDir dir("cli_gmsh_home");
+    std::filesystem::create_directories(dir.file("plain"));
+    std::filesystem::create_directories(dir.file("user"));
+    std::ofstream(dir.file("user/.gmsh-options"))
+        << "Mesh.Algorithm = 1;\nMesh.MeshSizeFactor = 0.5;\nMesh.Smoothing = 20;\nMesh.RandomFactor = 1e-3;\n";
+    std::ofstream(dir.file("user/.gmshrc")) << "this is not a Gmsh file;\n";
+    const std::string job = "mesh '" + example_data("hemisphere_cylinder_halfdomain.stp") +
+                            "' --patch surface_1=farfield --patch surface_2=symmetry --patch surface_3=other "
+                            "--layers 3 --first-height 0.01 -q -o ";
+    for (const char* home : {"plain", "user"}) {
+        const CliResult r = strata_cli(dir, job + home + ".msh", "HOME='" + dir.file(home) + "' ");
+        ASSERT_EQ(r.code, 0) << home << ": " << r.err;
+        EXPECT_EQ(r.err.find("gmsh"), std::string::npos) << home << ": " << r.err;
+    }
+    EXPECT_TRUE(slurp(dir.file("plain.msh")) == slurp(dir.file("user.msh")));
+}
+
 TEST(Cli, OnATerminalEachStagesBarSaysTheSecondsItHasTaken) {
     // Under a pseudo-terminal (script(1)), as a user at a shell sees it: each stage's bar ends with
     // its seconds so far; the surface, layers and tetrahedra each reach 100 %.
