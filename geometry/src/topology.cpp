@@ -395,7 +395,7 @@ SurfaceMesh remove_hanging_sheets(const SurfaceMesh& mesh, HangingSheets* report
         for (const Index f : faces_of[s])
             for (Index c = 0; c < mesh.face_size(f); ++c) {
                 const Index e = find_edge(et, mesh.face_node(f, c), mesh.face_node(f, (c + 1) % mesh.face_size(f)));
-                if (et.faces.row_size(e) > 2) ++on_edge[e];
+                if (e != kNone && et.faces.row_size(e) > 2) ++on_edge[e];  // kNone: a collapsed edge (a, a)
             }
         bool hangs = true;
         for (const auto& [e, n] : on_edge) hangs = hangs && kept[static_cast<std::size_t>(e)] - n >= 2;

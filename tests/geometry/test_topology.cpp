@@ -580,6 +580,15 @@ TEST(HangingSheets, AFlapOnAnEdgeGoesAndTheBodyItHangsOnStays) {
     const SurfaceMesh same = remove_hanging_sheets(merge_coincident_nodes(two), &r);
     EXPECT_EQ(r.faces, 0);
     EXPECT_EQ(same.num_faces(), 24);
+    // A collapsed triangle (0, 0, 9) on the flap, whose edge 0-0 no edge table has (the fuzzer's
+    // find: that edge was looked up past the table): a sheet of its own, hanging on the flap's
+    // edge 0-9, it goes; the flap, whose edge 0-9 it made one of four, stays for the later steps.
+    SurfaceMesh collapsed = m;
+    collapsed.add_face({0, 0, 9}, 0);
+    const SurfaceMesh without = remove_hanging_sheets(collapsed, &r);
+    EXPECT_EQ(r.sheets, 1);
+    EXPECT_EQ(r.faces, 1);
+    EXPECT_EQ(without.num_faces(), 14);
 }
 
 TEST(CollapsedFaces, FacePatchWithoutAnEntryPerFaceIsAnInputError) {
