@@ -50,9 +50,10 @@ SurfaceMesh make_surface(const Request& request, const std::string& source, bool
 /// \p request with the first height chosen from the walls of \p surface where none was asked
 /// (automatic_first_height): for the layers, the walls' sizing (size_walls_for_layers, where
 /// Strata meshes them) and the options the report and an OpenFOAM case read. Said in
-/// \p r.report's "automatic_first_height" (run_report). A surface without walls keeps it
-/// unset: the layers' own check names what is missing.
+/// \p r.report's "automatic_first_height" (run_report). A surface without walls is refused as the
+/// layers refuse it (require_wall_faces); walls of no extent keep it unset.
 Request with_first_height(const Request& request, const SurfaceMesh& surface, Result& r) {
+    require_wall_faces(surface);
     const double length = walls_length(surface);
     if (!(length > 0.0)) return request;
     Request sized = request;

@@ -42,6 +42,18 @@ struct Wall {
     Csr loops;                      ///< boundary loops of the wall (its open edges)
 };
 
+}  // namespace
+
+void require_wall_faces(const SurfaceMesh& surface) {
+    for (const Index p : surface.face_patch)
+        if (surface.patches[static_cast<std::size_t>(p)].kind == PatchKind::Wall) return;
+    throw InputError(
+        "no wall faces to extrude: every patch is symmetry, farfield or other; mark the body as a wall "
+        "(PrepareParams::patch_kinds NAME=wall)");
+}
+
+namespace {
+
 Wall extract_wall(const SurfaceMesh& in) {
     Wall w;
     w.mesh.patches = in.patches;
@@ -67,10 +79,7 @@ Wall extract_wall(const SurfaceMesh& in) {
         w.mesh.add_face(v, n, in.face_patch[f]);
         w.input_face.push_back(f);
     }
-    if (w.mesh.num_faces() == 0)
-        throw InputError(
-            "no wall faces to extrude: every patch is symmetry, farfield or other; mark the body as a wall "
-            "(PrepareParams::patch_kinds NAME=wall)");
+    if (w.mesh.num_faces() == 0) require_wall_faces(in);
     w.loops = boundary_loops(w.mesh);
     return w;
 }

@@ -1424,6 +1424,13 @@ TEST(Cli, WithNoFirstHeightOneIsChosenFromTheWallsSaidAndTheSameAsAsked) {
     const CliResult yplus = strata_cli(dir, "layers " + sphere + " -o y.msh --yplus 1 --reynolds 1e6");
     ASSERT_EQ(yplus.code, 0) << yplus.err;
     EXPECT_EQ(yplus.out.find("none asked"), std::string::npos) << yplus.out;
+    // No wall to choose it from: the layers' own error, not a missing first height; a.msh as it was.
+    const std::string before = slurp(dir.file("a.msh"));
+    const CliResult none = strata_cli(dir, "mesh " + sphere + " --patch Created_by_Gmsh=symmetry -o a.msh");
+    EXPECT_NE(none.code, 0);
+    test::expect_contains(none.err, {"no wall faces to extrude", "--patch NAME=wall"});
+    EXPECT_EQ(none.err.find("first layer height"), std::string::npos) << none.err;
+    EXPECT_TRUE(slurp(dir.file("a.msh")) == before);
 }
 
 TEST(Cli, FuseWrapsPartsThatTouchAlongALineOnly) {

@@ -256,6 +256,9 @@ private:
     std::vector<Index> level_start_;  ///< first node of each level, and the node count last
 };
 
+/// InputError saying to mark the body as a wall where no face of \p surface is on a wall patch.
+void require_wall_faces(const SurfaceMesh& surface);
+
 /// Per cell of \p lm.mesh in CellNumbering order, its layer: the highest level among its nodes
 /// (a prism from level k - 1 to k is in layer k, a cell closing a step in the layer it reaches).
 std::vector<std::int32_t> layer_of_cells(const LayerMesh& lm);
